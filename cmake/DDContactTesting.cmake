@@ -1,0 +1,42 @@
+# Test helpers: unit tests (GoogleTest, MPI-aware main) and program runs,
+# each registered once per rank count under mpirun.
+find_package(GTest)
+if(NOT GTest_FOUND)
+  ddc_missing("GoogleTest" "libgtest-dev")
+endif()
+find_program(DDC_MPIEXEC NAMES mpirun mpiexec HINTS ${MPIEXEC_EXECUTABLE})
+
+# Environment for every test: oversubscription is fine for iteration counts,
+# running as root is the norm in containers and CI.
+set(DDC_TEST_ENVIRONMENT
+  "OMPI_MCA_rmaps_base_oversubscribe=1"
+  "OMPI_ALLOW_RUN_AS_ROOT=1"
+  "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1"
+  "OMPI_MCA_btl_vader_single_copy_mechanism=none"
+  "OPENBLAS_NUM_THREADS=1"
+  "OMP_NUM_THREADS=1")
+
+# ddc_mpi_command(<out-var> <ranks> cmd...) : the command line under mpirun.
+function(ddc_mpi_command out np)
+  set(${out} ${DDC_MPIEXEC} --oversubscribe -np ${np} ${ARGN} PARENT_SCOPE)
+endfunction()
+
+# ddc_add_unit_test(<name> SOURCES a.cpp ... LIBRARIES lib... [RANKS 1 2] [LABELS ...])
+# Builds <name> with the MPI GoogleTest main; registers <name>_np<R> per rank count.
+function(ddc_add_unit_test name)
+  cmake_parse_arguments(T "" "" "SOURCES;LIBRARIES;RANKS;LABELS" ${ARGN})
+  if(NOT T_RANKS)
+    set(T_RANKS 1)
+  endif()
+  add_executable(${name} ${T_SOURCES} ${PROJECT_SOURCE_DIR}/test/support/DDC_TestMain.cpp)
+  target_link_libraries(${name} PRIVATE ${T_LIBRARIES} GTest::gtest DDContact_Trilinos)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/test/support)
+  target_compile_definitions(${name} PRIVATE DDC_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  foreach(np ${T_RANKS})
+    ddc_mpi_command(cmd ${np} $<TARGET_FILE:${name}>)
+    add_test(NAME ${name}_np${np} COMMAND ${cmd})
+    set_tests_properties(${name}_np${np} PROPERTIES
+      ENVIRONMENT "${DDC_TEST_ENVIRONMENT}" PROCESSORS ${np} TIMEOUT 600
+      LABELS "unit;${T_LABELS}")
+  endforeach()
+endfunction()

@@ -1,0 +1,388 @@
+#include "DDC_Analysis.hpp"
+
+#include <Teuchos_XMLParameterListHelpers.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "DDC_Error.hpp"
+#include "DDC_Gmsh.hpp"
+#include "DDC_HistoryWriter.hpp"
+#include "DDC_MeshGenerators.hpp"
+#include "DDC_ModelOutput.hpp"
+#include "DDC_OutputDirectory.hpp"
+#include "DDC_Parameters.hpp"
+#include "DDC_Partition.hpp"
+#include "DDC_VtkWriter.hpp"
+
+namespace ddc {
+
+namespace {
+
+using PL = Teuchos::ParameterList;
+
+const std::vector<std::string> kGenerators = {"Rectangle", "Annular Sector", "Gmsh"};
+
+Teuchos::RCP<const PL> generatorValidParameters(const std::string& g) {
+  if (g == "Rectangle") return RectangleGenerator::getValidParameters();
+  if (g == "Annular Sector") return AnnularSectorGenerator::getValidParameters();
+  return GmshReader::getValidParameters();
+}
+
+/// "Element" sublist: Type plus the union of the element types' parameters.
+Teuchos::RCP<PL> elementValidParameters(const ElementFactory& factory) {
+  auto pl = Teuchos::rcp(new PL("Element"));
+  const auto names = factory.names();
+  std::string doc = "Element type of the body:";
+  for (const auto& n : names) doc += " '" + n + "' (" + factory.entry(n).description + ");";
+  pl->set("Type", names.empty() ? std::string() : std::string("Quad4"), doc, enumValidator(names, "Type"));
+  for (const auto& n : names) {
+    const auto& v = *factory.entry(n).validParameters;
+    for (auto it = v.begin(); it != v.end(); ++it)
+      if (!pl->isParameter(v.name(it)) && !pl->isSublist(v.name(it))) pl->setEntry(v.name(it), v.entry(it));
+  }
+  return pl;
+}
+
+Teuchos::RCP<PL> bodyValidParameters(const ElementFactory& factory) {
+  auto pl = Teuchos::rcp(new PL("<Body Name>"));
+  pl->set("Generator", "Rectangle",
+          "How the body's mesh is made: a built-in generator or a Gmsh file; its parameters go in the "
+          "sublist of the same name.",
+          enumValidator(kGenerators, "Generator"));
+  for (const auto& g : kGenerators) pl->set(g, *generatorValidParameters(g));
+  pl->set("Element", *elementValidParameters(factory));
+  return pl;
+}
+
+Teuchos::RCP<PL> loadSteppingValidParameters() {
+  auto pl = Teuchos::rcp(new PL("Load Stepping"));
+  pl->set("Number of Steps", 10, "Number of equal load steps from load factor 0 to the final load factor.");
+  pl->set("Final Load Factor", 1.0, "Load factor at the end of the analysis (boundary values scale with it).");
+  pl->set("Max Bisections", 6,
+          "How many times a load step may be halved when Newton fails (diverges, exceeds its iteration "
+          "limit or inverts an element) before the analysis stops with an error.");
+  return pl;
+}
+
+Teuchos::RCP<PL> newtonValidParameters() {
+  auto pl = Teuchos::rcp(new PL("Newton"));
+  pl->set("Max Iterations", 25, "Maximum Newton iterations (linear solves) per load step.");
+  pl->set("Residual Tolerance", 1e-8,
+          "Converged when ||r|| <= tol * ||r_0|| (r_0: first residual of the step, with the consistent "
+          "predictor of prescribed displacements) ...");
+  pl->set("Absolute Residual Tolerance", 1e-10, "... or when ||r|| <= this absolute value (force units)");
+  pl->set("Energy Tolerance", 1e-16,
+          "and the energy norm |du . r| <= tol * |du_0 . r_0| (both criteria must hold).");
+  pl->set("Print Iterations", false, "Print the residual and energy norm of every Newton iteration.");
+  return pl;
+}
+
+Teuchos::RCP<PL> solverValidParameters() {
+  auto pl = Teuchos::rcp(new PL("Solver"));
+  pl->set("Strategy", "Monolithic",
+          "Solution strategy. Monolithic: one global system (distributed Tpetra CrsMatrix) solved by the "
+          "direct solver below.",
+          enumValidator({"Monolithic"}, "Strategy"));
+  pl->set("Direct Solver", *DirectSolverFactory::getValidParameters(),
+          "Direct solver of the monolithic system ({Type, <back-end sublists>}).");
+  return pl;
+}
+
+Teuchos::RCP<PL> partitionValidParameters() {
+  auto pl = Teuchos::rcp(new PL("Partition"));
+  pl->set("Number of Subdomains", 0, "Number of subdomains; 0 means one per MPI rank.");
+  pl->set("Method", "METIS", "METIS: METIS_PartMeshDual over all bodies. By Body: each body one subdomain.",
+          enumValidator({"METIS", "By Body"}, "Method"));
+  return pl;
+}
+
+Teuchos::RCP<PL> outputValidParameters() {
+  auto pl = Teuchos::rcp(new PL("Output"));
+  pl->set("VTK", true, "Write VTK files (vtk/*.vtu, *.pvtu, solution.pvd).");
+  pl->set("VTK Interval", 1, "Write VTK every this many converged steps (the last step is always written).");
+  pl->set("Progress", true, "Print one progress line per converged step on rank 0.");
+  return pl;
+}
+
+template <class T>
+T get(const PL& pl, const std::string& name) {
+  return pl.get<T>(name);
+}
+
+}  // namespace
+
+Teuchos::RCP<const Teuchos::ParameterList> Analysis::getValidParameters(const ElementFactory& factory) {
+  auto pl = Teuchos::rcp(new PL("DDContact"));
+  PL mesh("Mesh");
+  PL bodies("Bodies");
+  bodies.set("<Body Name>", *bodyValidParameters(factory), "One sublist per body; its name is the body's name.");
+  mesh.set("Bodies", bodies, "The bodies of the model (at least one).");
+  pl->set("Mesh", mesh, "Geometry: bodies, their meshes, elements and materials.");
+  PL bcs("Boundary Conditions");
+  bcs.set("<Condition Name>", *BoundaryConditions::getValidParameters(), "One sublist per condition.");
+  pl->set("Boundary Conditions", bcs, "Prescribed displacements and tractions, scaled by the load factor.");
+  pl->set("Load Stepping", *loadSteppingValidParameters(), "Load stepping and bisection.");
+  pl->set("Newton", *newtonValidParameters(), "Newton iteration and convergence criteria.");
+  pl->set("Solver", *solverValidParameters(), "Solution strategy and linear solvers.");
+  pl->set("Partition", *partitionValidParameters(), "Domain partitioning.");
+  pl->set("Output", *outputValidParameters(), "What the run writes (besides history.csv).");
+  return pl;
+}
+
+std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const ElementFactory& factory,
+                                const std::string& baseDirectory) {
+  PL validMesh("Mesh");
+  validMesh.sublist("Bodies");
+  validateLevel(meshParams, validMesh, "Mesh");
+  DDC_INPUT_REQUIRE(meshParams.isSublist("Bodies") && meshParams.sublist("Bodies").numParams() > 0,
+                    "sublist 'Mesh/Bodies' is required and must describe at least one body");
+  PL& bodies = meshParams.sublist("Bodies");
+  const auto validBody = bodyValidParameters(factory);
+  auto mesh = std::make_shared<Mesh>();
+  for (auto it = bodies.begin(); it != bodies.end(); ++it) {
+    const std::string name = bodies.name(it);
+    const std::string path = "Mesh/Bodies/" + name;
+    DDC_INPUT_REQUIRE(bodies.isSublist(name), "'" << path << "' must be a sublist describing a body");
+    PL& body = bodies.sublist(name);
+    validateLevel(body, *validBody, path);
+    const std::string gen = body.get<std::string>("Generator");
+    for (const auto& g : kGenerators)
+      DDC_INPUT_REQUIRE(g == gen || !body.isSublist(g), "sublist '" << path << "/" << g
+                                                                    << "' does not apply: Generator is '"
+                                                                    << gen << "'");
+    DDC_INPUT_REQUIRE(body.isSublist("Element"), "sublist '" << path << "/Element' is required (Type, Material)");
+    PL& elem = body.sublist("Element");
+    DDC_INPUT_REQUIRE(elem.isParameter("Type"), "parameter '" << path << "/Element/Type' is required");
+    const auto& entry = factory.entry(elem.get<std::string>("Type"), path + "/Element/Type");
+    DDC_INPUT_REQUIRE(entry.numNodes == 4 || entry.numNodes == 9,
+                      "element type '" << elem.get<std::string>("Type") << "' of '" << path
+                                       << "' has " << entry.numNodes << " nodes; bodies need 4 or 9");
+    const CellType cell = entry.numNodes == 4 ? CellType::Quad4 : CellType::Quad9;
+    PL& gp = body.sublist(gen);
+    if (gen == "Rectangle")
+      generateRectangle(*mesh, name, cell, gp, path + "/Rectangle");
+    else if (gen == "Annular Sector")
+      generateAnnularSector(*mesh, name, cell, gp, path + "/Annular Sector");
+    else
+      readGmshBody(*mesh, name, cell, gp, path + "/Gmsh", baseDirectory);
+  }
+  mesh->check();
+  return mesh;
+}
+
+Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::ParameterList& params,
+                   ElementFactory factory, const std::string& baseDirectory)
+    : comm_(std::move(comm)), factory_(std::move(factory)) {
+  const auto valid = getValidParameters(factory_);
+  validateLevel(params, *valid, "");
+  for (const char* s : {"Load Stepping", "Newton", "Solver", "Partition", "Output"})
+    validateLevel(params.sublist(s), valid->sublist(s), s);
+  DDC_INPUT_REQUIRE(params.isSublist("Mesh"), "sublist 'Mesh' is required");
+
+  // Mesh and one element evaluator per body.
+  auto mesh = buildMesh(params.sublist("Mesh"), factory_, baseDirectory);
+  std::vector<std::shared_ptr<const Element>> elements;
+  for (int b = 0; b < mesh->numBodies(); ++b) {
+    const std::string path = "Mesh/Bodies/" + mesh->body(b).name + "/Element";
+    elements.push_back(factory_.create(params.sublist("Mesh").sublist("Bodies").sublist(mesh->body(b).name).sublist("Element"), path));
+  }
+  // Reject inverted or degenerate elements before anything runs (every rank
+  // holds the mesh, so every rank reaches the same verdict).
+  for (int e = 0; e < mesh->numElements(); ++e) {
+    const int nn = mesh->elementNumNodes(e);
+    Eigen::MatrixX2d X(nn, 2);
+    for (int i = 0; i < nn; ++i) X.row(i) << mesh->coord(mesh->elementNodes(e)[i])[0], mesh->coord(mesh->elementNodes(e)[i])[1];
+    const double detJ = elements[mesh->elementBody(e)]->minReferenceJacobian(X);
+    DDC_INPUT_REQUIRE(detJ > 0.0, "mesh: element " << e << " of body '" << mesh->body(mesh->elementBody(e)).name
+                                                  << "' is inverted or degenerate (min det J = " << detJ
+                                                  << "); its nodes must run counter-clockwise, first node at ("
+                                                  << X(0, 0) << ", " << X(0, 1) << ")");
+  }
+
+  auto bcs = BoundaryConditions::fromParameters(params.sublist("Boundary Conditions"), *mesh, "Boundary Conditions");
+
+  const PL& part = params.sublist("Partition");
+  int nsub = part.get<int>("Number of Subdomains");
+  DDC_INPUT_REQUIRE(nsub >= 0, "parameter 'Partition/Number of Subdomains' must be >= 0 (0: one per rank), got " << nsub);
+  if (nsub == 0) nsub = comm_->getSize();
+  Partition partition;
+  if (part.get<std::string>("Method") == "By Body") {
+    partition = partitionByBody(*mesh);
+    DDC_INPUT_REQUIRE(part.get<int>("Number of Subdomains") == 0 || part.get<int>("Number of Subdomains") == mesh->numBodies(),
+                      "'Partition/Number of Subdomains' = " << nsub << " contradicts Method = By Body with "
+                                                            << mesh->numBodies() << " bodies");
+  } else {
+    partition = partitionMetis(*mesh, nsub);
+  }
+  DDC_INPUT_REQUIRE(partition.numSubdomains >= comm_->getSize(),
+                    "'Partition/Number of Subdomains' (" << partition.numSubdomains << ") must be at least the number of MPI ranks ("
+                                                          << comm_->getSize() << ")");
+
+  const PL& ls = params.sublist("Load Stepping");
+  DDC_INPUT_REQUIRE(ls.get<int>("Number of Steps") > 0,
+                    "parameter 'Load Stepping/Number of Steps' must be > 0, got " << ls.get<int>("Number of Steps"));
+  DDC_INPUT_REQUIRE(ls.get<int>("Max Bisections") >= 0, "parameter 'Load Stepping/Max Bisections' must be >= 0");
+  const PL& nw = params.sublist("Newton");
+  DDC_INPUT_REQUIRE(nw.get<int>("Max Iterations") > 0, "parameter 'Newton/Max Iterations' must be > 0");
+  for (const char* t : {"Residual Tolerance", "Absolute Residual Tolerance", "Energy Tolerance"})
+    DDC_INPUT_REQUIRE(nw.get<double>(t) >= 0.0, "parameter 'Newton/" << t << "' must be >= 0");
+  DDC_INPUT_REQUIRE(params.sublist("Output").get<int>("VTK Interval") > 0, "parameter 'Output/VTK Interval' must be > 0");
+
+  solver_ = DirectSolverFactory::withBuiltins().create(params.sublist("Solver").sublist("Direct Solver"),
+                                                       "Solver/Direct Solver");
+
+  model_ = std::make_shared<Model>(comm_, mesh, std::move(elements), std::move(partition), std::move(bcs));
+  K_ = model_->createMatrix();
+  u_ = model_->createVector();
+  params_ = params;
+}
+
+Analysis::~Analysis() = default;
+
+void Analysis::progress(const std::string& line) const {
+  if (comm_->getRank() == 0 && params_.sublist("Output").get<bool>("Progress")) {
+    std::cout << line << std::endl;
+  }
+}
+
+bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
+  const PL& nw = params_.sublist("Newton");
+  const int maxIt = nw.get<int>("Max Iterations");
+  const double rtol = nw.get<double>("Residual Tolerance");
+  const double atol = nw.get<double>("Absolute Residual Tolerance");
+  const double etol = nw.get<double>("Energy Tolerance");
+  const bool printIt = nw.get<bool>("Print Iterations");
+
+  auto u = model_->createVector();
+  u->assign(*u_);
+  auto dp = model_->createVector();
+  model_->prescribedIncrement(lambda0, lambda1, *dp);
+  auto r = model_->createVector();
+  auto du = model_->createVector();
+  double r0 = 0.0, e0 = 0.0;
+  rec.residualHistory.clear();
+  for (int it = 0; it < maxIt; ++it) {
+    try {
+      model_->assemble(*u, lambda1, nullptr, r.get(), K_.get(), it == 0 ? dp.get() : nullptr);
+    } catch (const InadmissibleDeformation& e) {
+      progress("    Newton iteration " + std::to_string(it) + ": " + e.what());
+      return false;
+    }
+    const double rnorm = r->norm2();
+    rec.residualHistory.push_back(rnorm);
+    if (!std::isfinite(rnorm)) return false;
+    if (it == 0) r0 = rnorm;
+    const bool residualOk = it > 0 && rnorm <= std::max(rtol * r0, atol);
+
+    if (!symbolicDone_) {
+      solver_->symbolic(K_);
+      symbolicDone_ = true;
+    }
+    solver_->numeric();
+    r->scale(-1.0);
+    solver_->solve(*r, *du);
+    // du·r: the energy norm of the correction (r already negated: use -).
+    const double energy = std::abs(du->dot(*r));
+    if (it == 0) {
+      du->update(1.0, *dp, 1.0);  // constrained rows solved to 0; impose the increment
+      e0 = energy;
+    }
+    u->update(1.0, *du, 1.0);
+    rec.newtonIterations = it + 1;
+    if (printIt && comm_->getRank() == 0) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "    iter %2d  |r| = %.3e  |du.r| = %.3e", it, rnorm, energy);
+      std::cout << buf << std::endl;
+    }
+    if (!std::isfinite(energy)) return false;
+    if (residualOk && energy <= std::max(etol * e0, 0.0)) {
+      u_->assign(*u);
+      return true;
+    }
+  }
+  return false;
+}
+
+void Analysis::run(const std::string& outputDirectory) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  const PL& ls = params_.sublist("Load Stepping");
+  const int nsteps = ls.get<int>("Number of Steps");
+  const double finalLambda = ls.get<double>("Final Load Factor");
+  const int maxBisect = ls.get<int>("Max Bisections");
+  const PL& out = params_.sublist("Output");
+
+  std::unique_ptr<OutputDirectory> dir;
+  std::unique_ptr<HistoryWriter> hist;
+  std::unique_ptr<VtkWriter> vtk;
+  if (!outputDirectory.empty()) {
+    dir = std::make_unique<OutputDirectory>(comm_, outputDirectory);
+    hist = std::make_unique<HistoryWriter>(comm_, dir->path() + "/history.csv", HistoryWriter::standardColumns());
+    if (comm_->getRank() == 0) Teuchos::writeParameterListToXmlFile(params_, dir->path() + "/parameters.xml");
+    if (out.get<bool>("VTK")) vtk = std::make_unique<VtkWriter>(comm_, dir->path(), "solution.pvd");
+  }
+  auto writeVtk = [&](int step, double lambda) {
+    if (vtk) writeVtkStep(*vtk, *model_, *u_, step, lambda);
+  };
+  history_.clear();
+  u_->putScalar(0.0);
+  writeVtk(0, 0.0);
+
+  double lambda = 0.0;
+  int vtkCounter = 0;
+  for (int n = 1; n <= nsteps; ++n) {
+    const double target = finalLambda * n / nsteps;
+    double dl = target - lambda;
+    int depth = 0;
+    while (lambda < target - 1e-14 * std::abs(finalLambda)) {
+      const double trial = (target - lambda <= dl * (1 + 1e-12)) ? target : lambda + dl;
+      StepRecord rec;
+      rec.step = n;
+      if (!solveIncrement(lambda, trial, rec)) {
+        ++depth;
+        if (depth > maxBisect) {
+          std::ostringstream os;
+          os << "Newton did not converge in step " << n << " (load factor " << lambda << " -> " << trial
+             << ") after " << maxBisect << " bisections (Load Stepping/Max Bisections); residual history:";
+          for (double x : rec.residualHistory) os << " " << x;
+          throw SolverError(os.str());
+        }
+        dl *= 0.5;
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "  step %d: Newton failed at load factor %.6g; bisecting (depth %d), next %.6g",
+                      n, trial, depth, lambda + dl);
+        progress(buf);
+        continue;
+      }
+      lambda = trial;
+      rec.loadFactor = lambda;
+      rec.bisections = depth;
+      auto fint = model_->createVector();
+      rec.strainEnergy = model_->assemble(*u_, lambda, fint.get(), nullptr, nullptr).strainEnergy;
+      rec.wallSeconds = seconds();
+      history_.push_back(rec);
+      if (hist)
+        hist->appendRow({double(n), lambda, rec.strainEnergy, double(rec.newtonIterations), 0.0, 0.0, 0.0, 0.0, 0.0,
+                         rec.wallSeconds});
+      char buf[240];
+      std::snprintf(buf, sizeof buf,
+                    "step %3d/%d  load %.6g  Newton %2d  |r| %.3e -> %.3e  energy %.6e  %.2f s", n, nsteps, lambda,
+                    rec.newtonIterations, rec.residualHistory.front(), rec.residualHistory.back(), rec.strainEnergy,
+                    rec.wallSeconds);
+      progress(buf);
+      const bool last = n == nsteps && lambda >= target - 1e-14 * std::abs(finalLambda);
+      if (++vtkCounter % out.get<int>("VTK Interval") == 0 || last) writeVtk(static_cast<int>(history_.size()), lambda);
+    }
+  }
+  if (dir) {
+    hist.reset();
+    vtk.reset();
+    dir->commit();
+    progress("results in " + dir->finalPath());
+  }
+}
+
+}  // namespace ddc

@@ -1,0 +1,82 @@
+// The analysis: builds a model from a validated Teuchos::ParameterList and
+// runs load stepping with full Newton and automatic bisection.
+//
+// Embedding lifecycle (Tribol style), for host codes:
+//   1. Analysis a(comm, params);                 // validate + build (collective)
+//      or Analysis a(comm, params, factory);     // with host element types
+//   2. a.run("out/dir");                         // or a.run("") for no files
+//   3. a.history(), a.model(), a.displacement()  // results
+// Nothing here reads files other than meshes named in the parameters.
+#pragma once
+
+#include <Teuchos_Comm.hpp>
+#include <Teuchos_ParameterList.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "DDC_DirectSolver.hpp"
+#include "DDC_ElementFactory.hpp"
+#include "DDC_Model.hpp"
+
+namespace ddc {
+
+/// One converged (sub)step.
+struct StepRecord {
+  int step = 0;              ///< nominal step number (1-based); sub-steps repeat it
+  double loadFactor = 0.0;
+  double strainEnergy = 0.0;
+  int newtonIterations = 0;  ///< linear solves in this (sub)step
+  int bisections = 0;        ///< bisection depth used to reach this load factor
+  double wallSeconds = 0.0;  ///< since the start of run()
+  std::vector<double> residualHistory;  ///< ||r|| per Newton iteration
+};
+
+class Analysis {
+ public:
+  /// Every valid parameter, with defaults and doc strings, for the element
+  /// types in `factory`. Sublists named "<...>" are templates (any name).
+  static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters(
+      const ElementFactory& factory = ElementFactory::withBuiltins());
+
+  /// Validate `params` (filled with defaults in place) and build the model.
+  /// Collective over `comm`.
+  /// \param baseDirectory directory relative mesh file names are resolved in
+  ///        (the input deck's directory).
+  /// \throws InputError naming the parameter path / file / mesh entity.
+  Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::ParameterList& params,
+           ElementFactory factory = ElementFactory::withBuiltins(), const std::string& baseDirectory = ".");
+  ~Analysis();
+
+  /// Run every load step. With a non-empty `outputDirectory`, write
+  /// history.csv, vtk/ and the validated parameters there: results are
+  /// staged in "<dir>.partial" and replace "<dir>" only when the run succeeds.
+  /// \throws SolverError when a step fails after all bisections.
+  void run(const std::string& outputDirectory);
+
+  const Model& model() const { return *model_; }
+  const Vector& displacement() const { return *u_; }
+  const std::vector<StepRecord>& history() const { return history_; }
+  const Teuchos::ParameterList& parameters() const { return params_; }
+
+ private:
+  bool solveIncrement(double lambda0, double lambda1, StepRecord& rec);
+  void progress(const std::string& line) const;
+
+  Teuchos::RCP<const Teuchos::Comm<int>> comm_;
+  Teuchos::ParameterList params_;
+  ElementFactory factory_;
+  std::shared_ptr<Model> model_;
+  std::unique_ptr<DirectSolver> solver_;
+  Teuchos::RCP<CrsMatrix> K_;
+  Teuchos::RCP<Vector> u_;
+  std::vector<StepRecord> history_;
+  bool symbolicDone_ = false;
+};
+
+/// Build the mesh described by "Mesh" (validated in place). Exposed for tools
+/// and tests. Cell types follow each body's element type in `factory`.
+std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const ElementFactory& factory,
+                                const std::string& baseDirectory);
+
+}  // namespace ddc

@@ -1,0 +1,49 @@
+// Prescribed displacements on node sets and tractions on side sets, both
+// scaled by the load factor.
+#pragma once
+
+#include <Teuchos_ParameterList.hpp>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "DDC_Mesh.hpp"
+
+namespace ddc {
+
+/// A prescribed displacement on a node set:
+///   u(X, λ) = λ·(Value X, Value Y) + (R(λ·θ) − I)(X − c)
+/// on the components selected (X, Y or both). With θ = 0 it is a plain
+/// scaled displacement; with θ ≠ 0 (both components) a rigid rotation about c.
+struct DisplacementCondition {
+  std::string name;     ///< sublist name, for messages
+  std::string setName;  ///< qualified node set, "Body/set"
+  bool fix[2] = {true, true};
+  double value[2] = {0.0, 0.0};
+  double angleRadians = 0.0;
+  double center[2] = {0.0, 0.0};
+  /// Prescribed value of component `c` at reference position X and load factor λ.
+  double prescribed(int c, const std::array<double, 2>& X, double lambda) const;
+};
+
+/// A dead traction (force per unit reference length) on a side set, scaled by λ.
+struct TractionCondition {
+  std::string name;
+  std::string setName;  ///< qualified side set
+  double traction[2] = {0.0, 0.0};
+};
+
+/// All boundary conditions of a model, parsed from "Boundary Conditions".
+struct BoundaryConditions {
+  std::vector<DisplacementCondition> displacements;
+  std::vector<TractionCondition> tractions;
+
+  /// Valid parameters of one condition ("Boundary Conditions/<Condition Name>").
+  static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
+  /// Parse and validate every condition; set names are checked against the
+  /// mesh (InputError naming the condition and listing the known sets).
+  static BoundaryConditions fromParameters(Teuchos::ParameterList& list, const Mesh& mesh,
+                                           const std::string& path);
+};
+
+}  // namespace ddc

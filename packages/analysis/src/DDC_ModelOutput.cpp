@@ -1,0 +1,62 @@
+#include "DDC_ModelOutput.hpp"
+
+#include <map>
+
+namespace ddc {
+
+void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int step, double time) {
+  const Mesh& mesh = model.mesh();
+  auto uov = model.toOverlap(u);
+  auto ud = uov->getData();
+  const auto& ovMap = *model.overlapMap();
+  std::map<int, VtkPiece> pieces;
+  std::map<int, std::map<int, int>> pointIndex;  // subdomain -> (mesh node -> piece point)
+  Eigen::MatrixX2d X, ue;
+  ElementPostResult post;
+  for (int e : model.localElements()) {
+    const int s = model.partition().elementSubdomain[e];
+    VtkPiece& p = pieces[s];
+    auto& index = pointIndex[s];
+    if (p.pointData.empty()) {
+      p.id = s;
+      p.pointData = {{"displacement", 3, {}}};
+      p.cellData = {{"cauchy_stress", 6, {}}, {"strain_energy_density", 1, {}}, {"body", 1, {}}, {"subdomain", 1, {}}};
+    }
+    const int nn = mesh.elementNumNodes(e);
+    const int* en = mesh.elementNodes(e);
+    X.resize(nn, 2);
+    ue.resize(nn, 2);
+    for (int i = 0; i < nn; ++i) {
+      auto [it, fresh] = index.emplace(en[i], p.numPoints());
+      if (fresh) {
+        p.points.insert(p.points.end(), {mesh.coord(en[i])[0], mesh.coord(en[i])[1], 0.0});
+        auto& d = p.pointData[0].values;
+        d.insert(d.end(), {ud[ovMap.getLocalElement(model.dof(en[i], 0))], ud[ovMap.getLocalElement(model.dof(en[i], 1))], 0.0});
+      }
+      p.connectivity.push_back(it->second);
+      X(i, 0) = mesh.coord(en[i])[0];
+      X(i, 1) = mesh.coord(en[i])[1];
+      ue(i, 0) = ud[ovMap.getLocalElement(model.dof(en[i], 0))];
+      ue(i, 1) = ud[ovMap.getLocalElement(model.dof(en[i], 1))];
+    }
+    p.offsets.push_back(static_cast<int>(p.connectivity.size()));
+    p.types.push_back(mesh.elementType(e) == CellType::Quad4 ? 9 : 28);
+    post = ElementPostResult();
+    try {
+      model.elementOf(e).postprocess(X, ue, post);
+    } catch (const InadmissibleDeformation&) {
+      // Output of a converged state never sees this; keep zeros if it does.
+    }
+    const double* c = post.cauchy;  // xx, yy, xy, zz
+    auto& st = p.cellData[0].values;
+    st.insert(st.end(), {c[0], c[1], c[3], c[2], 0.0, 0.0});
+    p.cellData[1].values.push_back(post.energyDensity);
+    p.cellData[2].values.push_back(mesh.elementBody(e));
+    p.cellData[3].values.push_back(s);
+  }
+  std::vector<VtkPiece> list;
+  for (auto& kv : pieces) list.push_back(std::move(kv.second));
+  writer.writeStep(step, time, list);
+}
+
+}  // namespace ddc

@@ -1,0 +1,64 @@
+// Error handling for DDContact.
+//
+// Two levels, as in deal.II / MFEM: user input and run-time failures throw an
+// exception that carries full context (always on); internal invariants use
+// DDC_ASSERT (debug builds only).
+#pragma once
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace ddc {
+
+/// Bad user input: malformed XML, unknown names, misspelt parameters, missing
+/// or inconsistent meshes, impossible combinations. The message names the
+/// file / parameter path / mesh entity and what was expected.
+class InputError : public std::runtime_error {
+ public:
+  explicit InputError(const std::string& what) : std::runtime_error(what) {}
+};
+
+/// A run-time failure of the analysis that is not the user's input: Newton
+/// or active-set non-convergence after all bisections, a failed factorisation.
+class SolverError : public std::runtime_error {
+ public:
+  explicit SolverError(const std::string& what) : std::runtime_error(what) {}
+};
+
+}  // namespace ddc
+
+/// Throw ddc::InputError with a streamed message if `cond` is false.
+/// Example: DDC_INPUT_REQUIRE(n > 0, "Load Stepping/Number of Steps must be > 0, got " << n);
+#define DDC_INPUT_REQUIRE(cond, msg)                       \
+  do {                                                     \
+    if (!(cond)) {                                         \
+      std::ostringstream ddc_oss_;                         \
+      ddc_oss_ << msg;                                     \
+      throw ::ddc::InputError(ddc_oss_.str());             \
+    }                                                      \
+  } while (0)
+
+/// Throw an exception of type `Type` with a streamed message.
+#define DDC_THROW(Type, msg)                               \
+  do {                                                     \
+    std::ostringstream ddc_oss_;                           \
+    ddc_oss_ << msg;                                       \
+    throw Type(ddc_oss_.str());                            \
+  } while (0)
+
+#ifndef NDEBUG
+#define DDC_ASSERT(cond, msg)                                                   \
+  do {                                                                          \
+    if (!(cond)) {                                                              \
+      std::ostringstream ddc_oss_;                                              \
+      ddc_oss_ << "internal error at " << __FILE__ << ":" << __LINE__ << ": " \
+               << msg;                                                          \
+      throw std::logic_error(ddc_oss_.str());                                   \
+    }                                                                           \
+  } while (0)
+#else
+#define DDC_ASSERT(cond, msg) \
+  do {                        \
+  } while (0)
+#endif

@@ -1,0 +1,143 @@
+#include "DDC_Mesh.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include "DDC_Error.hpp"
+
+namespace ddc {
+
+int numCellNodes(CellType t) { return t == CellType::Quad4 ? 4 : 9; }
+const char* cellTypeName(CellType t) { return t == CellType::Quad4 ? "Quad4" : "Quad9"; }
+
+namespace {
+std::string joinNames(const std::vector<std::string>& names) {
+  std::ostringstream os;
+  for (size_t i = 0; i < names.size(); ++i) os << (i ? ", " : "") << "'" << names[i] << "'";
+  if (names.empty()) os << "(none)";
+  return os.str();
+}
+}  // namespace
+
+int Mesh::beginBody(const std::string& name, CellType cellType) {
+  for (const auto& b : bodies_)
+    DDC_INPUT_REQUIRE(b.name != name, "mesh: two bodies are named '" << name << "'");
+  DDC_INPUT_REQUIRE(!name.empty() && name.find('/') == std::string::npos,
+                    "mesh: body name '" << name << "' must be non-empty and contain no '/'");
+  Body b;
+  b.name = name;
+  b.cellType = cellType;
+  b.firstNode = numNodes();
+  b.firstElement = numElements();
+  bodies_.push_back(b);
+  return numBodies() - 1;
+}
+
+int Mesh::addNode(double x, double y) {
+  DDC_ASSERT(!bodies_.empty(), "addNode before beginBody");
+  coords_.push_back({x, y});
+  bodies_.back().numNodes++;
+  return numNodes() - 1;
+}
+
+int Mesh::addElement(const int* nodes) {
+  DDC_ASSERT(!bodies_.empty(), "addElement before beginBody");
+  const int nn = numCellNodes(bodies_.back().cellType);
+  elemNodes_.insert(elemNodes_.end(), nodes, nodes + nn);
+  elemOffset_.push_back(static_cast<int>(elemNodes_.size()));
+  elemBody_.push_back(numBodies() - 1);
+  bodies_.back().numElements++;
+  return numElements() - 1;
+}
+
+void Mesh::addNodeSet(int body, const std::string& localName, std::vector<int> nodes) {
+  const std::string name = bodies_.at(body).name + "/" + localName;
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  auto& set = nodeSets_[name];
+  std::vector<int> merged;
+  std::set_union(set.begin(), set.end(), nodes.begin(), nodes.end(), std::back_inserter(merged));
+  set.swap(merged);
+}
+
+void Mesh::addSideSet(int body, const std::string& localName, std::vector<Segment> segments) {
+  std::vector<int> nodes;
+  for (const auto& s : segments) nodes.insert(nodes.end(), s.nodes.begin(), s.nodes.begin() + s.numNodes);
+  addNodeSet(body, localName, std::move(nodes));
+  auto& set = sideSets_[bodies_.at(body).name + "/" + localName];
+  set.insert(set.end(), segments.begin(), segments.end());
+}
+
+Segment Mesh::makeSegment(int e, int localSide) const {
+  DDC_ASSERT(localSide >= 0 && localSide < 4, "bad local side " << localSide);
+  Segment s;
+  s.element = e;
+  s.localSide = localSide;
+  const int* en = elementNodes(e);
+  s.nodes[0] = en[localSide];
+  s.nodes[1] = en[(localSide + 1) % 4];
+  s.numNodes = 2;
+  if (elementType(e) == CellType::Quad9) {
+    s.nodes[2] = en[4 + localSide];
+    s.numNodes = 3;
+  }
+  return s;
+}
+
+int Mesh::bodyIndex(const std::string& name) const {
+  for (int b = 0; b < numBodies(); ++b)
+    if (bodies_[b].name == name) return b;
+  std::vector<std::string> names;
+  for (const auto& b : bodies_) names.push_back(b.name);
+  DDC_THROW(InputError, "mesh: no body named '" << name << "'; bodies are " << joinNames(names));
+}
+
+const std::vector<int>& Mesh::nodeSet(const std::string& name) const {
+  auto it = nodeSets_.find(name);
+  DDC_INPUT_REQUIRE(it != nodeSets_.end(),
+                    "mesh: no node set named '" << name << "'; known node sets are "
+                                                 << joinNames(nodeSetNames()));
+  return it->second;
+}
+
+const std::vector<Segment>& Mesh::sideSet(const std::string& name) const {
+  auto it = sideSets_.find(name);
+  DDC_INPUT_REQUIRE(it != sideSets_.end(),
+                    "mesh: no side set named '" << name << "'; known side sets are "
+                                                 << joinNames(sideSetNames()));
+  return it->second;
+}
+
+std::vector<std::string> Mesh::nodeSetNames() const {
+  std::vector<std::string> n;
+  for (const auto& kv : nodeSets_) n.push_back(kv.first);
+  return n;
+}
+
+std::vector<std::string> Mesh::sideSetNames() const {
+  std::vector<std::string> n;
+  for (const auto& kv : sideSets_) n.push_back(kv.first);
+  return n;
+}
+
+void Mesh::check() const {
+  std::vector<char> used(numNodes(), 0);
+  for (int b = 0; b < numBodies(); ++b) {
+    const Body& body = bodies_[b];
+    DDC_INPUT_REQUIRE(body.numElements > 0, "mesh: body '" << body.name << "' has no elements");
+    for (int e = body.firstElement; e < body.firstElement + body.numElements; ++e) {
+      const int* en = elementNodes(e);
+      for (int i = 0; i < elementNumNodes(e); ++i) {
+        DDC_INPUT_REQUIRE(en[i] >= body.firstNode && en[i] < body.firstNode + body.numNodes,
+                          "mesh: element " << e << " of body '" << body.name << "' references node "
+                                           << en[i] << " outside the body");
+        used[en[i]] = 1;
+      }
+    }
+  }
+  for (int n = 0; n < numNodes(); ++n)
+    DDC_INPUT_REQUIRE(used[n], "mesh: node " << n << " at (" << coords_[n][0] << ", " << coords_[n][1]
+                                            << ") belongs to no element");
+}
+
+}  // namespace ddc

@@ -1,0 +1,92 @@
+// Local-solver factory: direct solvers behind one interface, used for the
+// monolithic global solve (distributed matrix) and, with FETI-DP, for the
+// subdomain factorisations (matrices on MPI_COMM_SELF).
+//
+// Shape follows FROSch's Solver: symbolic / numeric / solve with state, a
+// factory dispatching on "Type" with a {Type, ...} sublist.
+#pragma once
+
+#include <Teuchos_ParameterList.hpp>
+#include <Tpetra_CrsMatrix.hpp>
+#include <Tpetra_MultiVector.hpp>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace ddc {
+
+using Scalar = double;
+using LO = Tpetra::Map<>::local_ordinal_type;
+using GO = Tpetra::Map<>::global_ordinal_type;
+using Node = Tpetra::Map<>::node_type;
+using Map = Tpetra::Map<LO, GO, Node>;
+using CrsMatrix = Tpetra::CrsMatrix<Scalar, LO, GO, Node>;
+using CrsGraph = Tpetra::CrsGraph<LO, GO, Node>;
+using MultiVector = Tpetra::MultiVector<Scalar, LO, GO, Node>;
+using Vector = Tpetra::Vector<Scalar, LO, GO, Node>;
+
+/// A sparse direct solver for a square, fill-complete Tpetra::CrsMatrix whose
+/// row, range and domain maps are the same map. The matrix may live on any
+/// communicator (distributed, or MPI_COMM_SELF for a subdomain).
+class DirectSolver {
+ public:
+  virtual ~DirectSolver() = default;
+  /// Analyse the sparsity pattern of A (ordering, symbolic factorisation).
+  /// Call again only when the pattern changes; the solver keeps A.
+  virtual void symbolic(const Teuchos::RCP<const CrsMatrix>& A) = 0;
+  /// Factorise the current values of the matrix given to symbolic().
+  /// \throws SolverError if the matrix is singular (naming the back end).
+  virtual void numeric() = 0;
+  /// Solve A x = b (b, x distributed like A's row map; several columns ok).
+  virtual void solve(const MultiVector& b, MultiVector& x) = 0;
+  /// Back-end name for messages ("MUMPS", "Amesos2/KLU2").
+  virtual std::string name() const = 0;
+};
+
+/// Names -> direct-solver creators. Built-ins: "MUMPS", "Amesos2".
+///
+/// The {Type, ...} sublist has one sublist per back end, named like its Type:
+/// {"Type": "MUMPS", "MUMPS": {...}, "Amesos2": {...}}; only the chosen back
+/// end's sublist is used, but every one present is validated (see
+/// validParameters()).
+class DirectSolverFactory {
+ public:
+  /// Type used when the sublist has no "Type".
+  static constexpr const char* kDefaultType = "MUMPS";
+
+  using Creator = std::function<std::unique_ptr<DirectSolver>(const Teuchos::ParameterList&)>;
+  struct Entry {
+    Creator create;
+    Teuchos::RCP<const Teuchos::ParameterList> validParameters;  ///< without "Type"
+    std::string description;
+  };
+
+  DirectSolverFactory() = default;
+  static DirectSolverFactory withBuiltins();
+
+  /// Register a back end. \throws std::invalid_argument if `type` is empty,
+  /// already registered, or `entry.create` is empty.
+  void add(const std::string& type, Entry entry);
+  std::vector<std::string> names() const;
+  /// \throws InputError naming where/Type and the known types if unknown.
+  const Entry& entry(const std::string& type, const std::string& where = "") const;
+  /// `params` is the {Type, ...} sublist; validated, defaults filled in.
+  /// \param where parameter path of `params` for messages (e.g. "Solver/Direct Solver").
+  /// \throws InputError for an unknown Type (naming where/Type and listing the
+  ///         known types) or a misspelt / mistyped parameter (naming its path).
+  std::unique_ptr<DirectSolver> create(Teuchos::ParameterList& params, const std::string& where) const;
+
+  /// The documented valid {Type, <one sublist per registered type>} list of
+  /// this factory (default Type "MUMPS" if registered, else the first name).
+  Teuchos::RCP<const Teuchos::ParameterList> validParameters() const;
+  /// validParameters() of withBuiltins(): every built-in option with default
+  /// and doc string (for --print-parameters and for enclosing lists).
+  static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
+
+ private:
+  std::map<std::string, Entry> entries_;
+};
+
+}  // namespace ddc
