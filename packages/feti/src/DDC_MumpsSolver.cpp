@@ -1,0 +1,359 @@
+#include "DDC_MumpsSolver.hpp"
+
+#include <dmumps_c.h>
+#include <mpi.h>
+
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <algorithm>
+#include <climits>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "DDC_Error.hpp"
+#include "DDC_Parameters.hpp"
+
+namespace ddc {
+
+namespace {
+
+// MUMPS control arrays are 1-based in the user guide; these helpers keep the
+// code readable against it ("ICNTL(18) = 3").
+inline MUMPS_INT& icntl(DMUMPS_STRUC_C& id, int i) { return id.icntl[i - 1]; }
+inline MUMPS_INT infog(const DMUMPS_STRUC_C& id, int i) { return id.infog[i - 1]; }
+
+const std::vector<std::string>& orderingNames() {
+  static const std::vector<std::string> names{"Auto", "AMD", "AMF", "QAMD", "PORD"};
+  return names;
+}
+
+/// ICNTL(7) value for an "Ordering" name (MUMPS user guide §6.1).
+int orderingCode(const std::string& o) {
+  if (o == "AMD") return 0;
+  if (o == "AMF") return 2;
+  if (o == "PORD") return 4;
+  if (o == "QAMD") return 6;
+  return 7;  // Auto
+}
+
+/// Short explanation of the most common INFOG(1) error codes.
+std::string explainInfog1(int code) {
+  switch (code) {
+    case -5: case -7: case -13: return "memory allocation failed";
+    case -6: return "matrix is structurally singular";
+    case -8: case -9: case -14: case -15: case -17: case -20:
+      return "internal work array too small (raise 'Memory Relaxation Percent')";
+    case -10: return "matrix is numerically singular";
+    case -16: return "N out of range";
+    case -22: return "invalid pointer array";
+    case -40: return "matrix declared symmetric positive definite is not";
+    default: return "see the MUMPS user guide, INFOG(1)";
+  }
+}
+
+/// The raw MPI communicator behind a Teuchos communicator (MPI_COMM_SELF for
+/// a Teuchos::SerialComm).
+MPI_Comm rawComm(const Teuchos::RCP<const Teuchos::Comm<int>>& comm) {
+  auto mpi = Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(comm);
+  if (mpi.is_null()) return MPI_COMM_SELF;
+  return *mpi->getRawMpiComm();
+}
+
+}  // namespace
+
+struct MumpsSolver::Impl {
+  // parameters
+  bool symmetric = true;
+  int ordering = 7;
+  int relaxation = 30;
+  bool verbose = false;
+
+  // MUMPS instance, bound to a duplicate of the matrix's communicator
+  DMUMPS_STRUC_C id{};
+  bool initialized = false;
+  MPI_Comm comm = MPI_COMM_NULL;  // our duplicate
+  MPI_Comm userComm = MPI_COMM_NULL;  // what it duplicates (to detect a change)
+  int rank = 0;
+  int size = 1;
+
+  // matrix and cached distributed assembled input (1-based global indices)
+  Teuchos::RCP<const CrsMatrix> A;
+  MUMPS_INT n = 0;
+  LO nLocal = 0;
+  std::vector<MUMPS_INT> irn, jcn;
+  std::vector<double> a;
+  std::vector<int> rowCounts, rowFirst;  // per rank: owned rows, first GID (gather layout)
+  std::vector<double> rhs;               // centralised RHS / solution on rank 0
+
+  bool analysed = false;
+  bool factored = false;
+  int nSymbolic = 0;
+  int nNumeric = 0;
+
+  ~Impl() { destroy(); }
+
+  void destroy() noexcept {
+    if (!initialized) return;
+    int finalized = 0;
+    MPI_Finalized(&finalized);
+    if (!finalized) {
+      id.job = -2;
+      dmumps_c(&id);
+      MPI_Comm_free(&comm);
+    }
+    initialized = false;
+    analysed = factored = false;
+    comm = userComm = MPI_COMM_NULL;
+  }
+
+  void init(MPI_Comm user) {
+    destroy();
+    userComm = user;
+    MPI_Comm_dup(user, &comm);
+    MPI_Comm_rank(comm, &rank);
+    MPI_Comm_size(comm, &size);
+    id = DMUMPS_STRUC_C{};
+    id.job = -1;
+    id.par = 1;  // the host takes part in the factorisation
+    id.sym = symmetric ? 2 : 0;  // 2: general symmetric (LDL^T, indefinite ok)
+    id.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(comm));
+    dmumps_c(&id);
+    initialized = true;
+    check("initialisation (JOB=-1)");
+    // Output: silent unless "Verbose" (ICNTL(1..4)).
+    icntl(id, 1) = verbose ? 6 : -1;
+    icntl(id, 2) = verbose ? 0 : -1;
+    icntl(id, 3) = verbose ? 6 : -1;
+    icntl(id, 4) = verbose ? 2 : 0;
+    icntl(id, 5) = 0;   // assembled matrix
+    icntl(id, 7) = ordering;
+    icntl(id, 14) = relaxation;
+    icntl(id, 18) = 3;  // distributed assembled input: each rank its owned rows
+    icntl(id, 20) = 0;  // dense centralised right-hand side
+    icntl(id, 21) = 0;  // centralised solution (overwrites rhs on the host)
+    icntl(id, 28) = 1;  // sequential analysis: ICNTL(7) applies (no ParMETIS/PT-SCOTCH)
+  }
+
+  /// INFOG(1) is the same on every rank, so every rank throws together.
+  void check(const char* phase) const {
+    const int c = infog(id, 1);
+    if (c >= 0) return;
+    DDC_THROW(SolverError, "MUMPS " << phase << " failed: INFOG(1) = " << c << ", INFOG(2) = "
+                                    << infog(id, 2) << " (" << explainInfog1(c) << "), N = " << n);
+  }
+
+  void run(int job, const char* phase) {
+    id.job = job;
+    dmumps_c(&id);
+    check(phase);
+  }
+
+  /// Logical OR of `bad` over the communicator (so all ranks agree to throw).
+  bool anyRank(bool bad) const {
+    int l = bad ? 1 : 0, g = 0;
+    MPI_Allreduce(&l, &g, 1, MPI_INT, MPI_MAX, comm);
+    return g != 0;
+  }
+
+  /// Append the kept entries of local row `lrow` (lower triangle if
+  /// symmetric) to irn/jcn/a (build) or compare with the cache and refresh a.
+  /// Returns false if the pattern differs from the cache (refresh mode).
+  bool collect(bool build) {
+    const auto& rowMap = *A->getRowMap();
+    const auto& colMap = *A->getColMap();
+    if (build) {
+      irn.clear();
+      jcn.clear();
+      a.clear();
+      irn.reserve(A->getNodeNumEntries());
+      jcn.reserve(A->getNodeNumEntries());
+      a.reserve(A->getNodeNumEntries());
+    }
+    size_t k = 0;
+    CrsMatrix::local_inds_host_view_type inds;
+    CrsMatrix::values_host_view_type vals;
+    for (LO lr = 0; lr < nLocal; ++lr) {
+      const GO gr = rowMap.getGlobalElement(lr);
+      A->getLocalRowView(lr, inds, vals);
+      for (size_t e = 0; e < inds.extent(0); ++e) {
+        const GO gc = colMap.getGlobalElement(inds(e));
+        if (symmetric && gc > gr) continue;  // SYM=2 reads one triangle only
+        if (build) {
+          irn.push_back(static_cast<MUMPS_INT>(gr + 1));
+          jcn.push_back(static_cast<MUMPS_INT>(gc + 1));
+          a.push_back(vals(e));
+        } else {
+          if (k >= jcn.size() || jcn[k] != gc + 1 || irn[k] != gr + 1) return false;
+          a[k] = vals(e);
+        }
+        ++k;
+      }
+    }
+    return build || k == jcn.size();
+  }
+};
+
+MumpsSolver::MumpsSolver(const Teuchos::ParameterList& params) : impl_(std::make_unique<Impl>()) {
+  Teuchos::ParameterList p(params);
+  validateLevel(p, *getValidParameters(), "MUMPS");
+  impl_->symmetric = p.get<bool>("Symmetric");
+  impl_->ordering = orderingCode(p.get<std::string>("Ordering"));
+  impl_->relaxation = p.get<int>("Memory Relaxation Percent");
+  impl_->verbose = p.get<bool>("Verbose");
+}
+
+MumpsSolver::~MumpsSolver() = default;
+
+Teuchos::RCP<const Teuchos::ParameterList> MumpsSolver::getValidParameters() {
+  static Teuchos::RCP<const Teuchos::ParameterList> valid = [] {
+    auto pl = Teuchos::rcp(new Teuchos::ParameterList("MUMPS"));
+    pl->set("Symmetric", true,
+            "Matrix is symmetric: factorise LDL^T (MUMPS SYM=2, symmetric indefinite, so saddle-point "
+            "matrices with Lagrange multipliers work) reading only the lower triangle. false: LU of the "
+            "full matrix (SYM=0).");
+    pl->set("Ordering", std::string("Auto"),
+            "Fill-reducing ordering, MUMPS ICNTL(7): Auto (7, MUMPS chooses), AMD (0), AMF (2), QAMD (6), "
+            "PORD (4). Debian's MUMPS has no METIS/SCOTCH inside, so Auto picks among these.",
+            enumValidator(orderingNames(), "Ordering"));
+    pl->set("Memory Relaxation Percent", 30,
+            "MUMPS ICNTL(14): percentage added to the estimated working space. On INFOG(1) = -8/-9 the "
+            "factorisation is retried once with twice this value (at least 20), kept for later factorisations.",
+            Teuchos::rcp(new Teuchos::EnhancedNumberValidator<int>(0, 100000, 10)));
+    pl->set("Verbose", false, "Let MUMPS print its diagnostics (ICNTL(1..4)); silent otherwise.");
+    return Teuchos::RCP<const Teuchos::ParameterList>(pl);
+  }();
+  return valid;
+}
+
+void MumpsSolver::symbolic(const Teuchos::RCP<const CrsMatrix>& A) {
+  Impl& m = *impl_;
+  if (A.is_null()) throw std::invalid_argument("MUMPS symbolic(): null matrix");
+  if (!A->isFillComplete()) throw std::invalid_argument("MUMPS symbolic(): matrix is not fill-complete");
+  const MPI_Comm user = rawComm(A->getComm());
+  int same = MPI_UNEQUAL;
+  if (m.initialized) MPI_Comm_compare(user, m.userComm, &same);
+  if (!m.initialized || same != MPI_IDENT) m.init(user);
+
+  const auto rowMap = A->getRowMap();
+  const GO nGlobal = static_cast<GO>(rowMap->getGlobalNumElements());
+  // The centralised RHS is laid out by global index, and MUMPS wants 1-based
+  // global indices < 2^31: require a one-to-one contiguous 0..N-1 map.
+  int local[3] = {rowMap->isContiguous() ? 1 : 0, static_cast<int>(rowMap->getNodeNumElements()), 0};
+  GO first = rowMap->getNodeNumElements() > 0 ? rowMap->getMinGlobalIndex() : 0;
+  const bool sameMaps = rowMap->isSameAs(*A->getRangeMap()) && rowMap->isSameAs(*A->getDomainMap());
+  std::vector<int> all(3 * m.size);
+  std::vector<GO> firsts(m.size);
+  MPI_Allgather(local, 3, MPI_INT, all.data(), 3, MPI_INT, m.comm);
+  MPI_Allgather(&first, 1, MPI_LONG_LONG, firsts.data(), 1, MPI_LONG_LONG, m.comm);
+  bool ok = sameMaps && nGlobal <= INT_MAX && rowMap->getIndexBase() == 0;
+  std::vector<std::pair<GO, int>> ranges;
+  for (int r = 0; r < m.size; ++r) {
+    ok = ok && all[3 * r] == 1;
+    if (all[3 * r + 1] > 0) ranges.emplace_back(firsts[r], all[3 * r + 1]);
+  }
+  std::sort(ranges.begin(), ranges.end());
+  GO next = 0;
+  for (const auto& rg : ranges) {
+    ok = ok && rg.first == next;
+    next = rg.first + rg.second;
+  }
+  ok = ok && next == nGlobal;
+  if (!ok)
+    throw std::invalid_argument(
+        "MUMPS symbolic(): the matrix's row map must equal its range and domain maps and be one-to-one and "
+        "contiguous with global indices 0..N-1 (N < 2^31); got N = " +
+        std::to_string(nGlobal));
+
+  m.A = A;
+  m.n = static_cast<MUMPS_INT>(nGlobal);
+  m.nLocal = static_cast<LO>(rowMap->getNodeNumElements());
+  m.rowCounts.resize(m.size);
+  m.rowFirst.resize(m.size);
+  for (int r = 0; r < m.size; ++r) {
+    m.rowCounts[r] = all[3 * r + 1];
+    m.rowFirst[r] = static_cast<int>(firsts[r]);
+  }
+  m.collect(true);
+
+  DMUMPS_STRUC_C& id = m.id;
+  id.n = m.n;
+  id.nnz_loc = static_cast<MUMPS_INT8>(m.irn.size());
+  id.nz_loc = static_cast<MUMPS_INT>(m.irn.size());
+  // MUMPS may dereference the arrays even when empty: never pass null.
+  if (m.irn.empty()) {
+    m.irn.reserve(1);
+    m.jcn.reserve(1);
+    m.a.reserve(1);
+  }
+  id.irn_loc = m.irn.data();
+  id.jcn_loc = m.jcn.data();
+  id.a_loc = m.a.data();
+  m.analysed = m.factored = false;
+  m.run(1, "analysis (JOB=1)");
+  m.analysed = true;
+  ++m.nSymbolic;
+}
+
+void MumpsSolver::numeric() {
+  Impl& m = *impl_;
+  if (!m.analysed) throw std::logic_error("MUMPS numeric() called before symbolic()");
+  m.factored = false;
+  const bool changed = !m.collect(false);
+  if (m.anyRank(changed))
+    throw std::logic_error(
+        "MUMPS numeric(): the sparsity pattern of the matrix changed since symbolic(); call symbolic() again");
+  DMUMPS_STRUC_C& id = m.id;
+  id.a_loc = m.a.data();
+  id.job = 2;
+  dmumps_c(&id);
+  const int c = infog(id, 1);
+  if (c == -8 || c == -9) {
+    // The working space estimated in the analysis was too small (typically
+    // delayed pivots in an indefinite matrix): one retry with twice the relaxation.
+    icntl(id, 14) = std::max(2 * icntl(id, 14), 20);
+    dmumps_c(&id);
+  }
+  m.check("numerical factorisation (JOB=2)");
+  m.factored = true;
+  ++m.nNumeric;
+}
+
+void MumpsSolver::solve(const MultiVector& b, MultiVector& x) {
+  Impl& m = *impl_;
+  if (!m.factored) throw std::logic_error("MUMPS solve() called without a successful numeric()");
+  const size_t k = b.getNumVectors();
+  const bool bad = x.getNumVectors() != k || b.getLocalLength() != static_cast<size_t>(m.nLocal) ||
+                   x.getLocalLength() != static_cast<size_t>(m.nLocal);
+  if (m.anyRank(bad))
+    throw std::invalid_argument("MUMPS solve(): b and x must be distributed like the matrix rows and have the "
+                                "same number of columns");
+  if (k == 0) return;
+  const size_t n = static_cast<size_t>(m.n);
+  if (m.rank == 0) m.rhs.assign(n * k, 0.0);
+  double* root = m.rank == 0 ? m.rhs.data() : nullptr;
+  for (size_t j = 0; j < k; ++j) {
+    auto bj = b.getData(j);
+    MPI_Gatherv(bj.getRawPtr(), m.nLocal, MPI_DOUBLE, root ? root + j * n : nullptr, m.rowCounts.data(),
+                m.rowFirst.data(), MPI_DOUBLE, 0, m.comm);
+  }
+  DMUMPS_STRUC_C& id = m.id;
+  id.rhs = root;
+  id.nrhs = static_cast<MUMPS_INT>(k);
+  id.lrhs = m.n;
+  m.run(3, "solve (JOB=3)");
+  for (size_t j = 0; j < k; ++j) {
+    auto xj = x.getDataNonConst(j);
+    MPI_Scatterv(root ? root + j * n : nullptr, m.rowCounts.data(), m.rowFirst.data(), MPI_DOUBLE,
+                 xj.getRawPtr(), m.nLocal, MPI_DOUBLE, 0, m.comm);
+  }
+}
+
+int MumpsSolver::numSymbolic() const { return impl_->nSymbolic; }
+int MumpsSolver::numNumeric() const { return impl_->nNumeric; }
+int MumpsSolver::orderingUsed() const { return impl_->analysed ? infog(impl_->id, 7) : -1; }
+int MumpsSolver::memoryRelaxationPercent() const {
+  return impl_->initialized ? impl_->id.icntl[13] : impl_->relaxation;
+}
+
+}  // namespace ddc

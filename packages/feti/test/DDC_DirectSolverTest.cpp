@@ -1,0 +1,494 @@
+// Local-solver factory: every back end solves a 2-D Laplacian and a
+// symmetric indefinite saddle-point matrix [K B^T; B 0], distributed over
+// the world communicator and on MPI_COMM_SELF, checked by the residual
+// ||b - A x|| / ||b|| computed with Tpetra's apply (never against the solver
+// itself: DESIGN.md §2 records a wrong KLU2 solution on 2 ranks). Also:
+// refactorisation with the same pattern (symbolic reuse), singular matrices,
+// several right-hand sides, coexisting instances, factory errors.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <Tpetra_Core.hpp>
+#include <cstdio>
+#include <functional>
+
+#include "DDC_Amesos2Solver.hpp"
+#include "DDC_DirectSolver.hpp"
+#include "DDC_Error.hpp"
+#include "DDC_MumpsSolver.hpp"
+#include "DDC_TestTolerances.hpp"
+
+namespace ddc::test {
+/// Relative residual ||b - A x|| / ||b|| accepted from a direct solve. A
+/// backward-stable factorisation gives ~ u * cond(A) * growth; the test
+/// matrices have cond(A) <= 1e4, so 1e-16 * 1e4 = 1e-12, and 1e-10 leaves a
+/// factor 100 for pivot growth. A wrong solve (the KLU2-on-2-ranks pitfall)
+/// has a residual of O(1).
+constexpr double kDirectSolveResidual = 1e-10;
+}  // namespace ddc::test
+
+namespace {
+
+using ddc::CrsMatrix;
+using ddc::DirectSolver;
+using ddc::DirectSolverFactory;
+using ddc::GO;
+using ddc::LO;
+using ddc::Map;
+using ddc::MultiVector;
+using ddc::test::kDirectSolveResidual;
+using Teuchos::RCP;
+using Teuchos::rcp;
+using Comm = Teuchos::Comm<int>;
+
+RCP<const Comm> worldComm() { return Tpetra::getDefaultComm(); }
+RCP<const Comm> selfComm() { return rcp(new Teuchos::MpiComm<int>(MPI_COMM_SELF)); }
+int worldRank() { return worldComm()->getRank(); }
+
+/// Print a measured number from rank 0 (kept in the ctest log).
+void report(const std::string& what, double value) {
+  if (worldRank() == 0) std::printf("[ residual ] %-55s %.3e\n", what.c_str(), value);
+}
+
+/// 5-point Laplacian on an nx x ny grid (Dirichlet: diagonal 4), optionally
+/// with a convection term c (u_{i+1} - u_{i-1}) that makes it nonsymmetric.
+/// Global indices start at `base`.
+RCP<CrsMatrix> laplacian(const RCP<const Comm>& comm, int nx, int ny, double c = 0.0, GO base = 0) {
+  const GO n = GO(nx) * ny;
+  auto map = rcp(new Map(n, base, comm));
+  auto A = rcp(new CrsMatrix(map, 5));
+  for (LO lr = 0; lr < LO(map->getNodeNumElements()); ++lr) {
+    const GO g = map->getGlobalElement(lr) - base;
+    const int i = int(g % nx), j = int(g / nx);
+    std::vector<GO> cols{g};
+    std::vector<double> vals{4.0};
+    if (i > 0) cols.push_back(g - 1), vals.push_back(-1.0 - c);
+    if (i < nx - 1) cols.push_back(g + 1), vals.push_back(-1.0 + c);
+    if (j > 0) cols.push_back(g - nx), vals.push_back(-1.0);
+    if (j < ny - 1) cols.push_back(g + nx), vals.push_back(-1.0);
+    for (auto& col : cols) col += base;
+    A->insertGlobalValues(g + base, LO(cols.size()), vals.data(), cols.data());
+  }
+  A->fillComplete();
+  return A;
+}
+
+/// Saddle-point matrix [K B^T; B 0]: K the Laplacian (n = nx*ny), B has m
+/// rows tying DOF pairs, B(i, 2i) = 1, B(i, 2i+1) = -1 (like interface
+/// compatibility constraints). Symmetric indefinite, zero (structurally
+/// absent) diagonal in the multiplier rows.
+RCP<CrsMatrix> saddlePoint(const RCP<const Comm>& comm, int nx, int ny, int m) {
+  const GO n = GO(nx) * ny;
+  auto map = rcp(new Map(n + m, 0, comm));
+  auto A = rcp(new CrsMatrix(map, 6));
+  for (LO lr = 0; lr < LO(map->getNodeNumElements()); ++lr) {
+    const GO g = map->getGlobalElement(lr);
+    std::vector<GO> cols;
+    std::vector<double> vals;
+    if (g < n) {
+      const int i = int(g % nx), j = int(g / nx);
+      cols.push_back(g), vals.push_back(4.0);
+      if (i > 0) cols.push_back(g - 1), vals.push_back(-1.0);
+      if (i < nx - 1) cols.push_back(g + 1), vals.push_back(-1.0);
+      if (j > 0) cols.push_back(g - nx), vals.push_back(-1.0);
+      if (j < ny - 1) cols.push_back(g + nx), vals.push_back(-1.0);
+      if (g < 2 * m) cols.push_back(n + g / 2), vals.push_back(g % 2 == 0 ? 1.0 : -1.0);
+    } else {
+      const GO i = g - n;
+      cols = {2 * i, 2 * i + 1};
+      vals = {1.0, -1.0};
+    }
+    A->insertGlobalValues(g, LO(cols.size()), vals.data(), cols.data());
+  }
+  A->fillComplete();
+  return A;
+}
+
+/// Replace every value a_ij by f(i, j, a_ij) keeping the pattern.
+void modifyValues(CrsMatrix& A, const std::function<double(GO, GO, double)>& f) {
+  A.resumeFill();
+  const auto& rowMap = *A.getRowMap();
+  const auto& colMap = *A.getColMap();
+  for (LO lr = 0; lr < LO(rowMap.getNodeNumElements()); ++lr) {
+    CrsMatrix::local_inds_host_view_type inds;
+    CrsMatrix::values_host_view_type v;
+    A.getLocalRowView(lr, inds, v);
+    std::vector<LO> cols(inds.data(), inds.data() + inds.extent(0));
+    std::vector<double> vals(inds.extent(0));
+    for (size_t e = 0; e < cols.size(); ++e)
+      vals[e] = f(rowMap.getGlobalElement(lr), colMap.getGlobalElement(cols[e]), v(e));
+    A.replaceLocalValues(lr, LO(cols.size()), vals.data(), cols.data());
+  }
+  A.fillComplete();
+}
+
+/// max over columns of ||b - A x|| / ||b||, with A applied by Tpetra.
+double relResidual(const CrsMatrix& A, const MultiVector& x, const MultiVector& b) {
+  MultiVector r(A.getRangeMap(), b.getNumVectors());
+  A.apply(x, r);
+  r.update(1.0, b, -1.0);
+  std::vector<double> rn(b.getNumVectors()), bn(b.getNumVectors());
+  r.norm2(Teuchos::ArrayView<double>(rn));
+  b.norm2(Teuchos::ArrayView<double>(bn));
+  double worst = 0.0;
+  for (size_t j = 0; j < rn.size(); ++j) worst = std::max(worst, rn[j] / bn[j]);
+  return worst;
+}
+
+/// Factorise and solve A x = b for `k` random right-hand sides; returns the
+/// worst relative residual.
+double solveResidual(DirectSolver& s, const RCP<const CrsMatrix>& A, size_t k = 1) {
+  MultiVector b(A->getRowMap(), k), x(A->getRowMap(), k);
+  b.randomize();
+  s.symbolic(A);
+  s.numeric();
+  s.solve(b, x);
+  return relResidual(*A, x, b);
+}
+
+/// Expect `f` to throw E whose message contains every string in `needles`.
+template <class E, class Fn>
+void expectThrowWith(Fn f, std::initializer_list<std::string> needles) {
+  try {
+    f();
+    ADD_FAILURE() << "nothing thrown";
+  } catch (const E& e) {
+    const std::string msg = e.what();
+    for (const auto& n : needles) EXPECT_NE(msg.find(n), std::string::npos) << "'" << n << "' not in: " << msg;
+  }
+}
+
+// ---- every back end --------------------------------------------------------
+
+class DirectSolverTest : public ::testing::TestWithParam<std::string> {
+ protected:
+  /// A solver of the back end under test through the factory, `opts` going
+  /// into its sublist.
+  std::unique_ptr<DirectSolver> make(const Teuchos::ParameterList& opts = Teuchos::ParameterList()) const {
+    Teuchos::ParameterList p;
+    p.set("Type", GetParam());
+    p.sublist(GetParam()).setParameters(opts);
+    return DirectSolverFactory::withBuiltins().create(p, "Test/Direct Solver");
+  }
+  std::string tag(const std::string& what) const {
+    return GetParam() + " " + what + " np=" + std::to_string(worldComm()->getSize());
+  }
+};
+
+TEST_P(DirectSolverTest, LaplacianDistributed) {
+  auto A = laplacian(worldComm(), 30, 20);
+  auto s = make();
+  const double res = solveResidual(*s, A);
+  report(tag("Laplacian 600 world"), res);
+  EXPECT_LT(res, kDirectSolveResidual);
+}
+
+TEST_P(DirectSolverTest, LaplacianOnCommSelf) {
+  // A different matrix on every rank, as for FETI-DP subdomains.
+  auto A = laplacian(selfComm(), 12 + worldRank(), 9);
+  auto s = make();
+  const double res = solveResidual(*s, A);
+  EXPECT_LT(res, kDirectSolveResidual) << "rank " << worldRank();
+  double worst = 0;
+  MPI_Allreduce(&res, &worst, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  report(tag("Laplacian self (max over ranks)"), worst);
+}
+
+TEST_P(DirectSolverTest, SaddlePointDistributed) {
+  auto A = saddlePoint(worldComm(), 20, 15, 40);
+  auto s = make();
+  const double res = solveResidual(*s, A);
+  report(tag("saddle point 340 world"), res);
+  EXPECT_LT(res, kDirectSolveResidual);
+}
+
+TEST_P(DirectSolverTest, SaddlePointOnCommSelf) {
+  auto A = saddlePoint(selfComm(), 10 + worldRank(), 8, 12);
+  auto s = make();
+  const double res = solveResidual(*s, A);
+  EXPECT_LT(res, kDirectSolveResidual) << "rank " << worldRank();
+  double worst = 0;
+  MPI_Allreduce(&res, &worst, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  report(tag("saddle point self (max over ranks)"), worst);
+}
+
+TEST_P(DirectSolverTest, NonsymmetricDistributed) {
+  auto A = laplacian(worldComm(), 25, 16, 0.4);
+  Teuchos::ParameterList opts;
+  if (GetParam() == "MUMPS") opts.set("Symmetric", false);
+  auto s = make(opts);
+  const double res = solveResidual(*s, A);
+  report(tag("convection-diffusion 400 world"), res);
+  EXPECT_LT(res, kDirectSolveResidual);
+}
+
+TEST_P(DirectSolverTest, RankOwningNoRows) {
+  // All rows on rank 0, none elsewhere (a coarse problem on few ranks).
+  auto comm = worldComm();
+  const int nx = 12, ny = 10;
+  auto full = laplacian(selfComm(), nx, ny);
+  const GO n = GO(nx) * ny;
+  auto map = rcp(new Map(n, comm->getRank() == 0 ? size_t(n) : 0, 0, comm));
+  auto A = rcp(new CrsMatrix(map, 5));
+  for (LO lr = 0; lr < LO(map->getNodeNumElements()); ++lr) {
+    CrsMatrix::local_inds_host_view_type inds;
+    CrsMatrix::values_host_view_type v;
+    full->getLocalRowView(lr, inds, v);
+    for (size_t e = 0; e < inds.extent(0); ++e) {
+      const GO c = full->getColMap()->getGlobalElement(inds(e));
+      const double a = v(e);
+      A->insertGlobalValues(map->getGlobalElement(lr), 1, &a, &c);
+    }
+  }
+  A->fillComplete();
+  auto s = make();
+  const double res = solveResidual(*s, A, 2);
+  report(tag("Laplacian 120, all rows on rank 0"), res);
+  EXPECT_LT(res, kDirectSolveResidual);
+}
+
+TEST_P(DirectSolverTest, MultipleRightHandSides) {
+  auto A = saddlePoint(worldComm(), 16, 16, 30);
+  auto s = make();
+  const double res = solveResidual(*s, A, 4);
+  report(tag("saddle point, 4 right-hand sides"), res);
+  EXPECT_LT(res, kDirectSolveResidual);
+}
+
+TEST_P(DirectSolverTest, RefactorisationReusesSymbolic) {
+  for (const auto& comm : {worldComm(), selfComm()}) {
+    auto A = saddlePoint(comm, 18, 12, 25);
+    auto s = make();
+    MultiVector b(A->getRowMap(), 2), x(A->getRowMap(), 2), xOld(A->getRowMap(), 2);
+    b.randomize();
+    s->symbolic(A);
+    s->numeric();
+    s->solve(b, xOld);
+    EXPECT_LT(relResidual(*A, xOld, b), kDirectSolveResidual);
+
+    // New values, same pattern (a Newton iteration): stiffen K, rescale B.
+    const GO n = 18 * 12;
+    modifyValues(*A, [n](GO i, GO j, double a) {
+      if (i < n && j < n) return i == j ? 2.0 * a + 1.5 : 2.0 * a;
+      return 3.0 * a;
+    });
+    s->numeric();  // no symbolic(): the analysis is reused
+    s->solve(b, x);
+    const double res = relResidual(*A, x, b);
+    EXPECT_LT(res, kDirectSolveResidual);
+    // The old solution is wrong for the new matrix: the new values were used.
+    EXPECT_GT(relResidual(*A, xOld, b), 1e-2);
+    if (comm == worldComm()) report(tag("refactorised saddle point world"), res);
+
+    if (auto* m = dynamic_cast<ddc::MumpsSolver*>(s.get())) {
+      EXPECT_EQ(m->numSymbolic(), 1);
+      EXPECT_EQ(m->numNumeric(), 2);
+    } else if (auto* a = dynamic_cast<ddc::Amesos2Solver*>(s.get())) {
+      EXPECT_EQ(a->numSymbolic(), 1);
+      EXPECT_EQ(a->numNumeric(), 2);
+    }
+  }
+}
+
+TEST_P(DirectSolverTest, SingularMatrixThrowsSolverError) {
+  for (const auto& comm : {worldComm(), selfComm()}) {
+    // Zero the row and column of one DOF (entries kept, values 0).
+    auto A = laplacian(comm, 10, 10);
+    const GO dead = 57;
+    modifyValues(*A, [dead](GO i, GO j, double a) { return (i == dead || j == dead) ? 0.0 : a; });
+    auto s = make();
+    s->symbolic(A);
+    const std::string backEnd = GetParam();
+    expectThrowWith<ddc::SolverError>([&] { s->numeric(); }, {backEnd});
+    if (GetParam() == "MUMPS") expectThrowWith<ddc::SolverError>([&] { s->numeric(); }, {"INFOG(1)"});
+    // A solve after the failure is a usage error, not a silent wrong answer.
+    MultiVector b(A->getRowMap(), 1), x(A->getRowMap(), 1);
+    EXPECT_THROW(s->solve(b, x), std::logic_error);
+  }
+}
+
+TEST_P(DirectSolverTest, CoexistingInstances) {
+  // FETI-DP: one solver per subdomain on MPI_COMM_SELF plus a distributed
+  // coarse one, alive together, used in interleaved order.
+  auto Aself = saddlePoint(selfComm(), 9, 7 + worldRank(), 10);
+  auto Aworld = laplacian(worldComm(), 20, 11);
+  auto Aself2 = laplacian(selfComm(), 8, 8);
+  auto s1 = make(), s2 = make(), s3 = make();
+  s1->symbolic(Aself);
+  s2->symbolic(Aworld);
+  s3->symbolic(Aself2);
+  s2->numeric();
+  s1->numeric();
+  s3->numeric();
+  for (int round = 0; round < 2; ++round) {
+    for (auto [s, A] : {std::make_pair(s3.get(), Aself2), std::make_pair(s2.get(), Aworld),
+                        std::make_pair(s1.get(), Aself)}) {
+      MultiVector b(A->getRowMap(), 1), x(A->getRowMap(), 1);
+      b.randomize();
+      s->solve(b, x);
+      EXPECT_LT(relResidual(*A, x, b), kDirectSolveResidual);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(BackEnds, DirectSolverTest, ::testing::Values("MUMPS", "Amesos2"),
+                         [](const auto& info) { return info.param; });
+
+// ---- back-end specifics ----------------------------------------------------
+
+TEST(MumpsSolver, RejectsNonContiguousNumbering) {
+  auto A = laplacian(worldComm(), 8, 8, 0.0, /*base=*/1);  // GIDs 1..N
+  ddc::MumpsSolver s;
+  EXPECT_THROW(s.symbolic(A), std::invalid_argument);
+}
+
+TEST(MumpsSolver, EveryOrderingSolves) {
+  // INFOG(7) reports the ordering MUMPS used (user guide: 0 AMD, 2 AMF, 4 PORD, 6 QAMD).
+  const std::vector<std::pair<std::string, int>> orderings{{"AMD", 0}, {"AMF", 2}, {"PORD", 4}, {"QAMD", 6}};
+  auto A = saddlePoint(worldComm(), 14, 10, 20);
+  for (const auto& [name, code] : orderings) {
+    Teuchos::ParameterList p;
+    p.set("Ordering", name);
+    ddc::MumpsSolver s(p);
+    EXPECT_LT(solveResidual(s, A), kDirectSolveResidual) << name;
+    EXPECT_EQ(s.orderingUsed(), code) << name;
+  }
+  Teuchos::ParameterList p;
+  p.set("Memory Relaxation Percent", 5);
+  ddc::MumpsSolver s(p);
+  EXPECT_LT(solveResidual(s, A), kDirectSolveResidual);
+  EXPECT_GE(s.memoryRelaxationPercent(), 5);
+}
+
+TEST(MumpsSolver, MemoryRelaxationRetry) {
+  // With no relaxation this saddle point overflows MUMPS's estimate on 2
+  // ranks (INFOG(1) = -9, delayed pivots); the retry with 20 % succeeds.
+  auto A = saddlePoint(worldComm(), 40, 30, 300);
+  Teuchos::ParameterList p;
+  p.set("Memory Relaxation Percent", 0);
+  ddc::MumpsSolver s(p);
+  const double res = solveResidual(s, A);
+  report("MUMPS saddle point 1500, relaxation 0 -> " + std::to_string(s.memoryRelaxationPercent()), res);
+  EXPECT_LT(res, kDirectSolveResidual);
+  EXPECT_TRUE(s.memoryRelaxationPercent() == 0 || s.memoryRelaxationPercent() == 20);
+}
+
+TEST(Amesos2Solver, GathersOnlyWhenDistributed) {
+  ddc::Amesos2Solver s;
+  auto A = laplacian(worldComm(), 10, 10);
+  EXPECT_LT(solveResidual(s, A), kDirectSolveResidual);
+  EXPECT_EQ(s.gathersToRoot(), worldComm()->getSize() > 1);
+  auto B = laplacian(selfComm(), 10, 10);
+  EXPECT_LT(solveResidual(s, B), kDirectSolveResidual);
+  EXPECT_FALSE(s.gathersToRoot());
+  EXPECT_EQ(s.name(), "Amesos2/KLU2");
+}
+
+TEST(Amesos2Solver, AcceptsAnyGlobalNumbering) {
+  ddc::Amesos2Solver s;
+  auto A = laplacian(worldComm(), 9, 11, 0.0, /*base=*/1);
+  const double res = solveResidual(s, A);
+  EXPECT_LT(res, kDirectSolveResidual);
+}
+
+// ---- factory -----------------------------------------------------------------
+
+TEST(DirectSolverFactory, DefaultsToMumpsAndFillsDefaults) {
+  Teuchos::ParameterList p;
+  auto s = DirectSolverFactory::withBuiltins().create(p, "Solver/Direct Solver");
+  EXPECT_EQ(s->name(), "MUMPS");
+  EXPECT_EQ(p.get<std::string>("Type"), "MUMPS");
+  ASSERT_TRUE(p.isSublist("MUMPS"));
+  EXPECT_EQ(p.sublist("MUMPS").get<std::string>("Ordering"), "Auto");
+  EXPECT_EQ(p.sublist("MUMPS").get<int>("Memory Relaxation Percent"), 30);
+  EXPECT_TRUE(p.sublist("MUMPS").get<bool>("Symmetric"));
+}
+
+TEST(DirectSolverFactory, UnknownTypeNamesPathAndKnownTypes) {
+  Teuchos::ParameterList p;
+  p.set("Type", "Pardiso");
+  expectThrowWith<ddc::InputError>(
+      [&] { DirectSolverFactory::withBuiltins().create(p, "Solver/Direct Solver"); },
+      {"Pardiso", "Solver/Direct Solver/Type", "'MUMPS'", "'Amesos2'"});
+}
+
+TEST(DirectSolverFactory, MisspeltParametersNamePath) {
+  const auto f = DirectSolverFactory::withBuiltins();
+  {
+    Teuchos::ParameterList p;
+    p.set("Type", "MUMPS");
+    p.sublist("MUMPS").set("Orderng", "PORD");
+    expectThrowWith<ddc::InputError>([&] { f.create(p, "Solver/Direct Solver"); },
+                                     {"Solver/Direct Solver/MUMPS/Orderng", "Ordering"});
+  }
+  {
+    Teuchos::ParameterList p;
+    p.set("Typ", "MUMPS");
+    expectThrowWith<ddc::InputError>([&] { f.create(p, "Solver/Direct Solver"); },
+                                     {"Solver/Direct Solver/Typ"});
+  }
+  {  // a misspelt option of the back end not chosen is still an error
+    Teuchos::ParameterList p;
+    p.set("Type", "MUMPS");
+    p.sublist("Amesos2").set("SolverName", "KLU2");
+    expectThrowWith<ddc::InputError>([&] { f.create(p, "S"); }, {"S/Amesos2/SolverName"});
+  }
+  {
+    Teuchos::ParameterList p;
+    p.set("Type", "MUMPS");
+    p.sublist("MUMPS").set("Ordering", "METIS");
+    expectThrowWith<ddc::InputError>([&] { f.create(p, "S"); }, {"S/MUMPS/Ordering", "METIS", "PORD"});
+  }
+  {
+    Teuchos::ParameterList p;
+    p.set("Type", "MUMPS");
+    p.sublist("MUMPS").set("Symmetric", "yes");
+    expectThrowWith<ddc::InputError>([&] { f.create(p, "S"); }, {"S/MUMPS/Symmetric"});
+  }
+  {
+    Teuchos::ParameterList p;
+    p.set("Type", "Amesos2");
+    p.sublist("Amesos2").set("Solver Name", "SuperLU");
+    expectThrowWith<ddc::InputError>([&] { f.create(p, "S"); }, {"S/Amesos2/Solver Name", "SuperLU", "KLU2"});
+  }
+}
+
+TEST(DirectSolverFactory, ValidParametersAreDocumented) {
+  const auto valid = DirectSolverFactory::getValidParameters();
+  ASSERT_TRUE(valid->isParameter("Type"));
+  EXPECT_EQ(valid->get<std::string>("Type"), "MUMPS");
+  for (const std::string back : {"MUMPS", "Amesos2"}) {
+    ASSERT_TRUE(valid->isSublist(back)) << back;
+    const auto& sub = valid->sublist(back);
+    EXPECT_GT(sub.numParams(), 0);
+    for (auto it = sub.begin(); it != sub.end(); ++it)
+      EXPECT_FALSE(sub.entry(it).docString().empty()) << back << "/" << sub.name(it);
+  }
+  EXPECT_FALSE(valid->getEntry("Type").docString().empty());
+  const auto names = ddc::Amesos2Solver::availableSolvers();
+  EXPECT_NE(std::find(names.begin(), names.end(), "KLU2"), names.end());
+}
+
+TEST(DirectSolverFactory, HostCodesRegisterTheirOwn) {
+  auto f = DirectSolverFactory::withBuiltins();
+  auto valid = rcp(new Teuchos::ParameterList("Mine"));
+  valid->set("Tolerance", 1e-8, "a documented option");
+  double seen = 0;
+  f.add("Mine", {[&seen](const Teuchos::ParameterList& p) {
+                   seen = p.get<double>("Tolerance");
+                   return std::unique_ptr<DirectSolver>(new ddc::MumpsSolver());
+                 },
+                 valid, "test back end"});
+  Teuchos::ParameterList p;
+  p.set("Type", "Mine");
+  auto s = f.create(p, "X");
+  EXPECT_EQ(seen, 1e-8);
+  EXPECT_EQ(f.names().size(), 3u);
+  EXPECT_THROW(f.add("Mine", f.entry("MUMPS")), std::invalid_argument);
+  DirectSolverFactory empty;
+  Teuchos::ParameterList q;
+  expectThrowWith<ddc::InputError>([&] { empty.create(q, "Y"); }, {"Y/Type", "MUMPS"});
+}
+
+}  // namespace
