@@ -1,0 +1,139 @@
+#include "DDC_ElementFactory.hpp"
+
+#include <sstream>
+#include <stdexcept>
+
+#include "DDC_ContinuumElement.hpp"
+#include "DDC_Error.hpp"
+#include "DDC_Material.hpp"
+#include "DDC_Parameters.hpp"
+
+namespace ddc {
+
+namespace {
+
+/// "'Quad4', 'Quad9'" for messages and doc strings.
+std::string quotedList(const std::vector<std::string>& names) {
+  std::ostringstream os;
+  for (size_t i = 0; i < names.size(); ++i) os << (i ? ", '" : "'") << names[i] << "'";
+  if (names.empty()) os << "(none registered)";
+  return os.str();
+}
+
+/// Validate the sublists of `user` below one level against `valid`: the
+/// "Material" sublist through createMaterial (so its value checks, E > 0 and
+/// the range of nu, apply with the right path), any other sublist with
+/// validateLevel recursively (host element types may have their own).
+/// Missing sublists are created so their defaults show in an echo of the input.
+void validateSublists(Teuchos::ParameterList& user, const Teuchos::ParameterList& valid,
+                      const std::string& path) {
+  const std::string tmpl = templateName(valid);
+  if (!tmpl.empty()) {
+    // "<Name>" template: every user sublist follows the template.
+    const auto& t = valid.sublist(tmpl);
+    for (auto it = user.begin(); it != user.end(); ++it) {
+      const std::string& n = user.name(it);
+      Teuchos::ParameterList& sub = user.sublist(n);
+      const std::string subPath = joinPath(path, n);
+      validateLevel(sub, t, subPath);
+      validateSublists(sub, t, subPath);
+    }
+    return;
+  }
+  for (auto it = valid.begin(); it != valid.end(); ++it) {
+    if (!valid.entry(it).isList()) continue;
+    const std::string& n = valid.name(it);
+    Teuchos::ParameterList& sub = user.sublist(n);
+    const std::string subPath = joinPath(path, n);
+    if (n == "Material") {
+      createMaterial(sub, subPath);
+    } else {
+      const auto& vsub = valid.sublist(n);
+      validateLevel(sub, vsub, subPath);
+      validateSublists(sub, vsub, subPath);
+    }
+  }
+}
+
+/// Creator shared by the built-in continuum elements: the factory has
+/// validated the list already, so the material path only matters for a
+/// direct call of the creator.
+template <class Make>
+ElementFactory::Creator continuumCreator(Make make) {
+  return [make](const Teuchos::ParameterList& p) -> std::shared_ptr<Element> {
+    Teuchos::ParameterList m = p.isSublist("Material") ? p.sublist("Material") : Teuchos::ParameterList();
+    return make(createMaterial(m, "Material"));
+  };
+}
+
+}  // namespace
+
+ElementFactory ElementFactory::withBuiltins() {
+  ElementFactory f;
+  f.add("Quad4", Entry{continuumCreator(&makeQuad4), ContinuumElement::getValidParameters(),
+                       "Bilinear 4-node quadrilateral, plane strain, total Lagrangian, 2x2 Gauss.", 4});
+  f.add("Quad9", Entry{continuumCreator(&makeQuad9), ContinuumElement::getValidParameters(),
+                       "Biquadratic 9-node Lagrange quadrilateral, plane strain, total Lagrangian, "
+                       "3x3 Gauss.",
+                       9});
+  return f;
+}
+
+void ElementFactory::add(const std::string& typeName, Entry entry) {
+  // Registration mistakes are programming errors of the host code.
+  if (typeName.empty()) throw std::invalid_argument("ElementFactory::add: empty type name");
+  if (!entry.create) throw std::invalid_argument("ElementFactory::add('" + typeName + "'): no creator");
+  if (entry.validParameters.is_null()) entry.validParameters = Teuchos::rcp(new Teuchos::ParameterList("Element"));
+  if (entry.validParameters->isParameter("Type"))
+    throw std::invalid_argument("ElementFactory::add('" + typeName +
+                                "'): valid parameters must not contain 'Type' (the factory adds it)");
+  entries_[typeName] = std::move(entry);
+}
+
+std::vector<std::string> ElementFactory::names() const {
+  std::vector<std::string> n;
+  n.reserve(entries_.size());
+  for (const auto& e : entries_) n.push_back(e.first);
+  return n;
+}
+
+const ElementFactory::Entry& ElementFactory::entry(const std::string& typeName, const std::string& where) const {
+  auto it = entries_.find(typeName);
+  DDC_INPUT_REQUIRE(it != entries_.end(),
+                    "unknown element type '" << typeName << "'"
+                                             << (where.empty() ? std::string()
+                                                               : " in parameter '" + joinPath(where, "Type") + "'")
+                                             << "; known element types are " << quotedList(names()));
+  return it->second;
+}
+
+Teuchos::RCP<const Teuchos::ParameterList> ElementFactory::validParametersFor(const std::string& typeName) const {
+  const Entry& e = entry(typeName);
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Element"));
+  pl->set("Type", typeName,
+          "Element type; one of " + quotedList(names()) + ". '" + typeName + "': " + e.description);
+  pl->setParameters(*e.validParameters);
+  return pl;
+}
+
+std::shared_ptr<Element> ElementFactory::create(Teuchos::ParameterList& params, const std::string& where) const {
+  const std::string typePath = joinPath(where, "Type");
+  DDC_INPUT_REQUIRE(params.isParameter("Type") && !params.isSublist("Type"),
+                    "missing parameter '" << typePath << "'; known element types are " << quotedList(names()));
+  DDC_INPUT_REQUIRE(params.isType<std::string>("Type"),
+                    "parameter '" << typePath << "' must be a string; known element types are "
+                                  << quotedList(names()));
+  const std::string type = params.get<std::string>("Type");
+  const Entry& e = entry(type, where);
+  const auto valid = validParametersFor(type);
+  validateLevel(params, *valid, where);
+  validateSublists(params, *valid, where);
+  std::shared_ptr<Element> el = e.create(params);
+  if (!el) DDC_THROW(std::logic_error, "element creator for '" << type << "' returned null");
+  if (el->numNodes() != e.numNodes)
+    DDC_THROW(std::logic_error, "element type '" << type << "' registered with " << e.numNodes
+                                                 << " nodes creates elements with " << el->numNodes());
+  return el;
+}
+
+}  // namespace ddc
