@@ -1,0 +1,170 @@
+#include "DDC_Partition.hpp"
+
+#include <metis.h>
+
+#include <algorithm>
+#include <map>
+#include <utility>
+
+#include "DDC_Error.hpp"
+
+namespace ddc {
+
+namespace {
+
+constexpr const char* kParam = "Partition/Number of Subdomains";
+/// Fixed METIS seed: the same partition on every rank and every run.
+constexpr idx_t kMetisSeed = 42;
+
+/// Edge-neighbours of each element (elements sharing two corner nodes).
+std::vector<std::vector<int>> edgeNeighbours(const Mesh& mesh) {
+  std::map<std::pair<int, int>, std::vector<int>> byEdge;
+  for (int e = 0; e < mesh.numElements(); ++e) {
+    const int* n = mesh.elementNodes(e);
+    for (int s = 0; s < 4; ++s) {
+      const int p = n[s], q = n[(s + 1) % 4];
+      byEdge[{std::min(p, q), std::max(p, q)}].push_back(e);
+    }
+  }
+  std::vector<std::vector<int>> nb(mesh.numElements());
+  for (const auto& kv : byEdge)
+    for (int a : kv.second)
+      for (int b : kv.second)
+        if (a != b) nb[a].push_back(b);
+  return nb;
+}
+
+/// Is the dual graph (elements adjacent through edges) connected?
+bool isConnected(const std::vector<std::vector<int>>& nb) {
+  if (nb.empty()) return true;
+  std::vector<char> seen(nb.size(), 0);
+  std::vector<int> stack{0};
+  seen[0] = 1;
+  size_t count = 1;
+  while (!stack.empty()) {
+    const int e = stack.back();
+    stack.pop_back();
+    for (int f : nb[e])
+      if (!seen[f]) {
+        seen[f] = 1;
+        ++count;
+        stack.push_back(f);
+      }
+  }
+  return count == nb.size();
+}
+
+/// Give every empty subdomain one element taken from the currently largest
+/// subdomain: the element with the fewest neighbours in its own subdomain
+/// (lowest index on ties), so the donor stays as connected as possible.
+void fillEmptySubdomains(const std::vector<std::vector<int>>& nb, Partition& p) {
+  const int ne = static_cast<int>(p.elementSubdomain.size());
+  std::vector<int> count(p.numSubdomains, 0);
+  for (int s : p.elementSubdomain) ++count[s];
+  for (int s = 0; s < p.numSubdomains; ++s) {
+    if (count[s] != 0) continue;
+    const int donor = static_cast<int>(std::max_element(count.begin(), count.end()) - count.begin());
+    int best = -1, bestInside = 0;
+    for (int e = 0; e < ne; ++e) {
+      if (p.elementSubdomain[e] != donor) continue;
+      int inside = 0;
+      for (int f : nb[e]) inside += p.elementSubdomain[f] == donor;
+      if (best < 0 || inside < bestInside) {
+        best = e;
+        bestInside = inside;
+      }
+    }
+    DDC_ASSERT(best >= 0 && count[donor] > 1, "no donor element for empty subdomain");
+    p.elementSubdomain[best] = s;
+    --count[donor];
+    ++count[s];
+  }
+}
+
+}  // namespace
+
+Partition partitionMetis(const Mesh& mesh, int numSubdomains) {
+  const int ne = mesh.numElements();
+  DDC_INPUT_REQUIRE(numSubdomains > 0, "'" << kParam << "' must be > 0, got " << numSubdomains);
+  DDC_INPUT_REQUIRE(numSubdomains <= ne, "'" << kParam << "' (" << numSubdomains
+                                             << ") exceeds the number of elements of the mesh (" << ne
+                                             << "); use fewer subdomains or refine the mesh");
+  Partition p;
+  p.numSubdomains = numSubdomains;
+  p.elementSubdomain.assign(ne, 0);
+  if (numSubdomains == 1) return p;
+
+  // Corner nodes only, renumbered compactly (Quad9 mid nodes would otherwise
+  // be isolated vertices of METIS's nodal graph).
+  std::vector<idx_t> compact(mesh.numNodes(), -1);
+  std::vector<idx_t> eptr(ne + 1), eind(static_cast<size_t>(4) * ne);
+  idx_t nn = 0;
+  for (int e = 0; e < ne; ++e) {
+    const int* n = mesh.elementNodes(e);
+    for (int k = 0; k < 4; ++k) {
+      if (compact[n[k]] < 0) compact[n[k]] = nn++;
+      eind[4 * e + k] = compact[n[k]];
+    }
+    eptr[e + 1] = 4 * (e + 1);
+  }
+
+  idx_t options[METIS_NOPTIONS];
+  METIS_SetDefaultOptions(options);
+  options[METIS_OPTION_NUMBERING] = 0;
+  options[METIS_OPTION_SEED] = kMetisSeed;
+  options[METIS_OPTION_PTYPE] = METIS_PTYPE_KWAY;
+  options[METIS_OPTION_OBJTYPE] = METIS_OBJTYPE_CUT;
+  // Contiguous subdomains keep FETI-DP's floating subdomains single pieces.
+  // METIS fails (METIS_ERROR) when asked for them on a disconnected dual
+  // graph (several bodies, or a body in pieces), so ask only when connected.
+  const auto nb = edgeNeighbours(mesh);
+  options[METIS_OPTION_CONTIG] = isConnected(nb) ? 1 : 0;
+
+  idx_t metisNe = ne, ncommon = 2, nparts = numSubdomains, objval = 0;
+  std::vector<idx_t> epart(ne), npart(nn);
+  const int status = METIS_PartMeshDual(&metisNe, &nn, eptr.data(), eind.data(), nullptr, nullptr, &ncommon,
+                                        &nparts, nullptr, options, &objval, epart.data(), npart.data());
+  DDC_INPUT_REQUIRE(status != METIS_ERROR_INPUT,
+                    "METIS rejected the mesh for partitioning into " << numSubdomains << " subdomains");
+  if (status != METIS_OK)
+    DDC_THROW(SolverError, "METIS_PartMeshDual failed (status " << status << ") partitioning "
+                                                                  << ne << " elements into " << numSubdomains
+                                                                  << " subdomains");
+  for (int e = 0; e < ne; ++e) {
+    DDC_ASSERT(epart[e] >= 0 && epart[e] < numSubdomains, "METIS part out of range");
+    p.elementSubdomain[e] = static_cast<int>(epart[e]);
+  }
+  fillEmptySubdomains(nb, p);
+  return p;
+}
+
+Partition partitionByBody(const Mesh& mesh) {
+  Partition p;
+  p.numSubdomains = mesh.numBodies();
+  p.elementSubdomain.resize(mesh.numElements());
+  for (int e = 0; e < mesh.numElements(); ++e) p.elementSubdomain[e] = mesh.elementBody(e);
+  return p;
+}
+
+std::vector<int> subdomainOwnerRank(int numSubdomains, int numRanks) {
+  DDC_INPUT_REQUIRE(numRanks >= 1, "number of MPI ranks must be >= 1, got " << numRanks);
+  DDC_INPUT_REQUIRE(numSubdomains >= numRanks,
+                    "'" << kParam << "' (" << numSubdomains << ") must be at least the number of MPI ranks ("
+                        << numRanks << "): every rank needs a subdomain");
+  std::vector<int> owner(numSubdomains);
+  const int base = numSubdomains / numRanks, extra = numSubdomains % numRanks;
+  int s = 0;
+  for (int r = 0; r < numRanks; ++r)
+    for (int k = 0; k < base + (r < extra ? 1 : 0); ++k) owner[s++] = r;
+  return owner;
+}
+
+std::vector<int> subdomainsOfRank(int numSubdomains, int numRanks, int rank) {
+  const auto owner = subdomainOwnerRank(numSubdomains, numRanks);
+  std::vector<int> mine;
+  for (int s = 0; s < numSubdomains; ++s)
+    if (owner[s] == rank) mine.push_back(s);
+  return mine;
+}
+
+}  // namespace ddc
