@@ -156,7 +156,7 @@ std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const Elemen
     DDC_INPUT_REQUIRE(body.isSublist("Element"), "sublist '" << path << "/Element' is required (Type, Material)");
     PL& elem = body.sublist("Element");
     DDC_INPUT_REQUIRE(elem.isParameter("Type"), "parameter '" << path << "/Element/Type' is required");
-    const auto& entry = factory.entry(elem.get<std::string>("Type"), path + "/Element/Type");
+    const auto& entry = factory.entry(elem.get<std::string>("Type"), path + "/Element");
     DDC_INPUT_REQUIRE(entry.numNodes == 4 || entry.numNodes == 9,
                       "element type '" << elem.get<std::string>("Type") << "' of '" << path
                                        << "' has " << entry.numNodes << " nodes; bodies need 4 or 9");
@@ -211,9 +211,11 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
   Partition partition;
   if (part.get<std::string>("Method") == "By Body") {
     partition = partitionByBody(*mesh);
-    DDC_INPUT_REQUIRE(part.get<int>("Number of Subdomains") == 0 || part.get<int>("Number of Subdomains") == mesh->numBodies(),
-                      "'Partition/Number of Subdomains' = " << nsub << " contradicts Method = By Body with "
-                                                            << mesh->numBodies() << " bodies");
+    const int given = part.get<int>("Number of Subdomains");
+    DDC_INPUT_REQUIRE(given == 0 || given == mesh->numBodies(),
+                      "'Partition/Number of Subdomains' = " << given << " contradicts Method = By Body with "
+                                                            << mesh->numBodies() << " bodies (use 0 or "
+                                                            << mesh->numBodies() << ")");
   } else {
     partition = partitionMetis(*mesh, nsub);
   }

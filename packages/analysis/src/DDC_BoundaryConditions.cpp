@@ -8,10 +8,10 @@
 namespace ddc {
 
 double DisplacementCondition::prescribed(int c, const std::array<double, 2>& X, double lambda) const {
-  double u = lambda * value[c];
+  const double dx = X[0] - center[0], dy = X[1] - center[1];
+  double u = lambda * (value[c] + gradient[c][0] * dx + gradient[c][1] * dy);
   if (angleRadians != 0.0) {
     const double a = lambda * angleRadians;
-    const double dx = X[0] - center[0], dy = X[1] - center[1];
     const double rx = std::cos(a) * dx - std::sin(a) * dy;
     const double ry = std::sin(a) * dx + std::cos(a) * dy;
     u += (c == 0) ? rx - dx : ry - dy;
@@ -31,12 +31,15 @@ Teuchos::RCP<const Teuchos::ParameterList> BoundaryConditions::getValidParameter
           enumValidator({"X", "Y", "XY"}, "Components"));
   pl->set("Value X", 0.0, "Displacement: x displacement at load factor 1 (scaled by the load factor).");
   pl->set("Value Y", 0.0, "Displacement: y displacement at load factor 1 (scaled by the load factor).");
+  for (const char* g : {"Gradient XX", "Gradient XY", "Gradient YX", "Gradient YY"})
+    pl->set(g, 0.0,
+            "Displacement: component of the displacement gradient H at load factor 1 (Gradient XY = "
+            "du_x/dY); adds H (X - centre) to the values, for affine fields.");
   pl->set("Rotation Angle", 0.0,
-          "Displacement: rigid rotation (degrees, counter-clockwise) about the rotation centre at load "
-          "factor 1, added to the values; the angle grows linearly with the load factor. Needs "
-          "Components = XY.");
-  pl->set("Rotation Center X", 0.0, "Displacement: x of the rotation centre.");
-  pl->set("Rotation Center Y", 0.0, "Displacement: y of the rotation centre.");
+          "Displacement: rigid rotation (degrees, counter-clockwise) about the centre at load factor 1, "
+          "added to the values; the angle grows linearly with the load factor. Needs Components = XY.");
+  pl->set("Center X", 0.0, "Displacement: x of the centre of the rotation and of the gradient field.");
+  pl->set("Center Y", 0.0, "Displacement: y of the centre of the rotation and of the gradient field.");
   pl->set("Traction X", 0.0, "Traction: x force per unit reference length at load factor 1.");
   pl->set("Traction Y", 0.0, "Traction: y force per unit reference length at load factor 1.");
   return pl;
@@ -77,8 +80,16 @@ BoundaryConditions BoundaryConditions::fromParameters(Teuchos::ParameterList& li
       d.value[0] = p.get<double>("Value X");
       d.value[1] = p.get<double>("Value Y");
       d.angleRadians = p.get<double>("Rotation Angle") * M_PI / 180.0;
-      d.center[0] = p.get<double>("Rotation Center X");
-      d.center[1] = p.get<double>("Rotation Center Y");
+      d.center[0] = p.get<double>("Center X");
+      d.center[1] = p.get<double>("Center Y");
+      d.gradient[0][0] = p.get<double>("Gradient XX");
+      d.gradient[0][1] = p.get<double>("Gradient XY");
+      d.gradient[1][0] = p.get<double>("Gradient YX");
+      d.gradient[1][1] = p.get<double>("Gradient YY");
+      DDC_INPUT_REQUIRE(d.fix[0] || (d.gradient[0][0] == 0.0 && d.gradient[0][1] == 0.0),
+                        "'" << where << "': Gradient XX/XY set but Components = " << comps << " does not prescribe X");
+      DDC_INPUT_REQUIRE(d.fix[1] || (d.gradient[1][0] == 0.0 && d.gradient[1][1] == 0.0),
+                        "'" << where << "': Gradient YX/YY set but Components = " << comps << " does not prescribe Y");
       DDC_INPUT_REQUIRE(d.angleRadians == 0.0 || (d.fix[0] && d.fix[1]),
                         "'" << where << "': a Rotation Angle needs Components = XY");
       DDC_INPUT_REQUIRE(d.fix[0] || d.value[0] == 0.0,
@@ -87,7 +98,8 @@ BoundaryConditions BoundaryConditions::fromParameters(Teuchos::ParameterList& li
                         "'" << where << "/Value Y' is set but Components = " << comps << " does not prescribe Y");
       bcs.displacements.push_back(d);
     } else {
-      for (const char* key : {"Value X", "Value Y", "Rotation Angle", "Rotation Center X", "Rotation Center Y"})
+      for (const char* key : {"Value X", "Value Y", "Rotation Angle", "Center X", "Center Y", "Gradient XX",
+                              "Gradient XY", "Gradient YX", "Gradient YY"})
         forbid(key);
       DDC_INPUT_REQUIRE(!p.isParameter("Components") || p.get<std::string>("Components") == "XY",
                         "parameter '" << where << "/Components' does not apply to Type = Traction");

@@ -12,14 +12,16 @@
 namespace ddc {
 
 /// A prescribed displacement on a node set:
-///   u(X, λ) = λ·(Value X, Value Y) + (R(λ·θ) − I)(X − c)
-/// on the components selected (X, Y or both). With θ = 0 it is a plain
-/// scaled displacement; with θ ≠ 0 (both components) a rigid rotation about c.
+///   u(X, λ) = λ·(v + H (X − c)) + (R(λ·θ) − I)(X − c)
+/// on the components selected (X, Y or both): v the values, H the
+/// displacement gradient (affine fields: patch tests, homogeneous
+/// deformations), θ a rigid rotation about the centre c.
 struct DisplacementCondition {
   std::string name;     ///< sublist name, for messages
   std::string setName;  ///< qualified node set, "Body/set"
   bool fix[2] = {true, true};
   double value[2] = {0.0, 0.0};
+  double gradient[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
   double angleRadians = 0.0;
   double center[2] = {0.0, 0.0};
   /// Prescribed value of component `c` at reference position X and load factor λ.
