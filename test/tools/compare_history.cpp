@@ -1,0 +1,84 @@
+// compare_history A.csv B.csv RTOL [COLUMN...]
+// Compares two history.csv files column by column: same header, same number
+// of rows, and |a - b| <= RTOL * max(|a|, |b|, FLOOR) for the named columns
+// (default: every column except wall_seconds). FLOOR = 1e-12 * the column's
+// largest magnitude, so values that should be zero compare absolutely.
+// Prints the worst relative difference per column; exit 1 on mismatch.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+using Table = std::vector<std::vector<std::string>>;
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) out.push_back(cell);
+  return out;
+}
+
+bool read(const char* file, std::vector<std::string>& header, Table& rows) {
+  std::ifstream in(file);
+  if (!in) return false;
+  std::string line;
+  if (!std::getline(in, line)) return false;
+  header = split(line);
+  while (std::getline(in, line))
+    if (!line.empty()) rows.push_back(split(line));
+  return true;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 4) {
+    std::cerr << "usage: compare_history A.csv B.csv RTOL [COLUMN...]\n";
+    return 2;
+  }
+  std::vector<std::string> ha, hb;
+  Table a, b;
+  if (!read(argv[1], ha, a) || !read(argv[2], hb, b)) {
+    std::cerr << "compare_history: cannot read " << argv[1] << " or " << argv[2] << "\n";
+    return 1;
+  }
+  const double rtol = std::atof(argv[3]);
+  if (ha != hb) {
+    std::cerr << "compare_history: headers differ\n";
+    return 1;
+  }
+  if (a.size() != b.size() || a.empty()) {
+    std::cerr << "compare_history: row counts differ or are zero (" << a.size() << " vs " << b.size() << ")\n";
+    return 1;
+  }
+  std::vector<std::string> cols(argv + 4, argv + argc);
+  if (cols.empty())
+    for (const auto& h : ha)
+      if (h != "wall_seconds") cols.push_back(h);
+  bool ok = true;
+  for (const auto& c : cols) {
+    const auto it = std::find(ha.begin(), ha.end(), c);
+    if (it == ha.end()) {
+      std::cerr << "compare_history: no column '" << c << "'\n";
+      return 1;
+    }
+    const size_t j = it - ha.begin();
+    double scale = 0.0, worst = 0.0;
+    for (size_t i = 0; i < a.size(); ++i)
+      scale = std::max({scale, std::abs(std::atof(a[i][j].c_str())), std::abs(std::atof(b[i][j].c_str()))});
+    for (size_t i = 0; i < a.size(); ++i) {
+      const double x = std::atof(a[i][j].c_str()), y = std::atof(b[i][j].c_str());
+      const double rel = std::abs(x - y) / std::max({std::abs(x), std::abs(y), 1e-12 * scale, 1e-300});
+      worst = std::max(worst, rel);
+    }
+    std::cout << c << ": worst relative difference " << worst << "\n";
+    if (worst > rtol) ok = false;
+  }
+  if (!ok) std::cerr << "compare_history: differences above " << rtol << "\n";
+  return ok ? 0 : 1;
+}
