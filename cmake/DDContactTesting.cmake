@@ -2,7 +2,7 @@
 # each registered once per rank count under mpirun.
 find_package(GTest)
 if(NOT GTest_FOUND)
-  ddc_missing("GoogleTest" "libgtest-dev")
+  ddc_missing("GoogleTest" "libgtest-dev libgmock-dev")
 endif()
 find_program(DDC_MPIEXEC NAMES mpirun mpiexec HINTS ${MPIEXEC_EXECUTABLE})
 
@@ -29,7 +29,7 @@ function(ddc_add_unit_test name)
     set(T_RANKS 1)
   endif()
   add_executable(${name} ${T_SOURCES} ${PROJECT_SOURCE_DIR}/test/support/DDC_TestMain.cpp)
-  target_link_libraries(${name} PRIVATE ${T_LIBRARIES} GTest::gtest DDContact_Trilinos)
+  target_link_libraries(${name} PRIVATE ${T_LIBRARIES} GTest::gmock GTest::gtest DDContact_Trilinos)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/test/support)
   target_compile_definitions(${name} PRIVATE DDC_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   foreach(np ${T_RANKS})
