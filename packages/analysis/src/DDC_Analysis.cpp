@@ -7,7 +7,9 @@
 #include <iostream>
 #include <sstream>
 
+#include "DDC_ContactParameters.hpp"
 #include "DDC_Error.hpp"
+#include "DDC_NodeToSegment.hpp"
 #include "DDC_Gmsh.hpp"
 #include "DDC_HistoryWriter.hpp"
 #include "DDC_MeshGenerators.hpp"
@@ -128,6 +130,7 @@ Teuchos::RCP<const Teuchos::ParameterList> Analysis::getValidParameters(const El
   pl->set("Newton", *newtonValidParameters(), "Newton iteration and convergence criteria.");
   pl->set("Solver", *solverValidParameters(), "Solution strategy and linear solvers.");
   pl->set("Partition", *partitionValidParameters(), "Domain partitioning.");
+  pl->set("Contact", *ContactOptions::getValidParameters(), "Contact pairs and formulation.");
   pl->set("Output", *outputValidParameters(), "What the run writes (besides history.csv).");
   return pl;
 }
@@ -176,6 +179,8 @@ std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const Elemen
 Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::ParameterList& params,
                    ElementFactory factory, const std::string& baseDirectory)
     : comm_(std::move(comm)), factory_(std::move(factory)) {
+  // Contact elements live in the contact package; make sure they are known.
+  if (!factory_.has("Node-To-Segment")) registerContactElements(factory_);
   const auto valid = getValidParameters(factory_);
   validateLevel(params, *valid, "");
   for (const char* s : {"Load Stepping", "Newton", "Solver", "Partition", "Output"})
@@ -203,6 +208,20 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
   }
 
   auto bcs = BoundaryConditions::fromParameters(params.sublist("Boundary Conditions"), *mesh, "Boundary Conditions");
+  auto contact = ContactOptions::fromParameters(params.sublist("Contact"), *mesh, "Contact");
+  std::vector<std::shared_ptr<const ContactElement>> contactElements;
+  if (contact.enabled()) {
+    const std::vector<std::string> types = contact.decomposed
+                                               ? std::vector<std::string>{"Decomposed NTS Slave", "Decomposed NTS Master"}
+                                               : std::vector<std::string>{"Node-To-Segment"};
+    for (const auto& t : types) {
+      Teuchos::ParameterList pl;
+      pl.set("Type", t);
+      auto ce = std::dynamic_pointer_cast<const ContactElement>(factory_.create(pl, "Contact/Formulation"));
+      DDC_INPUT_REQUIRE(ce != nullptr, "element type '" << t << "' registered in the factory is not a contact element");
+      contactElements.push_back(ce);
+    }
+  }
 
   const PL& part = params.sublist("Partition");
   int nsub = part.get<int>("Number of Subdomains");
@@ -236,7 +255,8 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
   solver_ = DirectSolverFactory::withBuiltins().create(params.sublist("Solver").sublist("Direct Solver"),
                                                        "Solver/Direct Solver");
 
-  model_ = std::make_shared<Model>(comm_, mesh, std::move(elements), std::move(partition), std::move(bcs));
+  model_ = std::make_shared<Model>(comm_, mesh, std::move(elements), std::move(partition), std::move(bcs),
+                                   std::move(contact), std::move(contactElements));
   K_ = model_->createMatrix();
   u_ = model_->createVector();
   params_ = params;
@@ -257,6 +277,8 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
   const double atol = nw.get<double>("Absolute Residual Tolerance");
   const double etol = nw.get<double>("Energy Tolerance");
   const bool printIt = nw.get<bool>("Print Iterations");
+  const bool contact = model_->hasContact();
+  const bool conventional = contact && !model_->contactOptions().decomposed;
 
   auto u = model_->createVector();
   u->assign(*u_);
@@ -266,16 +288,34 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
   auto du = model_->createVector();
   double r0 = 0.0, e0 = 0.0;
   rec.residualHistory.clear();
+  rec.failure.clear();
+  // Active sets seen after each change in this increment: a repeat is cycling.
+  std::vector<std::vector<char>> seen;
+  auto activeSet = [&] {
+    std::vector<char> a;
+    for (const auto& sl : model_->contactSlots()) a.push_back(sl.active);
+    return a;
+  };
+  if (contact) seen.push_back(activeSet());
   for (int it = 0; it < maxIt; ++it) {
+    if (model_->topologyVersion() != topologyVersion_) {
+      K_ = model_->createMatrix();
+      topologyVersion_ = model_->topologyVersion();
+      symbolicDone_ = false;
+    }
     try {
       model_->assemble(*u, lambda1, nullptr, r.get(), K_.get(), it == 0 ? dp.get() : nullptr);
     } catch (const InadmissibleDeformation& e) {
-      progress("    Newton iteration " + std::to_string(it) + ": " + e.what());
+      rec.failure = std::string("Newton iteration ") + std::to_string(it) + ": " + e.what();
+      progress("    " + rec.failure);
       return false;
     }
     const double rnorm = r->norm2();
     rec.residualHistory.push_back(rnorm);
-    if (!std::isfinite(rnorm)) return false;
+    if (!std::isfinite(rnorm)) {
+      rec.failure = "non-finite residual";
+      return false;
+    }
     if (it == 0) r0 = rnorm;
     const bool residualOk = it > 0 && rnorm <= std::max(rtol * r0, atol);
 
@@ -286,7 +326,7 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
     solver_->numeric();
     r->scale(-1.0);
     solver_->solve(*r, *du);
-    // du·r: the energy norm of the correction (r already negated: use -).
+    // |du·r|: the energy norm of the correction.
     const double energy = std::abs(du->dot(*r));
     if (it == 0) {
       du->update(1.0, *dp, 1.0);  // constrained rows solved to 0; impose the increment
@@ -294,18 +334,70 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
     }
     u->update(1.0, *du, 1.0);
     rec.newtonIterations = it + 1;
-    if (printIt && comm_->getRank() == 0) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "    iter %2d  |r| = %.3e  |du.r| = %.3e", it, rnorm, energy);
-      std::cout << buf << std::endl;
+
+    // Contact: follow the current configuration (conventional NTS), then
+    // check the contact state on the multipliers (release in tension,
+    // activate on penetration).
+    bool pairingChanged = false;
+    std::vector<int> changed;
+    if (contact) {
+      if (conventional) pairingChanged = model_->updatePairing(*u, false, false);
+      changed = model_->updateActiveSet(*u);
     }
-    if (!std::isfinite(energy)) return false;
-    if (residualOk && energy <= std::max(etol * e0, 0.0)) {
+    if (printIt && comm_->getRank() == 0) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "    iter %2d  |r| = %.3e  |du.r| = %.3e", it, rnorm, energy);
+      std::string line = buf;
+      if (contact)
+        line += "  active " + std::to_string(model_->contactSummary().active) + " (" +
+                std::to_string(changed.size()) + " changed" + (pairingChanged ? ", new pairing" : "") + ")";
+      std::cout << line << std::endl;
+    }
+    if (!std::isfinite(energy)) {
+      rec.failure = "non-finite correction";
+      return false;
+    }
+    if (!changed.empty()) {
+      auto a = activeSet();
+      if (std::find(seen.begin(), seen.end(), a) != seen.end()) {
+        std::ostringstream os;
+        os << "the contact active set cycles (a set seen before in this increment returned); pairs changing state:";
+        for (size_t i = 0; i < changed.size() && i < 10; ++i) os << "\n      " << model_->describeSlot(changed[i]);
+        if (changed.size() > 10) os << "\n      ... and " << changed.size() - 10 << " more";
+        rec.failure = os.str();
+        progress("    " + rec.failure);
+        return false;
+      }
+      seen.push_back(std::move(a));
+    }
+    if (residualOk && energy <= etol * e0 && changed.empty() && !pairingChanged) {
       u_->assign(*u);
       return true;
     }
   }
+  rec.failure = "no convergence in " + std::to_string(maxIt) + " iterations (Newton/Max Iterations)";
   return false;
+}
+
+double Analysis::externalWorkIncrement(const Vector& fint0, const Vector& u0, double lambda0, const Vector& fint1,
+                                       const Vector& u1, double lambda1) const {
+  // Trapezoidal rule in the load factor: reactions at prescribed DOFs (the
+  // internal force there) and applied tractions, times the displacement step.
+  const auto& map = *model_->ownedMap();
+  const GO first = map.getMinGlobalIndex();
+  auto f0 = fint0.getData(), f1 = fint1.getData(), a = u0.getData(), b = u1.getData();
+  auto fe = model_->externalForce().getData();
+  double w = 0.0;
+  for (size_t l = 0; l < map.getNodeNumElements(); ++l) {
+    const double step = b[l] - a[l];
+    if (model_->isConstrained(first + l))
+      w += 0.5 * (f0[l] + f1[l]) * step;
+    else
+      w += 0.5 * (lambda0 + lambda1) * fe[l] * step;
+  }
+  double sum = 0.0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, w, Teuchos::outArg(sum));
+  return sum;
 }
 
 void Analysis::run(const std::string& outputDirectory) {
@@ -316,13 +408,17 @@ void Analysis::run(const std::string& outputDirectory) {
   const double finalLambda = ls.get<double>("Final Load Factor");
   const int maxBisect = ls.get<int>("Max Bisections");
   const PL& out = params_.sublist("Output");
+  const bool contact = model_->hasContact();
+  const bool decomposed = contact && model_->contactOptions().decomposed;
 
   std::unique_ptr<OutputDirectory> dir;
   std::unique_ptr<HistoryWriter> hist;
   std::unique_ptr<VtkWriter> vtk;
   if (!outputDirectory.empty()) {
     dir = std::make_unique<OutputDirectory>(comm_, outputDirectory);
-    hist = std::make_unique<HistoryWriter>(comm_, dir->path() + "/history.csv", HistoryWriter::standardColumns());
+    auto columns = HistoryWriter::standardColumns();
+    columns.insert(columns.end(), {"external_work", "contact_bytes", "bisections"});
+    hist = std::make_unique<HistoryWriter>(comm_, dir->path() + "/history.csv", columns);
     if (comm_->getRank() == 0) Teuchos::writeParameterListToXmlFile(params_, dir->path() + "/parameters.xml");
     if (out.get<bool>("VTK")) vtk = std::make_unique<VtkWriter>(comm_, dir->path(), "solution.pvd");
   }
@@ -333,6 +429,10 @@ void Analysis::run(const std::string& outputDirectory) {
   u_->putScalar(0.0);
   writeVtk(0, 0.0);
 
+  auto fintPrev = model_->createVector();
+  auto uPrev = model_->createVector();
+  auto fint = model_->createVector();
+  double work = 0.0;
   double lambda = 0.0;
   int vtkCounter = 0;
   for (int n = 1; n <= nsteps; ++n) {
@@ -343,12 +443,18 @@ void Analysis::run(const std::string& outputDirectory) {
       const double trial = (target - lambda <= dl * (1 + 1e-12)) ? target : lambda + dl;
       StepRecord rec;
       rec.step = n;
+      const long exchanges0 = contact ? model_->exchanges() : 0;
+      const long bytes0 = contact ? model_->bytesExchanged() : 0;
+      const auto savedSlots = contact ? model_->contactSlots() : std::vector<ContactSlot>();
+      if (contact && model_->contactOptions().initialInContact) model_->activateAllPaired();
       if (!solveIncrement(lambda, trial, rec)) {
+        if (contact) model_->restoreContactState(savedSlots);
         ++depth;
         if (depth > maxBisect) {
           std::ostringstream os;
           os << "Newton did not converge in step " << n << " (load factor " << lambda << " -> " << trial
-             << ") after " << maxBisect << " bisections (Load Stepping/Max Bisections); residual history:";
+             << ") after " << maxBisect << " bisections (Load Stepping/Max Bisections): " << rec.failure
+             << "; residual history:";
           for (double x : rec.residualHistory) os << " " << x;
           throw SolverError(os.str());
         }
@@ -359,22 +465,46 @@ void Analysis::run(const std::string& outputDirectory) {
         progress(buf);
         continue;
       }
+      const double lambdaPrev = lambda;
       lambda = trial;
       rec.loadFactor = lambda;
       rec.bisections = depth;
-      auto fint = model_->createVector();
       rec.strainEnergy = model_->assemble(*u_, lambda, fint.get(), nullptr, nullptr).strainEnergy;
+      work += externalWorkIncrement(*fintPrev, *uPrev, lambdaPrev, *fint, *u_, lambda);
+      rec.externalWork = work;
+      fintPrev->assign(*fint);
+      uPrev->assign(*u_);
+      if (contact) {
+        // Converged: refresh the pairing once per step. The decomposed
+        // element freezes the new projections and normals for the next step.
+        model_->updatePairing(*u_, false, decomposed);
+        model_->updateActiveSet(*u_);  // refresh gaps/multipliers for output; no state change counted
+        const auto cs = model_->contactSummary();
+        rec.activeContacts = cs.active;
+        rec.contactForce[0] = cs.force[0];
+        rec.contactForce[1] = cs.force[1];
+        rec.contactExchanges = model_->exchanges() - exchanges0;
+        rec.contactBytes = model_->bytesExchanged() - bytes0;
+      }
       rec.wallSeconds = seconds();
       history_.push_back(rec);
       if (hist)
-        hist->appendRow({double(n), lambda, rec.strainEnergy, double(rec.newtonIterations), 0.0, 0.0, 0.0, 0.0, 0.0,
-                         rec.wallSeconds});
-      char buf[240];
+        hist->appendRow({double(n), lambda, rec.strainEnergy, double(rec.newtonIterations), 0.0,
+                         double(rec.activeContacts), rec.contactForce[0], rec.contactForce[1],
+                         double(rec.contactExchanges), rec.wallSeconds, rec.externalWork, double(rec.contactBytes),
+                         double(rec.bisections)});
+      char buf[300];
       std::snprintf(buf, sizeof buf,
                     "step %3d/%d  load %.6g  Newton %2d  |r| %.3e -> %.3e  energy %.6e  %.2f s", n, nsteps, lambda,
                     rec.newtonIterations, rec.residualHistory.front(), rec.residualHistory.back(), rec.strainEnergy,
                     rec.wallSeconds);
-      progress(buf);
+      std::string line = buf;
+      if (contact) {
+        std::snprintf(buf, sizeof buf, "  contacts %d  force (%.4g, %.4g)", rec.activeContacts, rec.contactForce[0],
+                      rec.contactForce[1]);
+        line += buf;
+      }
+      progress(line);
       const bool last = n == nsteps && lambda >= target - 1e-14 * std::abs(finalLambda);
       if (++vtkCounter % out.get<int>("VTK Interval") == 0 || last) writeVtk(static_cast<int>(history_.size()), lambda);
     }

@@ -30,6 +30,12 @@ struct StepRecord {
   int bisections = 0;        ///< bisection depth used to reach this load factor
   double wallSeconds = 0.0;  ///< since the start of run()
   std::vector<double> residualHistory;  ///< ||r|| per Newton iteration
+  double externalWork = 0.0;  ///< work of reactions and tractions, trapezoidal in λ, since λ = 0
+  int activeContacts = 0;
+  double contactForce[2] = {0.0, 0.0};  ///< resultant on the slave bodies (Σ −λ n)
+  long contactExchanges = 0;  ///< contact-geometry exchanges (pairing updates) in this (sub)step
+  long contactBytes = 0;      ///< bytes those exchanges moved between ranks
+  std::string failure;        ///< why the last attempt failed (empty when converged)
 };
 
 class Analysis {
@@ -61,6 +67,8 @@ class Analysis {
 
  private:
   bool solveIncrement(double lambda0, double lambda1, StepRecord& rec);
+  double externalWorkIncrement(const Vector& fint0, const Vector& u0, double lambda0, const Vector& fint1,
+                               const Vector& u1, double lambda1) const;
   void progress(const std::string& line) const;
 
   Teuchos::RCP<const Teuchos::Comm<int>> comm_;
@@ -72,6 +80,7 @@ class Analysis {
   Teuchos::RCP<Vector> u_;
   std::vector<StepRecord> history_;
   bool symbolicDone_ = false;
+  int topologyVersion_ = -1;
 };
 
 /// Build the mesh described by "Mesh" (validated in place). Exposed for tools

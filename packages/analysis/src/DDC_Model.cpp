@@ -1,97 +1,144 @@
 #include "DDC_Model.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_Export.hpp>
 #include <Tpetra_Import.hpp>
-#include <Teuchos_CommHelpers.hpp>
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <numeric>
+#include <sstream>
 
+#include "DDC_ContactSearch.hpp"
+#include "DDC_DecomposedNodeToSegment.hpp"
 #include "DDC_Error.hpp"
 
 namespace ddc {
 
-namespace {
-
-/// Node -> elements adjacency of the whole mesh (CSR).
-void nodeElementAdjacency(const Mesh& mesh, std::vector<int>& offset, std::vector<int>& elems) {
-  offset.assign(mesh.numNodes() + 1, 0);
-  for (int e = 0; e < mesh.numElements(); ++e)
-    for (int i = 0; i < mesh.elementNumNodes(e); ++i) offset[mesh.elementNodes(e)[i] + 1]++;
-  std::partial_sum(offset.begin(), offset.end(), offset.begin());
-  elems.resize(offset.back());
-  std::vector<int> fill(offset.begin(), offset.end() - 1);
-  for (int e = 0; e < mesh.numElements(); ++e)
-    for (int i = 0; i < mesh.elementNumNodes(e); ++i) elems[fill[mesh.elementNodes(e)[i]]++] = e;
-}
-
-}  // namespace
-
 Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const Mesh> mesh,
-             std::vector<std::shared_ptr<const Element>> elements, Partition partition, BoundaryConditions bcs)
+             std::vector<std::shared_ptr<const Element>> elements, Partition partition, BoundaryConditions bcs,
+             ContactOptions contact, std::vector<std::shared_ptr<const ContactElement>> contactElements)
     : comm_(std::move(comm)),
       mesh_(std::move(mesh)),
       elements_(std::move(elements)),
       partition_(std::move(partition)),
-      bcs_(std::move(bcs)) {
+      bcs_(std::move(bcs)),
+      contact_(std::move(contact)) {
   DDC_ASSERT(static_cast<int>(elements_.size()) == mesh_->numBodies(), "one element evaluator per body");
   subdomainRank_ = subdomainOwnerRank(partition_.numSubdomains, comm_->getSize());
   for (int e = 0; e < mesh_->numElements(); ++e)
     if (subdomainRank_[partition_.elementSubdomain[e]] == comm_->getRank()) localElements_.push_back(e);
+
+  // Contact slots: one multiplier per slave node of each pair.
+  if (contact_.enabled()) {
+    if (contact_.decomposed) {
+      DDC_ASSERT(contactElements.size() == 2, "decomposed contact needs the slave and master counterparts");
+      slaveElement_ = contactElements[0];
+      masterElement_ = contactElements[1];
+    } else {
+      DDC_ASSERT(contactElements.size() == 1, "conventional contact needs the NTS element");
+      ntsElement_ = contactElements[0];
+    }
+    std::vector<char> isSurface(mesh_->numNodes(), 0);
+    for (int p = 0; p < static_cast<int>(contact_.pairs.size()); ++p) {
+      const auto& def = contact_.pairs[p];
+      const auto& slaveNodes = mesh_->nodeSet(def.slaveSet);
+      MasterSurface master(masterSegmentsFromSideSet(*mesh_, def.masterSet));
+      for (int n : master.nodes()) isSurface[n] = 1;
+      std::vector<int> slaves;
+      for (int n : slaveNodes) {
+        if (master.localNode(n) >= 0) continue;  // a node of both surfaces (shared corner) is not a slave
+        slaves.push_back(n);
+      }
+      DDC_INPUT_REQUIRE(!slaves.empty(), "contact pair 'Contact/Pairs/" << def.name << "': the slave side set '"
+                                                                        << def.slaveSet << "' has no nodes off the master surface");
+      std::map<int, double> tributary;
+      for (const Segment& seg : mesh_->sideSet(def.slaveSet)) {
+        const auto& a = mesh_->coord(seg.nodes[0]);
+        const auto& b = mesh_->coord(seg.nodes[1]);
+        const double half = 0.5 * std::hypot(b[0] - a[0], b[1] - a[1]);
+        tributary[seg.nodes[0]] += half;
+        tributary[seg.nodes[1]] += half;
+      }
+      pairSlots_.emplace_back();
+      for (int n : slaves) {
+        isSurface[n] = 1;
+        ContactSlot s;
+        s.pair = p;
+        s.slaveNode = n;
+        s.tributaryLength = tributary[n];
+        pairSlots_.back().push_back(static_cast<int>(slots_.size()));
+        slots_.push_back(s);
+      }
+      searches_.push_back(std::make_unique<ContactSearch>(std::move(master), slaves, contact_.searchRadius));
+    }
+    for (int n = 0; n < mesh_->numNodes(); ++n)
+      if (isSurface[n]) surfaceNodes_.push_back(n);
+  }
   buildDofNumbering();
   buildConstraints();
-  buildGraph();
+  if (hasContact()) {
+    // Replicated map of the surface DOFs and all multipliers: the one
+    // collective exchange of contact geometry and state.
+    std::vector<GO> gids;
+    for (int n : surfaceNodes_) gids.insert(gids.end(), {dof(n, 0), dof(n, 1)});
+    for (size_t k = 0; k < slots_.size(); ++k) gids.push_back(lmDof_[k]);
+    surfaceMap_ = Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                       Teuchos::ArrayView<const GO>(gids), 0, comm_));
+    surfaceImporter_ = Teuchos::rcp(new Tpetra::Import<LO, GO, Node>(ownedMap_, surfaceMap_));
+    long received = 0;
+    for (GO g : gids)
+      if (!ownedMap_->isNodeGlobalElement(g)) ++received;
+    long total = 0;
+    Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, received, Teuchos::outArg(total));
+    bytesPerExchange_ = total * static_cast<long>(sizeof(double));
+    surfaceIndex_.assign(mesh_->numNodes(), -1);
+    for (size_t i = 0; i < surfaceNodes_.size(); ++i) surfaceIndex_[surfaceNodes_[i]] = static_cast<int>(i);
+    for (size_t k = 0; k < slots_.size(); ++k)
+      if (slotOwner(static_cast<int>(k)) == comm_->getRank()) localSlots_.push_back(static_cast<int>(k));
+    // Initial pairing in the reference configuration.
+    auto zero = createVector();
+    updatePairing(*zero, /*global=*/true, /*freeze=*/true);
+  }
+  buildTopology();
   assembleTractions();
 }
+
+Model::~Model() = default;
 
 void Model::buildDofNumbering() {
   const Mesh& mesh = *mesh_;
   const int nranks = comm_->getSize(), me = comm_->getRank();
-  std::vector<int> owner(mesh.numNodes(), nranks);
+  nodeOwner_.assign(mesh.numNodes(), nranks);
   for (int e = 0; e < mesh.numElements(); ++e) {
     const int r = subdomainRank_[partition_.elementSubdomain[e]];
     for (int i = 0; i < mesh.elementNumNodes(e); ++i) {
-      int& o = owner[mesh.elementNodes(e)[i]];
+      int& o = nodeOwner_[mesh.elementNodes(e)[i]];
       o = std::min(o, r);
     }
   }
-  std::vector<int> count(nranks + 1, 0);
-  for (int n = 0; n < mesh.numNodes(); ++n) count[owner[n] + 1]++;
-  std::partial_sum(count.begin(), count.end(), count.begin());
-  nodeNumber_.assign(mesh.numNodes(), -1);
-  std::vector<int> next(count.begin(), count.end() - 1);
-  for (int n = 0; n < mesh.numNodes(); ++n) nodeNumber_[n] = next[owner[n]]++;
-
-  const GO numGlobal = 2 * static_cast<GO>(mesh.numNodes());
-  const size_t numOwned = 2 * static_cast<size_t>(count[me + 1] - count[me]);
-  ownedMap_ = Teuchos::rcp(new Map(numGlobal, numOwned, 0, comm_));
-
-  // Overlap: owned DOFs first, then ghosts (nodes of local elements owned elsewhere).
-  std::vector<GO> gids;
-  gids.reserve(numOwned);
-  for (GO g = 2 * static_cast<GO>(count[me]); g < 2 * static_cast<GO>(count[me + 1]); ++g) gids.push_back(g);
-  std::vector<GO> ghosts;
-  for (int e : localElements_)
-    for (int i = 0; i < mesh.elementNumNodes(e); ++i) {
-      const int n = mesh.elementNodes(e)[i];
-      if (owner[n] != me) {
-        ghosts.push_back(dof(n, 0));
-        ghosts.push_back(dof(n, 1));
-      }
-    }
-  std::sort(ghosts.begin(), ghosts.end());
-  ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
-  gids.insert(gids.end(), ghosts.begin(), ghosts.end());
-  overlapMap_ = Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
-                                     Teuchos::ArrayView<const GO>(gids), 0, comm_));
-  importer_ = Teuchos::rcp(new Tpetra::Import<LO, GO, Node>(ownedMap_, overlapMap_));
-  exporter_ = Teuchos::rcp(new Tpetra::Export<LO, GO, Node>(overlapMap_, ownedMap_));
+  // Per rank: its nodes' DOFs, then its multipliers; ranks in order.
+  std::vector<GO> count(nranks, 0);
+  for (int n = 0; n < mesh.numNodes(); ++n) count[nodeOwner_[n]] += 2;
+  for (size_t k = 0; k < slots_.size(); ++k) count[slotOwner(static_cast<int>(k))] += 1;
+  std::vector<GO> offset(nranks + 1, 0);
+  for (int r = 0; r < nranks; ++r) offset[r + 1] = offset[r] + count[r];
+  numGlobalDofs_ = offset[nranks];
+  std::vector<GO> next(offset.begin(), offset.end() - 1);
+  nodeDof_.assign(mesh.numNodes(), -1);
+  for (int n = 0; n < mesh.numNodes(); ++n) {
+    nodeDof_[n] = next[nodeOwner_[n]];
+    next[nodeOwner_[n]] += 2;
+  }
+  lmDof_.assign(slots_.size(), -1);
+  for (size_t k = 0; k < slots_.size(); ++k) lmDof_[k] = next[slotOwner(static_cast<int>(k))]++;
+  ownedMap_ = Teuchos::rcp(new Map(numGlobalDofs_, static_cast<size_t>(count[me]), 0, comm_));
 }
 
 void Model::buildConstraints() {
   const Mesh& mesh = *mesh_;
-  constrained_.assign(2 * mesh.numNodes(), 0);
-  constraintSource_.assign(2 * mesh.numNodes(), {-1, -1});
+  constrained_.assign(numGlobalDofs_, 0);
+  constraintSource_.assign(numGlobalDofs_, {-1, -1});
   for (int b = 0; b < static_cast<int>(bcs_.displacements.size()); ++b) {
     const auto& bc = bcs_.displacements[b];
     for (int n : mesh.nodeSet(bc.setName))
@@ -119,53 +166,100 @@ void Model::buildConstraints() {
   }
 }
 
-void Model::buildGraph() {
-  const Mesh& mesh = *mesh_;
-  std::vector<int> adjOff, adjElem;
-  nodeElementAdjacency(mesh, adjOff, adjElem);
+void Model::elementDofs(int e, std::vector<GO>& dofs) const {
+  const int nn = mesh_->elementNumNodes(e);
+  dofs.resize(2 * nn);
+  for (int i = 0; i < nn; ++i)
+    for (int c = 0; c < 2; ++c) dofs[2 * i + c] = dof(mesh_->elementNodes(e)[i], c);
+}
 
-  // Owned graph: rows of owned DOFs, columns from every element touching the
-  // node (the whole mesh is known, so no communication is needed).
-  const size_t numOwnedRows = ownedMap_->getNodeNumElements();
-  std::vector<std::vector<GO>> rows(numOwnedRows / 2);
-  std::vector<int> ownedNodes(numOwnedRows / 2);
+void Model::slotDofs(int k, std::vector<GO>& dofs) const {
+  const ContactSlot& s = slots_[k];
+  dofs.clear();
+  if (s.paired())
+    for (int n : {s.slaveNode, s.master[0], s.master[1]}) dofs.insert(dofs.end(), {dof(n, 0), dof(n, 1)});
+  dofs.push_back(lmDof_[k]);
+}
+
+void Model::buildTopology() {
+  const Mesh& mesh = *mesh_;
+  const int me = comm_->getRank();
   const GO first = ownedMap_->getMinGlobalIndex();
-  for (int n = 0; n < mesh.numNodes(); ++n) {
-    const GO g = dof(n, 0);
-    if (g >= first && g < first + static_cast<GO>(numOwnedRows)) ownedNodes[(g - first) / 2] = n;
-  }
-  Teuchos::Array<size_t> nnz(numOwnedRows);
-  for (size_t k = 0; k < ownedNodes.size(); ++k) {
-    const int n = ownedNodes[k];
-    auto& cols = rows[k];
-    for (int a = adjOff[n]; a < adjOff[n + 1]; ++a) {
-      const int e = adjElem[a];
-      for (int i = 0; i < mesh.elementNumNodes(e); ++i) {
-        cols.push_back(dof(mesh.elementNodes(e)[i], 0));
-        cols.push_back(dof(mesh.elementNodes(e)[i], 1));
+  const size_t numOwned = ownedMap_->getNodeNumElements();
+  std::vector<GO> dofs;
+
+  // Owned graph: rows of owned DOFs with the columns of every element and
+  // contact slot touching them (the whole mesh and all pairs are known on
+  // every rank, so no communication is needed).
+  std::vector<std::vector<GO>> rows(numOwned);
+  auto addOwned = [&](const std::vector<GO>& d) {
+    for (GO r : d)
+      if (r >= first && r < first + static_cast<GO>(numOwned)) {
+        auto& row = rows[r - first];
+        row.insert(row.end(), d.begin(), d.end());
       }
-    }
-    std::sort(cols.begin(), cols.end());
-    cols.erase(std::unique(cols.begin(), cols.end()), cols.end());
-    nnz[2 * k] = nnz[2 * k + 1] = cols.size();
+  };
+  for (int e = 0; e < mesh.numElements(); ++e) {
+    elementDofs(e, dofs);
+    addOwned(dofs);
+  }
+  for (int k = 0; k < static_cast<int>(slots_.size()); ++k) {
+    slotDofs(k, dofs);
+    addOwned(dofs);
+  }
+  Teuchos::Array<size_t> nnz(numOwned);
+  for (size_t r = 0; r < numOwned; ++r) {
+    std::sort(rows[r].begin(), rows[r].end());
+    rows[r].erase(std::unique(rows[r].begin(), rows[r].end()), rows[r].end());
+    nnz[r] = rows[r].size();
   }
   auto owned = Teuchos::rcp(new CrsGraph(ownedMap_, nnz()));
-  for (size_t k = 0; k < rows.size(); ++k)
-    for (int c = 0; c < 2; ++c) owned->insertGlobalIndices(first + 2 * k + c, Teuchos::ArrayView<const GO>(rows[k]));
+  for (size_t r = 0; r < numOwned; ++r) owned->insertGlobalIndices(first + r, Teuchos::ArrayView<const GO>(rows[r]));
   owned->fillComplete(ownedMap_, ownedMap_);
   ownedGraph_ = owned;
+  rows.clear();
 
-  // Overlap graph: rows of all DOFs of local elements, entries of local
-  // elements only; columns indexed by the overlap map so element DOF lists
-  // can be used directly as local column indices.
+  // Overlap map: owned DOFs first, then the ghosts of local elements and slots.
+  std::vector<GO> ghosts;
+  auto addGhosts = [&](const std::vector<GO>& d) {
+    for (GO g : d)
+      if (g < first || g >= first + static_cast<GO>(numOwned)) ghosts.push_back(g);
+  };
+  for (int e : localElements_) {
+    elementDofs(e, dofs);
+    addGhosts(dofs);
+  }
+  for (int k : localSlots_) {
+    slotDofs(k, dofs);
+    addGhosts(dofs);
+  }
+  std::sort(ghosts.begin(), ghosts.end());
+  ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
+  std::vector<GO> gids(numOwned);
+  std::iota(gids.begin(), gids.end(), first);
+  gids.insert(gids.end(), ghosts.begin(), ghosts.end());
+  overlapMap_ = Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                     Teuchos::ArrayView<const GO>(gids), 0, comm_));
+  importer_ = Teuchos::rcp(new Tpetra::Import<LO, GO, Node>(ownedMap_, overlapMap_));
+  exporter_ = Teuchos::rcp(new Tpetra::Export<LO, GO, Node>(overlapMap_, ownedMap_));
+
+  // Overlap graph: entries of local elements and slots only, columns indexed
+  // by the overlap map so element DOF lists are local column indices.
   const size_t numOv = overlapMap_->getNodeNumElements();
   std::vector<std::vector<LO>> ovRows(numOv);
-  for (int e : localElements_) {
-    const int nn = mesh.elementNumNodes(e);
-    std::vector<LO> l(2 * nn);
-    for (int i = 0; i < nn; ++i)
-      for (int c = 0; c < 2; ++c) l[2 * i + c] = overlapMap_->getLocalElement(dof(mesh.elementNodes(e)[i], c));
+  std::vector<LO> l;
+  auto addLocal = [&](const std::vector<GO>& d) {
+    l.resize(d.size());
+    for (size_t i = 0; i < d.size(); ++i) l[i] = overlapMap_->getLocalElement(d[i]);
     for (LO r : l) ovRows[r].insert(ovRows[r].end(), l.begin(), l.end());
+  };
+  for (int e : localElements_) {
+    elementDofs(e, dofs);
+    addLocal(dofs);
+  }
+  for (int k : localSlots_) {
+    slotDofs(k, dofs);
+    addLocal(dofs);
   }
   Teuchos::Array<size_t> ovnnz(numOv);
   for (size_t r = 0; r < numOv; ++r) {
@@ -177,6 +271,8 @@ void Model::buildGraph() {
   for (size_t r = 0; r < numOv; ++r) ov->insertLocalIndices(r, Teuchos::ArrayView<const LO>(ovRows[r]));
   ov->fillComplete(ownedMap_, ownedMap_);
   overlapGraph_ = ov;
+  ++topologyVersion_;
+  (void)me;
 }
 
 void Model::assembleTractions() {
@@ -236,10 +332,10 @@ void Model::applyPrescribed(double lambda, Vector& u) const {
   auto d = u.getDataNonConst();
   const GO first = ownedMap_->getMinGlobalIndex();
   for (size_t l = 0; l < ownedMap_->getNodeNumElements(); ++l) {
-    const GO g = first + l;
-    const auto& src = constraintSource_[g];
+    const auto& src = constraintSource_[first + l];
     if (src.first < 0) continue;
-    d[l] = bcs_.displacements[src.first].prescribed(static_cast<int>(g % 2), mesh_->coord(src.second), lambda);
+    const int c = static_cast<int>((first + l) - nodeDof_[src.second]);
+    d[l] = bcs_.displacements[src.first].prescribed(c, mesh_->coord(src.second), lambda);
   }
 }
 
@@ -248,11 +344,10 @@ void Model::prescribedIncrement(double lambda0, double lambda, Vector& du) const
   auto d = du.getDataNonConst();
   const GO first = ownedMap_->getMinGlobalIndex();
   for (size_t l = 0; l < ownedMap_->getNodeNumElements(); ++l) {
-    const GO g = first + l;
-    const auto& src = constraintSource_[g];
+    const auto& src = constraintSource_[first + l];
     if (src.first < 0) continue;
     const auto& bc = bcs_.displacements[src.first];
-    const int c = static_cast<int>(g % 2);
+    const int c = static_cast<int>((first + l) - nodeDof_[src.second]);
     d[l] = bc.prescribed(c, mesh_->coord(src.second), lambda) - bc.prescribed(c, mesh_->coord(src.second), lambda0);
   }
 }
@@ -287,29 +382,58 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
   if (fint || residual) what |= kResidual;
   if (K || prescribedStep) what |= kTangent;
 
+  std::vector<LO> lids;
+  std::vector<char> con;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Ke;
+  // Scatter one element's contribution (DOF lids `lids`) into the overlap
+  // structures: prescribed rows/columns dropped, predictor term added.
+  auto scatter = [&](ElementResult& er) {
+    const int n = static_cast<int>(lids.size());
+    con.resize(n);
+    for (int a = 0; a < n; ++a) con[a] = constrained_[overlapMap_->getGlobalElement(lids[a])];
+    if (fint)
+      for (int a = 0; a < n; ++a) fd[lids[a]] += er.residual[a];
+    if (residual) {
+      if (prescribedStep) {
+        Eigen::VectorXd d(n);
+        for (int a = 0; a < n; ++a) d[a] = con[a] ? dp[lids[a]] : 0.0;
+        er.residual += er.tangent * d;
+      }
+      for (int a = 0; a < n; ++a)
+        if (!con[a]) rd[lids[a]] += er.residual[a];
+    }
+    if (K) {
+      for (int a = 0; a < n; ++a)
+        if (con[a]) {
+          er.tangent.row(a).setZero();
+          er.tangent.col(a).setZero();
+        }
+      Ke = er.tangent;  // row-major copy: host elements need not be symmetric
+      for (int a = 0; a < n; ++a)
+        Kov->sumIntoLocalValues(lids[a], Teuchos::ArrayView<const LO>(lids.data(), n),
+                                Teuchos::ArrayView<const double>(Ke.data() + a * n, n));
+    }
+  };
+
   AssemblyResult result;
   double energy = 0.0;
   int failedElement = -1;
   std::string failure;
   ElementResult er;
   Eigen::MatrixX2d X, ue;
-  std::vector<LO> lids;
-  std::vector<char> con;
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Ke;
+  std::vector<GO> dofs;
   for (int e : localElements_) {
     const int nn = mesh.elementNumNodes(e);
     const int* en = mesh.elementNodes(e);
     X.resize(nn, 2);
     ue.resize(nn, 2);
-    lids.resize(2 * nn);
-    con.resize(2 * nn);
+    elementDofs(e, dofs);
+    lids.resize(dofs.size());
     for (int i = 0; i < nn; ++i) {
       X(i, 0) = mesh.coord(en[i])[0];
       X(i, 1) = mesh.coord(en[i])[1];
       for (int c = 0; c < 2; ++c) {
-        const GO g = dof(en[i], c);
-        lids[2 * i + c] = overlapMap_->getLocalElement(g);
-        con[2 * i + c] = constrained_[g];
+        lids[2 * i + c] = overlapMap_->getLocalElement(dofs[2 * i + c]);
         ue(i, c) = ud[lids[2 * i + c]];
       }
     }
@@ -321,35 +445,61 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
       break;
     }
     energy += er.energy;
-    if (fint)
-      for (int a = 0; a < 2 * nn; ++a) fd[lids[a]] += er.residual[a];
-    if (!residual && !K) continue;
-    if (residual) {
-      if (prescribedStep) {
-        Eigen::VectorXd d(2 * nn);
-        for (int a = 0; a < 2 * nn; ++a) d[a] = con[a] ? dp[lids[a]] : 0.0;
-        er.residual += er.tangent * d;
+    scatter(er);
+  }
+
+  // Contact slots owned here. Unpaired slots carry only Π = ½λ² (λ = 0).
+  if (failedElement < 0)
+    for (int k : localSlots_) {
+      const ContactSlot& s = slots_[k];
+      slotDofs(k, dofs);
+      lids.resize(dofs.size());
+      for (size_t a = 0; a < dofs.size(); ++a) lids[a] = overlapMap_->getLocalElement(dofs[a]);
+      ContactPairState state = s.state;
+      state.active = s.active;
+      state.multiplier = ud[lids.back()];
+      if (!s.paired()) {
+        er.energy = 0.5 * state.multiplier * state.multiplier;
+        er.residual = Eigen::VectorXd::Constant(1, state.multiplier);
+        er.tangent = Eigen::MatrixXd::Constant(1, 1, 1.0);
+        scatter(er);
+        continue;
       }
-      for (int a = 0; a < 2 * nn; ++a)
-        if (!con[a]) rd[lids[a]] += er.residual[a];
-    }
-    if (K) {
-      for (int a = 0; a < 2 * nn; ++a) {
-        if (con[a]) {
-          er.tangent.row(a).setZero();
-          er.tangent.col(a).setZero();
+      const int nodes[3] = {s.slaveNode, s.master[0], s.master[1]};
+      X.resize(3, 2);
+      ue.resize(3, 2);
+      for (int i = 0; i < 3; ++i)
+        for (int c = 0; c < 2; ++c) {
+          X(i, c) = mesh.coord(nodes[i])[c];
+          ue(i, c) = ud[lids[2 * i + c]];
+        }
+      if (ntsElement_) {
+        ntsElement_->computeContact(X, ue, state, what | kTangent, er);
+      } else {
+        // The two counterparts of the decomposed element, summed on the
+        // pair's DOFs [u_s, u_1, u_2, λ]; in FETI-DP they live apart.
+        ElementResult es, em;
+        slaveElement_->computeContact(X.topRows(1), ue.topRows(1), state, what | kTangent, es);
+        masterElement_->computeContact(X.bottomRows(2), ue.bottomRows(2), state, what | kTangent, em);
+        er.energy = es.energy + em.energy;
+        er.residual = Eigen::VectorXd::Zero(7);
+        er.tangent = Eigen::MatrixXd::Zero(7, 7);
+        const int smap[3] = {0, 1, 6}, mmap[5] = {2, 3, 4, 5, 6};
+        for (int a = 0; a < 3; ++a) {
+          er.residual[smap[a]] += es.residual[a];
+          for (int b = 0; b < 3; ++b) er.tangent(smap[a], smap[b]) += es.tangent(a, b);
+        }
+        for (int a = 0; a < 5; ++a) {
+          er.residual[mmap[a]] += em.residual[a];
+          for (int b = 0; b < 5; ++b) er.tangent(mmap[a], mmap[b]) += em.tangent(a, b);
         }
       }
-      // Row-major copy: element tangents need not be symmetric (host elements).
-      Ke = er.tangent;
-      for (int a = 0; a < 2 * nn; ++a)
-        Kov->sumIntoLocalValues(lids[a], Teuchos::ArrayView<const LO>(lids.data(), 2 * nn),
-                                Teuchos::ArrayView<const double>(Ke.data() + a * 2 * nn, 2 * nn));
+      scatter(er);
     }
-  }
+
   // Every rank learns whether any element failed, so all take the same path.
-  int failedAny = -1, failedHere = failedElement;
-  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, failedHere, Teuchos::outArg(failedAny));
+  int failedAny = -1;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, failedElement, Teuchos::outArg(failedAny));
   if (failedAny >= 0) {
     DDC_THROW(InadmissibleDeformation, "inadmissible deformation in element " << failedAny << " (body '"
                                            << mesh.body(mesh.elementBody(failedAny)).name << "')"
@@ -357,6 +507,8 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
   }
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, energy, Teuchos::outArg(result.strainEnergy));
 
+  const GO first = ownedMap_->getMinGlobalIndex();
+  const size_t numOwned = ownedMap_->getNodeNumElements();
   if (fint) {
     fd = Teuchos::null;
     fint->putScalar(0.0);
@@ -366,11 +518,9 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
     rd = Teuchos::null;
     residual->putScalar(0.0);
     residual->doExport(*rov, *exporter_, Tpetra::ADD);
-    // r = fint − λ f_ext on free DOFs (rows of prescribed DOFs were never summed).
     auto r = residual->getDataNonConst();
     auto f = fext_->getData();
-    const GO first = ownedMap_->getMinGlobalIndex();
-    for (size_t l = 0; l < ownedMap_->getNodeNumElements(); ++l)
+    for (size_t l = 0; l < numOwned; ++l)
       if (!constrained_[first + l]) r[l] -= lambda * f[l];
   }
   if (K) {
@@ -378,15 +528,144 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
     K->resumeFill();
     K->setAllToScalar(0.0);
     K->doExport(*Kov, *exporter_, Tpetra::ADD);
-    const GO first = ownedMap_->getMinGlobalIndex();
-    const double one = 1.0;
-    for (size_t l = 0; l < ownedMap_->getNodeNumElements(); ++l) {
+    for (size_t l = 0; l < numOwned; ++l) {
       const GO g = first + l;
-      if (constrained_[g]) K->replaceGlobalValues(g, Teuchos::tuple<GO>(g), Teuchos::tuple<double>(one));
+      if (constrained_[g]) K->replaceGlobalValues(g, Teuchos::tuple<GO>(g), Teuchos::tuple<double>(1.0));
     }
     K->fillComplete(ownedMap_, ownedMap_);
   }
   return result;
+}
+
+// ---- contact -------------------------------------------------------------------
+
+void Model::gatherSurface(const Vector& u, std::vector<double>& values) const {
+  Vector s(surfaceMap_);
+  s.doImport(u, *surfaceImporter_, Tpetra::INSERT);
+  auto d = s.getData();
+  values.assign(d.begin(), d.end());
+}
+
+Eigen::Vector2d Model::currentPosition(int node, const std::vector<double>& v) const {
+  const int i = surfaceIndex_[node];
+  DDC_ASSERT(i >= 0, "node " << node << " is not on a contact surface");
+  return {mesh_->coord(node)[0] + v[2 * i], mesh_->coord(node)[1] + v[2 * i + 1]};
+}
+
+bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
+  std::vector<double> v;
+  gatherSurface(u, v);
+  ++exchanges_;
+  bytesExchanged_ += bytesPerExchange_;
+  bool changed = false;
+  for (size_t p = 0; p < searches_.size(); ++p) {
+    ContactSearch& search = *searches_[p];
+    search.update([&](int n) { return currentPosition(n, v); }, global);
+    const auto& cands = search.candidates();
+    for (size_t i = 0; i < cands.size(); ++i) {
+      ContactSlot& s = slots_[pairSlots_[p][i]];
+      const auto& c = cands[i];
+      int m0 = -1, m1 = -1;
+      if (c.segment >= 0) {
+        m0 = search.master().segment(c.segment)[0];
+        m1 = search.master().segment(c.segment)[1];
+      }
+      if (m0 != s.master[0] || m1 != s.master[1]) changed = true;
+      s.master[0] = m0;
+      s.master[1] = m1;
+      if (c.segment < 0) {
+        s.active = false;
+        s.gap = 0.0;
+        continue;
+      }
+      s.gap = c.gap;
+      s.normal = c.normal;
+      if (freeze) {
+        s.state.frozenXi = c.xi;
+        s.state.frozenNormal = c.normal;
+      }
+    }
+  }
+  if (changed && ownedGraph_.get()) buildTopology();
+  return changed;
+}
+
+void Model::activateAllPaired() {
+  for (auto& s : slots_) s.active = s.paired();
+}
+
+void Model::refreshSlotGeometry(const std::vector<double>& v) {
+  const size_t base = 2 * surfaceNodes_.size();
+  for (size_t k = 0; k < slots_.size(); ++k) {
+    ContactSlot& s = slots_[k];
+    s.state.multiplier = v[base + k];
+    if (!s.paired()) continue;
+    const Eigen::Vector2d xs = currentPosition(s.slaveNode, v);
+    const Eigen::Vector2d x1 = currentPosition(s.master[0], v);
+    const Eigen::Vector2d x2 = currentPosition(s.master[1], v);
+    if (contact_.decomposed) {
+      // Frozen gap (paper eq. 1): n^p·(x_s − (1−ξ^p) x1 − ξ^p x2).
+      const double xi = s.state.frozenXi;
+      s.normal = s.state.frozenNormal;
+      s.gap = s.normal.dot(xs - (1.0 - xi) * x1 - xi * x2);
+    } else {
+      const Eigen::Vector2d t = x2 - x1;
+      s.normal = Eigen::Vector2d(t.y(), -t.x()) / t.norm();
+      s.gap = s.normal.dot(xs - x1);
+    }
+  }
+}
+
+std::vector<int> Model::updateActiveSet(const Vector& u) {
+  std::vector<double> v;
+  gatherSurface(u, v);
+  refreshSlotGeometry(v);
+  // Tension threshold: λ > 0 up to round-off of the largest multiplier.
+  double lmax = 0.0;
+  for (const auto& s : slots_) lmax = std::max(lmax, std::abs(s.state.multiplier));
+  const double tensionTol = 1e-10 * lmax;
+  std::vector<int> changed;
+  for (size_t k = 0; k < slots_.size(); ++k) {
+    ContactSlot& s = slots_[k];
+    if (!s.paired()) continue;
+    if (s.active && s.state.multiplier > tensionTol) {
+      s.active = false;
+      changed.push_back(static_cast<int>(k));
+    } else if (!s.active && s.gap < -contact_.penetrationTolerance) {
+      s.active = true;
+      changed.push_back(static_cast<int>(k));
+    }
+  }
+  return changed;
+}
+
+ContactSummary Model::contactSummary() const {
+  ContactSummary c;
+  for (const auto& s : slots_) {
+    if (!s.active || !s.paired()) continue;
+    ++c.active;
+    // The slave feels −λ n (compression: λ < 0 pushes it along +n).
+    c.force[0] -= s.state.multiplier * s.normal.x();
+    c.force[1] -= s.state.multiplier * s.normal.y();
+  }
+  return c;
+}
+
+void Model::restoreContactState(const std::vector<ContactSlot>& saved) {
+  bool changed = false;
+  for (size_t k = 0; k < slots_.size(); ++k)
+    if (saved[k].master[0] != slots_[k].master[0] || saved[k].master[1] != slots_[k].master[1]) changed = true;
+  slots_ = saved;
+  if (changed) buildTopology();
+}
+
+std::string Model::describeSlot(int k) const {
+  const ContactSlot& s = slots_[k];
+  std::ostringstream os;
+  const auto& X = mesh_->coord(s.slaveNode);
+  os << "pair '" << contact_.pairs[s.pair].name << "' slave node " << s.slaveNode << " at (" << X[0] << ", " << X[1]
+     << ")";
+  return os.str();
 }
 
 }  // namespace ddc

@@ -1,13 +1,17 @@
 // The discrete model: replicated mesh, element evaluators per body, element
-// partition, distributed DOF numbering, boundary conditions and assembly of
-// the global residual and tangent (a distributed Tpetra::CrsMatrix).
+// partition, distributed DOF numbering (nodes and contact multipliers),
+// boundary conditions, contact pairing / active set, and assembly of the
+// global residual and tangent (a distributed Tpetra::CrsMatrix).
 #pragma once
 
 #include <Teuchos_Comm.hpp>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "DDC_BoundaryConditions.hpp"
+#include "DDC_ContactElement.hpp"
+#include "DDC_ContactParameters.hpp"
 #include "DDC_DirectSolver.hpp"
 #include "DDC_Element.hpp"
 #include "DDC_Mesh.hpp"
@@ -15,90 +19,164 @@
 
 namespace ddc {
 
+class ContactSearch;
+
 /// Results of one assembly.
 struct AssemblyResult {
-  double strainEnergy = 0.0;  ///< Σ U_e over all elements (global)
+  double strainEnergy = 0.0;  ///< Σ U_e over the continuum elements (global)
+};
+
+/// One contact slot: a slave node of a pair, its multiplier DOF, and its
+/// current pairing and state. Replicated on every rank.
+struct ContactSlot {
+  int pair = 0;
+  int slaveNode = -1;
+  int master[2] = {-1, -1};  ///< master segment nodes; -1: not paired
+  bool active = false;
+  ContactPairState state;    ///< multiplier, frozen ξ^p / n^p
+  double gap = 0.0;          ///< g_N at the last update
+  Eigen::Vector2d normal = Eigen::Vector2d::Zero();  ///< normal used by the element
+  double tributaryLength = 0.0;  ///< half the reference length of the adjacent slave segments
+  /// Contact pressure −λ / tributary length (> 0 in compression), 0 when inactive.
+  double pressure() const { return active && tributaryLength > 0 ? -state.multiplier / tributaryLength : 0.0; }
+  bool paired() const { return master[0] >= 0; }
+};
+
+/// Summary of the contact state for output.
+struct ContactSummary {
+  int active = 0;
+  double force[2] = {0.0, 0.0};  ///< resultant contact force on the slave bodies, Σ -λ n
 };
 
 /// The discrete model shared by every strategy. Each rank holds the whole
-/// mesh (it fits one node up to millions of DOFs) and evaluates the elements
-/// of the subdomains it owns. Nodes are owned by the lowest rank among the
-/// elements that touch them; each rank's owned DOFs form a contiguous range,
-/// so the owned DOF map is contiguous (what MUMPS needs).
+/// mesh and evaluates the elements of the subdomains it owns. Nodes are
+/// owned by the lowest rank among the elements that touch them; a contact
+/// multiplier by the owner of its slave node. Each rank's owned DOFs (its
+/// nodes' DOFs, then its multipliers) form a contiguous range, so the owned
+/// DOF map is contiguous (what MUMPS needs).
 class Model {
  public:
   /// \param elements one evaluator per body (index = body index)
+  /// \param contactElements evaluators by name: "Node-To-Segment" or the
+  ///        pair "Decomposed NTS Slave" / "Decomposed NTS Master" (only the
+  ///        ones the formulation needs)
   Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const Mesh> mesh,
-        std::vector<std::shared_ptr<const Element>> elements, Partition partition, BoundaryConditions bcs);
+        std::vector<std::shared_ptr<const Element>> elements, Partition partition, BoundaryConditions bcs,
+        ContactOptions contact = {}, std::vector<std::shared_ptr<const ContactElement>> contactElements = {});
+  ~Model();
 
   const Mesh& mesh() const { return *mesh_; }
   const Partition& partition() const { return partition_; }
   const Teuchos::RCP<const Teuchos::Comm<int>>& comm() const { return comm_; }
-  /// Rank owning subdomain s.
   int subdomainRank(int s) const { return subdomainRank_[s]; }
-  /// Elements evaluated on this rank (those of its subdomains).
   const std::vector<int>& localElements() const { return localElements_; }
 
-  /// Owned DOFs (contiguous) and owned + ghost DOFs of the local elements.
   Teuchos::RCP<const Map> ownedMap() const { return ownedMap_; }
   Teuchos::RCP<const Map> overlapMap() const { return overlapMap_; }
   /// Global DOF id of component c of mesh node n.
-  GO dof(int n, int c) const { return 2 * static_cast<GO>(nodeNumber_[n]) + c; }
-  /// True if global DOF g (numbered as dof()) is prescribed.
+  GO dof(int n, int c) const { return nodeDof_[n] + c; }
+  /// Global DOF id of the multiplier of contact slot k.
+  GO multiplierDof(int k) const { return lmDof_[k]; }
   bool isConstrained(GO g) const { return constrained_[g] != 0; }
 
-  /// New owned vectors / matrix with the model's layout.
   Teuchos::RCP<Vector> createVector() const;
+  /// A matrix with the current sparsity pattern (changes with the pairing:
+  /// see topologyVersion()).
   Teuchos::RCP<CrsMatrix> createMatrix() const;
+  /// Incremented whenever the sparsity pattern changes (new contact pairing).
+  int topologyVersion() const { return topologyVersion_; }
 
-  /// Set the prescribed DOFs of u (owned layout) to their values at λ.
   void applyPrescribed(double lambda, Vector& u) const;
-  /// Prescribed values at λ minus those at λ0, zero elsewhere (owned layout).
   void prescribedIncrement(double lambda0, double lambda, Vector& du) const;
 
-  /// Assemble at displacement u (owned layout):
-  ///  - fint: internal force (all DOFs, unmodified: reactions live there);
-  ///  - residual r = fint − λ f_ext on free DOFs, 0 on prescribed DOFs, and
-  ///    if `prescribedStep` is given also + K·prescribedStep (the consistent
-  ///    predictor for a displacement increment imposed in the first iteration);
-  ///  - K: tangent with rows and columns of prescribed DOFs replaced by the
-  ///    identity (symmetric). Pass nullptr for what is not needed.
+  /// Assemble at the state u (owned layout, multipliers included):
+  ///  - fint: ∂(U + Π_c)/∂u, all DOFs, unmodified (reactions live there);
+  ///  - residual r = fint − λ f_ext on free DOFs, 0 on prescribed DOFs, plus
+  ///    K·prescribedStep if given (consistent predictor of a prescribed
+  ///    increment in the first iteration);
+  ///  - K: tangent with rows/columns of prescribed DOFs replaced by the identity.
   /// \throws InadmissibleDeformation on every rank if det F <= 0 anywhere.
   AssemblyResult assemble(const Vector& u, double lambda, Vector* fint, Vector* residual, CrsMatrix* K,
                           const Vector* prescribedStep = nullptr) const;
 
-  /// The element evaluator of element e.
+  const Vector& externalForce() const { return *fext_; }
+  Teuchos::RCP<Vector> toOverlap(const Vector& owned) const;
   const Element& elementOf(int e) const { return *elements_[mesh_->elementBody(e)]; }
 
-  /// λ-independent external force f_ext (tractions at load factor 1).
-  const Vector& externalForce() const { return *fext_; }
-
-  /// Import an owned vector to the overlap layout (values of all DOFs of
-  /// the local elements).
-  Teuchos::RCP<Vector> toOverlap(const Vector& owned) const;
+  // ---- contact ---------------------------------------------------------------
+  bool hasContact() const { return !slots_.empty(); }
+  const ContactOptions& contactOptions() const { return contact_; }
+  const std::vector<ContactSlot>& contactSlots() const { return slots_; }
+  /// Pair every slave node with a master segment at the state u (tracking
+  /// from the previous pairing; global search when `global`). With
+  /// `freeze`, the projection ξ^p and normal n^p of the decomposed element
+  /// are taken from this configuration. Collective: surface positions are
+  /// gathered to every rank (one exchange, counted in exchanges()).
+  /// \return true if any slave changed its master segment (new topology).
+  bool updatePairing(const Vector& u, bool global, bool freeze);
+  /// Activate every paired slot (Initial Contact State = In Contact).
+  void activateAllPaired();
+  /// Update gaps and multipliers from u, then apply the active-set rules:
+  /// release an active slot in tension (λ > 0), activate an inactive paired
+  /// slot with g_N < -tol. Returns the slots whose state changed.
+  std::vector<int> updateActiveSet(const Vector& u);
+  ContactSummary contactSummary() const;
+  /// Restore slots saved before a failed increment (pairing and state);
+  /// rebuilds the topology if the pairing differs.
+  void restoreContactState(const std::vector<ContactSlot>& saved);
+  /// "pair 'P' slave node n at (x, y)" for messages.
+  std::string describeSlot(int k) const;
+  /// Geometry exchanges (updatePairing calls) since construction; search counters.
+  long exchanges() const { return exchanges_; }
+  long bytesExchanged() const { return bytesExchanged_; }
 
  private:
   void buildDofNumbering();
   void buildConstraints();
-  void buildGraph();
+  void buildTopology();
   void assembleTractions();
+  /// DOF lists of one element / contact slot (global ids).
+  void elementDofs(int e, std::vector<GO>& dofs) const;
+  void slotDofs(int k, std::vector<GO>& dofs) const;
+  int slotOwner(int k) const { return nodeOwner_[slots_[k].slaveNode]; }
+  /// Gather surface displacements and multipliers to every rank.
+  void gatherSurface(const Vector& u, std::vector<double>& values) const;
+  Eigen::Vector2d currentPosition(int node, const std::vector<double>& surfaceValues) const;
+  void refreshSlotGeometry(const std::vector<double>& surfaceValues);
 
   Teuchos::RCP<const Teuchos::Comm<int>> comm_;
   std::shared_ptr<const Mesh> mesh_;
   std::vector<std::shared_ptr<const Element>> elements_;
   Partition partition_;
   BoundaryConditions bcs_;
+  ContactOptions contact_;
+  std::shared_ptr<const ContactElement> ntsElement_, slaveElement_, masterElement_;
 
   std::vector<int> subdomainRank_;
   std::vector<int> localElements_;
-  std::vector<int> nodeNumber_;  ///< mesh node -> position in the global (rank-contiguous) numbering
-  std::vector<char> constrained_;               ///< per global DOF
-  std::vector<std::pair<int, int>> constraintSource_;  ///< per global DOF: (condition, node) or (-1,-1)
+  std::vector<int> nodeOwner_;
+  std::vector<GO> nodeDof_;  ///< first DOF of each node
+  std::vector<GO> lmDof_;    ///< DOF of each contact slot's multiplier
+  GO numGlobalDofs_ = 0;
+  std::vector<char> constrained_;
+  std::vector<std::pair<int, int>> constraintSource_;
   Teuchos::RCP<const Map> ownedMap_, overlapMap_;
   Teuchos::RCP<const CrsGraph> ownedGraph_, overlapGraph_;
   Teuchos::RCP<const Tpetra::Export<LO, GO, Node>> exporter_;
   Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> importer_;
   Teuchos::RCP<Vector> fext_;
+  int topologyVersion_ = 0;
+
+  // contact
+  std::vector<ContactSlot> slots_;
+  std::vector<std::unique_ptr<ContactSearch>> searches_;  ///< one per pair
+  std::vector<std::vector<int>> pairSlots_;                ///< slots of each pair, in search order
+  std::vector<int> surfaceNodes_;                          ///< nodes whose positions are gathered
+  std::vector<int> surfaceIndex_;                          ///< node -> index in surfaceNodes_ or -1
+  Teuchos::RCP<const Map> surfaceMap_;                     ///< replicated: surface DOFs + multipliers
+  Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> surfaceImporter_;
+  std::vector<int> localSlots_;
+  long exchanges_ = 0, bytesExchanged_ = 0, bytesPerExchange_ = 0;
 };
 
 }  // namespace ddc

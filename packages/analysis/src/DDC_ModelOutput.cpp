@@ -9,6 +9,13 @@ void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int st
   auto uov = model.toOverlap(u);
   auto ud = uov->getData();
   const auto& ovMap = *model.overlapMap();
+  // Contact gap and pressure per mesh node (slave nodes only; replicated).
+  std::vector<double> gap(mesh.numNodes(), 0.0), pressure(mesh.numNodes(), 0.0);
+  for (const auto& s : model.contactSlots()) {
+    gap[s.slaveNode] = s.paired() ? s.gap : 0.0;
+    pressure[s.slaveNode] = s.pressure();
+  }
+  const bool contact = model.hasContact();
   std::map<int, VtkPiece> pieces;
   std::map<int, std::map<int, int>> pointIndex;  // subdomain -> (mesh node -> piece point)
   Eigen::MatrixX2d X, ue;
@@ -20,6 +27,7 @@ void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int st
     if (p.pointData.empty()) {
       p.id = s;
       p.pointData = {{"displacement", 3, {}}};
+      if (contact) p.pointData.insert(p.pointData.end(), {{"contact_gap", 1, {}}, {"contact_pressure", 1, {}}});
       p.cellData = {{"cauchy_stress", 6, {}}, {"strain_energy_density", 1, {}}, {"body", 1, {}}, {"subdomain", 1, {}}};
     }
     const int nn = mesh.elementNumNodes(e);
@@ -32,6 +40,10 @@ void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int st
         p.points.insert(p.points.end(), {mesh.coord(en[i])[0], mesh.coord(en[i])[1], 0.0});
         auto& d = p.pointData[0].values;
         d.insert(d.end(), {ud[ovMap.getLocalElement(model.dof(en[i], 0))], ud[ovMap.getLocalElement(model.dof(en[i], 1))], 0.0});
+        if (contact) {
+          p.pointData[1].values.push_back(gap[en[i]]);
+          p.pointData[2].values.push_back(pressure[en[i]]);
+        }
       }
       p.connectivity.push_back(it->second);
       X(i, 0) = mesh.coord(en[i])[0];
