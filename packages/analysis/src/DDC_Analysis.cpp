@@ -475,9 +475,10 @@ void Analysis::run(const std::string& outputDirectory) {
       fintPrev->assign(*fint);
       uPrev->assign(*u_);
       if (contact) {
-        // Converged: refresh the pairing once per step. The decomposed
-        // element freezes the new projections and normals for the next step.
-        model_->updatePairing(*u_, false, decomposed);
+        // Converged: refresh the pairing once per step, with a global search
+        // (tracking cannot see another part of the surface come nearer). The
+        // decomposed element freezes the new projections and normals.
+        model_->updatePairing(*u_, true, decomposed);
         model_->updateActiveSet(*u_);  // refresh gaps/multipliers for output; no state change counted
         const auto cs = model_->contactSummary();
         rec.activeContacts = cs.active;

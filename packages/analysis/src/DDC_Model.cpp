@@ -566,14 +566,18 @@ bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
       ContactSlot& s = slots_[pairSlots_[p][i]];
       const auto& c = cands[i];
       int m0 = -1, m1 = -1;
-      if (c.segment >= 0) {
+      // A slave beyond a free end of the master surface is not in contact
+      // with it (only a convex corner between two segments pairs "via corner").
+      const bool pastFreeEnd =
+          c.segment >= 0 && c.viaCorner && search.master().neighbour(c.segment, c.xi < 0.5 ? 0 : 1) < 0;
+      if (c.segment >= 0 && !pastFreeEnd) {
         m0 = search.master().segment(c.segment)[0];
         m1 = search.master().segment(c.segment)[1];
       }
       if (m0 != s.master[0] || m1 != s.master[1]) changed = true;
       s.master[0] = m0;
       s.master[1] = m1;
-      if (c.segment < 0) {
+      if (m0 < 0) {
         s.active = false;
         s.gap = 0.0;
         continue;

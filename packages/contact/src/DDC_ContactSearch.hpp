@@ -133,7 +133,9 @@ class ContactSearch {
   /// \param slaveNodes mesh node ids of the slave nodes (distinct, not nodes
   ///        of the master surface)
   /// \param searchRadius pairs farther apart are not candidates (> 0)
-  /// \param maxTrackingSteps step limit of the tracking walk (≥ 0)
+  /// \param maxTrackingSteps step limit of the tracking walk: moves from a
+  ///        segment to a neighbour (≥ 0; 0 still lets tracking confirm the
+  ///        previous segment)
   /// \throws InputError for a non-positive or non-finite radius, a negative
   ///         step limit, a repeated or negative slave node, or a slave node
   ///         on the master surface.
