@@ -510,6 +510,14 @@ void Analysis::run(const std::string& outputDirectory) {
       if (++vtkCounter % out.get<int>("VTK Interval") == 0 || last) writeVtk(static_cast<int>(history_.size()), lambda);
     }
   }
+  if (contact) {
+    const auto c = model_->searchCounters();
+    std::ostringstream os;
+    os << "contact: " << model_->exchanges() << " pairing updates (" << model_->bytesExchanged()
+       << " bytes between ranks); slave queries: " << c[0] << " by tracking (" << c[1]
+       << " fell back to the global search), " << c[2] << " by the global search";
+    progress(os.str());
+  }
   if (dir) {
     hist.reset();
     vtk.reset();

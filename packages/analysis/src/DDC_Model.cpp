@@ -594,6 +594,16 @@ bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
   return changed;
 }
 
+std::array<long, 3> Model::searchCounters() const {
+  std::array<long, 3> c{0, 0, 0};
+  for (const auto& s : searches_) {
+    c[0] += s->counters().trackingCalls;
+    c[1] += s->counters().trackingFallbacks;
+    c[2] += s->counters().globalSearches;
+  }
+  return c;
+}
+
 void Model::activateAllPaired() {
   for (auto& s : slots_) s.active = s.paired();
 }

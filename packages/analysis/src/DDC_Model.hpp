@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Teuchos_Comm.hpp>
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -128,6 +129,8 @@ class Model {
   std::string describeSlot(int k) const;
   /// Geometry exchanges (updatePairing calls) since construction; search counters.
   long exchanges() const { return exchanges_; }
+  /// Search work summed over the pairs: {tracking queries, tracking fallbacks, global queries}.
+  std::array<long, 3> searchCounters() const;
   long bytesExchanged() const { return bytesExchanged_; }
 
  private:
