@@ -40,6 +40,13 @@ endif()
 if(NOT TARGET DDContact_Trilinos)
   add_library(DDContact_Trilinos INTERFACE)
   target_include_directories(DDContact_Trilinos SYSTEM INTERFACE ${Trilinos_INCLUDE_DIRS})
+  # Zoltan2 headers (pulled in by MueLu) include ptscotch.h, which Debian
+  # installs under /usr/include/scotch.
+  find_path(DDC_PTSCOTCH_INCLUDE_DIR ptscotch.h PATH_SUFFIXES scotch)
+  if(NOT DDC_PTSCOTCH_INCLUDE_DIR)
+    ddc_missing("PT-Scotch headers (ptscotch.h)" "libptscotch-dev")
+  endif()
+  target_include_directories(DDContact_Trilinos SYSTEM INTERFACE ${DDC_PTSCOTCH_INCLUDE_DIR})
   target_link_libraries(DDContact_Trilinos INTERFACE ${Trilinos_LIBRARIES} MPI::MPI_CXX)
   install(TARGETS DDContact_Trilinos EXPORT DDContactTargets)
 endif()

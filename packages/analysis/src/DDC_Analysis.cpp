@@ -1,6 +1,8 @@
 #include "DDC_Analysis.hpp"
 
 #include <Teuchos_XMLParameterListHelpers.hpp>
+#include <sys/resource.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +11,7 @@
 
 #include "DDC_ContactParameters.hpp"
 #include "DDC_Error.hpp"
+#include "DDC_Substructuring.hpp"
 #include "DDC_NodeToSegment.hpp"
 #include "DDC_Gmsh.hpp"
 #include "DDC_HistoryWriter.hpp"
@@ -54,8 +57,9 @@ Teuchos::RCP<PL> bodyValidParameters(const ElementFactory& factory) {
           "How the body's mesh is made: a built-in generator or a Gmsh file; its parameters go in the "
           "sublist of the same name.",
           enumValidator(kGenerators, "Generator"));
-  for (const auto& g : kGenerators) pl->set(g, *generatorValidParameters(g));
-  pl->set("Element", *elementValidParameters(factory));
+  for (const auto& g : kGenerators)
+    setSublist(*pl, g, *generatorValidParameters(g), "Parameters of the " + g + " generator (Generator = " + g + ").");
+  setSublist(*pl, "Element", *elementValidParameters(factory), "Element type and material of the body.");
   return pl;
 }
 
@@ -85,19 +89,30 @@ Teuchos::RCP<PL> newtonValidParameters() {
 Teuchos::RCP<PL> solverValidParameters() {
   auto pl = Teuchos::rcp(new PL("Solver"));
   pl->set("Strategy", "Monolithic",
-          "Solution strategy. Monolithic: one global system (distributed Tpetra CrsMatrix) solved by the "
-          "direct solver below.",
-          enumValidator({"Monolithic"}, "Strategy"));
-  pl->set("Direct Solver", *DirectSolverFactory::getValidParameters(),
-          "Direct solver of the monolithic system ({Type, <back-end sublists>}).");
+          "Solution strategy. Monolithic: one global system (distributed Tpetra CrsMatrix, contact "
+          "multipliers appended) solved by the Linear Solver below. FETI-DP: dual-primal domain "
+          "decomposition over the partition's subdomains (the FETI-DP sublist).",
+          enumValidator({"Monolithic", "FETI-DP"}, "Strategy"));
+  setSublist(*pl, "Linear Solver", *DirectSolverFactory::getValidParameters(),
+             "Solver of the monolithic system ({Type, <back-end sublists>}).");
+  setSublist(*pl, "FETI-DP", *FetiDpSolver::getValidParameters(),
+             "FETI-DP options: local and coarse solvers, preconditioner, scaling, Belos.");
   return pl;
 }
 
 Teuchos::RCP<PL> partitionValidParameters() {
   auto pl = Teuchos::rcp(new PL("Partition"));
   pl->set("Number of Subdomains", 0, "Number of subdomains; 0 means one per MPI rank.");
-  pl->set("Method", "METIS", "METIS: METIS_PartMeshDual over all bodies. By Body: each body one subdomain.",
-          enumValidator({"METIS", "By Body"}, "Method"));
+  pl->set("Method", "METIS",
+          "METIS: METIS_PartMeshDual over all bodies. By Body: each body one subdomain. Box Grid: a regular "
+          "grid of boxes over the mesh's bounding box (Box Grid X x Box Grid Y subdomains, by element "
+          "centroid). Element Map File: one subdomain id per element, read from a file.",
+          enumValidator({"METIS", "By Body", "Box Grid", "Element Map File"}, "Method"));
+  pl->set("Box Grid X", 2, "Box Grid: number of boxes along x.");
+  pl->set("Box Grid Y", 2, "Box Grid: number of boxes along y.");
+  pl->set("Element Map File", "",
+          "Element Map File: file with one subdomain id per element (mesh element order, whitespace "
+          "separated, '#' comments); relative to the input deck's directory.");
   return pl;
 }
 
@@ -120,18 +135,18 @@ Teuchos::RCP<const Teuchos::ParameterList> Analysis::getValidParameters(const El
   auto pl = Teuchos::rcp(new PL("DDContact"));
   PL mesh("Mesh");
   PL bodies("Bodies");
-  bodies.set("<Body Name>", *bodyValidParameters(factory), "One sublist per body; its name is the body's name.");
-  mesh.set("Bodies", bodies, "The bodies of the model (at least one).");
-  pl->set("Mesh", mesh, "Geometry: bodies, their meshes, elements and materials.");
+  setSublist(bodies, "<Body Name>", *bodyValidParameters(factory), "One sublist per body; its name is the body's name.");
+  setSublist(mesh, "Bodies", bodies, "The bodies of the model (at least one).");
+  setSublist(*pl, "Mesh", mesh, "Geometry: bodies, their meshes, elements and materials.");
   PL bcs("Boundary Conditions");
-  bcs.set("<Condition Name>", *BoundaryConditions::getValidParameters(), "One sublist per condition.");
-  pl->set("Boundary Conditions", bcs, "Prescribed displacements and tractions, scaled by the load factor.");
-  pl->set("Load Stepping", *loadSteppingValidParameters(), "Load stepping and bisection.");
-  pl->set("Newton", *newtonValidParameters(), "Newton iteration and convergence criteria.");
-  pl->set("Solver", *solverValidParameters(), "Solution strategy and linear solvers.");
-  pl->set("Partition", *partitionValidParameters(), "Domain partitioning.");
-  pl->set("Contact", *ContactOptions::getValidParameters(), "Contact pairs and formulation.");
-  pl->set("Output", *outputValidParameters(), "What the run writes (besides history.csv).");
+  setSublist(bcs, "<Condition Name>", *BoundaryConditions::getValidParameters(), "One sublist per condition.");
+  setSublist(*pl, "Boundary Conditions", bcs, "Prescribed displacements and tractions, scaled by the load factor.");
+  setSublist(*pl, "Load Stepping", *loadSteppingValidParameters(), "Load stepping and bisection.");
+  setSublist(*pl, "Newton", *newtonValidParameters(), "Newton iteration and convergence criteria.");
+  setSublist(*pl, "Solver", *solverValidParameters(), "Solution strategy and linear solvers.");
+  setSublist(*pl, "Partition", *partitionValidParameters(), "Domain partitioning.");
+  setSublist(*pl, "Contact", *ContactOptions::getValidParameters(), "Contact pairs and formulation.");
+  setSublist(*pl, "Output", *outputValidParameters(), "What the run writes (besides history.csv).");
   return pl;
 }
 
@@ -228,13 +243,25 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
   DDC_INPUT_REQUIRE(nsub >= 0, "parameter 'Partition/Number of Subdomains' must be >= 0 (0: one per rank), got " << nsub);
   if (nsub == 0) nsub = comm_->getSize();
   Partition partition;
-  if (part.get<std::string>("Method") == "By Body") {
-    partition = partitionByBody(*mesh);
+  const std::string method = part.get<std::string>("Method");
+  auto requireCount = [&](int count) {
     const int given = part.get<int>("Number of Subdomains");
-    DDC_INPUT_REQUIRE(given == 0 || given == mesh->numBodies(),
-                      "'Partition/Number of Subdomains' = " << given << " contradicts Method = By Body with "
-                                                            << mesh->numBodies() << " bodies (use 0 or "
-                                                            << mesh->numBodies() << ")");
+    DDC_INPUT_REQUIRE(given == 0 || given == count, "'Partition/Number of Subdomains' = "
+                                                        << given << " contradicts Method = " << method << ", which gives "
+                                                        << count << " subdomains (use 0 or " << count << ")");
+  };
+  if (method == "Box Grid") {
+    partition = partitionBoxGrid(*mesh, part.get<int>("Box Grid X"), part.get<int>("Box Grid Y"));
+    requireCount(partition.numSubdomains);
+  } else if (method == "Element Map File") {
+    std::string file = part.get<std::string>("Element Map File");
+    DDC_INPUT_REQUIRE(!file.empty(), "parameter 'Partition/Element Map File' is required with Method = Element Map File");
+    if (!file.empty() && file[0] != '/') file = baseDirectory + "/" + file;
+    partition = partitionFromFile(*mesh, file);
+    requireCount(partition.numSubdomains);
+  } else if (method == "By Body") {
+    partition = partitionByBody(*mesh);
+    requireCount(partition.numSubdomains);
   } else {
     partition = partitionMetis(*mesh, nsub);
   }
@@ -252,13 +279,43 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
     DDC_INPUT_REQUIRE(nw.get<double>(t) >= 0.0, "parameter 'Newton/" << t << "' must be >= 0");
   DDC_INPUT_REQUIRE(params.sublist("Output").get<int>("VTK Interval") > 0, "parameter 'Output/VTK Interval' must be > 0");
 
-  solver_ = DirectSolverFactory::withBuiltins().create(params.sublist("Solver").sublist("Direct Solver"),
-                                                       "Solver/Direct Solver");
+  const bool feti = params.sublist("Solver").get<std::string>("Strategy") == "FETI-DP";
+  if (feti) {
+    DDC_INPUT_REQUIRE(!contact.enabled(),
+                      "Solver/Strategy = FETI-DP with contact pairs (Contact/Pairs) is not available yet: use "
+                      "Solver/Strategy = Monolithic for contact");
+    DDC_INPUT_REQUIRE(!params.sublist("Solver").isSublist("Linear Solver"),
+                      "sublist 'Solver/Linear Solver' does not apply to Solver/Strategy = FETI-DP (its local and "
+                      "coarse solvers are set in 'Solver/FETI-DP')");
+  } else {
+    DDC_INPUT_REQUIRE(!params.sublist("Solver").isSublist("FETI-DP"),
+                      "sublist 'Solver/FETI-DP' does not apply to Solver/Strategy = Monolithic");
+    solver_ = DirectSolverFactory::withBuiltins().create(params.sublist("Solver").sublist("Linear Solver"),
+                                                         "Solver/Linear Solver");
+  }
 
   model_ = std::make_shared<Model>(comm_, mesh, std::move(elements), std::move(partition), std::move(bcs),
                                    std::move(contact), std::move(contactElements));
-  K_ = model_->createMatrix();
   u_ = model_->createVector();
+  if (feti) {
+    std::vector<std::string> report;
+    const auto primal = selectPrimalNodes(*model_, &report);
+    for (const auto& line : report) progress("FETI-DP: " + line);
+    subdomains_ = buildSubdomainSystems(*model_, primal);
+    sink_.systems = &subdomains_;
+    sink_.where.assign(mesh->numElements(), {-1, -1});
+    std::vector<FetiSubdomain> fs;
+    for (size_t i = 0; i < subdomains_.size(); ++i) {
+      for (size_t j = 0; j < subdomains_[i].elements.size(); ++j)
+        sink_.where[subdomains_[i].elements[j]] = {static_cast<int>(i), static_cast<int>(j)};
+      fs.push_back({subdomains_[i].id, subdomains_[i].dofs, subdomains_[i].primal, subdomains_[i].K});
+    }
+    feti_ = std::make_unique<FetiDpSolver>(comm_, params.sublist("Solver").sublist("FETI-DP"), "Solver/FETI-DP");
+    feti_->setTopology(std::move(fs), model_->ownedMap());
+  } else {
+    K_ = model_->createMatrix();
+    topologyVersion_ = model_->topologyVersion();
+  }
   params_ = params;
 }
 
@@ -290,26 +347,47 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
   rec.residualHistory.clear();
   rec.failure.clear();
   // Active sets seen after each change in this increment: a repeat is cycling.
-  std::vector<std::vector<char>> seen;
+  std::vector<std::vector<int>> seen;
+  // The signature is the active set and the pairing: a slave flipping
+  // between two segments cycles as surely as one flipping its state.
   auto activeSet = [&] {
-    std::vector<char> a;
-    for (const auto& sl : model_->contactSlots()) a.push_back(sl.active);
+    std::vector<int> a;
+    for (const auto& sl : model_->contactSlots()) a.insert(a.end(), {int(sl.active), sl.master[0], sl.master[1]});
     return a;
   };
   if (contact) seen.push_back(activeSet());
   for (int it = 0; it < maxIt; ++it) {
-    if (model_->topologyVersion() != topologyVersion_) {
+    auto tick = std::chrono::steady_clock::now();
+    auto lap = [&tick] {
+      const auto now = std::chrono::steady_clock::now();
+      const double dt = std::chrono::duration<double>(now - tick).count();
+      tick = now;
+      return dt;
+    };
+    if (feti_) {
+      // FETI-DP: residual and the subdomain stiffness matrices in one pass.
+      try {
+        model_->assemble(*u, lambda1, nullptr, r.get(), nullptr, it == 0 ? dp.get() : nullptr, &sink_);
+      } catch (const InadmissibleDeformation& e) {
+        rec.failure = std::string("Newton iteration ") + std::to_string(it) + ": " + e.what();
+        progress("    " + rec.failure);
+        return false;
+      }
+    } else if (model_->topologyVersion() != topologyVersion_) {
       K_ = model_->createMatrix();
       topologyVersion_ = model_->topologyVersion();
       symbolicDone_ = false;
     }
-    try {
-      model_->assemble(*u, lambda1, nullptr, r.get(), K_.get(), it == 0 ? dp.get() : nullptr);
-    } catch (const InadmissibleDeformation& e) {
-      rec.failure = std::string("Newton iteration ") + std::to_string(it) + ": " + e.what();
-      progress("    " + rec.failure);
-      return false;
+    if (!feti_) {
+      try {
+        model_->assemble(*u, lambda1, nullptr, r.get(), K_.get(), it == 0 ? dp.get() : nullptr);
+      } catch (const InadmissibleDeformation& e) {
+        rec.failure = std::string("Newton iteration ") + std::to_string(it) + ": " + e.what();
+        progress("    " + rec.failure);
+        return false;
+      }
     }
+    timing_.assembly += lap();
     const double rnorm = r->norm2();
     rec.residualHistory.push_back(rnorm);
     if (!std::isfinite(rnorm)) {
@@ -319,13 +397,26 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
     if (it == 0) r0 = rnorm;
     const bool residualOk = it > 0 && rnorm <= std::max(rtol * r0, atol);
 
-    if (!symbolicDone_) {
-      solver_->symbolic(K_);
-      symbolicDone_ = true;
-    }
-    solver_->numeric();
     r->scale(-1.0);
-    solver_->solve(*r, *du);
+    lap();
+    if (feti_) {
+      feti_->numeric();
+      timing_.linearSetup += lap();
+      const auto info = feti_->solve(*r, *du);
+      timing_.linearSolve += lap();
+      rec.dualIterations += info.iterations;
+    } else {
+      if (!symbolicDone_) {
+        solver_->symbolic(K_);
+        symbolicDone_ = true;
+      }
+      solver_->numeric();
+      timing_.linearSetup += lap();
+      solver_->solve(*r, *du);
+      timing_.linearSolve += lap();
+      rec.dualIterations += solver_->lastIterations();
+    }
+    ++timing_.linearSolves;
     // |du·r|: the energy norm of the correction.
     const double energy = std::abs(du->dot(*r));
     if (it == 0) {
@@ -357,7 +448,7 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
       rec.failure = "non-finite correction";
       return false;
     }
-    if (!changed.empty()) {
+    if (!changed.empty() || pairingChanged) {
       auto a = activeSet();
       if (std::find(seen.begin(), seen.end(), a) != seen.end()) {
         std::ostringstream os;
@@ -478,9 +569,11 @@ void Analysis::run(const std::string& outputDirectory) {
         // Converged: refresh the pairing once per step, with a global search
         // (tracking cannot see another part of the surface come nearer). The
         // decomposed element freezes the new projections and normals.
-        model_->updatePairing(*u_, true, decomposed);
-        model_->updateActiveSet(*u_);  // refresh gaps/multipliers for output; no state change counted
+        // Multipliers, gaps and normals of the converged state are read first:
+        // after re-pairing, the decomposed slots hold the next step's normals.
+        model_->updateActiveSet(*u_);
         const auto cs = model_->contactSummary();
+        model_->updatePairing(*u_, true, decomposed);
         rec.activeContacts = cs.active;
         rec.contactForce[0] = cs.force[0];
         rec.contactForce[1] = cs.force[1];
@@ -490,7 +583,7 @@ void Analysis::run(const std::string& outputDirectory) {
       rec.wallSeconds = seconds();
       history_.push_back(rec);
       if (hist)
-        hist->appendRow({double(n), lambda, rec.strainEnergy, double(rec.newtonIterations), 0.0,
+        hist->appendRow({double(n), lambda, rec.strainEnergy, double(rec.newtonIterations), double(rec.dualIterations),
                          double(rec.activeContacts), rec.contactForce[0], rec.contactForce[1],
                          double(rec.contactExchanges), rec.wallSeconds, rec.externalWork, double(rec.contactBytes),
                          double(rec.bisections)});
@@ -517,6 +610,25 @@ void Analysis::run(const std::string& outputDirectory) {
        << " bytes between ranks); slave queries: " << c[0] << " by tracking (" << c[1]
        << " fell back to the global search), " << c[2] << " by the global search";
     progress(os.str());
+  }
+  {
+    // Peak resident memory per rank (Linux ru_maxrss is in KiB).
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    const double mine = ru.ru_maxrss / 1024.0;
+    Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, mine, Teuchos::outArg(timing_.peakMemoryMiB));
+    double t[3] = {timing_.assembly, timing_.linearSetup, timing_.linearSolve}, tmax[3];
+    Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 3, t, tmax);
+    timing_.assembly = tmax[0], timing_.linearSetup = tmax[1], timing_.linearSolve = tmax[2];
+    int dual = 0;
+    for (const auto& r : history_) dual += r.dualIterations;
+    char buf[300];
+    std::snprintf(buf, sizeof buf,
+                  "timing (max over ranks): assembly %.3f s, linear setup %.3f s, linear solve %.3f s over %d "
+                  "solves (%d dual/Krylov iterations); peak memory per rank %.1f MiB",
+                  timing_.assembly, timing_.linearSetup, timing_.linearSolve, timing_.linearSolves, dual,
+                  timing_.peakMemoryMiB);
+    progress(buf);
   }
   if (dir) {
     hist.reset();

@@ -17,7 +17,9 @@
 
 #include "DDC_DirectSolver.hpp"
 #include "DDC_ElementFactory.hpp"
+#include "DDC_FetiDpSolver.hpp"
 #include "DDC_Model.hpp"
+#include "DDC_Substructuring.hpp"
 
 namespace ddc {
 
@@ -27,6 +29,7 @@ struct StepRecord {
   double loadFactor = 0.0;
   double strainEnergy = 0.0;
   int newtonIterations = 0;  ///< linear solves in this (sub)step
+  int dualIterations = 0;    ///< Belos iterations of FETI-DP summed over the (sub)step
   int bisections = 0;        ///< bisection depth used to reach this load factor
   double wallSeconds = 0.0;  ///< since the start of run()
   std::vector<double> residualHistory;  ///< ||r|| per Newton iteration
@@ -36,6 +39,15 @@ struct StepRecord {
   long contactExchanges = 0;  ///< contact-geometry exchanges (pairing updates) in this (sub)step
   long contactBytes = 0;      ///< bytes those exchanges moved between ranks
   std::string failure;        ///< why the last attempt failed (empty when converged)
+};
+
+/// Where the time of a run went (seconds, max over ranks after run()).
+struct RunTiming {
+  double assembly = 0.0;     ///< element evaluation and global/subdomain assembly
+  double linearSetup = 0.0;  ///< factorisations / preconditioner set-up (incl. FETI-DP coarse problem)
+  double linearSolve = 0.0;  ///< triangular solves / Krylov iterations
+  int linearSolves = 0;
+  double peakMemoryMiB = 0.0;  ///< peak resident memory, max over ranks
 };
 
 class Analysis {
@@ -63,6 +75,7 @@ class Analysis {
   const Model& model() const { return *model_; }
   const Vector& displacement() const { return *u_; }
   const std::vector<StepRecord>& history() const { return history_; }
+  const RunTiming& timing() const { return timing_; }
   const Teuchos::ParameterList& parameters() const { return params_; }
 
  private:
@@ -75,10 +88,14 @@ class Analysis {
   Teuchos::ParameterList params_;
   ElementFactory factory_;
   std::shared_ptr<Model> model_;
-  std::unique_ptr<DirectSolver> solver_;
+  std::unique_ptr<DirectSolver> solver_;       ///< Monolithic
+  std::unique_ptr<FetiDpSolver> feti_;         ///< FETI-DP
+  std::vector<SubdomainSystem> subdomains_;    ///< FETI-DP: this rank's subdomain problems
+  SubdomainSink sink_;
   Teuchos::RCP<CrsMatrix> K_;
   Teuchos::RCP<Vector> u_;
   std::vector<StepRecord> history_;
+  RunTiming timing_;
   bool symbolicDone_ = false;
   int topologyVersion_ = -1;
 };

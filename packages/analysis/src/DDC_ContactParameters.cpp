@@ -29,8 +29,8 @@ Teuchos::RCP<const Teuchos::ParameterList> ContactOptions::getValidParameters() 
   Teuchos::ParameterList pair("<Pair Name>");
   pair.set("Slave", "", "Slave side set 'Body/set' (its nodes carry the Lagrange multipliers).");
   pair.set("Master", "", "Master side set 'Body/set' (2-node segments: Quad4 bodies).");
-  pairs.set("<Pair Name>", pair, "One sublist per contact pair.");
-  pl->set("Pairs", pairs, "Contact pairs; none means no contact.");
+  setSublist(pairs, "<Pair Name>", pair, "One sublist per contact pair.");
+  setSublist(*pl, "Pairs", pairs, "Contact pairs; none means no contact.");
   return pl;
 }
 

@@ -12,6 +12,7 @@
 #include "DDC_ContactSearch.hpp"
 #include "DDC_DecomposedNodeToSegment.hpp"
 #include "DDC_Error.hpp"
+#include "DDC_Substructuring.hpp"
 
 namespace ddc {
 
@@ -353,7 +354,7 @@ void Model::prescribedIncrement(double lambda0, double lambda, Vector& du) const
 }
 
 AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vector* residual, CrsMatrix* K,
-                               const Vector* prescribedStep) const {
+                               const Vector* prescribedStep, SubdomainSink* subdomains) const {
   const Mesh& mesh = *mesh_;
   auto uov = toOverlap(u);
   auto ud = uov->getData();
@@ -380,7 +381,12 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
   }
   unsigned what = kEnergy;
   if (fint || residual) what |= kResidual;
-  if (K || prescribedStep) what |= kTangent;
+  if (K || prescribedStep || subdomains) what |= kTangent;
+  if (subdomains)
+    for (auto& sys : *subdomains->systems) {
+      sys.K->resumeFill();
+      sys.K->setAllToScalar(0.0);
+    }
 
   std::vector<LO> lids;
   std::vector<char> con;
@@ -445,8 +451,29 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
       break;
     }
     energy += er.energy;
+    if (subdomains) {
+      // Free-DOF block of the element tangent into its subdomain's matrix.
+      const auto [sysIndex, pos] = subdomains->where[e];
+      auto& sys = (*subdomains->systems)[sysIndex];
+      const auto& l = sys.elementLocal[pos];
+      std::vector<LO> cols;
+      std::vector<double> vals;
+      for (size_t a = 0; a < l.size(); ++a) {
+        if (l[a] < 0) continue;
+        cols.clear();
+        vals.clear();
+        for (size_t b = 0; b < l.size(); ++b)
+          if (l[b] >= 0) {
+            cols.push_back(l[b]);
+            vals.push_back(er.tangent(a, b));
+          }
+        sys.K->sumIntoLocalValues(l[a], Teuchos::ArrayView<const LO>(cols), Teuchos::ArrayView<const double>(vals));
+      }
+    }
     scatter(er);
   }
+  if (subdomains)
+    for (auto& sys : *subdomains->systems) sys.K->fillComplete(sys.K->getDomainMap(), sys.K->getRangeMap());
 
   // Contact slots owned here. Unpaired slots carry only Π = ½λ² (λ = 0).
   if (failedElement < 0)
@@ -573,6 +600,27 @@ bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
       if (c.segment >= 0 && !pastFreeEnd) {
         m0 = search.master().segment(c.segment)[0];
         m1 = search.master().segment(c.segment)[1];
+      }
+      // Hysteresis (Newton iterations only): a slave whose projection onto
+      // its previous segment lies within kPairingHysteresis of that segment
+      // keeps it. Without it a slave sitting on a master node can flip
+      // between the two adjacent segments every iteration and Newton stalls.
+      constexpr double kPairingHysteresis = 1e-2;  // fraction of the segment length
+      if (!global && s.paired() && m0 >= 0 && (m0 != s.master[0] || m1 != s.master[1])) {
+        const Eigen::Vector2d xs = currentPosition(s.slaveNode, v), x1 = currentPosition(s.master[0], v),
+                              x2 = currentPosition(s.master[1], v);
+        const Eigen::Vector2d t = x2 - x1;
+        const double xi = (xs - x1).dot(t) / t.squaredNorm();
+        if (xi >= -kPairingHysteresis && xi <= 1.0 + kPairingHysteresis) {
+          const Eigen::Vector2d n(t.y(), -t.x());
+          s.gap = n.normalized().dot(xs - x1);
+          s.normal = n.normalized();
+          if (freeze) {
+            s.state.frozenXi = xi;
+            s.state.frozenNormal = s.normal;
+          }
+          continue;
+        }
       }
       if (m0 != s.master[0] || m1 != s.master[1]) changed = true;
       s.master[0] = m0;

@@ -21,6 +21,15 @@
 namespace ddc {
 
 class ContactSearch;
+struct SubdomainSystem;
+
+/// Where assemble() also puts element tangents: the local stiffness of each
+/// subdomain (FETI-DP), with `where[e]` = (system index, element position in
+/// that system) for this rank's elements.
+struct SubdomainSink {
+  std::vector<SubdomainSystem>* systems = nullptr;
+  std::vector<std::pair<int, int>> where;
+};
 
 /// Results of one assembly.
 struct AssemblyResult {
@@ -97,8 +106,10 @@ class Model {
   ///    increment in the first iteration);
   ///  - K: tangent with rows/columns of prescribed DOFs replaced by the identity.
   /// \throws InadmissibleDeformation on every rank if det F <= 0 anywhere.
+  /// With `subdomains`, element tangents (free DOFs only) are also summed
+  /// into the subdomain stiffness matrices (zeroed first).
   AssemblyResult assemble(const Vector& u, double lambda, Vector* fint, Vector* residual, CrsMatrix* K,
-                          const Vector* prescribedStep = nullptr) const;
+                          const Vector* prescribedStep = nullptr, SubdomainSink* subdomains = nullptr) const;
 
   const Vector& externalForce() const { return *fext_; }
   Teuchos::RCP<Vector> toOverlap(const Vector& owned) const;

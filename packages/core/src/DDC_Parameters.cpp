@@ -97,6 +97,12 @@ void validateLevel(Teuchos::ParameterList& user, const Teuchos::ParameterList& v
   }
 }
 
+void setSublist(Teuchos::ParameterList& pl, const std::string& name, const Teuchos::ParameterList& list,
+                const std::string& doc) {
+  pl.set(name, list);
+  pl.getEntryPtr(name)->setDocString(doc);
+}
+
 Teuchos::RCP<const Teuchos::ParameterEntryValidator> enumValidator(const std::vector<std::string>& names,
                                                                    const std::string& paramName) {
   Teuchos::Array<std::string> strs(names.begin(), names.end());

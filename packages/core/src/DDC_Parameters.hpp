@@ -35,6 +35,12 @@ std::string templateName(const Teuchos::ParameterList& valid);
 /// Join a parameter path: joinPath("Mesh", "Bodies") == "Mesh/Bodies".
 std::string joinPath(const std::string& a, const std::string& b);
 
+/// Add `list` as sublist `name` of `pl` with a doc string. (Teuchos'
+/// ParameterList::set(name, list, doc) silently drops the doc string of a
+/// sublist, so --print-parameters would lose it.)
+void setSublist(Teuchos::ParameterList& pl, const std::string& name, const Teuchos::ParameterList& list,
+                const std::string& doc);
+
 /// Convenience: an enumeration validator over `names` (values are indices).
 Teuchos::RCP<const Teuchos::ParameterEntryValidator> enumValidator(
     const std::vector<std::string>& names, const std::string& paramName);

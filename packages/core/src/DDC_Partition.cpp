@@ -1,5 +1,13 @@
 #include "DDC_Partition.hpp"
 
+#include <cstdlib>
+
+#include <cmath>
+
+#include <sstream>
+
+#include <fstream>
+
 #include <metis.h>
 
 #include <algorithm>
@@ -143,6 +151,77 @@ Partition partitionByBody(const Mesh& mesh) {
   p.numSubdomains = mesh.numBodies();
   p.elementSubdomain.resize(mesh.numElements());
   for (int e = 0; e < mesh.numElements(); ++e) p.elementSubdomain[e] = mesh.elementBody(e);
+  return p;
+}
+
+Partition partitionBoxGrid(const Mesh& mesh, int nx, int ny) {
+  DDC_INPUT_REQUIRE(nx >= 1 && ny >= 1, "'Partition/Box Grid X' and 'Partition/Box Grid Y' must be >= 1, got "
+                                            << nx << " and " << ny);
+  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+  for (int n = 0; n < mesh.numNodes(); ++n)
+    for (int c = 0; c < 2; ++c) {
+      lo[c] = std::min(lo[c], mesh.coord(n)[c]);
+      hi[c] = std::max(hi[c], mesh.coord(n)[c]);
+    }
+  const int counts[2] = {nx, ny};
+  Partition p;
+  p.numSubdomains = nx * ny;
+  p.elementSubdomain.resize(mesh.numElements());
+  std::vector<int> used(p.numSubdomains, 0);
+  for (int e = 0; e < mesh.numElements(); ++e) {
+    double c[2] = {0, 0};
+    const int nn = mesh.elementNumNodes(e);
+    for (int i = 0; i < nn; ++i)
+      for (int d = 0; d < 2; ++d) c[d] += mesh.coord(mesh.elementNodes(e)[i])[d] / nn;
+    int idx[2];
+    for (int d = 0; d < 2; ++d) {
+      const double w = hi[d] - lo[d];
+      idx[d] = w > 0 ? static_cast<int>(std::floor((c[d] - lo[d]) / w * counts[d])) : 0;
+      idx[d] = std::min(std::max(idx[d], 0), counts[d] - 1);
+    }
+    p.elementSubdomain[e] = idx[0] + nx * idx[1];
+    used[p.elementSubdomain[e]] = 1;
+  }
+  for (int s = 0; s < p.numSubdomains; ++s)
+    DDC_INPUT_REQUIRE(used[s], "'Partition/Box Grid X' x 'Partition/Box Grid Y' = " << nx << " x " << ny
+                                                                                  << ": box " << s
+                                                                                  << " holds no element centroid");
+  return p;
+}
+
+Partition partitionFromFile(const Mesh& mesh, const std::string& fileName) {
+  std::ifstream in(fileName);
+  DDC_INPUT_REQUIRE(in.good(), "element map file '" << fileName << "' cannot be read");
+  std::vector<int> ids;
+  std::string line;
+  int lineNo = 0;
+  while (std::getline(in, line)) {
+    ++lineNo;
+    const auto hash = line.find('#');
+    if (hash != std::string::npos) line.resize(hash);
+    std::istringstream ls(line);
+    std::string tok;
+    while (ls >> tok) {
+      char* end = nullptr;
+      const long v = std::strtol(tok.c_str(), &end, 10);
+      DDC_INPUT_REQUIRE(end && *end == '\0' && v >= 0 && v < (1L << 30),
+                        "element map file '" << fileName << "' line " << lineNo << ": '" << tok
+                                             << "' is not a non-negative subdomain id");
+      ids.push_back(static_cast<int>(v));
+    }
+  }
+  DDC_INPUT_REQUIRE(static_cast<int>(ids.size()) == mesh.numElements(),
+                    "element map file '" << fileName << "' has " << ids.size() << " entries; the mesh has "
+                                         << mesh.numElements() << " elements (one subdomain id per element)");
+  Partition p;
+  p.numSubdomains = ids.empty() ? 0 : *std::max_element(ids.begin(), ids.end()) + 1;
+  std::vector<int> used(p.numSubdomains, 0);
+  for (int v : ids) used[v] = 1;
+  for (int s = 0; s < p.numSubdomains; ++s)
+    DDC_INPUT_REQUIRE(used[s], "element map file '" << fileName << "': subdomain " << s
+                                                    << " has no element (ids must be 0.." << p.numSubdomains - 1
+                                                    << ", all used)");
+  p.elementSubdomain = std::move(ids);
   return p;
 }
 

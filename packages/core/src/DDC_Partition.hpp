@@ -6,6 +6,7 @@
 // is replicated (DESIGN.md §2).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "DDC_Mesh.hpp"
@@ -43,6 +44,22 @@ Partition partitionMetis(const Mesh& mesh, int numSubdomains);
 
 /// One subdomain per body: elementSubdomain[e] = mesh.elementBody(e).
 Partition partitionByBody(const Mesh& mesh);
+
+/// Subdomains as a regular nx × ny grid of boxes over the bounding box of the
+/// mesh nodes; an element belongs to the box holding its centroid (node
+/// average). Subdomain id = ix + nx·iy. On a rectangle with a matching
+/// element grid this gives equal subdomains of known H/h (iteration studies).
+/// 	hrows InputError naming "Partition/Box Grid X|Y" if a count is < 1 or a
+///         box holds no element.
+Partition partitionBoxGrid(const Mesh& mesh, int nx, int ny);
+
+/// Subdomains read from a file: whitespace-separated integers, one per
+/// element in mesh element order (bodies in input order, elements as
+/// generated or read), '#' starts a comment. Subdomain ids must be 0..S-1
+/// with every id used. For reproducible tests and externally made partitions.
+/// 	hrows InputError naming the file and the problem (missing, too few or
+///         too many entries, a negative id, an unused id).
+Partition partitionFromFile(const Mesh& mesh, const std::string& fileName);
 
 /// Owner rank of each subdomain: contiguous, balanced blocks (the first
 /// numSubdomains % numRanks ranks own one subdomain more). Several

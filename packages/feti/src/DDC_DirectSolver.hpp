@@ -43,6 +43,16 @@ class DirectSolver {
   virtual void solve(const MultiVector& b, MultiVector& x) = 0;
   /// Back-end name for messages ("MUMPS", "Amesos2/KLU2").
   virtual std::string name() const = 0;
+
+  /// Optional hook: nodal coordinates, for back ends that build a near-null
+  /// space from them (the iterative "Belos-MueLu" / "Belos-FROSch", see
+  /// DDC_IterativeSolvers.hpp); direct solvers ignore it. Call before numeric().
+  /// \param coords 2 columns (x, y) in A's row map layout: row i holds the
+  ///        coordinates of the node that DOF i belongs to.
+  virtual void setCoordinates(const Teuchos::RCP<const MultiVector>& /*coords*/) {}
+  /// Iterations of the last solve(): Belos iterations for iterative back
+  /// ends, 0 for direct solvers (the "dual_iterations" of history.csv).
+  virtual int lastIterations() const { return 0; }
 };
 
 /// Names -> direct-solver creators. Built-ins: "MUMPS", "Amesos2".
@@ -65,6 +75,10 @@ class DirectSolverFactory {
 
   DirectSolverFactory() = default;
   static DirectSolverFactory withBuiltins();
+  /// withBuiltins() plus the monolithic iterative types "Belos-MueLu" and
+  /// "Belos-FROSch" (DDC_IterativeSolvers.hpp). Kept apart from the
+  /// built-ins because FETI-DP's subdomain and coarse solves must be exact.
+  static DirectSolverFactory withIterativeSolvers();
 
   /// Register a back end. \throws std::invalid_argument if `type` is empty,
   /// already registered, or `entry.create` is empty.
@@ -73,7 +87,7 @@ class DirectSolverFactory {
   /// \throws InputError naming where/Type and the known types if unknown.
   const Entry& entry(const std::string& type, const std::string& where = "") const;
   /// `params` is the {Type, ...} sublist; validated, defaults filled in.
-  /// \param where parameter path of `params` for messages (e.g. "Solver/Direct Solver").
+  /// \param where parameter path of `params` for messages (e.g. "Solver/Linear Solver").
   /// \throws InputError for an unknown Type (naming where/Type and listing the
   ///         known types) or a misspelt / mistyped parameter (naming its path).
   std::unique_ptr<DirectSolver> create(Teuchos::ParameterList& params, const std::string& where) const;

@@ -4,7 +4,7 @@
 // Parameter shape of the {Type, ...} sublist (see
 // DirectSolverFactory::validParameters()):
 //
-//   <ParameterList name="Direct Solver">
+//   <ParameterList name="Linear Solver">
 //     <Parameter name="Type" type="string" value="MUMPS"/>
 //     <ParameterList name="MUMPS">   <!-- options of the MUMPS back end -->
 //       <Parameter name="Ordering" type="string" value="PORD"/>
@@ -22,6 +22,7 @@
 #include "DDC_Amesos2Solver.hpp"
 #include "DDC_DirectSolver.hpp"
 #include "DDC_Error.hpp"
+#include "DDC_IterativeSolvers.hpp"
 #include "DDC_MumpsSolver.hpp"
 #include "DDC_Parameters.hpp"
 
@@ -53,6 +54,12 @@ DirectSolverFactory DirectSolverFactory::withBuiltins() {
   return f;
 }
 
+DirectSolverFactory DirectSolverFactory::withIterativeSolvers() {
+  DirectSolverFactory f = withBuiltins();
+  addIterativeSolvers(f);
+  return f;
+}
+
 void DirectSolverFactory::add(const std::string& type, Entry entry) {
   if (type.empty()) throw std::invalid_argument("DirectSolverFactory::add: empty type name");
   if (!entry.create) throw std::invalid_argument("DirectSolverFactory::add('" + type + "'): no creator");
@@ -78,7 +85,7 @@ const DirectSolverFactory::Entry& DirectSolverFactory::entry(const std::string& 
 }
 
 Teuchos::RCP<const Teuchos::ParameterList> DirectSolverFactory::validParameters() const {
-  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Direct Solver"));
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Linear Solver"));
   const auto known = names();
   std::string doc = "Direct solver back end:";
   for (const auto& e : entries_) doc += " " + e.first + " (" + e.second.description + ");";

@@ -396,7 +396,7 @@ TEST(Amesos2Solver, AcceptsAnyGlobalNumbering) {
 
 TEST(DirectSolverFactory, DefaultsToMumpsAndFillsDefaults) {
   Teuchos::ParameterList p;
-  auto s = DirectSolverFactory::withBuiltins().create(p, "Solver/Direct Solver");
+  auto s = DirectSolverFactory::withBuiltins().create(p, "Solver/Linear Solver");
   EXPECT_EQ(s->name(), "MUMPS");
   EXPECT_EQ(p.get<std::string>("Type"), "MUMPS");
   ASSERT_TRUE(p.isSublist("MUMPS"));
@@ -409,8 +409,8 @@ TEST(DirectSolverFactory, UnknownTypeNamesPathAndKnownTypes) {
   Teuchos::ParameterList p;
   p.set("Type", "Pardiso");
   expectThrowWith<ddc::InputError>(
-      [&] { DirectSolverFactory::withBuiltins().create(p, "Solver/Direct Solver"); },
-      {"Pardiso", "Solver/Direct Solver/Type", "'MUMPS'", "'Amesos2'"});
+      [&] { DirectSolverFactory::withBuiltins().create(p, "Solver/Linear Solver"); },
+      {"Pardiso", "Solver/Linear Solver/Type", "'MUMPS'", "'Amesos2'"});
 }
 
 TEST(DirectSolverFactory, MisspeltParametersNamePath) {
@@ -419,14 +419,14 @@ TEST(DirectSolverFactory, MisspeltParametersNamePath) {
     Teuchos::ParameterList p;
     p.set("Type", "MUMPS");
     p.sublist("MUMPS").set("Orderng", "PORD");
-    expectThrowWith<ddc::InputError>([&] { f.create(p, "Solver/Direct Solver"); },
-                                     {"Solver/Direct Solver/MUMPS/Orderng", "Ordering"});
+    expectThrowWith<ddc::InputError>([&] { f.create(p, "Solver/Linear Solver"); },
+                                     {"Solver/Linear Solver/MUMPS/Orderng", "Ordering"});
   }
   {
     Teuchos::ParameterList p;
     p.set("Typ", "MUMPS");
-    expectThrowWith<ddc::InputError>([&] { f.create(p, "Solver/Direct Solver"); },
-                                     {"Solver/Direct Solver/Typ"});
+    expectThrowWith<ddc::InputError>([&] { f.create(p, "Solver/Linear Solver"); },
+                                     {"Solver/Linear Solver/Typ"});
   }
   {  // a misspelt option of the back end not chosen is still an error
     Teuchos::ParameterList p;

@@ -1,0 +1,51 @@
+// Mesh-aware set-up of the FETI-DP subdomain problems: which nodes are
+// primal (corners), each subdomain's free DOFs and its local stiffness
+// pattern. The algebra lives in the feti package (FetiDpSolver), which knows
+// nothing of meshes.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "DDC_DirectSolver.hpp"
+
+namespace ddc {
+
+class Model;
+
+/// Primal node selection (DESIGN.md §1):
+///  1. interface nodes shared by ≥ 3 subdomains (cross points);
+///  2. interface nodes on the mesh boundary (the ends of a subdomain–
+///     subdomain interface that reaches the boundary);
+///  3. every subdomain must be fixed against its rigid modes: it needs two
+///     distinct "anchor" nodes (primal, or carrying a prescribed DOF) and
+///     prescribed DOFs in both directions unless it has two primal nodes;
+///     where rules 1–2 give fewer, interface nodes of the subdomain are made
+///     primal (the one farthest from the existing anchors, then the one
+///     farthest from that).
+/// \returns per mesh node 1 if primal. `report` receives one line per
+///          subdomain that needed rule 3.
+/// \throws InputError for a floating subdomain without interface nodes
+///         (e.g. a body that is its own subdomain and has no boundary
+///         conditions): no choice of corners can fix it.
+std::vector<char> selectPrimalNodes(const Model& model, std::vector<std::string>* report = nullptr);
+
+/// One subdomain's problem: its free DOFs (global ids, sorted), which are
+/// primal, the local stiffness (MPI_COMM_SELF, local numbering) and, for
+/// each of its elements, the local index of each element DOF (−1 where the
+/// DOF is prescribed).
+struct SubdomainSystem {
+  int id = -1;
+  std::vector<GO> dofs;
+  std::vector<char> primal;
+  Teuchos::RCP<CrsMatrix> K;
+  std::vector<int> elements;
+  std::vector<std::vector<int>> elementLocal;
+};
+
+/// The subdomain systems of this rank's subdomains, with the stiffness
+/// patterns built from their elements (values zero).
+std::vector<SubdomainSystem> buildSubdomainSystems(const Model& model, const std::vector<char>& primalNode);
+
+}  // namespace ddc

@@ -1,0 +1,201 @@
+// FETI-DP dual-interface solver: the algebra only (DESIGN.md §1, §2).
+//
+// It knows no mesh and no contact (DESIGN.md §3): the caller hands it, per
+// subdomain, the global ids of the subdomain's free DOFs, which of them are
+// primal (assembled globally into the coarse problem) and the subdomain
+// stiffness K^s on MPI_COMM_SELF. From that it builds the interface
+// compatibility constraints B, the partially assembled operator
+//
+//     F = B K~^{-1} B^T ,   d = B K~^{-1} f~            (DESIGN.md §1)
+//
+// (K~ = the stiffness assembled only at primal DOFs) and solves F lambda = d
+// with Belos, preconditioned by the Dirichlet or lumped preconditioner.
+//
+// Typical use (one Newton iteration per numeric() + solve()):
+//
+//   ddc::FetiDpSolver feti(comm, params, "Solver/FETI-DP");
+//   feti.setTopology(std::move(subdomains), ownedMap);   // once per pattern
+//   for (...) {            // Newton
+//     ... update the values of every subdomain's K (same pattern) ...
+//     feti.numeric();
+//     auto info = feti.solve(residual, du);
+//   }
+#pragma once
+
+#include <Teuchos_Comm.hpp>
+#include <Teuchos_ParameterList.hpp>
+#include <Tpetra_Operator.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "DDC_DirectSolver.hpp"
+
+namespace ddc {
+
+/// One subdomain as the caller describes it to FetiDpSolver::setTopology().
+struct FetiSubdomain {
+  /// Global subdomain id, unique across all ranks (orders the +1/-1 signs of
+  /// the compatibility constraints and names the subdomain in messages).
+  int id = -1;
+  /// Global ids (in the owned DOF map given to setTopology()) of the
+  /// subdomain's free DOFs, without duplicates. Prescribed DOFs are
+  /// eliminated by the caller. Local DOF index = position in this vector.
+  std::vector<GO> dofs;
+  /// Per local DOF: 1 = primal (assembled globally, coarse space), 0 = not.
+  /// A DOF must be primal in every subdomain that has it, or in none.
+  std::vector<char> primal;
+  /// Local stiffness on MPI_COMM_SELF: row, range and domain map = the
+  /// contiguous map 0..n-1 (n = dofs.size()), fill-complete. The caller
+  /// updates its values before each numeric(); the sparsity pattern must stay
+  /// the one seen by setTopology().
+  Teuchos::RCP<CrsMatrix> K;
+};
+
+/// FETI-DP solver for K u = b, K = sum_s R_s^T K^s R_s (the globally
+/// assembled stiffness of the subdomains given to setTopology()).
+///
+/// Unknowns and constraints (DESIGN.md §1):
+///  - every subdomain keeps its own copy of its DOFs; the primal DOFs are
+///    assembled globally (coarse space);
+///  - one Lagrange multiplier (LM) per pair of subdomains sharing a
+///    non-primal DOF ("fully redundant" compatibility constraints, row
+///    u^s_j - u^t_j = 0 with +1 for the subdomain of smaller id). A DOF shared
+///    by m subdomains gets m(m-1)/2 rows. In 2-D with all cross points primal
+///    every non-primal interface DOF has m = 2, so this equals the
+///    non-redundant choice;
+///  - internally a constraint row is a general list of (subdomain, local
+///    DOF, coefficient) entries on remainder and/or primal DOFs; the
+///    operators below apply both parts, so extra rows (contact) can touch
+///    primal DOFs.
+///
+/// K~^{-1} f~ with precomputed Phi^s = K_rr^{-1} K_rPi (r = remainder = not
+/// primal):  x_r = K_rr^{-1} f_r;  g_Pi = f_Pi - sum_s R_Pi^T K_Pir x_r;
+/// u_Pi = S_PiPi^{-1} g_Pi (coarse solve, S_PiPi = sum_s R^T (K_PiPi - K_Pir
+/// Phi) R assembled over the primal map);  u_r = x_r - Phi u_Pi^s.
+///
+/// Lifecycle: constructor (parameters) -> setTopology() (once per DOF
+/// pattern) -> numeric() (after each change of the K values) -> solve()
+/// (any number of right-hand sides). Every method except the accessors is
+/// collective over the communicator; an error on one rank (e.g. a singular
+/// subdomain) is raised on every rank with the same message.
+///
+/// Floating subdomains are not treated with a kernel: the caller must make
+/// every K_rr^s nonsingular by choosing enough primal DOFs (DESIGN.md §1).
+class FetiDpSolver {
+ public:
+  /// Statistics of one solve(). Times in seconds, maximum over the ranks.
+  struct Info {
+    int iterations = 0;             ///< Belos iterations (0 without interface or for d = 0)
+    double relativeResidual = 0.0;  ///< Belos' achieved relative residual ||d - F lambda|| / ||d||
+    double setupSeconds = 0.0;      ///< the last numeric() (local + coarse + Dirichlet factorisations)
+    double solveSeconds = 0.0;      ///< this solve(), all of it
+    // breakdown of setupSeconds
+    double localFactorSeconds = 0.0;      ///< K_rr^s factorisations, Phi^s and S_PiPi^s (this rank's subdomains)
+    double coarseFactorSeconds = 0.0;     ///< coarse assembly + factorisation
+    double dirichletFactorSeconds = 0.0;  ///< K_II^s factorisations (Dirichlet preconditioner)
+    // breakdown of solveSeconds
+    double belosSeconds = 0.0;           ///< the Belos iterations (incl. F and M^{-1} applications)
+    double localSolveSeconds = 0.0;      ///< K_rr^{-1} solves (F applications and setup/recovery of solve())
+    double coarseSolveSeconds = 0.0;     ///< coarse solves incl. their communication, whole solve()
+    double preconditionerSeconds = 0.0;  ///< M^{-1} applications (includes the K_II^{-1} solves)
+    int operatorApplications = 0;        ///< F applications by Belos
+    int preconditionerApplications = 0;  ///< M^{-1} applications by Belos
+  };
+
+  /// Every parameter with its default and doc string:
+  ///  - "Preconditioner": "Dirichlet" (default) | "Lumped" | "None";
+  ///  - "Scaling": "Multiplicity" (default) | "Stiffness";
+  ///  - "Local Singularity Threshold": double (1e13);
+  ///  - "Belos": {"Solver Type": "CG" | "GMRES" | "MINRES", "Convergence
+  ///    Tolerance" (1e-10), "Maximum Iterations" (500), "Verbosity" (0),
+  ///    "Output Frequency" (-1)};
+  ///  - "Local Solver", "Coarse Solver": DirectSolverFactory {Type, ...}
+  ///    sublists, Type "MUMPS" by default.
+  static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
+
+  /// \param comm the communicator of the whole problem (the owned DOF map's).
+  /// \param params validated against getValidParameters() (this level and
+  ///        every sublist), defaults filled in.
+  /// \param path parameter path of `params` for messages, e.g. "Solver/FETI-DP".
+  /// \throws InputError naming the full parameter path for a misspelt or
+  ///         mistyped parameter or an unknown enumeration value (e.g. an
+  ///         unknown "Belos/Solver Type").
+  FetiDpSolver(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::ParameterList& params,
+               const std::string& path);
+  ~FetiDpSolver();
+  FetiDpSolver(const FetiDpSolver&) = delete;
+  FetiDpSolver& operator=(const FetiDpSolver&) = delete;
+
+  /// Collective. Take the subdomains owned by this rank (zero, one or
+  /// several) and build everything that depends only on the DOF pattern: DOF
+  /// multiplicities, interface, compatibility constraints B (+1/-1 entries),
+  /// the distributed LM map, the distributed primal map, the splits of each
+  /// K^s into remainder / primal blocks and, for the Dirichlet
+  /// preconditioner, into interior / dual-interface blocks, the patterns of
+  /// the local and coarse matrices. The symbolic factorisations run in the
+  /// next numeric() (some orderings look at values) and are reused by every
+  /// later numeric().
+  /// \param local the subdomains of this rank (see FetiSubdomain).
+  /// \param ownedMap the one-to-one distributed map of all global DOFs of the
+  ///        problem (the layout of b and u in solve()).
+  /// \throws std::invalid_argument (on every rank) if a subdomain is
+  ///         inconsistent: sizes, DOFs not in ownedMap, duplicate DOFs or
+  ///         subdomain ids, a DOF primal in one subdomain but not in
+  ///         another, K not fill-complete / not n x n.
+  void setTopology(std::vector<FetiSubdomain> local, Teuchos::RCP<const Map> ownedMap);
+
+  /// Collective. After the caller updated the K values: factorise every
+  /// K_rr^s, compute Phi^s = K_rr^{-1} K_rPi (one multi-RHS solve) and
+  /// S_PiPi^s = K_PiPi - K_Pir Phi^s, assemble the coarse S_PiPi as a
+  /// distributed CrsMatrix over the primal DOFs and factorise it (coarse
+  /// solver), factorise K_II^s (Dirichlet preconditioner), compute the
+  /// scaling weights.
+  /// \throws SolverError naming the subdomain id if a K_rr^s is singular
+  ///         ("the corner rule could not fix this subdomain's rigid modes"),
+  ///         or if the coarse matrix cannot be factorised.
+  void numeric();
+
+  /// Collective. Solve K u = b.
+  /// \param b right-hand side in the ownedMap layout. Nonzero entries on DOFs
+  ///        that belong to no subdomain are an error (std::invalid_argument).
+  /// \param u solution in the ownedMap layout (0 on DOFs in no subdomain);
+  ///        the copies of a dual interface DOF are averaged.
+  /// \pre numeric() has been called after the last change of the K values.
+  /// \throws SolverError if Belos does not converge (message: iterations,
+  ///         achieved residual, tolerance, the parameter paths to change).
+  Info solve(const Vector& b, Vector& u);
+
+  /// Timings of the last numeric() (setup fields of Info only).
+  const Info& setupInfo() const;
+
+  // ---- accessors (for tests and diagnostics); valid after setTopology() ----
+
+  /// Distributed map of the Lagrange multipliers (one per constraint row);
+  /// each row is owned by the owner of its DOF in ownedMap.
+  Teuchos::RCP<const Map> lmMap() const;
+  /// Distributed map of the primal DOFs, GIDs = their global DOF ids, each
+  /// owned by the DOF's owner in ownedMap.
+  Teuchos::RCP<const Map> primalMap() const;
+  /// Global number of dual DOFs: non-primal DOFs shared by >= 2 subdomains.
+  GO numDualDofs() const;
+  /// Apply B to a field given per subdomain copy: field[i] has one value per
+  /// local DOF of the i-th subdomain passed to setTopology() on this rank.
+  /// Returns (B field) on lmMap(). A continuous field (the same value in
+  /// every copy of a DOF) gives 0. Collective.
+  Teuchos::RCP<Vector> applyB(const std::vector<std::vector<double>>& field) const;
+  /// The operator F = B K~^{-1} B^T on lmMap() (valid after numeric(); it
+  /// refers to this solver and must not outlive it).
+  Teuchos::RCP<const Tpetra::Operator<Scalar, LO, GO, Node>> fOperator() const;
+  /// The preconditioner M^{-1} on lmMap() (null for "None"); same lifetime.
+  Teuchos::RCP<const Tpetra::Operator<Scalar, LO, GO, Node>> preconditioner() const;
+
+  /// Implementation detail (declared public only so that the operator
+  /// classes in the .cpp can refer to it).
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace ddc

@@ -1,0 +1,176 @@
+// "Belos-MueLu": Belos CG preconditioned by one MueLu smoothed-aggregation
+// V-cycle (see DDC_IterativeSolvers.hpp for the contract).
+#include <MueLu_CreateTpetraPreconditioner.hpp>
+#include <MueLu_Hierarchy.hpp>
+#include <MueLu_MasterList.hpp>
+#include <MueLu_ParameterListInterpreter.hpp>
+#include <MueLu_TpetraOperator.hpp>
+#include <sstream>
+
+#include "DDC_Error.hpp"
+#include "DDC_IterativeSolvers.hpp"
+#include "DDC_Parameters.hpp"
+
+namespace ddc {
+
+namespace {
+
+using Operator = IterativeSolver::Operator;
+
+/// The last non-empty line of a Teuchos/MueLu exception message (the rest is
+/// file/line preamble).
+std::string essence(const std::exception& e) {
+  std::string m = e.what();
+  while (!m.empty() && (m.back() == '\n' || m.back() == ' ')) m.pop_back();
+  const auto nl = m.rfind('\n');
+  return nl == std::string::npos ? m : m.substr(nl + 1);
+}
+
+/// Our MueLu defaults for 2-D elasticity (documented in getValidParameters()).
+Teuchos::ParameterList defaultMueLuList() {
+  Teuchos::ParameterList p("MueLu");
+  p.set("verbosity", std::string("none"),
+        "MueLu output ('none', 'low', 'medium', 'high', 'extreme'); "
+        "'low' if Verbosity >= 1 and this is not set");
+  p.set("number of equations", 2, "DOFs per node (2-D elasticity: 2; aggregation works on nodes)");
+  p.set("multigrid algorithm", std::string("sa"), "smoothed aggregation");
+  p.set("max levels", 10, "most levels of the hierarchy");
+  p.set("aggregation: type", std::string("uncoupled"), "aggregates do not cross rank boundaries");
+  p.set("aggregation: drop tol", 0.0, "no dropping of weak connections (structured, isotropic meshes)");
+  p.set("smoother: type", std::string("CHEBYSHEV"),
+        "Chebyshev polynomial smoothing: symmetric (CG needs a symmetric preconditioner) and identical on "
+        "any number of ranks");
+  {
+    Teuchos::ParameterList& s = p.sublist("smoother: params", false, "Ifpack2 parameters of the smoother");
+    s.set("chebyshev: degree", 2, "polynomial degree (smoothing sweeps per application)");
+  }
+  p.set("coarse: max size", 1000, "stop coarsening below this many rows");
+  p.set("coarse: type", std::string("KLU2"),
+        "exact coarse solve; correct in parallel only because repartitioning moves the coarse level to one "
+        "rank (KLU2 on a distributed matrix is wrong in this Trilinos, DESIGN.md §2)");
+  p.set("repartition: enable", true,
+        "rebalance levels with too few rows per rank; with 'repartition: use subcommunicators' a level of "
+        "fewer than 'repartition: min rows per proc' rows ends up on a one-rank communicator");
+  p.set("repartition: partitioner", std::string("zoltan2"), "Zoltan2 (geometric, from the node coordinates)");
+  {
+    Teuchos::ParameterList& z = p.sublist("repartition: params", false, "Zoltan2 parameters");
+    z.set("algorithm", std::string("multijagged"), "geometric partitioner using the node coordinates");
+  }
+  p.set("repartition: start level", 1, "repartition from level 1 (the fine level stays as given)");
+  p.set("repartition: min rows per proc", 1000,
+        "a rank should own at least this many rows; a level with fewer rows in total goes to one rank, "
+        "so the coarsest level (<= 'coarse: max size') always does");
+  p.set("repartition: max imbalance", 1.2, "repartition when max/mean rows per rank exceeds this");
+  p.set("repartition: use subcommunicators", true, "levels on fewer ranks get their own communicator");
+  return p;
+}
+
+}  // namespace
+
+struct MueLuSolver::Impl {
+  Teuchos::ParameterList mueluList;  // defaults overridden by the user's entries
+  bool reuse = false;                // "reuse: type" != "none"
+  bool userSetRepartition = false;   // the user's list has "repartition: enable"
+  bool userSetCoarse = false;        // ... "coarse: type"
+  Teuchos::RCP<MueLu::TpetraOperator<Scalar, LO, GO, Node>> prec;
+};
+
+Teuchos::RCP<const Teuchos::ParameterList> MueLuSolver::getValidParameters() {
+  static const Teuchos::RCP<const Teuchos::ParameterList> valid = [] {
+    auto pl = Teuchos::rcp(new Teuchos::ParameterList(kType));
+    addCommonParameters(*pl, "Belos pseudo-block CG, preconditioned by one MueLu V-cycle.");
+    pl->sublist("MueLu", false,
+                "MueLu's own parameter list (MueLu user guide, 'simple' parameter names), applied over the defaults "
+                "shown here entry by entry and validated by MueLu itself when the solver is created. The near-null "
+                "space and coordinates are set by the solver ('user data'): do not set them.")
+        .setParameters(defaultMueLuList());
+    return Teuchos::RCP<const Teuchos::ParameterList>(pl);
+  }();
+  return valid;
+}
+
+MueLuSolver::MueLuSolver(const Teuchos::ParameterList& params)
+    : IterativeSolver(
+          [&] {
+            Teuchos::ParameterList p(params);
+            validateLevel(p, *getValidParameters(), kType);
+            return p;
+          }(),
+          kType, "CG"),
+      impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  m.mueluList = defaultMueLuList();
+  if (params.isSublist("MueLu")) {
+    const Teuchos::ParameterList& user = params.sublist("MueLu");
+    DDC_INPUT_REQUIRE(!user.isSublist("user data") && !user.isParameter("user data"),
+                      "parameter '" << kType << "/MueLu/user data' is set by the solver (near-null space, "
+                                    << "coordinates); remove it");
+    // A user who changes a method keeps none of our options for the old
+    // one (e.g. "chebyshev: degree" would be rejected by a RELAXATION smoother).
+    for (const auto& [method, options] : {std::pair<const char*, const char*>{"smoother: type", "smoother: params"},
+                                          {"coarse: type", "coarse: params"},
+                                          {"repartition: partitioner", "repartition: params"}})
+      if (user.isParameter(method)) m.mueluList.remove(options, /*throwIfNotExists=*/false);
+    m.mueluList.setParameters(user);
+    m.userSetRepartition = user.isParameter("repartition: enable");
+    m.userSetCoarse = user.isParameter("coarse: type");
+  }
+  if (verbosity_ >= 1 && !(params.isSublist("MueLu") && params.sublist("MueLu").isParameter("verbosity")))
+    m.mueluList.set("verbosity", "low");
+  // Let MueLu validate the list now (its master list, top level and
+  // "level N" sublists), so a misspelt name fails at input time.
+  // (MueLu's default verbosity would print its spelling suggestions.)
+  const auto verb = MueLu::VerboseObject::GetDefaultVerbLevel();
+  MueLu::VerboseObject::SetDefaultVerbLevel(MueLu::None);
+  try {
+    Teuchos::ParameterList copy(m.mueluList);
+    MueLu::ParameterListInterpreter<Scalar, LO, GO, Node> check(copy);
+  } catch (const std::exception& e) {
+    MueLu::VerboseObject::SetDefaultVerbLevel(verb);
+    DDC_THROW(InputError, "invalid parameter in '" << kType << "/MueLu' (MueLu says: " << essence(e) << ")");
+  }
+  MueLu::VerboseObject::SetDefaultVerbLevel(verb);
+  m.reuse = m.mueluList.isParameter("reuse: type") && m.mueluList.get<std::string>("reuse: type") != "none";
+}
+
+MueLuSolver::~MueLuSolver() = default;
+
+int MueLuSolver::numLevels() const {
+  if (impl_->prec.is_null()) return 0;
+  return impl_->prec->GetHierarchy()->GetNumLevels();
+}
+
+Teuchos::RCP<Operator> MueLuSolver::buildPreconditioner(bool first, const Teuchos::RCP<MultiVector>& nullSpace,
+                                                        const Teuchos::RCP<MultiVector>& nodeCoords) {
+  Impl& m = *impl_;
+  // MueLu needs a non-const matrix type but does not modify it.
+  auto A = Teuchos::rcp_const_cast<CrsMatrix>(A_);
+  try {
+    if (!first && m.reuse && !m.prec.is_null()) {
+      MueLu::ReuseTpetraPreconditioner(A, *m.prec);
+    } else {
+      Teuchos::ParameterList list(m.mueluList);
+      if (nodeCoords.is_null() && !m.userSetRepartition) {
+        // Repartitioning needs coordinates (geometric partitioner, and MueLu
+        // transfers them level by level). Without them: no repartitioning,
+        // and, since KLU2 on a distributed coarse matrix is wrong here
+        // (DESIGN.md §2), a Chebyshev polynomial as coarse solver (symmetric,
+        // so CG still applies), unless the user chose one.
+        list.set("repartition: enable", false);
+        if (!m.userSetCoarse) {
+          list.set("coarse: type", "CHEBYSHEV");
+          list.sublist("coarse: params").set("chebyshev: degree", 10);
+        }
+      }
+      Teuchos::ParameterList& user = list.sublist("user data");
+      user.set("Nullspace", nullSpace);
+      if (!nodeCoords.is_null()) user.set("Coordinates", nodeCoords);
+      m.prec = MueLu::CreateTpetraPreconditioner(Teuchos::RCP<Operator>(A), list);
+    }
+  } catch (const std::exception& e) {
+    DDC_THROW(SolverError, name() << " setup of the MueLu hierarchy failed: " << essence(e));
+  }
+  return m.prec;
+}
+
+}  // namespace ddc

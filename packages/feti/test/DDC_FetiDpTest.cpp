@@ -1,0 +1,694 @@
+// FETI-DP solver (DESIGN.md §1, verification ladder rung 3, §6): synthetic
+// structured-grid problems (scalar Laplacian and plane-stress elasticity
+// with bilinear quads), split into Sx x Sy subdomains with the left edge
+// fixed (eliminated), primal DOFs at the cross points and at the ends of
+// every subdomain-subdomain interface on the domain boundary. FETI-DP must
+// reproduce a direct MUMPS solve of the globally assembled matrix, B must
+// annihilate continuous fields, the dual iteration counts must stay bounded
+// as subdomains are added at fixed H/h, and bad input / singular subdomains
+// must raise the documented errors on every rank.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <Tpetra_Core.hpp>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <map>
+
+#include "DDC_DirectSolver.hpp"
+#include "DDC_Error.hpp"
+#include "DDC_FetiDpSolver.hpp"
+#include "DDC_TestTolerances.hpp"
+
+namespace ddc::test {
+/// FETI-DP vs direct solve of the assembled matrix, relative 2-norm of the
+/// difference (the issue's requirement). With the Belos tolerance
+/// kTightBelos = 1e-12 on ||d - F lambda|| / ||d|| and cond(F) = O(10..100)
+/// for these Dirichlet-preconditioned problems, lambda and hence u are
+/// accurate to ~1e-10; 1e-8 leaves a factor 100. A wrong B sign, a missing
+/// coarse contribution or a wrong RHS split gives O(1) errors.
+constexpr double kFetiVsDirect = 1e-8;
+/// Belos tolerance for the accuracy tests (the issue's choice).
+constexpr double kTightBelos = 1e-12;
+/// Belos tolerance of the iteration-count tests (the issue's choice).
+constexpr double kCountBelos = 1e-8;
+/// FETI-DP theory (kappa <= C (1 + log H/h)^2) bounds the dual iterations
+/// independently of the number of subdomains; the issue asks for <= 30 CG
+/// iterations (Dirichlet) at H/h = 16 and < 20 % growth from 4x4 to 8x8.
+constexpr int kMaxDirichletIterations = 30;
+constexpr double kMaxGrowth = 0.20;
+}  // namespace ddc::test
+
+namespace {
+
+using ddc::CrsMatrix;
+using ddc::FetiDpSolver;
+using ddc::FetiSubdomain;
+using ddc::GO;
+using ddc::LO;
+using ddc::Map;
+using ddc::MultiVector;
+using ddc::Vector;
+using Teuchos::RCP;
+using Teuchos::rcp;
+using Comm = Teuchos::Comm<int>;
+
+RCP<const Comm> worldComm() { return Tpetra::getDefaultComm(); }
+RCP<const Comm> selfComm() { return rcp(new Teuchos::MpiComm<int>(MPI_COMM_SELF)); }
+int worldRank() { return worldComm()->getRank(); }
+int worldSize() { return worldComm()->getSize(); }
+
+template <class E, class Fn>
+void expectThrowWith(Fn f, std::initializer_list<std::string> needles) {
+  try {
+    f();
+    ADD_FAILURE() << "expected an exception";
+  } catch (const E& e) {
+    const std::string what = e.what();
+    for (const auto& n : needles) EXPECT_NE(what.find(n), std::string::npos) << "'" << n << "' not in: " << what;
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "wrong exception type: " << e.what();
+  }
+}
+
+// ---- element matrices ------------------------------------------------------
+
+/// Bilinear element stiffness for the Laplacian on a square (independent of
+/// its size in 2-D); nodes (0,0), (1,0), (1,1), (0,1).
+std::vector<double> laplaceQ4() {
+  const double k[4][4] = {{4, -1, -2, -1}, {-1, 4, -1, -2}, {-2, -1, 4, -1}, {-1, -2, -1, 4}};
+  std::vector<double> K(16);
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b) K[a * 4 + b] = k[a][b] / 6.0;
+  return K;
+}
+
+/// Plane-stress bilinear quad on the unit square (E = 1, nu = 0.3), 2x2
+/// Gauss; DOF 2 k + c = component c of node k.
+std::vector<double> elasticityQ4(double nu = 0.3) {
+  const double xi[4] = {-1, 1, 1, -1}, eta[4] = {-1, -1, 1, 1};
+  const double f = 1.0 / (1.0 - nu * nu);
+  const double D[3][3] = {{f, f * nu, 0}, {f * nu, f, 0}, {0, 0, f * (1 - nu) / 2}};
+  std::vector<double> K(64, 0.0);
+  const double g = 1.0 / std::sqrt(3.0);
+  for (double gx : {-g, g})
+    for (double gy : {-g, g}) {
+      double B[3][8] = {};
+      for (int k = 0; k < 4; ++k) {
+        // unit square: x = (xi + 1) / 2, so d/dx = 2 d/dxi
+        const double dx = 2.0 * 0.25 * xi[k] * (1 + gy * eta[k]);
+        const double dy = 2.0 * 0.25 * eta[k] * (1 + gx * xi[k]);
+        B[0][2 * k] = dx;
+        B[1][2 * k + 1] = dy;
+        B[2][2 * k] = dy;
+        B[2][2 * k + 1] = dx;
+      }
+      const double detJ = 0.25;
+      for (int a = 0; a < 8; ++a)
+        for (int b = 0; b < 8; ++b) {
+          double s = 0;
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) s += B[i][a] * D[i][j] * B[j][b];
+          K[a * 8 + b] += s * detJ;
+        }
+    }
+  return K;
+}
+
+// ---- the synthetic problem ---------------------------------------------------
+
+struct Spec {
+  int Sx = 2, Sy = 2;   ///< subdomains in x and y
+  int H = 4;            ///< elements per subdomain edge (H/h)
+  int dpn = 1;          ///< DOFs per node: 1 Laplacian, 2 elasticity
+  bool primal = true;   ///< corner rule on; false: no primal DOFs at all
+  /// Further filter on the corner rule's primal nodes (i, j).
+  std::function<bool(int, int)> keepPrimal = [](int, int) { return true; };
+  bool blockwise = false;  ///< subdomains to ranks blockwise instead of round-robin
+  bool extraDof = false;   ///< owned map has one more DOF, in no subdomain
+  std::function<double(int, int)> coef = [](int, int) { return 1.0; };  ///< per subdomain (a, b)
+};
+
+/// Structured grid of (Sx H) x (Sy H) unit squares, nodes (i, j); the nodes
+/// with i = 0 are fixed and eliminated; free DOF (i, j, c) has the global id
+/// ((j nx + i - 1) dpn + c).
+class Problem {
+ public:
+  explicit Problem(const Spec& s) : s_(s), nx_(s.Sx * s.H), ny_(s.Sy * s.H) {
+    Ke_ = s.dpn == 1 ? laplaceQ4() : elasticityQ4();
+    const GO n = GO(ny_ + 1) * nx_ * s.dpn + (s.extraDof ? 1 : 0);
+    ownedMap_ = rcp(new Map(n, 0, worldComm()));
+  }
+
+  RCP<const Map> ownedMap() const { return ownedMap_; }
+  int numSubdomains() const { return s_.Sx * s_.Sy; }
+  int rankOf(int id) const {
+    const int P = worldSize(), S = numSubdomains();
+    return s_.blockwise ? int(GO(id) * P / S) : id % P;
+  }
+
+  GO dof(int i, int j, int c) const { return (GO(j) * nx_ + (i - 1)) * s_.dpn + c; }
+  /// Subdomains containing node (i, j).
+  int nodeCount(int i, int j) const {
+    auto count = [&](int i0, int S) {
+      int c = 0;
+      for (int a = 0; a < S; ++a) c += (a * s_.H <= i0 && i0 <= (a + 1) * s_.H) ? 1 : 0;
+      return c;
+    };
+    return count(i, s_.Sx) * count(j, s_.Sy);
+  }
+  /// Corner rule: subdomain corners shared by >= 2 subdomains (cross points
+  /// and ends of interfaces on the domain boundary).
+  bool isPrimalNode(int i, int j) const {
+    return s_.primal && i % s_.H == 0 && j % s_.H == 0 && nodeCount(i, j) >= 2 && s_.keepPrimal(i, j);
+  }
+
+  /// The subdomains of this rank.
+  std::vector<FetiSubdomain> subdomains() const {
+    std::vector<FetiSubdomain> out;
+    for (int b = 0; b < s_.Sy; ++b)
+      for (int a = 0; a < s_.Sx; ++a) {
+        const int id = a + s_.Sx * b;
+        if (rankOf(id) != worldRank()) continue;
+        FetiSubdomain sd;
+        sd.id = id;
+        std::map<GO, LO> local;
+        for (int j = b * s_.H; j <= (b + 1) * s_.H; ++j)
+          for (int i = a * s_.H; i <= (a + 1) * s_.H; ++i) {
+            if (i == 0) continue;
+            for (int c = 0; c < s_.dpn; ++c) {
+              local[dof(i, j, c)] = LO(sd.dofs.size());
+              sd.dofs.push_back(dof(i, j, c));
+              sd.primal.push_back(isPrimalNode(i, j) ? 1 : 0);
+            }
+          }
+        const LO n = LO(sd.dofs.size());
+        std::vector<std::map<LO, double>> rows(n);
+        for (int ej = b * s_.H; ej < (b + 1) * s_.H; ++ej)
+          for (int ei = a * s_.H; ei < (a + 1) * s_.H; ++ei)
+            addElement(ei, ej, s_.coef(a, b), [&](GO r, GO c, double v) { rows[local.at(r)][local.at(c)] += v; });
+        auto map = rcp(new Map(n, 0, selfComm()));
+        auto K = rcp(new CrsMatrix(map, 18));
+        for (LO r = 0; r < n; ++r) {
+          std::vector<GO> cols;
+          std::vector<double> vals;
+          for (auto& [c, v] : rows[r]) cols.push_back(c), vals.push_back(v);
+          K->insertGlobalValues(r, Teuchos::ArrayView<const GO>(cols), Teuchos::ArrayView<const double>(vals));
+        }
+        K->fillComplete();
+        sd.K = K;
+        out.push_back(std::move(sd));
+      }
+    return out;
+  }
+
+  /// The globally assembled stiffness (rows of this rank), independent of
+  /// the subdomain code: loops over all elements.
+  RCP<CrsMatrix> globalK() const {
+    std::map<GO, std::map<GO, double>> rows;
+    for (int ej = 0; ej < ny_; ++ej)
+      for (int ei = 0; ei < nx_; ++ei)
+        addElement(ei, ej, s_.coef(ei / s_.H, ej / s_.H), [&](GO r, GO c, double v) {
+          if (ownedMap_->isNodeGlobalElement(r)) rows[r][c] += v;
+        });
+    auto K = rcp(new CrsMatrix(ownedMap_, 18));
+    for (auto& [r, row] : rows) {
+      std::vector<GO> cols;
+      std::vector<double> vals;
+      for (auto& [c, v] : row) cols.push_back(c), vals.push_back(v);
+      K->insertGlobalValues(r, Teuchos::ArrayView<const GO>(cols), Teuchos::ArrayView<const double>(vals));
+    }
+    if (s_.extraDof) {  // keep the reference matrix nonsingular
+      const GO last = GO(ownedMap_->getGlobalNumElements()) - 1;
+      if (ownedMap_->isNodeGlobalElement(last)) {
+        const double one = 1.0;
+        K->insertGlobalValues(last, 1, &one, &last);
+      }
+    }
+    K->fillComplete();
+    return K;
+  }
+
+  /// A deterministic, rank-independent load (0 on the extra DOF).
+  RCP<Vector> load() const {
+    auto b = rcp(new Vector(ownedMap_));
+    auto v = b->getDataNonConst();
+    const GO nFree = GO(ny_ + 1) * nx_ * s_.dpn;
+    for (LO l = 0; l < LO(v.size()); ++l) {
+      const GO g = ownedMap_->getGlobalElement(l);
+      v[l] = g < nFree ? std::sin(0.37 * double(g) + 0.1) + 0.5 : 0.0;
+    }
+    return b;
+  }
+
+ private:
+  template <class Add>
+  void addElement(int ei, int ej, double coef, Add add) const {
+    const int ni[4] = {ei, ei + 1, ei + 1, ei}, nj[4] = {ej, ej, ej + 1, ej + 1};
+    const int d = s_.dpn, ne = 4 * d;
+    for (int ka = 0; ka < 4; ++ka)
+      for (int ca = 0; ca < d; ++ca) {
+        if (ni[ka] == 0) continue;
+        for (int kb = 0; kb < 4; ++kb)
+          for (int cb = 0; cb < d; ++cb) {
+            if (ni[kb] == 0) continue;
+            add(dof(ni[ka], nj[ka], ca), dof(ni[kb], nj[kb], cb), coef * Ke_[(ka * d + ca) * ne + kb * d + cb]);
+          }
+      }
+  }
+
+  Spec s_;
+  int nx_, ny_;
+  std::vector<double> Ke_;
+  RCP<const Map> ownedMap_;
+};
+
+Teuchos::ParameterList fetiParams(const std::string& prec = "Dirichlet", const std::string& scaling = "Multiplicity",
+                                  const std::string& solver = "CG", double tol = ddc::test::kTightBelos) {
+  Teuchos::ParameterList p("FETI-DP");
+  p.set("Preconditioner", prec);
+  p.set("Scaling", scaling);
+  p.sublist("Belos").set("Solver Type", solver);
+  p.sublist("Belos").set("Convergence Tolerance", tol);
+  return p;
+}
+
+/// u from a direct MUMPS solve of the assembled matrix on the world comm.
+RCP<Vector> directSolve(const Problem& pb, const Vector& b) {
+  auto K = pb.globalK();
+  Teuchos::ParameterList p;
+  p.set("Type", std::string("MUMPS"));
+  auto solver = ddc::DirectSolverFactory::withBuiltins().create(p, "Reference");
+  solver->symbolic(K);
+  solver->numeric();
+  auto u = rcp(new Vector(pb.ownedMap()));
+  solver->solve(b, *u);
+  // check the reference by its residual (DESIGN.md §2: check every direct solve)
+  Vector r(pb.ownedMap());
+  K->apply(*u, r);
+  r.update(1.0, b, -1.0);
+  EXPECT_LT(r.norm2() / b.norm2(), 1e-10) << "reference direct solve";
+  return u;
+}
+
+double relDiff(const Vector& a, const Vector& b) {
+  Vector d(a, Teuchos::Copy);
+  d.update(-1.0, b, 1.0);
+  return d.norm2() / b.norm2();
+}
+
+struct FetiRun {
+  FetiDpSolver::Info info;
+  double error = -1.0;  ///< vs direct (if computed)
+};
+
+/// Set up, factorise and solve one problem; compare with the direct solve.
+FetiRun runFeti(const Spec& spec, Teuchos::ParameterList params, bool compare = true) {
+  Problem pb(spec);
+  FetiDpSolver feti(worldComm(), params, "FETI-DP");
+  feti.setTopology(pb.subdomains(), pb.ownedMap());
+  feti.numeric();
+  auto b = pb.load();
+  Vector u(pb.ownedMap());
+  FetiRun run;
+  run.info = feti.solve(*b, u);
+  if (compare) run.error = relDiff(u, *directSolve(pb, *b));
+  return run;
+}
+
+void report(const std::string& what, const FetiRun& r) {
+  if (worldRank() == 0)
+    std::printf("[ feti-dp  ] %-52s it %3d  res %.2e  err vs direct %.2e\n", what.c_str(), r.info.iterations,
+                r.info.relativeResidual, r.error);
+}
+
+// ---- accuracy against the direct solve -------------------------------------
+
+struct Layout {
+  int Sx, Sy, dpn;
+  bool blockwise;
+};
+
+class FetiDpAccuracy : public ::testing::TestWithParam<Layout> {};
+
+TEST_P(FetiDpAccuracy, MatchesDirectSolve) {
+  const Layout L = GetParam();
+  Spec s;
+  s.Sx = L.Sx, s.Sy = L.Sy, s.dpn = L.dpn, s.H = 4, s.blockwise = L.blockwise;
+  const FetiRun r = runFeti(s, fetiParams());
+  char name[96];
+  std::snprintf(name, sizeof name, "%s %dx%d H/h=4 %s", L.dpn == 1 ? "Laplace" : "elasticity", L.Sx, L.Sy,
+                L.blockwise ? "blockwise" : "round-robin");
+  report(name, r);
+  EXPECT_LT(r.error, ddc::test::kFetiVsDirect);
+  EXPECT_LE(r.info.relativeResidual, ddc::test::kTightBelos);
+  if (L.Sx * L.Sy == 1) EXPECT_EQ(r.info.iterations, 0);  // no interface
+}
+
+// 1x1: no interface, no LM (must work); 2x1, 3x3, 4x4 contain floating
+// subdomains (a > 0: not touching the fixed left edge); 3x3 and 4x4 put
+// several subdomains on each rank.
+INSTANTIATE_TEST_SUITE_P(Layouts, FetiDpAccuracy,
+                         ::testing::Values(Layout{1, 1, 1, false}, Layout{2, 1, 1, false}, Layout{1, 2, 1, false},
+                                           Layout{2, 2, 1, false}, Layout{3, 3, 1, false}, Layout{4, 4, 1, true},
+                                           Layout{1, 1, 2, false}, Layout{2, 1, 2, false}, Layout{2, 2, 2, false},
+                                           Layout{3, 3, 2, false}, Layout{3, 3, 2, true}, Layout{4, 4, 2, false},
+                                           Layout{4, 4, 2, true}),
+                         [](const ::testing::TestParamInfo<Layout>& i) {
+                           const Layout& L = i.param;
+                           return std::string(L.dpn == 1 ? "Laplace" : "Elasticity") + std::to_string(L.Sx) + "x" +
+                                  std::to_string(L.Sy) + (L.blockwise ? "Blockwise" : "RoundRobin");
+                         });
+
+TEST(FetiDp, OtherKrylovSolversConverge) {
+  Spec s;
+  s.Sx = 3, s.Sy = 3, s.dpn = 2, s.H = 4;
+  for (const std::string solver : {"GMRES", "MINRES"})
+    for (const std::string prec : {"Dirichlet", "None"}) {
+      const FetiRun r = runFeti(s, fetiParams(prec, "Multiplicity", solver));
+      report("elasticity 3x3 " + solver + " / " + prec, r);
+      EXPECT_LT(r.error, ddc::test::kFetiVsDirect) << solver << " " << prec;
+    }
+}
+
+TEST(FetiDp, LumpedAndStiffnessScalingMatchDirect) {
+  Spec s;
+  s.Sx = 3, s.Sy = 2, s.dpn = 2, s.H = 4;
+  s.coef = [](int a, int b) { return (a + b) % 2 ? 1000.0 : 1.0; };  // checkerboard
+  for (const std::string prec : {"Dirichlet", "Lumped"})
+    for (const std::string scaling : {"Multiplicity", "Stiffness"}) {
+      const FetiRun r = runFeti(s, fetiParams(prec, scaling));
+      report("elasticity 3x2 checkerboard " + prec + " / " + scaling, r);
+      EXPECT_LT(r.error, ddc::test::kFetiVsDirect) << prec << " " << scaling;
+    }
+}
+
+// ---- structure: maps, B, F --------------------------------------------------
+
+TEST(FetiDp, MapsAndConstraintCounts) {
+  // 2x2 Laplacian, H = 4: primal nodes (H,0), (H,H), (H,2H), (2H,H); dual
+  // nodes: the vertical interface i = H minus its 3 primal nodes (2H - 2)
+  // and the horizontal one j = H minus (0,H) (fixed), (H,H), (2H,H): 2H - 2.
+  Spec s;
+  s.Sx = 2, s.Sy = 2, s.H = 4;
+  Problem pb(s);
+  auto params = fetiParams();
+  FetiDpSolver feti(worldComm(), params, "FETI-DP");
+  feti.setTopology(pb.subdomains(), pb.ownedMap());
+  EXPECT_EQ(feti.primalMap()->getGlobalNumElements(), 4u);
+  EXPECT_EQ(feti.numDualDofs(), GO(4 * s.H - 4));
+  EXPECT_EQ(feti.lmMap()->getGlobalNumElements(), size_t(4 * s.H - 4));  // m = 2 everywhere
+  for (GO g : feti.primalMap()->getNodeElementList()) EXPECT_TRUE(pb.ownedMap()->isNodeGlobalElement(g));
+}
+
+TEST(FetiDp, RedundantMultipliersAtANonPrimalCrossPoint) {
+  // 2x2 with the cross point (H, H) not primal: the floating subdomains
+  // still get 2 primal nodes each (interface ends on the boundary), and the
+  // cross point is a dual DOF shared by 4 subdomains with 4*3/2 = 6
+  // redundant multipliers per DOF. F is then only semidefinite (dependent
+  // rows of B), d is in its range, and CG must still converge.
+  for (int dpn : {1, 2}) {
+    Spec s;
+    s.Sx = 2, s.Sy = 2, s.H = 4, s.dpn = dpn;
+    s.keepPrimal = [&](int i, int j) { return !(i == s.H && j == s.H); };
+    Problem pb(s);
+    {
+      auto params = fetiParams();
+      FetiDpSolver feti(worldComm(), params, "FETI-DP");
+      feti.setTopology(pb.subdomains(), pb.ownedMap());
+      EXPECT_EQ(feti.primalMap()->getGlobalNumElements(), size_t(3 * dpn));
+      EXPECT_EQ(feti.numDualDofs(), GO((4 * s.H - 3) * dpn));
+      EXPECT_EQ(feti.lmMap()->getGlobalNumElements(), size_t((4 * s.H - 4 + 6) * dpn));
+    }
+    for (const std::string prec : {"Dirichlet", "Lumped"}) {
+      const FetiRun r = runFeti(s, fetiParams(prec));
+      report(std::string(dpn == 1 ? "Laplace" : "elasticity") + " 2x2 non-primal cross point " + prec, r);
+      EXPECT_LT(r.error, ddc::test::kFetiVsDirect);
+    }
+  }
+}
+
+TEST(FetiDp, BAnnihilatesContinuousFields) {
+  for (int dpn : {1, 2}) {
+    Spec s;
+    s.Sx = 3, s.Sy = 3, s.H = 3, s.dpn = dpn;
+    Problem pb(s);
+    auto params = fetiParams();
+    FetiDpSolver feti(worldComm(), params, "FETI-DP");
+    auto subs = pb.subdomains();
+    std::vector<std::vector<double>> cont, jump;
+    for (const auto& sd : subs) {
+      cont.emplace_back(), jump.emplace_back();
+      for (GO g : sd.dofs) {
+        cont.back().push_back(std::cos(0.1 * double(g)) + 2.0);
+        jump.back().push_back(std::cos(0.1 * double(g)) + 2.0 + sd.id);
+      }
+    }
+    feti.setTopology(subs, pb.ownedMap());
+    ASSERT_GT(feti.lmMap()->getGlobalNumElements(), 0u);
+    EXPECT_LE(feti.applyB(cont)->normInf(), ddc::test::kRoundoff) << "B u != 0 for a continuous field";
+    // A field jumping by the subdomain id: each row is u_s - u_t with s < t
+    // (+1 for the smaller id), so every entry is id_s - id_t < 0.
+    auto bj = feti.applyB(jump);
+    EXPECT_GT(bj->normInf(), 0.5);
+    for (double v : bj->getData()) EXPECT_LE(v, -1.0 + ddc::test::kRoundoff);
+  }
+}
+
+TEST(FetiDp, FIsSymmetricPositiveDefinite) {
+  Spec s;
+  s.Sx = 3, s.Sy = 2, s.H = 4, s.dpn = 2;
+  Problem pb(s);
+  auto params = fetiParams();
+  FetiDpSolver feti(worldComm(), params, "FETI-DP");
+  feti.setTopology(pb.subdomains(), pb.ownedMap());
+  feti.numeric();
+  auto F = feti.fOperator();
+  MultiVector x(feti.lmMap(), 2), Fx(feti.lmMap(), 2);
+  x.randomize();
+  F->apply(x, Fx);
+  const double a = x.getVector(0)->dot(*Fx.getVector(1)), b = x.getVector(1)->dot(*Fx.getVector(0));
+  EXPECT_LT(ddc::test::relDiff(a, b), 1e-10) << "(x0, F x1) vs (x1, F x0)";
+  EXPECT_GT(x.getVector(0)->dot(*Fx.getVector(0)), 0.0);
+  // alpha / beta handling of the operator: Y = 2 F x + 3 Y
+  MultiVector y(Fx, Teuchos::Copy);
+  F->apply(x, y, Teuchos::NO_TRANS, 2.0, 3.0);
+  y.update(-5.0, Fx, 1.0);
+  EXPECT_LT(y.getVector(0)->normInf(), 1e-12 * Fx.getVector(0)->normInf());
+}
+
+TEST(FetiDp, NumericReusesTopologyAfterValueUpdate) {
+  // Newton pattern: the caller rescales K's values, calls numeric() again;
+  // u must scale inversely.
+  Spec s;
+  s.Sx = 2, s.Sy = 2, s.H = 4, s.dpn = 2;
+  Problem pb(s);
+  auto params = fetiParams();
+  FetiDpSolver feti(worldComm(), params, "FETI-DP");
+  auto subs = pb.subdomains();
+  std::vector<RCP<CrsMatrix>> Ks;
+  for (auto& sd : subs) Ks.push_back(sd.K);
+  feti.setTopology(subs, pb.ownedMap());
+  feti.numeric();
+  auto b = pb.load();
+  Vector u1(pb.ownedMap()), u2(pb.ownedMap());
+  feti.solve(*b, u1);
+  for (auto& K : Ks) {
+    K->resumeFill();
+    K->scale(4.0);
+    K->fillComplete();
+  }
+  feti.numeric();
+  feti.solve(*b, u2);
+  u2.scale(4.0);
+  EXPECT_LT(relDiff(u2, u1), ddc::test::kFetiVsDirect);
+}
+
+// ---- iteration counts --------------------------------------------------------
+
+TEST(FetiDp, IterationCountsBoundedAtFixedHOverh) {
+  // Elasticity, H/h = 16, CG to 1e-8; table of Dirichlet vs lumped,
+  // multiplicity vs stiffness scaling, homogeneous and checkerboard (E 1 :
+  // 1000) coefficients.
+  struct Row {
+    std::string prec, scaling;
+    bool jump;
+    int it[2];
+  };
+  std::vector<Row> rows;
+  for (bool jump : {false, true})
+    for (const std::string prec : {"Dirichlet", "Lumped"})
+      for (const std::string scaling : {"Multiplicity", "Stiffness"}) rows.push_back(Row{prec, scaling, jump, {0, 0}});
+  const int sizes[2] = {4, 8};
+  for (auto& row : rows)
+    for (int k = 0; k < 2; ++k) {
+      Spec s;
+      s.Sx = s.Sy = sizes[k];
+      s.H = 16;
+      s.dpn = 2;
+      if (row.jump) s.coef = [](int a, int b) { return (a + b) % 2 ? 1000.0 : 1.0; };
+      const FetiRun r = runFeti(s, fetiParams(row.prec, row.scaling, "CG", ddc::test::kCountBelos), false);
+      row.it[k] = r.info.iterations;
+      if (worldRank() == 0 && !row.jump && row.prec == "Dirichlet" && row.scaling == "Multiplicity")
+        std::printf(
+            "[ feti-dp  ] %dx%d timings (s, max over ranks): setup %.3f (local factor %.3f, Dirichlet %.3f, coarse "
+            "%.3f), solve %.3f (Belos %.3f, local solves %.3f, coarse solves %.3f, preconditioner %.3f), %d F "
+            "applications\n",
+            sizes[k], sizes[k], r.info.setupSeconds, r.info.localFactorSeconds, r.info.dirichletFactorSeconds,
+            r.info.coarseFactorSeconds, r.info.solveSeconds, r.info.belosSeconds, r.info.localSolveSeconds,
+            r.info.coarseSolveSeconds, r.info.preconditionerSeconds, r.info.operatorApplications);
+    }
+  if (worldRank() == 0) {
+    std::printf("[ feti-dp  ] CG iterations to 1e-8, elasticity, H/h = 16, %d rank(s)\n", worldSize());
+    std::printf("[ feti-dp  ] %-12s %-10s %-13s %5s %5s\n", "coefficient", "precond", "scaling", "4x4", "8x8");
+    for (const auto& row : rows)
+      std::printf("[ feti-dp  ] %-12s %-10s %-13s %5d %5d\n", row.jump ? "checker 1e3" : "homogeneous",
+                  row.prec.c_str(), row.scaling.c_str(), row.it[0], row.it[1]);
+  }
+  const Row& d = rows[0];  // homogeneous, Dirichlet, multiplicity
+  EXPECT_LE(d.it[0], ddc::test::kMaxDirichletIterations);
+  EXPECT_LE(d.it[1], ddc::test::kMaxDirichletIterations);
+  EXPECT_LT(double(d.it[1] - d.it[0]) / d.it[0], ddc::test::kMaxGrowth)
+      << "Dirichlet CG iterations grew from " << d.it[0] << " (4x4) to " << d.it[1] << " (8x8)";
+}
+
+// ---- errors -------------------------------------------------------------------
+
+TEST(FetiDpErrors, UnknownBelosSolverNamesThePath) {
+  auto p = fetiParams("Dirichlet", "Multiplicity", "BiCGStab");
+  expectThrowWith<ddc::InputError>([&] { FetiDpSolver f(worldComm(), p, "Solver/FETI-DP"); },
+                                   {"Solver/FETI-DP/Belos/Solver Type", "BiCGStab", "CG"});
+}
+
+TEST(FetiDpErrors, MisspeltParametersNameThePath) {
+  {
+    Teuchos::ParameterList p;
+    p.set("Preconditoner", std::string("Dirichlet"));
+    expectThrowWith<ddc::InputError>([&] { FetiDpSolver f(worldComm(), p, "Solver/FETI-DP"); },
+                                     {"Solver/FETI-DP/Preconditoner", "Preconditioner"});
+  }
+  {
+    Teuchos::ParameterList p;
+    p.sublist("Belos").set("Maximum Iteration", 10);
+    expectThrowWith<ddc::InputError>([&] { FetiDpSolver f(worldComm(), p, "Solver/FETI-DP"); },
+                                     {"Solver/FETI-DP/Belos/Maximum Iteration"});
+  }
+  {
+    Teuchos::ParameterList p;
+    p.set("Scaling", std::string("Rho"));
+    expectThrowWith<ddc::InputError>([&] { FetiDpSolver f(worldComm(), p, "Solver/FETI-DP"); },
+                                     {"Solver/FETI-DP/Scaling", "Rho"});
+  }
+  {
+    Teuchos::ParameterList p;
+    p.sublist("Local Solver").set("Type", std::string("SuperLU"));
+    expectThrowWith<ddc::InputError>([&] { FetiDpSolver f(worldComm(), p, "Solver/FETI-DP"); },
+                                     {"Solver/FETI-DP/Local Solver/Type", "SuperLU"});
+  }
+  {
+    Teuchos::ParameterList p;
+    p.sublist("Coarse Solver").sublist("MUMPS").set("Orderin", std::string("AMD"));
+    expectThrowWith<ddc::InputError>([&] { FetiDpSolver f(worldComm(), p, "Solver/FETI-DP"); },
+                                     {"Solver/FETI-DP/Coarse Solver/MUMPS/Orderin"});
+  }
+  // Defaults are filled in and documented.
+  Teuchos::ParameterList p;
+  FetiDpSolver f(worldComm(), p, "FETI-DP");
+  EXPECT_EQ(p.get<std::string>("Preconditioner"), "Dirichlet");
+  EXPECT_EQ(p.get<std::string>("Scaling"), "Multiplicity");
+  EXPECT_EQ(p.sublist("Belos").get<std::string>("Solver Type"), "CG");
+  EXPECT_EQ(p.sublist("Belos").get<int>("Maximum Iterations"), 500);
+  EXPECT_EQ(p.sublist("Local Solver").get<std::string>("Type"), "MUMPS");
+  EXPECT_EQ(p.sublist("Coarse Solver").get<std::string>("Type"), "MUMPS");
+  for (auto it = FetiDpSolver::getValidParameters()->begin(); it != FetiDpSolver::getValidParameters()->end(); ++it)
+    EXPECT_FALSE(FetiDpSolver::getValidParameters()->entry(it).docString().empty())
+        << FetiDpSolver::getValidParameters()->name(it);
+}
+
+TEST(FetiDpErrors, SingularSubdomainNamesIt) {
+  // 2x1 without primal DOFs: subdomain 1 floats freely (its K_rr is the
+  // singular Neumann matrix). With 2 ranks it lives on rank 1, and rank 0
+  // must raise the same error.
+  for (int dpn : {1, 2}) {
+    Spec s;
+    s.Sx = 2, s.Sy = 1, s.H = 4, s.dpn = dpn, s.primal = false;
+    Problem pb(s);
+    auto params = fetiParams();
+    FetiDpSolver feti(worldComm(), params, "FETI-DP");
+    feti.setTopology(pb.subdomains(), pb.ownedMap());
+    try {
+      feti.numeric();
+      ADD_FAILURE() << "singular subdomain not detected";
+    } catch (const ddc::SolverError& e) {
+      const std::string what = e.what();
+      if (worldRank() == 0) std::printf("[ feti-dp  ] dpn %d: %s\n", dpn, what.c_str());
+      for (const std::string n : {"subdomain 1", "the corner rule could not fix this subdomain's rigid modes"})
+        EXPECT_NE(what.find(n), std::string::npos) << "'" << n << "' not in: " << what;
+    }
+  }
+}
+
+TEST(FetiDpErrors, OnePrimalNodeLeavesARotation) {
+  // Elasticity 2x1 with only the lower end (H, 0) of the interface primal:
+  // subdomain 1 keeps its rotation about that node.
+  Spec s;
+  s.Sx = 2, s.Sy = 1, s.H = 4, s.dpn = 2;
+  s.keepPrimal = [](int, int j) { return j == 0; };
+  Problem pb(s);
+  auto params = fetiParams();
+  FetiDpSolver feti(worldComm(), params, "FETI-DP");
+  feti.setTopology(pb.subdomains(), pb.ownedMap());
+  EXPECT_EQ(feti.primalMap()->getGlobalNumElements(), 2u);
+  expectThrowWith<ddc::SolverError>([&] { feti.numeric(); }, {"subdomain 1", "corner rule"});
+}
+
+TEST(FetiDpErrors, BelosNonConvergenceIsReported) {
+  Spec s;
+  s.Sx = 3, s.Sy = 3, s.H = 4, s.dpn = 2;
+  auto p = fetiParams("None");
+  p.sublist("Belos").set("Maximum Iterations", 2);
+  expectThrowWith<ddc::SolverError>([&] { runFeti(s, p, false); },
+                                    {"did not converge", "2 iterations", "FETI-DP/Belos/Maximum Iterations"});
+}
+
+TEST(FetiDpErrors, LoadOnDofInNoSubdomain) {
+  Spec s;
+  s.Sx = 2, s.Sy = 1, s.H = 2, s.extraDof = true;
+  Problem pb(s);
+  auto params = fetiParams();
+  FetiDpSolver feti(worldComm(), params, "FETI-DP");
+  feti.setTopology(pb.subdomains(), pb.ownedMap());
+  feti.numeric();
+  auto b = pb.load();
+  Vector u(pb.ownedMap());
+  feti.solve(*b, u);  // zero there: fine, and u = 0 there
+  const GO last = GO(pb.ownedMap()->getGlobalNumElements()) - 1;
+  if (pb.ownedMap()->isNodeGlobalElement(last)) {
+    EXPECT_EQ(u.getData()[pb.ownedMap()->getLocalElement(last)], 0.0);
+    b->replaceGlobalValue(last, 1.0);
+  }
+  expectThrowWith<std::invalid_argument>([&] { feti.solve(*b, u); }, {"belongs to no subdomain"});
+}
+
+TEST(FetiDpErrors, InconsistentPrimalFlagsAreRejected) {
+  Spec s;
+  s.Sx = 2, s.Sy = 1, s.H = 2;
+  Problem pb(s);
+  auto subs = pb.subdomains();
+  // Subdomain 0 marks its first shared DOF primal, subdomain 1 does not.
+  for (auto& sd : subs)
+    if (sd.id == 0)
+      for (size_t k = 0; k < sd.dofs.size(); ++k)
+        if (!sd.primal[k] && pb.nodeCount(int(sd.dofs[k] % (2 * s.H)) + 1, int(sd.dofs[k] / (2 * s.H))) == 2) {
+          sd.primal[k] = 1;
+          break;
+        }
+  auto params = fetiParams();
+  FetiDpSolver feti(worldComm(), params, "FETI-DP");
+  expectThrowWith<std::invalid_argument>([&] { feti.setTopology(subs, pb.ownedMap()); }, {"primal in 1 of the 2"});
+}
+
+}  // namespace
