@@ -93,8 +93,9 @@ Teuchos::RCP<PL> solverValidParameters() {
           "multipliers appended) solved by the Linear Solver below. FETI-DP: dual-primal domain "
           "decomposition over the partition's subdomains (the FETI-DP sublist).",
           enumValidator({"Monolithic", "FETI-DP"}, "Strategy"));
-  setSublist(*pl, "Linear Solver", *DirectSolverFactory::getValidParameters(),
-             "Solver of the monolithic system ({Type, <back-end sublists>}).");
+  setSublist(*pl, "Linear Solver", *DirectSolverFactory::withIterativeSolvers().validParameters(),
+             "Solver of the monolithic system ({Type, <back-end sublists>}): direct (MUMPS, Amesos2) or "
+             "iterative (Belos-MueLu, Belos-FROSch; elasticity without contact only).");
   setSublist(*pl, "FETI-DP", *FetiDpSolver::getValidParameters(),
              "FETI-DP options: local and coarse solvers, preconditioner, scaling, Belos.");
   return pl;
@@ -290,8 +291,12 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
   } else {
     DDC_INPUT_REQUIRE(!params.sublist("Solver").isSublist("FETI-DP"),
                       "sublist 'Solver/FETI-DP' does not apply to Solver/Strategy = Monolithic");
-    solver_ = DirectSolverFactory::withBuiltins().create(params.sublist("Solver").sublist("Linear Solver"),
-                                                         "Solver/Linear Solver");
+    solver_ = DirectSolverFactory::withIterativeSolvers().create(params.sublist("Solver").sublist("Linear Solver"),
+                                                                 "Solver/Linear Solver");
+    const std::string type = params.sublist("Solver").sublist("Linear Solver").get<std::string>("Type");
+    DDC_INPUT_REQUIRE(!contact.enabled() || type == "MUMPS" || type == "Amesos2",
+                      "Solver/Linear Solver/Type = " << type << " cannot solve the saddle-point system of contact "
+                                                     "(Lagrange multipliers): use MUMPS or Amesos2 with Contact/Pairs");
   }
 
   model_ = std::make_shared<Model>(comm_, mesh, std::move(elements), std::move(partition), std::move(bcs),
@@ -315,6 +320,17 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
   } else {
     K_ = model_->createMatrix();
     topologyVersion_ = model_->topologyVersion();
+    // Nodal coordinates per DOF (near-null space of the iterative back ends).
+    auto coords = Teuchos::rcp(new MultiVector(model_->ownedMap(), 2));
+    const auto& map = *model_->ownedMap();
+    for (int n = 0; n < mesh->numNodes(); ++n)
+      for (int c = 0; c < 2; ++c) {
+        const LO l = map.getLocalElement(model_->dof(n, c));
+        if (l == Teuchos::OrdinalTraits<LO>::invalid()) continue;
+        coords->replaceLocalValue(l, 0, mesh->coord(n)[0]);
+        coords->replaceLocalValue(l, 1, mesh->coord(n)[1]);
+      }
+    solver_->setCoordinates(coords);
   }
   params_ = params;
 }
@@ -399,12 +415,14 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
 
     r->scale(-1.0);
     lap();
+    int solveIterations = 0;
     if (feti_) {
       feti_->numeric();
       timing_.linearSetup += lap();
       const auto info = feti_->solve(*r, *du);
       timing_.linearSolve += lap();
       rec.dualIterations += info.iterations;
+      solveIterations = info.iterations;
     } else {
       if (!symbolicDone_) {
         solver_->symbolic(K_);
@@ -415,6 +433,7 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
       solver_->solve(*r, *du);
       timing_.linearSolve += lap();
       rec.dualIterations += solver_->lastIterations();
+      solveIterations = solver_->lastIterations();
     }
     ++timing_.linearSolves;
     // |du·r|: the energy norm of the correction.
@@ -439,6 +458,7 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
       char buf[200];
       std::snprintf(buf, sizeof buf, "    iter %2d  |r| = %.3e  |du.r| = %.3e", it, rnorm, energy);
       std::string line = buf;
+      if (solveIterations > 0) line += "  dual/Krylov " + std::to_string(solveIterations);
       if (contact)
         line += "  active " + std::to_string(model_->contactSummary().active) + " (" +
                 std::to_string(changed.size()) + " changed" + (pairingChanged ? ", new pairing" : "") + ")";

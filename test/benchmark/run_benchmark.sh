@@ -1,0 +1,109 @@
+#!/usr/bin/env bash
+# Performance benchmark (DESIGN.md §7): not part of ctest. Prints two
+# markdown tables:
+#  1. examples/elastic_block.xml at ~50k, 200k, 800k DOFs on RANKS ranks with
+#     every strategy: median over REPS runs of set-up (factorisation /
+#     preconditioner / FETI-DP coarse problem) and solve seconds, Krylov or
+#     dual iterations and peak memory per rank (max over ranks);
+#  2. FETI-DP dual iterations of one linear solve for 4, 16, 64 subdomains
+#     x H/h = 8, 16, 32, Dirichlet and lumped preconditioners
+#     (test/benchmark/square.xml).
+#
+#   bash test/benchmark/run_benchmark.sh [BUILD_DIR]   # default build
+# Environment: RANKS (2), REPS (3), SIZES (refinements, "10 20 40"),
+#              SUBDOMAINS (FETI-DP subdomains per size, "16 32 64"), TABLE2 (1).
+# Each elastic-block run is 1 load step = 2 Newton solves of the same
+# matrix (the second checks convergence); times are summed over both.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+B=${1:-build}
+APP="$B/src/ddcontact"
+RANKS=${RANKS:-2}
+REPS=${REPS:-3}
+read -r -a SIZES <<< "${SIZES:-10 20 40}"
+read -r -a SUBS <<< "${SUBDOMAINS:-16 32 64}"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
+OUT=$(mktemp -d)
+trap 'rm -rf "$OUT"' EXIT
+
+median() { sort -g | awk '{a[NR]=$1} END {if (NR==0) print "nan"; else if (NR%2) print a[(NR+1)/2]; else print (a[NR/2]+a[NR/2+1])/2}'; }
+
+# run_case LABEL ARGS... -> prints "setup solve iterations memory dofs" (medians) or "failed"
+run_case() {
+  local setup=() solve=() iters=() mem=() dofs=""
+  for ((r = 0; r < REPS; r++)); do
+    local log="$OUT/run.log"
+    if ! mpirun -np "$RANKS" "$APP" "$@" --output-dir "$OUT/o" > "$log" 2>&1; then
+      echo "failed"; tail -3 "$log" >&2; return
+    fi
+    dofs=$(sed -n 's/.* elements, \([0-9]*\) DOFs.*/\1/p' "$log")
+    local t
+    t=$(grep "^timing" "$log")
+    setup+=("$(sed -n 's/.*linear setup \([0-9.]*\) s.*/\1/p' <<< "$t")")
+    solve+=("$(sed -n 's/.*linear solve \([0-9.]*\) s.*/\1/p' <<< "$t")")
+    iters+=("$(sed -n 's/.*(\([0-9]*\) dual\/Krylov.*/\1/p' <<< "$t")")
+    mem+=("$(sed -n 's/.*peak memory per rank \([0-9.]*\) MiB.*/\1/p' <<< "$t")")
+  done
+  echo "$(printf '%s\n' "${setup[@]}" | median) $(printf '%s\n' "${solve[@]}" | median)" \
+       "$(printf '%s\n' "${iters[@]}" | median) $(printf '%s\n' "${mem[@]}" | median) $dofs"
+}
+
+echo "Machine: $(getconf _NPROCESSORS_ONLN) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo), $(. /etc/os-release; echo "$PRETTY_NAME"); $RANKS MPI ranks; median of $REPS runs"
+echo
+echo "| DOFs | subdomains | strategy | setup s | solve s | iterations | peak memory / rank MiB |"
+echo "| ---: | ---: | --- | ---: | ---: | ---: | ---: |"
+for i in "${!SIZES[@]}"; do
+  ref=${SIZES[$i]}
+  nsub=${SUBS[$i]:-${SUBS[-1]}}
+  base=(examples/elastic_block.xml --set "Mesh/Bodies/Block/Rectangle/Refinement=$ref" --set "Output/VTK=false"
+        --set "Output/Progress=true")
+  for strat in MUMPS Belos-MueLu Belos-FROSch FETI-DP; do
+    if [ "$strat" = FETI-DP ]; then
+      args=("${base[@]}" --set "Solver/Strategy=FETI-DP" --set "Partition/Number of Subdomains=$nsub")
+      subs=$nsub
+    else
+      args=("${base[@]}" --set "Solver/Linear Solver/Type=$strat")
+      subs=$RANKS
+    fi
+    read -r s t it m d <<< "$(run_case "${args[@]}")" || true
+    if [ "$s" = failed ]; then
+      echo "| ? | $subs | $strat | failed | | | |"
+    else
+      label=$strat
+      [ "$strat" = MUMPS ] && label="MUMPS (direct)"
+      [ "$strat" = Belos-MueLu ] && label="Belos CG + MueLu SA"
+      [ "$strat" = Belos-FROSch ] && label="Belos GMRES + FROSch GDSW"
+      [ "$strat" = FETI-DP ] && label="FETI-DP (Dirichlet, MUMPS local/coarse, CG)"
+      echo "| $d | $subs | $label | $s | $t | $it | $m |"
+    fi
+  done
+done
+
+if [ "${TABLE2:-1}" = 1 ]; then
+  echo
+  echo "FETI-DP dual iterations to relative residual 1e-8 (Belos CG), unit square, Box Grid N x N subdomains, one linear solve:"
+  echo
+  echo "| subdomains | H/h | Dirichlet | Lumped |"
+  echo "| ---: | ---: | ---: | ---: |"
+  for n in 2 4 8; do
+    for hh in 8 16 32; do
+      ref=$((n * hh / 8))
+      row="| $((n * n)) | $hh |"
+      for pre in Dirichlet Lumped; do
+        log="$OUT/it.log"
+        if mpirun -np "$RANKS" "$APP" test/benchmark/square.xml --output-dir "$OUT/it" \
+            --set "Mesh/Bodies/Square/Rectangle/Refinement=$ref" --set "Solver/Strategy=FETI-DP" \
+            --set "Partition/Method=Box Grid" --set "Partition/Box Grid X=$n" --set "Partition/Box Grid Y=$n" \
+            --set "Solver/FETI-DP/Preconditioner=$pre" --set "Solver/FETI-DP/Belos/Convergence Tolerance=1e-8" \
+            > "$log" 2>&1; then
+          # the first Newton solve (the second only confirms convergence)
+          row="$row $(sed -n 's/.*iter  0 .*dual\/Krylov \([0-9]*\).*/\1/p' "$log") |"
+        else
+          row="$row failed |"
+        fi
+      done
+      echo "$row"
+    done
+  done
+fi
