@@ -3,6 +3,9 @@
 #include <Teuchos_XMLParameterListHelpers.hpp>
 #include <sys/resource.h>
 
+#include <array>
+#include <set>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -202,6 +205,7 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
   for (const char* s : {"Load Stepping", "Newton", "Solver", "Partition", "Output"})
     validateLevel(params.sublist(s), valid->sublist(s), s);
   DDC_INPUT_REQUIRE(params.isSublist("Mesh"), "sublist 'Mesh' is required");
+  progressEnabled_ = params.sublist("Output").get<bool>("Progress");
 
   // Mesh and one element evaluator per body.
   auto mesh = buildMesh(params.sublist("Mesh"), factory_, baseDirectory);
@@ -225,6 +229,32 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
 
   auto bcs = BoundaryConditions::fromParameters(params.sublist("Boundary Conditions"), *mesh, "Boundary Conditions");
   auto contact = ContactOptions::fromParameters(params.sublist("Contact"), *mesh, "Contact");
+  // Every body that no contact pair touches must be supported by its
+  // prescribed displacements: both directions and at least two nodes (a
+  // single pinned node leaves the rotation free). Otherwise the global
+  // (and the FETI-DP coarse) matrix is singular, which MUMPS would factorise
+  // without complaint.
+  {
+    std::vector<char> inContact(mesh->numBodies(), 0);
+    for (const auto& pr : contact.pairs)
+      for (const auto& set : {pr.slaveSet, pr.masterSet})
+        inContact[mesh->bodyIndex(set.substr(0, set.find('/')))] = 1;
+    std::vector<std::set<int>> fixedNodes(mesh->numBodies());
+    std::vector<std::array<bool, 2>> fixedDir(mesh->numBodies(), {false, false});
+    for (const auto& d : bcs.displacements)
+      for (int n : mesh->nodeSet(d.setName)) {
+        int b = 0;
+        while (!(n >= mesh->body(b).firstNode && n < mesh->body(b).firstNode + mesh->body(b).numNodes)) ++b;
+        fixedNodes[b].insert(n);
+        for (int c = 0; c < 2; ++c) fixedDir[b][c] = fixedDir[b][c] || d.fix[c];
+      }
+    for (int b = 0; b < mesh->numBodies(); ++b)
+      DDC_INPUT_REQUIRE(inContact[b] || (fixedNodes[b].size() >= 2 && fixedDir[b][0] && fixedDir[b][1]),
+                        "body '" << mesh->body(b).name
+                                 << "' is not supported: its prescribed displacements (Boundary Conditions) must "
+                                    "act in both x and y and on at least two nodes to remove its rigid-body "
+                                    "motion, and no contact pair touches it");
+  }
   std::vector<std::shared_ptr<const ContactElement>> contactElements;
   if (contact.enabled()) {
     const std::vector<std::string> types = contact.decomposed
@@ -338,7 +368,7 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
 Analysis::~Analysis() = default;
 
 void Analysis::progress(const std::string& line) const {
-  if (comm_->getRank() == 0 && params_.sublist("Output").get<bool>("Progress")) {
+  if (comm_->getRank() == 0 && progressEnabled_) {
     std::cout << line << std::endl;
   }
 }

@@ -97,6 +97,7 @@ class Analysis {
   std::vector<StepRecord> history_;
   RunTiming timing_;
   bool symbolicDone_ = false;
+  bool progressEnabled_ = true;
   int topologyVersion_ = -1;
 };
 
