@@ -453,6 +453,9 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
       timing_.linearSolve += lap();
       rec.dualIterations += info.iterations;
       solveIterations = info.iterations;
+      auto& f = timing_.feti;
+      f[0] += info.localFactorSeconds, f[1] += info.coarseFactorSeconds, f[2] += info.dirichletFactorSeconds;
+      f[3] += info.localSolveSeconds, f[4] += info.coarseSolveSeconds, f[5] += info.preconditionerSeconds;
     } else {
       if (!symbolicDone_) {
         solver_->symbolic(K_);
@@ -679,6 +682,15 @@ void Analysis::run(const std::string& outputDirectory) {
                   timing_.assembly, timing_.linearSetup, timing_.linearSolve, timing_.linearSolves, dual,
                   timing_.peakMemoryMiB);
     progress(buf);
+    if (feti_) {
+      double f[6];
+      Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 6, timing_.feti.data(), f);
+      std::snprintf(buf, sizeof buf,
+                    "FETI-DP (max over ranks): local factorisation %.3f s, coarse factorisation %.3f s, Dirichlet "
+                    "factorisation %.3f s; local solves %.3f s, coarse solves %.3f s, preconditioner %.3f s",
+                    f[0], f[1], f[2], f[3], f[4], f[5]);
+      progress(buf);
+    }
   }
   if (dir) {
     hist.reset();

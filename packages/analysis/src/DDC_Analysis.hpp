@@ -11,6 +11,7 @@
 
 #include <Teuchos_Comm.hpp>
 #include <Teuchos_ParameterList.hpp>
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -48,6 +49,9 @@ struct RunTiming {
   double linearSolve = 0.0;  ///< triangular solves / Krylov iterations
   int linearSolves = 0;
   double peakMemoryMiB = 0.0;  ///< peak resident memory, max over ranks
+  /// FETI-DP breakdown (this rank): local, coarse, Dirichlet factorisation;
+  /// local solves, coarse solves, preconditioner applications.
+  std::array<double, 6> feti{{0, 0, 0, 0, 0, 0}};
 };
 
 class Analysis {
