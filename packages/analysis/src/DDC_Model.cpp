@@ -486,9 +486,7 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
       state.active = s.active;
       state.multiplier = ud[lids.back()];
       if (!s.paired()) {
-        er.energy = 0.5 * state.multiplier * state.multiplier;
-        er.residual = Eigen::VectorXd::Constant(1, state.multiplier);
-        er.tangent = Eigen::MatrixXd::Constant(1, 1, 1.0);
+        releasedContribution(1, state.multiplier, kAll, er);
         scatter(er);
         continue;
       }

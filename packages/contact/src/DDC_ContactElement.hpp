@@ -25,6 +25,22 @@ struct ContactPairState {
   Eigen::Vector2d frozenNormal = Eigen::Vector2d::Zero();
 };
 
+/// The released (inactive) contribution Π_c = ½ λ² (paper eq. 2) on an
+/// element whose multiplier is its last of `numDofs` DOFs: energy ½λ²,
+/// residual λ on the multiplier, tangent 1 there; it restrains λ to zero and
+/// does not depend on the geometry.
+inline void releasedContribution(int numDofs, double lambda, unsigned what, ElementResult& out) {
+  if (what & kEnergy) out.energy = 0.5 * lambda * lambda;
+  if (what & kResidual) {
+    out.residual.setZero(numDofs);
+    out.residual(numDofs - 1) = lambda;
+  }
+  if (what & kTangent) {
+    out.tangent.setZero(numDofs, numDofs);
+    out.tangent(numDofs - 1, numDofs - 1) = 1.0;
+  }
+}
+
 /// An element with one Lagrange multiplier. DOFs: the nodal DOFs (node-major,
 /// 2 per node) followed by the multiplier, so residual/tangent have size
 /// 2·numNodes() + 1.

@@ -65,15 +65,7 @@ void DecomposedNtsSlaveElement::computeContact(const Eigen::MatrixX2d& X, const 
   const double lam = state.multiplier;
   if (!state.active) {
     // The release term of the pair lives here only (the master's is zero).
-    if (what & kEnergy) out.energy = 0.5 * lam * lam;
-    if (what & kResidual) {
-      out.residual.setZero(kN);
-      out.residual(kLam) = lam;
-    }
-    if (what & kTangent) {
-      out.tangent.setZero(kN, kN);
-      out.tangent(kLam, kLam) = 1.0;
-    }
+    releasedContribution(kN, lam, what, out);
     return;
   }
   const Eigen::Vector2d& n = frozenUnitNormal("Decomposed NTS Slave computeContact", state);

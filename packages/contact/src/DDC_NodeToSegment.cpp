@@ -91,15 +91,7 @@ void NodeToSegmentElement::computeContact(const Eigen::MatrixX2d& X, const Eigen
   if (!state.active) {
     // Released: Π = ½ λ², independent of the geometry (no projection needed,
     // so a degenerate segment does not matter here).
-    if (what & kEnergy) out.energy = 0.5 * lam * lam;
-    if (what & kResidual) {
-      out.residual.setZero(kN);
-      out.residual(kLam) = lam;
-    }
-    if (what & kTangent) {
-      out.tangent.setZero(kN, kN);
-      out.tangent(kLam, kLam) = 1.0;
-    }
+    releasedContribution(kN, lam, what, out);
     return;
   }
 
