@@ -18,7 +18,7 @@ for n in 20 100; do
     --set "Load Stepping/Number of Steps=$n" --set "Output/VTK=false" > "$out/nts$n.log" 2>&1 || { cat "$out/nts$n.log"; exit 1; }
   end=$(date +%s.%N)
   printf "monolithic NTS, %3d steps, 2 ranks: %.2f s wall (history.csv wall_seconds of the last step: %s)\n" \
-    "$n" "$(echo "$end - $start" | bc)" "$(tail -1 "$out/nts$n/history.csv" | cut -d, -f10)"
+    "$n" "$(awk -v a="$start" -v b="$end" 'BEGIN {print b - a}')" "$(tail -1 "$out/nts$n/history.csv" | cut -d, -f10)"
 done
 gnuplot <<GP
 set datafile separator ","
