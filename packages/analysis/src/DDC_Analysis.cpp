@@ -410,28 +410,20 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
       tick = now;
       return dt;
     };
-    if (feti_) {
-      // FETI-DP: residual and the subdomain stiffness matrices in one pass.
-      try {
-        model_->assemble(*u, lambda1, nullptr, r.get(), nullptr, it == 0 ? dp.get() : nullptr, &sink_);
-      } catch (const InadmissibleDeformation& e) {
-        rec.failure = std::string("Newton iteration ") + std::to_string(it) + ": " + e.what();
-        progress("    " + rec.failure);
-        return false;
-      }
-    } else if (model_->topologyVersion() != topologyVersion_) {
-      K_ = model_->createMatrix();
+    if (!feti_ && model_->topologyVersion() != topologyVersion_) {
+      K_ = model_->createMatrix();  // the contact pairing changed the pattern
       topologyVersion_ = model_->topologyVersion();
       symbolicDone_ = false;
     }
-    if (!feti_) {
-      try {
-        model_->assemble(*u, lambda1, nullptr, r.get(), K_.get(), it == 0 ? dp.get() : nullptr);
-      } catch (const InadmissibleDeformation& e) {
-        rec.failure = std::string("Newton iteration ") + std::to_string(it) + ": " + e.what();
-        progress("    " + rec.failure);
-        return false;
-      }
+    // One element pass: the residual and either the global tangent
+    // (Monolithic) or the subdomain stiffness matrices (FETI-DP).
+    try {
+      model_->assemble(*u, lambda1, nullptr, r.get(), feti_ ? nullptr : K_.get(), it == 0 ? dp.get() : nullptr,
+                       feti_ ? &sink_ : nullptr);
+    } catch (const InadmissibleDeformation& e) {
+      rec.failure = std::string("Newton iteration ") + std::to_string(it) + ": " + e.what();
+      progress("    " + rec.failure);
+      return false;
     }
     timing_.assembly += lap();
     const double rnorm = r->norm2();

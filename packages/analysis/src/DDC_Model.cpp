@@ -374,9 +374,15 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
     rov = Teuchos::rcp(new Vector(overlapMap_));
     rd = rov->getDataNonConst();
   }
-  Teuchos::RCP<CrsMatrix> Kov;
+  // The overlap matrix is kept between calls (same graph until the topology
+  // changes): refill it instead of allocating its values every iteration.
+  CrsMatrix* Kov = nullptr;
   if (K) {
-    Kov = Teuchos::rcp(new CrsMatrix(overlapGraph_));
+    if (overlapMatrix_.is_null() || overlapMatrix_->getCrsGraph() != overlapGraph_)
+      overlapMatrix_ = Teuchos::rcp(new CrsMatrix(overlapGraph_));
+    else
+      overlapMatrix_->resumeFill();
+    Kov = overlapMatrix_.get();
     Kov->setAllToScalar(0.0);
   }
   unsigned what = kEnergy;
@@ -428,6 +434,8 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
   ElementResult er;
   Eigen::MatrixX2d X, ue;
   std::vector<GO> dofs;
+  std::vector<LO> cols;  // subdomain scatter buffers, reused across elements
+  std::vector<double> vals;
   for (int e : localElements_) {
     const int nn = mesh.elementNumNodes(e);
     const int* en = mesh.elementNodes(e);
@@ -456,8 +464,6 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
       const auto [sysIndex, pos] = subdomains->where[e];
       auto& sys = (*subdomains->systems)[sysIndex];
       const auto& l = sys.elementLocal[pos];
-      std::vector<LO> cols;
-      std::vector<double> vals;
       for (size_t a = 0; a < l.size(); ++a) {
         if (l[a] < 0) continue;
         cols.clear();

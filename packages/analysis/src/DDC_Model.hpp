@@ -176,6 +176,7 @@ class Model {
   std::vector<std::pair<int, int>> constraintSource_;
   Teuchos::RCP<const Map> ownedMap_, overlapMap_;
   Teuchos::RCP<const CrsGraph> ownedGraph_, overlapGraph_;
+  mutable Teuchos::RCP<CrsMatrix> overlapMatrix_;  ///< assembly buffer on overlapGraph_, reused
   Teuchos::RCP<const Tpetra::Export<LO, GO, Node>> exporter_;
   Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> importer_;
   Teuchos::RCP<Vector> fext_;
