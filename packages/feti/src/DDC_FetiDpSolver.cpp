@@ -192,6 +192,14 @@ struct FetiDpSolver::Impl {
     LO dof;
     double coef;
     double scaled;
+    bool extra;  ///< a row from setConstraintRows() (not a compatibility row)
+  };
+
+  /// A constraint entry before the LM maps exist: LM row by its GID in lmMap.
+  struct GidEntry {
+    GO lm;
+    LO dof;
+    double coef;
   };
 
   struct Sub {
@@ -225,7 +233,10 @@ struct FetiDpSolver::Impl {
     std::vector<double> Phi;        // nr x np, column-major
     std::vector<double> S;          // np x np, column-major
 
-    std::vector<BEntry> B;
+    std::vector<BEntry> B;            // all rows (LIDs in lmOvMap), sorted by (lm, dof)
+    std::vector<GidEntry> compatB;    // compatibility rows (GIDs), from setTopology()
+    std::vector<GidEntry> extraB;     // rows from setConstraintRows() (GIDs)
+    std::vector<char> constrainable;  // per local DOF: extra rows may touch it
 
     // work
     RCP<MultiVector> rB, rX, iB, iX;
@@ -259,6 +270,15 @@ struct FetiDpSolver::Impl {
   RCP<const Map> lmMap, lmOvMap;
   RCP<Import> lmImport;
   RCP<Export> lmExport;
+  // compatibility rows: GIDs [0, nCompat), this rank's [compatOffset, compatOffset + nCompatOwned)
+  GO nCompat = 0, compatOffset = 0, nCompatOwned = 0;
+  // extra rows (setConstraintRows): GIDs nCompat + extraOffset + (LID in extraRowMap)
+  RCP<const Map> extraRowMap;
+  GO extraOffset = 0;
+  RCP<Vector> mask;        // on lmMap: 1 = row in the problem, 0 = restrained to zero (null: all rows)
+  RCP<Vector> rhs;         // c on lmMap (B u = c); zero on compatibility rows
+  RCP<Vector> rowEntries;  // number of entries of each row (on lmMap)
+  RCP<Vector> lastLambda;  // multipliers of the last solve() (on lmMap)
   RCP<const Map> primalMap, coarseMap, coarseOvMap;
   RCP<Import> coarseImport;
   RCP<Export> coarseExport;
@@ -283,6 +303,8 @@ struct FetiDpSolver::Impl {
 
   void buildTopology(std::vector<FetiSubdomain> local, RCP<const Map> owned);
   void buildConstraints();
+  void finalizeLm();
+  void applyMask(Vector& v) const;
   void buildCoarse();
   void buildBlocks(Sub& s);
   void refreshBlocks(Sub& s);
@@ -358,6 +380,8 @@ class MOperator : public Operator {
 void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<const Map> owned) {
   haveTopology = analysed = factored = false;
   subs.clear();
+  extraRowMap = Teuchos::null;
+  extraOffset = 0;
   if (owned.is_null()) throw std::invalid_argument("FetiDpSolver::setTopology: null owned DOF map");
   ownedMap = owned;
 
@@ -371,9 +395,14 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
     s.n = static_cast<LO>(in.dofs.size());
     s.dofs = std::move(in.dofs);
     s.primal = std::move(in.primal);
+    s.constrainable = std::move(in.constrainable);
+    if (s.constrainable.empty()) s.constrainable.assign(s.dofs.size(), 0);
     s.K = in.K;
     if (s.primal.size() != s.dofs.size()) {
       err << "subdomain " << s.id << ": " << s.primal.size() << " primal flags for " << s.dofs.size() << " DOFs";
+    } else if (s.constrainable.size() != s.dofs.size()) {
+      err << "subdomain " << s.id << ": " << s.constrainable.size() << " constrainable flags for " << s.dofs.size()
+          << " DOFs";
     } else if (s.K.is_null() || !s.K->isFillComplete()) {
       err << "subdomain " << s.id << ": K must be a fill-complete CrsMatrix";
     } else if (s.K->getRowMap()->getGlobalNumElements() != s.dofs.size() ||
@@ -497,7 +526,9 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
     s.iR.clear();
     s.nd = 0;
     for (LO r = 0; r < s.nr; ++r) {
-      if (ovMult[s.ovLid[s.rDof[r]]] >= 2) {
+      // Dual: shared with another subdomain, or touched by extra rows (so
+      // that the Dirichlet preconditioner sees those rows too).
+      if (ovMult[s.ovLid[s.rDof[r]]] >= 2 || s.constrainable[s.rDof[r]]) {
         s.dIdx[r] = s.nd++;
       } else {
         s.iIdx[r] = LO(s.iR.size());
@@ -546,7 +577,7 @@ void FetiDpSolver::Impl::buildConstraints() {
     for (size_t ls = 0; ls < subs.size(); ++ls) {
       const Sub& s = subs[ls];
       for (LO r = 0; r < s.nr; ++r)
-        if (s.dIdx[r] != kNone) {
+        if (s.dIdx[r] != kNone && s.invMult[s.rDof[r]] < 1.0) {
           gids.push_back(s.dofs[s.rDof[r]]);
           who.emplace_back(int(ls), s.rDof[r]);
         }
@@ -588,24 +619,62 @@ void FetiDpSolver::Impl::buildConstraints() {
       }
     a = b;
   }
-  lmMap = rcp(new Map(kInvalidSize, static_cast<size_t>(nRows), 0, comm));
-  DDC_ASSERT(nRows == 0 || lmMap->getMinGlobalIndex() == offset, "LM numbering differs from Tpetra's");
+  nCompat = sumAll(mpi, nRows);
+  compatOffset = offset;
+  nCompatOwned = nRows;
 
   std::vector<LmRecord> entries = exchangeRecords(mpi, reply);
+  for (Sub& s : subs) s.compatB.clear();
+  for (const auto& e : entries) subs[e.localSub].compatB.push_back(GidEntry{e.lm, e.dof, e.coef});
+  finalizeLm();
+}
+
+/// The LM maps from the compatibility rows and the extra rows: lmMap owns
+/// this rank's compatibility rows and its extra rows (those of its part of
+/// extraRowMap); lmOvMap has every row this rank's subdomains touch. Also
+/// the per-subdomain B (LIDs), the work vectors, the mask (all rows in) and
+/// the row entry counts.
+void FetiDpSolver::Impl::finalizeLm() {
+  std::vector<GO> owned;
+  for (GO k = 0; k < nCompatOwned; ++k) owned.push_back(compatOffset + k);
+  const GO nExtraOwned = extraRowMap.is_null() ? 0 : GO(extraRowMap->getNodeNumElements());
+  for (GO k = 0; k < nExtraOwned; ++k) owned.push_back(nCompat + extraOffset + k);
+  lmMap = makeMap(owned, 0, comm);
   std::vector<GO> lmGids;
-  for (const auto& e : entries) lmGids.push_back(e.lm);
+  for (const Sub& s : subs) {
+    for (const auto& e : s.compatB) lmGids.push_back(e.lm);
+    for (const auto& e : s.extraB) lmGids.push_back(e.lm);
+  }
   std::sort(lmGids.begin(), lmGids.end());
   lmGids.erase(std::unique(lmGids.begin(), lmGids.end()), lmGids.end());
   lmOvMap = makeMap(lmGids, 0, comm);
   lmImport = rcp(new Import(lmMap, lmOvMap));
   lmExport = rcp(new Export(lmOvMap, lmMap));
-  for (Sub& s : subs) s.B.clear();
-  for (const auto& e : entries)
-    subs[e.localSub].B.push_back(BEntry{lmOvMap->getLocalElement(e.lm), e.dof, e.coef, e.coef});
-  // Deterministic order within a subdomain (by LM, then DOF).
-  for (Sub& s : subs)
+  for (Sub& s : subs) {
+    s.B.clear();
+    for (const auto& e : s.compatB) s.B.push_back(BEntry{lmOvMap->getLocalElement(e.lm), e.dof, e.coef, e.coef, false});
+    for (const auto& e : s.extraB) s.B.push_back(BEntry{lmOvMap->getLocalElement(e.lm), e.dof, e.coef, e.coef, true});
+    // Deterministic order within a subdomain (by LM, then DOF).
     std::sort(s.B.begin(), s.B.end(),
               [](const BEntry& a, const BEntry& b) { return a.lm != b.lm ? a.lm < b.lm : a.dof < b.dof; });
+  }
+  lmOvWork = rcp(new Vector(lmOvMap));
+  lmWork = rcp(new Vector(lmMap));
+  rhs = rcp(new Vector(lmMap));
+  lastLambda = rcp(new Vector(lmMap));
+  mask = Teuchos::null;
+  Vector countOv(lmOvMap);
+  {
+    auto c = countOv.getDataNonConst();
+    for (const Sub& s : subs)
+      for (const BEntry& e : s.B) c[e.lm] += 1.0;
+  }
+  rowEntries = rcp(new Vector(lmMap));
+  rowEntries->doExport(countOv, *lmExport, Tpetra::ADD);
+}
+
+void FetiDpSolver::Impl::applyMask(Vector& v) const {
+  if (!mask.is_null()) v.elementWiseMultiply(1.0, *mask, v, 0.0);
 }
 
 /// Primal map (GIDs = DOF ids, owned by the DOF's owner), the contiguous
@@ -901,7 +970,8 @@ void FetiDpSolver::Impl::computeScaling() {
     for (const Sub& s : subs) {
       for (LO r = 0; r < s.nr; ++r)
         if (s.dIdx[r] != kNone) w[s.ovLid[s.rDof[r]]] += weight(s, s.rDof[r]);
-      for (const BEntry& e : s.B) rs[e.lm] += weight(s, e.dof);
+      for (const BEntry& e : s.B)
+        if (!e.extra) rs[e.lm] += weight(s, e.dof);
     }
   }
   wOwned.doExport(wOv, *dofExport, Tpetra::ADD);
@@ -912,6 +982,12 @@ void FetiDpSolver::Impl::computeScaling() {
   auto rs = rowOv.getData();
   for (Sub& s : subs)
     for (BEntry& e : s.B) {
+      if (e.extra) {
+        // An extra (contact) row joins two sides (slave and master), like a
+        // compatibility row between two copies: weight 1/2 on each side.
+        e.scaled = 0.5 * e.coef;
+        continue;
+      }
       const double sum = w[s.ovLid[e.dof]];
       const double other = rs[e.lm] - weight(s, e.dof);
       // A zero diagonal (degenerate input) falls back to multiplicity.
@@ -1016,21 +1092,33 @@ void FetiDpSolver::Impl::gatherB(Vector& y) {
   y.doExport(*lmOvWork, *lmExport, Tpetra::ADD);
 }
 
+/// y = P F P x, P = the mask (restrained rows out).
 void FetiDpSolver::Impl::applyF(const Vector& x, Vector& y) {
   for (Sub& s : subs) {
     std::fill(s.fr.begin(), s.fr.end(), 0.0);
     std::fill(s.fp.begin(), s.fp.end(), 0.0);
   }
-  scatterBt(x, 1.0);
+  if (mask.is_null()) {
+    scatterBt(x, 1.0);
+  } else {
+    lmWork->elementWiseMultiply(1.0, *mask, x, 0.0);
+    scatterBt(*lmWork, 1.0);
+  }
   applyKtildeInv(nullptr);
   gatherB(y);
+  applyMask(y);
 }
 
 /// M^{-1} x = sum_s B_D^s S^s B_D^sT x, S^s = K_DD - K_DI K_II^{-1} K_ID
 /// (Dirichlet) or K_DD (lumped). Primal DOFs count as fixed, so entries of
 /// B on primal DOFs do not enter.
 void FetiDpSolver::Impl::applyM(const Vector& x, Vector& y) {
-  lmOvWork->doImport(x, *lmImport, Tpetra::INSERT);
+  if (mask.is_null()) {
+    lmOvWork->doImport(x, *lmImport, Tpetra::INSERT);
+  } else {
+    lmWork->elementWiseMultiply(1.0, *mask, x, 0.0);
+    lmOvWork->doImport(*lmWork, *lmImport, Tpetra::INSERT);
+  }
   std::vector<double> yOv(lmOvMap->getNodeNumElements(), 0.0);
   {
     auto l = lmOvWork->getData();
@@ -1061,6 +1149,7 @@ void FetiDpSolver::Impl::applyM(const Vector& x, Vector& y) {
   }
   y.putScalar(0.0);
   y.doExport(*lmOvWork, *lmExport, Tpetra::ADD);
+  applyMask(y);
 }
 
 // ---------------------------------------------------------------------------
@@ -1268,6 +1357,9 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
   auto lambda = rcp(new MultiVector(m.lmMap, 1));
   m.applyKtildeInv(&fPi);
   m.gatherB(*d->getVectorNonConst(0));
+  // d = P (B K~^{-1} f~ - c)
+  d->getVectorNonConst(0)->update(-1.0, *m.rhs, 1.0);
+  m.applyMask(*d->getVectorNonConst(0));
 
   double dNorm = 0.0;
   {
@@ -1315,6 +1407,9 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
   }
   const double tb1 = MPI_Wtime();
 
+  m.applyMask(*lambda->getVectorNonConst(0));  // restrained rows: exactly zero
+  m.lastLambda->assign(*lambda->getVector(0));
+
   // u = K~^{-1} (f~ - B^T lambda)
   for (size_t ls = 0; ls < m.subs.size(); ++ls) {
     auto& s = m.subs[ls];
@@ -1352,6 +1447,97 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
   info.operatorApplications = m.nApplyF;
   info.preconditionerApplications = m.nApplyM;
   return info;
+}
+
+void FetiDpSolver::setConstraintRows(Teuchos::RCP<const Map> rowMap,
+                                     const std::vector<std::vector<ConstraintEntry>>& entries) {
+  Impl& m = *impl_;
+  if (!m.haveTopology) throw std::logic_error("FetiDpSolver::setConstraintRows() called before setTopology()");
+  std::string msg;
+  if (rowMap.is_null() || rowMap->getComm()->getSize() != m.size || !rowMap->isOneToOne())
+    msg = "FetiDpSolver::setConstraintRows: the row map must be a one-to-one map on the solver's communicator";
+  else if (entries.size() != m.subs.size())
+    msg = "FetiDpSolver::setConstraintRows: one entry list per local subdomain (" + std::to_string(m.subs.size()) +
+          "), got " + std::to_string(entries.size());
+  for (size_t ls = 0; ls < entries.size() && msg.empty(); ++ls)
+    for (const auto& e : entries[ls])
+      if (e.dof < 0 || e.dof >= m.subs[ls].n || !std::isfinite(e.coef)) {
+        std::ostringstream os;
+        os << "FetiDpSolver::setConstraintRows: subdomain " << m.subs[ls].id << ": entry (row " << e.row << ", DOF "
+           << e.dof << ", coefficient " << e.coef << ") has a local DOF outside 0.." << m.subs[ls].n - 1
+           << " or a non-finite coefficient";
+        msg = os.str();
+        break;
+      }
+  raiseCollectively<std::invalid_argument>(m.mpi, msg);
+
+  // Extra row GIDs: nCompat + (rows of lower ranks) + LID in rowMap.
+  long long mine = static_cast<long long>(rowMap->getNodeNumElements());
+  std::vector<long long> counts(m.size), offsets(m.size, 0);
+  MPI_Allgather(&mine, 1, MPI_LONG_LONG, counts.data(), 1, MPI_LONG_LONG, m.mpi);
+  for (int r = 1; r < m.size; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::vector<GO> rows;
+  for (const auto& list : entries)
+    for (const auto& e : list) rows.push_back(e.row);
+  std::vector<int> pids;
+  std::vector<LO> lids;
+  owners(*rowMap, rows, pids, lids);
+  size_t k = 0;
+  for (size_t ls = 0; ls < entries.size(); ++ls) {
+    auto& s = m.subs[ls];
+    s.extraB.clear();
+    for (size_t i = 0; i < entries[ls].size(); ++i, ++k) {
+      const ConstraintEntry& e = entries[ls][i];
+      if (pids[k] < 0) {
+        if (msg.empty()) msg = "FetiDpSolver::setConstraintRows: row " + std::to_string(e.row) + " (subdomain " +
+                               std::to_string(s.id) + ") is not in the row map";
+        continue;
+      }
+      s.extraB.push_back(Impl::GidEntry{m.nCompat + offsets[pids[k]] + lids[k], e.dof, e.coef});
+    }
+  }
+  raiseCollectively<std::invalid_argument>(m.mpi, msg);
+  m.extraRowMap = rowMap;
+  m.extraOffset = offsets[m.rank];
+  m.finalizeLm();
+  m.factored = false;  // the scaling of B_D is recomputed by numeric()
+}
+
+void FetiDpSolver::setConstraintState(const std::vector<char>& active, const std::vector<double>& rhs) {
+  Impl& m = *impl_;
+  const size_t n = m.extraRowMap.is_null() ? 0 : m.extraRowMap->getNodeNumElements();
+  std::string msg;
+  if (active.size() != n || rhs.size() != n)
+    msg = "FetiDpSolver::setConstraintState: one active flag and one right-hand side per owned row of the row map (" +
+          std::to_string(n) + ")";
+  raiseCollectively<std::invalid_argument>(m.mpi, msg);
+  if (n == 0 && m.extraRowMap.is_null()) return;
+  m.mask = rcp(new Vector(m.lmMap));
+  m.mask->putScalar(1.0);
+  m.rhs->putScalar(0.0);
+  auto mk = m.mask->getDataNonConst();
+  auto c = m.rhs->getDataNonConst();
+  auto cnt = m.rowEntries->getData();
+  for (size_t k = 0; k < n; ++k) {
+    const size_t l = size_t(m.nCompatOwned) + k;
+    mk[l] = active[k] ? 1.0 : 0.0;
+    c[l] = active[k] ? rhs[k] : 0.0;
+    if (active[k] && cnt[l] == 0.0 && msg.empty())
+      msg = "FETI-DP: constraint row " + std::to_string(m.extraRowMap->getGlobalElement(LO(k))) +
+            " is active but has no entry on a free DOF of any subdomain (all its DOFs are prescribed), so it "
+            "cannot be enforced";
+  }
+  raiseCollectively<SolverError>(m.mpi, msg);
+}
+
+Teuchos::RCP<const Vector> FetiDpSolver::constraintMultipliers() const {
+  const Impl& m = *impl_;
+  if (m.extraRowMap.is_null()) return Teuchos::null;
+  auto out = rcp(new Vector(m.extraRowMap));
+  auto o = out->getDataNonConst();
+  auto l = m.lastLambda->getData();
+  for (size_t k = 0; k < o.size(); ++k) o[k] = l[size_t(m.nCompatOwned) + k];
+  return out;
 }
 
 const FetiDpSolver::Info& FetiDpSolver::setupInfo() const { return impl_->setup; }

@@ -50,6 +50,21 @@ struct FetiSubdomain {
   /// updates its values before each numeric(); the sparsity pattern must stay
   /// the one seen by setTopology().
   Teuchos::RCP<CrsMatrix> K;
+  /// Optional (empty = none), per local DOF: 1 = rows from
+  /// FetiDpSolver::setConstraintRows() may touch this DOF (e.g. the DOFs of
+  /// contact surface nodes). Such DOFs count as dual interface DOFs in the
+  /// Dirichlet preconditioner, so that it sees those rows; entries on other
+  /// DOFs are exact in F but ignored by the preconditioner.
+  std::vector<char> constrainable;
+};
+
+/// One entry of an extra constraint row (FetiDpSolver::setConstraintRows()):
+/// coefficient `coef` of local DOF `dof` of one subdomain in the row with
+/// global id `row` (a GID of the caller's row map).
+struct ConstraintEntry {
+  GO row;
+  LO dof;
+  double coef;
 };
 
 /// FETI-DP solver for K u = b, K = sum_s R_s^T K^s R_s (the globally
@@ -64,10 +79,16 @@ struct FetiSubdomain {
 ///    by m subdomains gets m(m-1)/2 rows. In 2-D with all cross points primal
 ///    every non-primal interface DOF has m = 2, so this equals the
 ///    non-redundant choice;
-///  - internally a constraint row is a general list of (subdomain, local
-///    DOF, coefficient) entries on remainder and/or primal DOFs; the
-///    operators below apply both parts, so extra rows (contact) can touch
-///    primal DOFs.
+///  - extra rows B_c u = c (e.g. contact; setConstraintRows()): general
+///    lists of (subdomain, local DOF, coefficient) entries on remainder
+///    and/or primal DOFs, with a right-hand side c and an active mask
+///    (setConstraintState()). An inactive row's multiplier is restrained
+///    to zero: F, d and the preconditioner are masked, F -> P F P,
+///    d -> P (B K~^{-1} f~ - c), M^{-1} -> P M^{-1} P. This class does not
+///    decide which rows are active (an inequality is the caller's active
+///    set), nor what the rows mean (DESIGN.md §3). With extra rows the
+///    problem is the saddle point K u + B_c^T mu = b, B_c u = c (active
+///    rows; mu = 0 on the others), mu from constraintMultipliers().
 ///
 /// K~^{-1} f~ with precomputed Phi^s = K_rr^{-1} K_rPi (r = remainder = not
 /// primal):  x_r = K_rr^{-1} f_r;  g_Pi = f_Pi - sum_s R_Pi^T K_Pir x_r;
@@ -165,6 +186,34 @@ class FetiDpSolver {
   /// \throws SolverError if Belos does not converge (message: iterations,
   ///         achieved residual, tolerance, the parameter paths to change).
   Info solve(const Vector& b, Vector& u);
+
+  /// Collective. Replace the extra constraint rows (e.g. the contact rows of
+  /// one load step). Call after setTopology(); numeric() must follow (the
+  /// scaling of the rows in the preconditioner is computed there). The LM
+  /// map is rebuilt: compatibility rows, then this rank's extra rows.
+  /// \param rowMap one-to-one distributed map of the rows (any GIDs); a row
+  ///        is owned by the rank that sets its state and reads its
+  ///        multiplier. The rows of this rank are rowMap's local elements.
+  /// \param entries per local subdomain (same order as in setTopology()):
+  ///        the entries of that subdomain's part of the rows. A row may have
+  ///        entries in any subdomains on any ranks (a slave and a master
+  ///        counterpart in different subdomains); a DOF shared by several
+  ///        subdomains needs its entry in one of them only.
+  /// \throws std::invalid_argument (every rank) for a row not in rowMap, a
+  ///         local DOF out of range or a non-finite coefficient.
+  void setConstraintRows(Teuchos::RCP<const Map> rowMap, const std::vector<std::vector<ConstraintEntry>>& entries);
+
+  /// Collective. Active flags and right-hand sides c of this rank's extra
+  /// rows (one per local element of the row map, in LID order) for the next
+  /// solve()s. Inactive rows are restrained to zero. Default after
+  /// setConstraintRows(): every row active with c = 0.
+  /// \throws SolverError (every rank) if an active row has no entry on any
+  ///         subdomain DOF (it cannot be enforced).
+  void setConstraintState(const std::vector<char>& active, const std::vector<double>& rhs);
+
+  /// Multipliers of the extra rows from the last solve() (on the row map;
+  /// exactly 0 for inactive rows); null without extra rows.
+  Teuchos::RCP<const Vector> constraintMultipliers() const;
 
   /// Timings of the last numeric() (setup fields of Info only).
   const Info& setupInfo() const;

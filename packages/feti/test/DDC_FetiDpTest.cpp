@@ -12,6 +12,7 @@
 
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Tpetra_Core.hpp>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -505,6 +506,201 @@ TEST(FetiDp, NumericReusesTopologyAfterValueUpdate) {
   feti.solve(*b, u2);
   u2.scale(4.0);
   EXPECT_LT(relDiff(u2, u1), ddc::test::kFetiVsDirect);
+}
+
+// ---- extra (contact) constraint rows ------------------------------------------
+
+/// Extra rows sum_k coef_k u(node_k, comp_k) = c across subdomains, some on
+/// primal and dual interface DOFs, one inactive (multiplier restrained to 0).
+struct ExtraRow {
+  std::vector<std::array<int, 3>> at;  // (i, j, component)
+  std::vector<double> coef;
+  double c;
+  bool active;
+};
+
+std::vector<ExtraRow> extraRows() {
+  return {
+      {{{2, 3, 0}, {6, 5, 0}}, {1.0, -1.0}, 0.1, true},     // interior of subdomain 0 vs interior of 3
+      {{{4, 4, 1}, {7, 1, 1}}, {0.6, 0.8}, -0.2, true},     // primal cross point vs subdomain 1
+      {{{3, 7, 0}, {5, 2, 1}}, {1.0, -1.0}, 0.3, false},    // released: multiplier restrained to zero
+      {{{4, 2, 0}, {1, 8, 1}, {2, 8, 1}}, {1.0, -0.5, -0.5}, 0.0, true},  // dual interface DOF vs an edge
+  };
+}
+
+TEST(FetiDp, ExtraRowsMatchTheSaddlePointSolve) {
+  // K u + B_c^T mu = b, B_c u = c on the active rows, mu = 0 on the
+  // inactive one: FETI-DP with setConstraintRows()/setConstraintState()
+  // against MUMPS on the assembled saddle-point matrix.
+  Spec s;
+  s.Sx = 2, s.Sy = 2, s.H = 4, s.dpn = 2;
+  Problem pb(s);
+  const auto rows = extraRows();
+  const int P = worldSize(), me = worldRank();
+  const GO n = GO(pb.ownedMap()->getGlobalNumElements());
+  // Rows owned round-robin; row GIDs 100 + r (any one-to-one map will do).
+  std::vector<GO> mine;
+  for (size_t r = 0; r < rows.size(); ++r)
+    if (int(r) % P == me) mine.push_back(100 + GO(r));
+  auto rowMap = rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                            Teuchos::ArrayView<const GO>(mine), 0, worldComm()));
+  auto subs = pb.subdomains();
+  // Each entry goes to the lowest-id subdomain containing its node.
+  auto firstSub = [&](int i, int j) {
+    for (int b = 0; b < s.Sy; ++b)
+      for (int a = 0; a < s.Sx; ++a)
+        if (a * s.H <= i && i <= (a + 1) * s.H && b * s.H <= j && j <= (b + 1) * s.H) return a + s.Sx * b;
+    return -1;
+  };
+  std::vector<std::vector<ddc::ConstraintEntry>> entries(subs.size());
+  for (size_t r = 0; r < rows.size(); ++r)
+    for (size_t k = 0; k < rows[r].at.size(); ++k) {
+      const auto [i, j, c] = rows[r].at[k];
+      for (size_t ls = 0; ls < subs.size(); ++ls) {
+        if (subs[ls].id != firstSub(i, j)) continue;
+        const auto it = std::find(subs[ls].dofs.begin(), subs[ls].dofs.end(), pb.dof(i, j, c));
+        ASSERT_NE(it, subs[ls].dofs.end());
+        entries[ls].push_back({100 + GO(r), LO(it - subs[ls].dofs.begin()), rows[r].coef[k]});
+      }
+    }
+  // The DOFs of the row entries are "constrainable" (Dirichlet preconditioner sees them).
+  for (size_t ls = 0; ls < subs.size(); ++ls) {
+    subs[ls].constrainable.assign(subs[ls].dofs.size(), 0);
+    for (const auto& e : entries[ls]) subs[ls].constrainable[e.dof] = 1;
+  }
+  auto params = fetiParams();
+  FetiDpSolver feti(worldComm(), params, "FETI-DP");
+  feti.setTopology(subs, pb.ownedMap());
+  feti.setConstraintRows(rowMap, entries);
+  std::vector<char> active;
+  std::vector<double> c;
+  for (GO g : mine) active.push_back(rows[g - 100].active), c.push_back(rows[g - 100].c);
+  feti.setConstraintState(active, c);
+  feti.numeric();
+  auto b = pb.load();
+  Vector u(pb.ownedMap());
+  const auto info = feti.solve(*b, u);
+  auto mu = feti.constraintMultipliers();
+  ASSERT_FALSE(mu.is_null());
+
+  // Reference: [K B^T; B 0] (identity row for the inactive multiplier).
+  const GO N = n + GO(rows.size());
+  auto bigMap = rcp(new Map(N, 0, worldComm()));
+  auto A = rcp(new CrsMatrix(bigMap, 24));
+  auto K = pb.globalK();
+  CrsMatrix::local_inds_host_view_type inds;
+  CrsMatrix::values_host_view_type vals;
+  for (LO l = 0; l < LO(K->getNodeNumRows()); ++l) {
+    K->getLocalRowView(l, inds, vals);
+    std::vector<GO> cols;
+    std::vector<double> v;
+    for (size_t e = 0; e < inds.extent(0); ++e) cols.push_back(K->getColMap()->getGlobalElement(inds(e))), v.push_back(vals(e));
+    A->insertGlobalValues(K->getRowMap()->getGlobalElement(l), Teuchos::ArrayView<const GO>(cols),
+                          Teuchos::ArrayView<const double>(v));
+  }
+  auto bigB = rcp(new Vector(bigMap));
+  if (me == 0)
+    for (size_t r = 0; r < rows.size(); ++r) {
+      const GO row = n + GO(r);
+      if (!rows[r].active) {
+        const double one = 1.0;
+        A->insertGlobalValues(row, 1, &one, &row);
+        continue;
+      }
+      for (size_t k = 0; k < rows[r].at.size(); ++k) {
+        const auto [i, j, cc] = rows[r].at[k];
+        const GO d = pb.dof(i, j, cc);
+        const double v = rows[r].coef[k];
+        A->insertGlobalValues(row, 1, &v, &d);
+        A->insertGlobalValues(d, 1, &v, &row);
+      }
+    }
+  A->fillComplete();
+  {
+    // b on the saddle-point map (a different distribution): moved by an Export.
+    Tpetra::Export<LO, GO, ddc::Node> toBig(pb.ownedMap(), bigMap);
+    bigB->doExport(*b, toBig, Tpetra::INSERT);
+    for (size_t r = 0; r < rows.size(); ++r)
+      if (bigMap->isNodeGlobalElement(n + GO(r))) bigB->replaceGlobalValue(n + GO(r), rows[r].active ? rows[r].c : 0.0);
+  }
+  Teuchos::ParameterList dp;
+  dp.set("Type", std::string("MUMPS"));
+  auto direct = ddc::DirectSolverFactory::withBuiltins().create(dp, "Reference");
+  direct->symbolic(A);
+  direct->numeric();
+  Vector x(bigMap);
+  direct->solve(*bigB, x);
+  // The reference on every rank (replicated map) to compare with the owned u and mu.
+  std::vector<GO> every(N);
+  for (GO k = 0; k < N; ++k) every[k] = k;
+  auto allMap = rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                            Teuchos::ArrayView<const GO>(every), 0, worldComm()));
+  Tpetra::Import<LO, GO, ddc::Node> toAll(bigMap, allMap);
+  Vector xAll(toAll.getTargetMap());
+  xAll.doImport(x, toAll, Tpetra::INSERT);
+  auto xa = xAll.getData();
+  double du = 0.0, un = 0.0;
+  {
+    auto uv = u.getData();
+    for (LO l = 0; l < LO(uv.size()); ++l) {
+      const GO g = pb.ownedMap()->getGlobalElement(l);
+      du = std::max(du, std::abs(uv[l] - xa[g]));
+      un = std::max(un, std::abs(xa[g]));
+    }
+  }
+  double dm = 0.0, mn = 0.0;
+  {
+    auto m = mu->getData();
+    for (size_t k = 0; k < mine.size(); ++k) {
+      const GO r = mine[k] - 100;
+      dm = std::max(dm, std::abs(m[k] - xa[n + r]));
+      mn = std::max(mn, std::abs(xa[n + r]));
+      if (!rows[r].active) EXPECT_EQ(m[k], 0.0) << "released row " << r << " multiplier must be exactly zero";
+    }
+  }
+  double g[4] = {du, un, dm, mn}, G[4];
+  MPI_Allreduce(g, G, 4, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  if (me == 0)
+    std::printf("[ feti-dp  ] extra rows: it %d, max |u - u_ref| / max|u_ref| %.2e, multipliers %.2e\n",
+                info.iterations, G[0] / G[1], G[2] / G[3]);
+  EXPECT_GT(G[3], 0.0) << "the reference multipliers vanish: the rows do nothing";
+  EXPECT_LT(G[0] / G[1], ddc::test::kFetiVsDirect);
+  EXPECT_LT(G[2] / G[3], ddc::test::kFetiVsDirect);
+  // The active rows hold: B_c u = c.
+  for (size_t r = 0; r < rows.size(); ++r) {
+    if (!rows[r].active) continue;
+    double v = 0.0;
+    for (size_t k = 0; k < rows[r].at.size(); ++k) {
+      const auto [i, j, cc] = rows[r].at[k];
+      v += rows[r].coef[k] * xa[pb.dof(i, j, cc)];
+    }
+    EXPECT_NEAR(v, rows[r].c, 1e-10) << "reference row " << r;
+  }
+}
+
+TEST(FetiDp, ExtraRowErrorsAreCollective) {
+  Spec s;
+  s.Sx = 2, s.Sy = 1, s.H = 2, s.dpn = 1;
+  Problem pb(s);
+  auto params = fetiParams();
+  FetiDpSolver feti(worldComm(), params, "FETI-DP");
+  auto subs = pb.subdomains();
+  const size_t nLocal = subs.size();
+  feti.setTopology(subs, pb.ownedMap());
+  auto rowMap = rcp(new Map(1, 0, worldComm()));
+  // A row GID not in the row map.
+  std::vector<std::vector<ddc::ConstraintEntry>> bad(nLocal);
+  if (nLocal) bad[0].push_back({7, 0, 1.0});
+  expectThrowWith<std::invalid_argument>([&] { feti.setConstraintRows(rowMap, bad); }, {"row 7", "not in the row map"});
+  // A local DOF out of range.
+  std::vector<std::vector<ddc::ConstraintEntry>> range(nLocal);
+  if (nLocal) range[0].push_back({0, 100000, 1.0});
+  expectThrowWith<std::invalid_argument>([&] { feti.setConstraintRows(rowMap, range); }, {"local DOF outside"});
+  // An active row without entries cannot be enforced.
+  feti.setConstraintRows(rowMap, std::vector<std::vector<ddc::ConstraintEntry>>(nLocal));
+  const size_t owned = rowMap->getNodeNumElements();
+  expectThrowWith<ddc::SolverError>([&] { feti.setConstraintState(std::vector<char>(owned, 1), std::vector<double>(owned, 1.0)); },
+                  {"constraint row 0", "no entry"});
 }
 
 // ---- iteration counts --------------------------------------------------------
