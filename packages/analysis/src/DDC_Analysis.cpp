@@ -312,9 +312,11 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
 
   const bool feti = params.sublist("Solver").get<std::string>("Strategy") == "FETI-DP";
   if (feti) {
-    DDC_INPUT_REQUIRE(!contact.enabled(),
-                      "Solver/Strategy = FETI-DP with contact pairs (Contact/Pairs) is not available yet: use "
-                      "Solver/Strategy = Monolithic for contact");
+    DDC_INPUT_REQUIRE(!contact.enabled() || contact.decomposed,
+                      "Solver/Strategy = FETI-DP with Contact/Formulation = Node-To-Segment: the conventional "
+                      "element couples the slave and master DOFs directly (its projection and normal follow both "
+                      "sides), so it cannot be split across subdomains; use Contact/Formulation = Decomposed "
+                      "Node-To-Segment with FETI-DP, or Solver/Strategy = Monolithic");
     DDC_INPUT_REQUIRE(!params.sublist("Solver").isSublist("Linear Solver"),
                       "sublist 'Solver/Linear Solver' does not apply to Solver/Strategy = FETI-DP (its local and "
                       "coarse solvers are set in 'Solver/FETI-DP')");
@@ -343,7 +345,23 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
     for (size_t i = 0; i < subdomains_.size(); ++i) {
       for (size_t j = 0; j < subdomains_[i].elements.size(); ++j)
         sink_.where[subdomains_[i].elements[j]] = {static_cast<int>(i), static_cast<int>(j)};
-      fs.push_back({subdomains_[i].id, subdomains_[i].dofs, subdomains_[i].primal, subdomains_[i].K});
+      fs.push_back({subdomains_[i].id, subdomains_[i].dofs, subdomains_[i].primal, subdomains_[i].K, {}});
+      if (model_->hasContact()) {
+        // Contact rows may touch the DOFs of contact-surface nodes: the
+        // Dirichlet preconditioner treats them as interface DOFs.
+        auto& flags = fs.back().constrainable;
+        flags.assign(subdomains_[i].dofs.size(), 0);
+        for (int e : subdomains_[i].elements)
+          for (int a = 0; a < mesh->elementNumNodes(e); ++a) {
+            const int node = mesh->elementNodes(e)[a];
+            if (!model_->isContactSurfaceNode(node)) continue;
+            for (int c = 0; c < 2; ++c) {
+              const auto& d = subdomains_[i].dofs;
+              const auto it = std::lower_bound(d.begin(), d.end(), model_->dof(node, c));
+              if (it != d.end() && *it == model_->dof(node, c)) flags[it - d.begin()] = 1;
+            }
+          }
+      }
     }
     feti_ = std::make_unique<FetiDpSolver>(comm_, params.sublist("Solver").sublist("FETI-DP"), "Solver/FETI-DP");
     feti_->setTopology(std::move(fs), model_->ownedMap());
@@ -402,6 +420,19 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
     return a;
   };
   if (contact) seen.push_back(activeSet());
+  // FETI-DP: the contact rows of this (sub)step, from the projections and
+  // normals frozen at the last converged state. They stay fixed during the
+  // Newton iterations; only their active flags and right-hand sides change.
+  std::vector<LO> lmLids;  // owned multiplier DOFs (LIDs in the owned map), in row-map order
+  if (feti_ && contact) {
+    const auto entries = model_->contactRowEntries(subdomains_);
+    std::vector<std::vector<ConstraintEntry>> rows(entries.size());
+    for (size_t i = 0; i < entries.size(); ++i)
+      for (const auto& [row, dof, coef] : entries[i]) rows[i].push_back({row, LO(dof), coef});
+    feti_->setConstraintRows(model_->multiplierMap(), rows);
+    for (int k : model_->ownedSlots()) lmLids.push_back(model_->ownedMap()->getLocalElement(model_->multiplierDof(k)));
+  }
+  auto b = feti_ && contact ? model_->createVector() : Teuchos::null;
   for (int it = 0; it < maxIt; ++it) {
     auto tick = std::chrono::steady_clock::now();
     auto lap = [&tick] {
@@ -439,9 +470,37 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
     lap();
     int solveIterations = 0;
     if (feti_) {
+      if (contact) {
+        // Contact rows: active flag per slot, c = -(residual of the
+        // multiplier row) = -g_N (with the predictor's share of the
+        // prescribed increment in the first iteration). The multipliers are
+        // not subdomain DOFs: b is 0 there.
+        std::vector<char> active;
+        std::vector<double> c;
+        b->assign(*r);
+        auto bv = b->getDataNonConst();
+        for (size_t i = 0; i < lmLids.size(); ++i) {
+          const auto& sl = model_->contactSlots()[model_->ownedSlots()[i]];
+          active.push_back(sl.active && sl.paired());
+          c.push_back(bv[lmLids[i]]);
+          bv[lmLids[i]] = 0.0;
+        }
+        feti_->setConstraintState(active, c);
+      }
       feti_->numeric();
       timing_.linearSetup += lap();
-      const auto info = feti_->solve(*r, *du);
+      const auto info = feti_->solve(contact ? *b : *r, *du);
+      if (contact) {
+        // Multiplier increments: from FETI-DP on active rows; a released
+        // multiplier goes to zero (its row of -r is -λ).
+        auto mu = feti_->constraintMultipliers()->getData();
+        auto dv = du->getDataNonConst();
+        auto rv = r->getData();
+        for (size_t i = 0; i < lmLids.size(); ++i) {
+          const auto& sl = model_->contactSlots()[model_->ownedSlots()[i]];
+          dv[lmLids[i]] = sl.active && sl.paired() ? mu[i] : rv[lmLids[i]];
+        }
+      }
       timing_.linearSolve += lap();
       rec.dualIterations += info.iterations;
       solveIterations = info.iterations;

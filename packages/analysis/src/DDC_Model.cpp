@@ -61,6 +61,8 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
         tributary[seg.nodes[0]] += half;
         tributary[seg.nodes[1]] += half;
       }
+      pairMasterElements_.emplace_back();
+      for (const Segment& seg : mesh_->sideSet(def.masterSet)) pairMasterElements_.back().push_back(seg.element);
       pairSlots_.emplace_back();
       for (int n : slaves) {
         isSurface[n] = 1;
@@ -95,8 +97,16 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
     bytesPerExchange_ = total * static_cast<long>(sizeof(double));
     surfaceIndex_.assign(mesh_->numNodes(), -1);
     for (size_t i = 0; i < surfaceNodes_.size(); ++i) surfaceIndex_[surfaceNodes_[i]] = static_cast<int>(i);
+    std::vector<GO> ownedLm;
     for (size_t k = 0; k < slots_.size(); ++k)
-      if (slotOwner(static_cast<int>(k)) == comm_->getRank()) localSlots_.push_back(static_cast<int>(k));
+      if (slotOwner(static_cast<int>(k)) == comm_->getRank()) {
+        localSlots_.push_back(static_cast<int>(k));
+        ownedLm.push_back(lmDof_[k]);
+      }
+    multiplierMap_ = Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                          Teuchos::ArrayView<const GO>(ownedLm), 0, comm_));
+    multiplierAllMap_ = Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                             Teuchos::ArrayView<const GO>(lmDof_), 0, comm_));
     // Initial pairing in the reference configuration.
     auto zero = createVector();
     updatePairing(*zero, /*global=*/true, /*freeze=*/true);
@@ -182,7 +192,47 @@ void Model::slotDofs(int k, std::vector<GO>& dofs) const {
   dofs.push_back(lmDof_[k]);
 }
 
+void Model::slaveSideDofs(int k, std::vector<GO>& dofs) const {
+  const ContactSlot& s = slots_[k];
+  dofs.assign({dof(s.slaveNode, 0), dof(s.slaveNode, 1), lmDof_[k]});
+}
+
+void Model::masterSideDofs(int k, std::vector<GO>& dofs) const {
+  const ContactSlot& s = slots_[k];
+  dofs.assign({dof(s.master[0], 0), dof(s.master[0], 1), dof(s.master[1], 0), dof(s.master[1], 1), lmDof_[k]});
+}
+
+void Model::evaluateCounterpart(int k, bool master, const Teuchos::ArrayRCP<const double>& ud, bool forceActive,
+                                unsigned what, ElementResult& er, std::vector<LO>& lids) const {
+  const ContactSlot& s = slots_[k];
+  std::vector<GO> dofs;
+  master ? masterSideDofs(k, dofs) : slaveSideDofs(k, dofs);
+  lids.resize(dofs.size());
+  for (size_t a = 0; a < dofs.size(); ++a) lids[a] = overlapMap_->getLocalElement(dofs[a]);
+  ContactPairState state = s.state;
+  state.active = s.active || forceActive;
+  state.multiplier = ud[lids.back()];
+  const int nn = master ? 2 : 1;
+  const int nodes[2] = {master ? s.master[0] : s.slaveNode, s.master[1]};
+  Eigen::MatrixX2d X(nn, 2), ue(nn, 2);
+  for (int i = 0; i < nn; ++i)
+    for (int c = 0; c < 2; ++c) {
+      X(i, c) = mesh_->coord(nodes[i])[c];
+      ue(i, c) = ud[lids[2 * i + c]];
+    }
+  (master ? masterElement_ : slaveElement_)->computeContact(X, ue, state, what, er);
+}
+
 void Model::buildTopology() {
+  // Decomposed contact: the master counterpart of a slot lives on the rank
+  // of its master segment's element.
+  localMasterSlots_.clear();
+  if (contact_.decomposed)
+    for (size_t k = 0; k < slots_.size(); ++k)
+      if (slots_[k].paired() &&
+          subdomainRank_[partition_.elementSubdomain[slots_[k].masterElement]] == comm_->getRank())
+        localMasterSlots_.push_back(static_cast<int>(k));
+
   const Mesh& mesh = *mesh_;
   const int me = comm_->getRank();
   const GO first = ownedMap_->getMinGlobalIndex();
@@ -231,7 +281,11 @@ void Model::buildTopology() {
     addGhosts(dofs);
   }
   for (int k : localSlots_) {
-    slotDofs(k, dofs);
+    contact_.decomposed && slots_[k].paired() ? slaveSideDofs(k, dofs) : slotDofs(k, dofs);
+    addGhosts(dofs);
+  }
+  for (int k : localMasterSlots_) {
+    masterSideDofs(k, dofs);
     addGhosts(dofs);
   }
   std::sort(ghosts.begin(), ghosts.end());
@@ -259,7 +313,11 @@ void Model::buildTopology() {
     addLocal(dofs);
   }
   for (int k : localSlots_) {
-    slotDofs(k, dofs);
+    contact_.decomposed && slots_[k].paired() ? slaveSideDofs(k, dofs) : slotDofs(k, dofs);
+    addLocal(dofs);
+  }
+  for (int k : localMasterSlots_) {
+    masterSideDofs(k, dofs);
     addLocal(dofs);
   }
   Teuchos::Array<size_t> ovnnz(numOv);
@@ -481,8 +539,27 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
   if (subdomains)
     for (auto& sys : *subdomains->systems) sys.K->fillComplete(sys.K->getDomainMap(), sys.K->getRangeMap());
 
+  // Decomposed contact: each counterpart where it lives (the slave's on the
+  // owner of the slave node, the master's on the rank of the master
+  // segment's element); they share only the multiplier DOF.
+  if (failedElement < 0 && contact_.decomposed) {
+    for (int k : localSlots_) {
+      if (!slots_[k].paired()) {
+        lids.assign(1, overlapMap_->getLocalElement(lmDof_[k]));
+        releasedContribution(1, ud[lids[0]], kAll, er);
+        scatter(er);
+        continue;
+      }
+      evaluateCounterpart(k, false, ud, false, what | kTangent, er, lids);
+      scatter(er);
+    }
+    for (int k : localMasterSlots_) {
+      evaluateCounterpart(k, true, ud, false, what | kTangent, er, lids);
+      scatter(er);
+    }
+  }
   // Contact slots owned here. Unpaired slots carry only Π = ½λ² (λ = 0).
-  if (failedElement < 0)
+  if (failedElement < 0 && !contact_.decomposed)
     for (int k : localSlots_) {
       const ContactSlot& s = slots_[k];
       slotDofs(k, dofs);
@@ -504,27 +581,7 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
           X(i, c) = mesh.coord(nodes[i])[c];
           ue(i, c) = ud[lids[2 * i + c]];
         }
-      if (ntsElement_) {
-        ntsElement_->computeContact(X, ue, state, what | kTangent, er);
-      } else {
-        // The two counterparts of the decomposed element, summed on the
-        // pair's DOFs [u_s, u_1, u_2, λ]; in FETI-DP they live apart.
-        ElementResult es, em;
-        slaveElement_->computeContact(X.topRows(1), ue.topRows(1), state, what | kTangent, es);
-        masterElement_->computeContact(X.bottomRows(2), ue.bottomRows(2), state, what | kTangent, em);
-        er.energy = es.energy + em.energy;
-        er.residual = Eigen::VectorXd::Zero(7);
-        er.tangent = Eigen::MatrixXd::Zero(7, 7);
-        const int smap[3] = {0, 1, 6}, mmap[5] = {2, 3, 4, 5, 6};
-        for (int a = 0; a < 3; ++a) {
-          er.residual[smap[a]] += es.residual[a];
-          for (int b = 0; b < 3; ++b) er.tangent(smap[a], smap[b]) += es.tangent(a, b);
-        }
-        for (int a = 0; a < 5; ++a) {
-          er.residual[mmap[a]] += em.residual[a];
-          for (int b = 0; b < 5; ++b) er.tangent(mmap[a], mmap[b]) += em.tangent(a, b);
-        }
-      }
+      ntsElement_->computeContact(X, ue, state, what | kTangent, er);
       scatter(er);
     }
 
@@ -573,6 +630,8 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
 void Model::gatherSurface(const Vector& u, std::vector<double>& values) const {
   Vector s(surfaceMap_);
   s.doImport(u, *surfaceImporter_, Tpetra::INSERT);
+  ++exchanges_;
+  bytesExchanged_ += bytesPerExchange_;
   auto d = s.getData();
   values.assign(d.begin(), d.end());
 }
@@ -586,8 +645,6 @@ Eigen::Vector2d Model::currentPosition(int node, const std::vector<double>& v) c
 bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
   std::vector<double> v;
   gatherSurface(u, v);
-  ++exchanges_;
-  bytesExchanged_ += bytesPerExchange_;
   bool changed = false;
   for (size_t p = 0; p < searches_.size(); ++p) {
     ContactSearch& search = *searches_[p];
@@ -629,6 +686,7 @@ bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
       if (m0 != s.master[0] || m1 != s.master[1]) changed = true;
       s.master[0] = m0;
       s.master[1] = m1;
+      s.masterElement = m0 >= 0 ? pairMasterElements_[p][c.segment] : -1;
       if (m0 < 0) {
         s.active = false;
         s.gap = 0.0;
@@ -644,6 +702,46 @@ bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
   }
   if (changed && ownedGraph_.get()) buildTopology();
   return changed;
+}
+
+std::vector<std::vector<std::tuple<GO, int, double>>> Model::contactRowEntries(
+    const std::vector<SubdomainSystem>& systems) const {
+  std::vector<std::vector<std::tuple<GO, int, double>>> out(systems.size());
+  auto localIndex = [&](const SubdomainSystem& sys, GO g) {
+    const auto it = std::lower_bound(sys.dofs.begin(), sys.dofs.end(), g);
+    return it != sys.dofs.end() && *it == g ? int(it - sys.dofs.begin()) : -1;
+  };
+  // Zero state: the coefficients do not depend on it (frozen geometry).
+  Vector zero(overlapMap_);
+  auto ud = zero.getData();
+  ElementResult er;
+  std::vector<LO> lids;
+  std::vector<GO> dofs;
+  auto add = [&](size_t sys, int k, bool master) {
+    evaluateCounterpart(k, master, ud, true, kTangent, er, lids);
+    master ? masterSideDofs(k, dofs) : slaveSideDofs(k, dofs);
+    const int row = int(dofs.size()) - 1;
+    for (int a = 0; a < row; ++a) {
+      const int l = localIndex(systems[sys], dofs[a]);
+      if (l >= 0 && er.tangent(row, a) != 0.0) out[sys].emplace_back(lmDof_[k], l, er.tangent(row, a));
+    }
+  };
+  for (int k : localSlots_) {
+    if (!slots_[k].paired()) continue;
+    // The first (lowest-id) local subdomain having the slave node.
+    for (size_t i = 0; i < systems.size(); ++i)
+      if (localIndex(systems[i], dof(slots_[k].slaveNode, 0)) >= 0 ||
+          localIndex(systems[i], dof(slots_[k].slaveNode, 1)) >= 0) {
+        add(i, k, false);
+        break;
+      }
+  }
+  for (int k : localMasterSlots_) {
+    const int sub = partition_.elementSubdomain[slots_[k].masterElement];
+    for (size_t i = 0; i < systems.size(); ++i)
+      if (systems[i].id == sub) add(i, k, true);
+  }
+  return out;
 }
 
 std::array<long, 3> Model::searchCounters() const {
@@ -669,23 +767,77 @@ void Model::refreshSlotGeometry(const std::vector<double>& v) {
     const Eigen::Vector2d xs = currentPosition(s.slaveNode, v);
     const Eigen::Vector2d x1 = currentPosition(s.master[0], v);
     const Eigen::Vector2d x2 = currentPosition(s.master[1], v);
-    if (contact_.decomposed) {
-      // Frozen gap (paper eq. 1): n^p·(x_s − (1−ξ^p) x1 − ξ^p x2).
-      const double xi = s.state.frozenXi;
-      s.normal = s.state.frozenNormal;
-      s.gap = s.normal.dot(xs - (1.0 - xi) * x1 - xi * x2);
-    } else {
-      const Eigen::Vector2d t = x2 - x1;
-      s.normal = Eigen::Vector2d(t.y(), -t.x()) / t.norm();
-      s.gap = s.normal.dot(xs - x1);
+    const Eigen::Vector2d t = x2 - x1;
+    s.normal = Eigen::Vector2d(t.y(), -t.x()) / t.norm();
+    s.gap = s.normal.dot(xs - x1);
+  }
+}
+
+void Model::assembleFrozenGaps(const Vector& u) {
+  // Partial gaps of the counterparts at the multiplier DOFs, summed on the
+  // multiplier map (Export ADD), then (g_N, λ) of every slot to every rank.
+  Vector ov(overlapMap_);
+  {
+    auto uov = toOverlap(u);
+    auto ud = uov->getData();
+    auto g = ov.getDataNonConst();
+    ElementResult er;
+    std::vector<LO> lids;
+    for (int k : localSlots_)
+      if (slots_[k].paired()) {
+        evaluateCounterpart(k, false, ud, true, kResidual, er, lids);
+        g[lids.back()] += er.residual[er.residual.size() - 1];
+      }
+    for (int k : localMasterSlots_) {
+      evaluateCounterpart(k, true, ud, true, kResidual, er, lids);
+      g[lids.back()] += er.residual[er.residual.size() - 1];
     }
+  }
+  // Only the multiplier entries travel: Export from the overlap multiplier
+  // DOFs to their owners.
+  std::vector<GO> lmOv;
+  for (int k : localSlots_) lmOv.push_back(lmDof_[k]);
+  for (int k : localMasterSlots_) lmOv.push_back(lmDof_[k]);
+  std::sort(lmOv.begin(), lmOv.end());
+  lmOv.erase(std::unique(lmOv.begin(), lmOv.end()), lmOv.end());
+  auto lmOvMap = Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                      Teuchos::ArrayView<const GO>(lmOv), 0, comm_));
+  Vector gOv(lmOvMap), gOwned(multiplierMap_);
+  {
+    auto src = ov.getData();
+    auto dst = gOv.getDataNonConst();
+    for (size_t i = 0; i < lmOv.size(); ++i) dst[i] = src[overlapMap_->getLocalElement(lmOv[i])];
+  }
+  gOwned.doExport(gOv, Tpetra::Export<LO, GO, Node>(lmOvMap, multiplierMap_), Tpetra::ADD);
+  MultiVector owned(multiplierMap_, 2), all(multiplierAllMap_, 2);
+  {
+    auto g = gOwned.getData();
+    auto ud = u.getData();
+    for (size_t i = 0; i < localSlots_.size(); ++i) {
+      owned.replaceLocalValue(LO(i), 0, g[i]);
+      owned.replaceLocalValue(LO(i), 1, ud[ownedMap_->getLocalElement(lmDof_[localSlots_[i]])]);
+    }
+  }
+  all.doImport(owned, Tpetra::Import<LO, GO, Node>(multiplierMap_, multiplierAllMap_), Tpetra::INSERT);
+  auto g = all.getData(0), lam = all.getData(1);
+  for (size_t k = 0; k < slots_.size(); ++k) {
+    ContactSlot& s = slots_[k];
+    const LO l = multiplierAllMap_->getLocalElement(lmDof_[k]);
+    s.state.multiplier = lam[l];
+    if (!s.paired()) continue;
+    s.normal = s.state.frozenNormal;
+    s.gap = g[l];
   }
 }
 
 std::vector<int> Model::updateActiveSet(const Vector& u) {
-  std::vector<double> v;
-  gatherSurface(u, v);
-  refreshSlotGeometry(v);
+  if (contact_.decomposed) {
+    assembleFrozenGaps(u);
+  } else {
+    std::vector<double> v;
+    gatherSurface(u, v);
+    refreshSlotGeometry(v);
+  }
   // Tension threshold: λ > 0 up to round-off of the largest multiplier.
   double lmax = 0.0;
   for (const auto& s : slots_) lmax = std::max(lmax, std::abs(s.state.multiplier));

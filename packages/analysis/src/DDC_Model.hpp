@@ -8,6 +8,7 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "DDC_BoundaryConditions.hpp"
@@ -42,6 +43,7 @@ struct ContactSlot {
   int pair = 0;
   int slaveNode = -1;
   int master[2] = {-1, -1};  ///< master segment nodes; -1: not paired
+  int masterElement = -1;    ///< the element whose side the master segment is (-1: not paired)
   bool active = false;
   ContactPairState state;    ///< multiplier, frozen ξ^p / n^p
   double gap = 0.0;          ///< g_N at the last update
@@ -131,14 +133,38 @@ class Model {
   /// Update gaps and multipliers from u, then apply the active-set rules:
   /// release an active slot in tension (λ > 0), activate an inactive paired
   /// slot with g_N < -tol. Returns the slots whose state changed.
+  /// Conventional NTS: gaps from the gathered surface positions (a geometry
+  /// exchange). Decomposed: the frozen gap is assembled on the multiplier
+  /// map from the partial gaps of the slave and master counterparts,
+  /// evaluated where they live; only multiplier-map values (gap, λ per
+  /// slot) move between ranks, no geometry.
   std::vector<int> updateActiveSet(const Vector& u);
+  /// Decomposed contact in FETI-DP: the constraint row of every contact slot
+  /// (row id = the slot's multiplier DOF), split into the entries of the
+  /// subdomains on this rank: the slave counterpart's coefficients in a
+  /// subdomain having the slave node, the master counterpart's in the
+  /// subdomain of the master segment's element. Prescribed DOFs have no
+  /// entry (their part of the gap is in the residual). Coefficients are the
+  /// multiplier row of each counterpart's tangent, so any registered
+  /// counterpart pair works.
+  std::vector<std::vector<std::tuple<GO, int, double>>> contactRowEntries(
+      const std::vector<SubdomainSystem>& systems) const;
+  /// This rank's multiplier DOFs (one per slot whose slave node it owns), in
+  /// slot order; a one-to-one map.
+  Teuchos::RCP<const Map> multiplierMap() const { return multiplierMap_; }
+  /// Slots whose multiplier this rank owns, in the order of multiplierMap().
+  const std::vector<int>& ownedSlots() const { return localSlots_; }
+  /// 1 for nodes on a contact surface (slave or master).
+  bool isContactSurfaceNode(int n) const { return !surfaceIndex_.empty() && surfaceIndex_[n] >= 0; }
   ContactSummary contactSummary() const;
   /// Restore slots saved before a failed increment (pairing and state);
   /// rebuilds the topology if the pairing differs.
   void restoreContactState(const std::vector<ContactSlot>& saved);
   /// "pair 'P' slave node n at (x, y)" for messages.
   std::string describeSlot(int k) const;
-  /// Geometry exchanges (updatePairing calls) since construction; search counters.
+  /// Contact-geometry exchanges (gathers of surface positions: every pairing
+  /// update, and for conventional NTS every active-set update) since
+  /// construction; search counters.
   long exchanges() const { return exchanges_; }
   /// Search work summed over the pairs: {tracking queries, tracking fallbacks, global queries}.
   std::array<long, 3> searchCounters() const;
@@ -152,11 +178,19 @@ class Model {
   /// DOF lists of one element / contact slot (global ids).
   void elementDofs(int e, std::vector<GO>& dofs) const;
   void slotDofs(int k, std::vector<GO>& dofs) const;
+  /// Decomposed: DOFs of the slave counterpart [u_s, λ] / master counterpart [u_1, u_2, λ].
+  void slaveSideDofs(int k, std::vector<GO>& dofs) const;
+  void masterSideDofs(int k, std::vector<GO>& dofs) const;
+  /// Decomposed: evaluate one counterpart of slot k at the overlap state `ud`.
+  void evaluateCounterpart(int k, bool master, const Teuchos::ArrayRCP<const double>& ud, bool forceActive,
+                           unsigned what, ElementResult& er, std::vector<LO>& lids) const;
   int slotOwner(int k) const { return nodeOwner_[slots_[k].slaveNode]; }
   /// Gather surface displacements and multipliers to every rank.
   void gatherSurface(const Vector& u, std::vector<double>& values) const;
   Eigen::Vector2d currentPosition(int node, const std::vector<double>& surfaceValues) const;
   void refreshSlotGeometry(const std::vector<double>& surfaceValues);
+  /// Decomposed: g_N and λ of every slot from the counterparts (see updateActiveSet()).
+  void assembleFrozenGaps(const Vector& u);
 
   Teuchos::RCP<const Teuchos::Comm<int>> comm_;
   std::shared_ptr<const Mesh> mesh_;
@@ -190,8 +224,13 @@ class Model {
   std::vector<int> surfaceIndex_;                          ///< node -> index in surfaceNodes_ or -1
   Teuchos::RCP<const Map> surfaceMap_;                     ///< replicated: surface DOFs + multipliers
   Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> surfaceImporter_;
-  std::vector<int> localSlots_;
-  long exchanges_ = 0, bytesExchanged_ = 0, bytesPerExchange_ = 0;
+  std::vector<int> localSlots_;        ///< slots whose slave node (and multiplier) this rank owns
+  std::vector<int> localMasterSlots_;  ///< decomposed: paired slots whose master element is on this rank
+  std::vector<std::vector<int>> pairMasterElements_;  ///< per pair: element of each master segment
+  Teuchos::RCP<const Map> multiplierMap_;             ///< owned multiplier DOFs
+  Teuchos::RCP<const Map> multiplierAllMap_;          ///< every slot's multiplier DOF, on every rank
+  mutable long exchanges_ = 0, bytesExchanged_ = 0;
+  long bytesPerExchange_ = 0;
 };
 
 }  // namespace ddc
