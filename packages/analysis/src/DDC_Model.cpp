@@ -12,6 +12,7 @@
 #include "DDC_ContactSearch.hpp"
 #include "DDC_DecomposedNodeToSegment.hpp"
 #include "DDC_Error.hpp"
+#include "DDC_MpiRecords.hpp"
 #include "DDC_Substructuring.hpp"
 
 namespace ddc {
@@ -73,6 +74,17 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
         pairSlots_.back().push_back(static_cast<int>(slots_.size()));
         slots_.push_back(s);
       }
+      // Margin of the bounding-box exchange: the search radius plus two
+      // master segments (a slave's segment and its neighbours), with room
+      // for stretching (x 2).
+      double longest = 0.0;
+      for (int g = 0; g < master.numSegments(); ++g) {
+        const auto& a = mesh_->coord(master.segment(g)[0]);
+        const auto& b = mesh_->coord(master.segment(g)[1]);
+        longest = std::max(longest, std::hypot(b[0] - a[0], b[1] - a[1]));
+      }
+      pairingMargin_ = std::max(pairingMargin_, contact_.searchRadius + 4.0 * longest);
+      for (int n : master.nodes()) masterSurfaceNodes_.push_back(n);
       searches_.push_back(std::make_unique<ContactSearch>(std::move(master), slaves, contact_.searchRadius));
     }
     for (int n = 0; n < mesh_->numNodes(); ++n)
@@ -642,22 +654,154 @@ Eigen::Vector2d Model::currentPosition(int node, const std::vector<double>& v) c
   return {mesh_->coord(node)[0] + v[2 * i], mesh_->coord(node)[1] + v[2 * i + 1]};
 }
 
+namespace {
+/// A surface node's current position, sent to the ranks whose slave bounding box contains it.
+struct NodePosition {
+  int node;
+  double x, y;
+};
+/// The pairing of one slot, found by the owner of its slave node.
+struct SlotPairing {
+  int slot, segment, pastFreeEnd, viaCorner;
+  double xi, gap, distance, nx, ny;
+};
+}  // namespace
+
+void Model::distributedSearch(const Vector& u, std::vector<std::vector<ContactCandidate>>& cands,
+                              std::vector<std::vector<char>>& pastFreeEnd) {
+  const MPI_Comm mpi = rawComm(comm_);
+  const int me = comm_->getRank(), P = comm_->getSize();
+  auto ud = u.getData();
+  auto ownedPosition = [&](int n) {
+    const LO l = ownedMap_->getLocalElement(dof(n, 0));
+    return Eigen::Vector2d(mesh_->coord(n)[0] + ud[l], mesh_->coord(n)[1] + ud[l + 1]);
+  };
+  // 1. Bounding box of this rank's slave nodes, inflated by a margin that
+  //    covers every master segment (and its neighbours) a slave can pair with.
+  double box[4] = {1e300, 1e300, -1e300, -1e300};
+  for (int k : localSlots_) {
+    const Eigen::Vector2d x = ownedPosition(slots_[k].slaveNode);
+    box[0] = std::min(box[0], x.x()), box[1] = std::min(box[1], x.y());
+    box[2] = std::max(box[2], x.x()), box[3] = std::max(box[3], x.y());
+  }
+  std::vector<double> boxes(4 * P);
+  MPI_Allgather(box, 4, MPI_DOUBLE, boxes.data(), 4, MPI_DOUBLE, mpi);
+  // 2. Each rank sends the current positions of the master-surface nodes it
+  //    owns to the ranks whose inflated box contains them.
+  std::vector<std::vector<NodePosition>> send(P);
+  for (int n : masterSurfaceNodes_) {
+    if (nodeOwner_[n] != me) continue;
+    const Eigen::Vector2d x = ownedPosition(n);
+    for (int r = 0; r < P; ++r) {
+      const double* b = &boxes[4 * r];
+      if (x.x() >= b[0] - pairingMargin_ && x.x() <= b[2] + pairingMargin_ && x.y() >= b[1] - pairingMargin_ &&
+          x.y() <= b[3] + pairingMargin_)
+        send[r].push_back({n, x.x(), x.y()});
+    }
+  }
+  long bytes = 0;
+  for (int r = 0; r < P; ++r)
+    if (r != me) bytes += long(send[r].size() * sizeof(NodePosition));
+  const std::vector<NodePosition> recv = exchangeRecords(mpi, send);
+  std::map<int, Eigen::Vector2d> known;
+  for (const auto& np : recv) known[np.node] = Eigen::Vector2d(np.x, np.y);
+  for (int k : localSlots_) known[slots_[k].slaveNode] = ownedPosition(slots_[k].slaveNode);
+  // 3. Per pair: the global search for this rank's slaves over the master
+  //    segments whose nodes arrived (kept in their global order, so ties
+  //    break as in the replicated search).
+  std::vector<std::vector<SlotPairing>> results(P);
+  long queries = 0;
+  for (size_t p = 0; p < searches_.size(); ++p) {
+    const MasterSurface& whole = searches_[p]->master();
+    std::vector<int> localSlaves, localSlotIds;
+    for (int k : pairSlots_[p])
+      if (slotOwner(k) == me) localSlaves.push_back(slots_[k].slaveNode), localSlotIds.push_back(k);
+    std::vector<std::array<int, 2>> segs;
+    std::vector<int> globalIndex;
+    for (int g = 0; g < whole.numSegments(); ++g)
+      if (known.count(whole.segment(g)[0]) && known.count(whole.segment(g)[1]))
+        segs.push_back(whole.segment(g)), globalIndex.push_back(g);
+    std::vector<ContactCandidate> found(localSlaves.size());
+    if (!localSlaves.empty() && !segs.empty()) {
+      ContactSearch search(MasterSurface(segs), localSlaves, searches_[p]->searchRadius());
+      search.update([&](int n) { return known.at(n); }, true);
+      found = search.candidates();
+      queries += long(localSlaves.size());
+    }
+    for (size_t i = 0; i < found.size(); ++i) {
+      const ContactCandidate& c = found[i];
+      const int g = c.segment >= 0 ? globalIndex[c.segment] : -1;
+      // Past a free end of the whole surface (not of the part that arrived).
+      const int pe = g >= 0 && c.viaCorner && whole.neighbour(g, c.xi < 0.5 ? 0 : 1) < 0;
+      for (int r = 0; r < P; ++r)
+        results[r].push_back({localSlotIds[i], g, pe, int(c.viaCorner), c.xi, c.gap, c.distance, c.normal.x(),
+                              c.normal.y()});
+    }
+  }
+  for (int r = 0; r < P; ++r)
+    if (r != me) bytes += long(results[r].size() * sizeof(SlotPairing));
+  // 4. Every rank learns every slot's pairing (the slots are replicated).
+  const std::vector<SlotPairing> all = exchangeRecords(mpi, results);
+  cands.assign(searches_.size(), {});
+  pastFreeEnd.assign(searches_.size(), {});
+  std::vector<int> indexInPair(slots_.size(), -1);
+  for (size_t p = 0; p < searches_.size(); ++p) {
+    cands[p].assign(pairSlots_[p].size(), ContactCandidate{});
+    pastFreeEnd[p].assign(pairSlots_[p].size(), 0);
+    for (size_t i = 0; i < pairSlots_[p].size(); ++i) indexInPair[pairSlots_[p][i]] = int(i);
+  }
+  for (const auto& a : all) {
+    const int p = slots_[a.slot].pair, i = indexInPair[a.slot];
+    ContactCandidate& c = cands[p][i];
+    c.segment = a.segment;
+    c.xi = a.xi;
+    c.gap = a.gap;
+    c.distance = a.distance;
+    c.normal = Eigen::Vector2d(a.nx, a.ny);
+    c.viaCorner = a.viaCorner != 0;
+    pastFreeEnd[p][i] = static_cast<char>(a.pastFreeEnd);
+  }
+  long total[2] = {bytes, queries}, sum[2];
+  MPI_Allreduce(total, sum, 2, MPI_LONG, MPI_SUM, mpi);
+  ++exchanges_;
+  bytesExchanged_ += sum[0];
+  distributedQueries_ += sum[1];
+}
+
 bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
+  // Decomposed contact pairs at step ends only (global search): the
+  // geometry goes only where bounding boxes say it is needed. Conventional
+  // NTS (the monolithic reference) tracks the pairing inside Newton on
+  // replicated surface positions.
+  const bool distributed = contact_.decomposed && global;
   std::vector<double> v;
-  gatherSurface(u, v);
+  std::vector<std::vector<ContactCandidate>> found;
+  std::vector<std::vector<char>> pastEnd;
+  if (distributed) {
+    distributedSearch(u, found, pastEnd);
+  } else {
+    gatherSurface(u, v);
+    for (size_t p = 0; p < searches_.size(); ++p) {
+      ContactSearch& search = *searches_[p];
+      search.update([&](int n) { return currentPosition(n, v); }, global);
+      found.push_back(search.candidates());
+      pastEnd.emplace_back();
+      // A slave beyond a free end of the master surface is not in contact
+      // with it (only a convex corner between two segments pairs "via corner").
+      for (const auto& c : found.back())
+        pastEnd.back().push_back(c.segment >= 0 && c.viaCorner &&
+                                 search.master().neighbour(c.segment, c.xi < 0.5 ? 0 : 1) < 0);
+    }
+  }
   bool changed = false;
   for (size_t p = 0; p < searches_.size(); ++p) {
-    ContactSearch& search = *searches_[p];
-    search.update([&](int n) { return currentPosition(n, v); }, global);
-    const auto& cands = search.candidates();
+    const ContactSearch& search = *searches_[p];
+    const auto& cands = found[p];
     for (size_t i = 0; i < cands.size(); ++i) {
       ContactSlot& s = slots_[pairSlots_[p][i]];
       const auto& c = cands[i];
       int m0 = -1, m1 = -1;
-      // A slave beyond a free end of the master surface is not in contact
-      // with it (only a convex corner between two segments pairs "via corner").
-      const bool pastFreeEnd =
-          c.segment >= 0 && c.viaCorner && search.master().neighbour(c.segment, c.xi < 0.5 ? 0 : 1) < 0;
+      const bool pastFreeEnd = pastEnd[p][i] != 0;
       if (c.segment >= 0 && !pastFreeEnd) {
         m0 = search.master().segment(c.segment)[0];
         m1 = search.master().segment(c.segment)[1];
@@ -667,7 +811,7 @@ bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
       // keeps it. Without it a slave sitting on a master node can flip
       // between the two adjacent segments every iteration and Newton stalls.
       constexpr double kPairingHysteresis = 1e-2;  // fraction of the segment length
-      if (!global && s.paired() && m0 >= 0 && (m0 != s.master[0] || m1 != s.master[1])) {
+      if (!distributed && !global && s.paired() && m0 >= 0 && (m0 != s.master[0] || m1 != s.master[1])) {
         const Eigen::Vector2d xs = currentPosition(s.slaveNode, v), x1 = currentPosition(s.master[0], v),
                               x2 = currentPosition(s.master[1], v);
         const Eigen::Vector2d t = x2 - x1;
@@ -745,7 +889,7 @@ std::vector<std::vector<std::tuple<GO, int, double>>> Model::contactRowEntries(
 }
 
 std::array<long, 3> Model::searchCounters() const {
-  std::array<long, 3> c{0, 0, 0};
+  std::array<long, 3> c{0, 0, distributedQueries_};
   for (const auto& s : searches_) {
     c[0] += s->counters().trackingCalls;
     c[1] += s->counters().trackingFallbacks;

@@ -22,6 +22,7 @@
 namespace ddc {
 
 class ContactSearch;
+struct ContactCandidate;
 struct SubdomainSystem;
 
 /// Where assemble() also puts element tangents: the local stiffness of each
@@ -189,6 +190,13 @@ class Model {
   void gatherSurface(const Vector& u, std::vector<double>& values) const;
   Eigen::Vector2d currentPosition(int node, const std::vector<double>& surfaceValues) const;
   void refreshSlotGeometry(const std::vector<double>& surfaceValues);
+  /// Decomposed, at step ends: the global search for this rank's slave
+  /// nodes over the master-surface nodes that the other ranks send it
+  /// because they lie in its slaves' bounding box (inflated by
+  /// pairingMargin_); every slot's result then goes to every rank. One
+  /// exchange, counted with its bytes.
+  void distributedSearch(const Vector& u, std::vector<std::vector<ContactCandidate>>& cands,
+                         std::vector<std::vector<char>>& pastFreeEnd);
   /// Decomposed: g_N and λ of every slot from the counterparts (see updateActiveSet()).
   void assembleFrozenGaps(const Vector& u);
 
@@ -229,6 +237,9 @@ class Model {
   std::vector<std::vector<int>> pairMasterElements_;  ///< per pair: element of each master segment
   Teuchos::RCP<const Map> multiplierMap_;             ///< owned multiplier DOFs
   Teuchos::RCP<const Map> multiplierAllMap_;          ///< every slot's multiplier DOF, on every rank
+  std::vector<int> masterSurfaceNodes_;  ///< nodes of the master surfaces (may repeat across pairs)
+  double pairingMargin_ = 0.0;
+  long distributedQueries_ = 0;  ///< slave queries of distributedSearch(), summed over ranks
   mutable long exchanges_ = 0, bytesExchanged_ = 0;
   long bytesPerExchange_ = 0;
 };

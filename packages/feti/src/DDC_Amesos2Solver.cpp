@@ -1,3 +1,4 @@
+#include "DDC_MpiRecords.hpp"
 #include "DDC_Amesos2Solver.hpp"
 
 #include <mpi.h>
@@ -16,12 +17,6 @@ namespace ddc {
 namespace {
 
 static_assert(std::is_same<GO, long long>::value, "gather code sends global indices as MPI_LONG_LONG");
-
-MPI_Comm rawComm(const Teuchos::RCP<const Teuchos::Comm<int>>& comm) {
-  auto mpi = Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(comm);
-  if (mpi.is_null()) return MPI_COMM_SELF;
-  return *mpi->getRawMpiComm();
-}
 
 std::string joinNames(const std::vector<std::string>& names) {
   std::ostringstream os;

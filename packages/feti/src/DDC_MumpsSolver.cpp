@@ -1,3 +1,4 @@
+#include "DDC_MpiRecords.hpp"
 #include "DDC_MumpsSolver.hpp"
 
 #include <dmumps_c.h>
@@ -52,13 +53,6 @@ std::string explainInfog1(int code) {
   }
 }
 
-/// The raw MPI communicator behind a Teuchos communicator (MPI_COMM_SELF for
-/// a Teuchos::SerialComm).
-MPI_Comm rawComm(const Teuchos::RCP<const Teuchos::Comm<int>>& comm) {
-  auto mpi = Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(comm);
-  if (mpi.is_null()) return MPI_COMM_SELF;
-  return *mpi->getRawMpiComm();
-}
 
 }  // namespace
 

@@ -1,0 +1,67 @@
+// Small MPI helpers shared by the packages: the raw communicator behind a
+// Teuchos communicator, a variable-size all-to-all of plain records, and
+// raising an error found on some ranks on every rank.
+#pragma once
+
+#include <mpi.h>
+
+#include <Teuchos_Comm.hpp>
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <climits>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace ddc {
+
+/// The raw MPI communicator behind a Teuchos communicator (MPI_COMM_SELF for
+/// a Teuchos::SerialComm).
+inline MPI_Comm rawComm(const Teuchos::RCP<const Teuchos::Comm<int>>& comm) {
+  auto mpi = Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(comm);
+  if (mpi.is_null()) return MPI_COMM_SELF;
+  return *mpi->getRawMpiComm();
+}
+
+/// Variable-size all-to-all of trivially copyable records: send[r] goes to
+/// rank r; returns everything received, ordered by source rank. Collective.
+template <class T>
+std::vector<T> exchangeRecords(MPI_Comm comm, const std::vector<std::vector<T>>& send) {
+  static_assert(std::is_trivially_copyable<T>::value, "exchangeRecords() sends raw bytes");
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  std::vector<int> sc(size), rc(size), sd(size, 0), rd(size, 0);
+  for (int r = 0; r < size; ++r) sc[r] = static_cast<int>(send[r].size() * sizeof(T));
+  MPI_Alltoall(sc.data(), 1, MPI_INT, rc.data(), 1, MPI_INT, comm);
+  for (int r = 1; r < size; ++r) {
+    sd[r] = sd[r - 1] + sc[r - 1];
+    rd[r] = rd[r - 1] + rc[r - 1];
+  }
+  std::vector<T> sendBuf;
+  sendBuf.reserve((sd[size - 1] + sc[size - 1]) / sizeof(T));
+  for (int r = 0; r < size; ++r) sendBuf.insert(sendBuf.end(), send[r].begin(), send[r].end());
+  std::vector<T> recv((rd[size - 1] + rc[size - 1]) / sizeof(T));
+  // Never pass null buffers to MPI.
+  T dummy{};
+  MPI_Alltoallv(sendBuf.empty() ? &dummy : sendBuf.data(), sc.data(), sd.data(), MPI_BYTE,
+                recv.empty() ? &dummy : recv.data(), rc.data(), rd.data(), MPI_BYTE, comm);
+  return recv;
+}
+
+/// If `msg` is non-empty on any rank, throw E on every rank with the message
+/// of the lowest such rank (an error on one rank must reach all ranks,
+/// never hang them: STYLE.md "Errors").
+template <class E>
+void raiseCollectively(MPI_Comm comm, const std::string& msg) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  int mine = msg.empty() ? INT_MAX : rank, first = INT_MAX;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
+  if (first == INT_MAX) return;
+  int len = rank == first ? static_cast<int>(msg.size()) : 0;
+  MPI_Bcast(&len, 1, MPI_INT, first, comm);
+  std::string text = rank == first ? msg : std::string(static_cast<size_t>(len), ' ');
+  MPI_Bcast(&text[0], len, MPI_CHAR, first, comm);
+  throw E(text);
+}
+
+}  // namespace ddc
