@@ -94,7 +94,8 @@ Teuchos::RCP<PL> solverValidParameters() {
   pl->set("Strategy", "Monolithic",
           "Solution strategy. Monolithic: one global system (distributed Tpetra CrsMatrix, contact "
           "multipliers appended) solved by the Linear Solver below. FETI-DP: dual-primal domain "
-          "decomposition over the partition's subdomains (the FETI-DP sublist).",
+          "decomposition over the partition's subdomains (the FETI-DP sublist); contact needs Contact/"
+          "Formulation = Decomposed Node-To-Segment there (active pairs become rows of B, across partitions).",
           enumValidator({"Monolithic", "FETI-DP"}, "Strategy"));
   setSublist(*pl, "Linear Solver", *DirectSolverFactory::withIterativeSolvers().validParameters(),
              "Solver of the monolithic system ({Type, <back-end sublists>}): direct (MUMPS, Amesos2) or "

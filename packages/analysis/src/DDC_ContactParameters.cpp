@@ -13,7 +13,9 @@ Teuchos::RCP<const Teuchos::ParameterList> ContactOptions::getValidParameters() 
           "Node-To-Segment: conventional nonlinear node-to-segment element with a Lagrange multiplier, "
           "projection and normal follow the current configuration (the monolithic reference). Decomposed "
           "Node-To-Segment: projection and normal frozen at the last converged configuration, pairs "
-          "refreshed at step ends (Fang & Izzuddin eq. 1).",
+          "refreshed at step ends (Fang & Izzuddin eq. 1); its slave and master counterparts may sit in "
+          "different subdomains and share only the multiplier, so it works with both Solver/Strategy values "
+          "(with FETI-DP each active pair is a row of the constraint operator B).",
           enumValidator({"Node-To-Segment", "Decomposed Node-To-Segment"}, "Formulation"));
   pl->set("Initial Contact State", "In Contact",
           "Active set at the start of each step: In Contact (every slave node with a master segment within "

@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# Across-partition contact performance (issue 5, doc/performance.md): the
+# two-half-rings benchmark with the decomposed node-to-segment element,
+# FETI-DP against the monolithic direct solve (MUMPS) of the same model, at
+# the default mesh (4 x 64 Quad4 per ring) and at a mesh refined 4x in each
+# direction (16 x 256). Not part of ctest. Prints one markdown table: per
+# configuration the median over REPS runs of the wall time per load step, and
+# (from the run's own counters) Newton iterations per step and FETI-DP dual
+# iterations per Newton iteration, plus the linear set-up / solve seconds.
+#
+#   bash test/benchmark/half_rings_dd.sh [BUILD_DIR]     # default: build
+# Environment: RANKS (2), REPS (3), STEPS (20), REFINE ("1 4"),
+#              FETI ("By Body:0 METIS:4 METIS:8": Partition/Method:Number of Subdomains).
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+B=${1:-build}
+APP="$B/src/ddcontact"
+[[ -x "$APP" ]] || { echo "half_rings_dd.sh: no ddcontact in '$B/src' (build first)" >&2; exit 2; }
+RANKS=${RANKS:-2}
+REPS=${REPS:-3}
+STEPS=${STEPS:-20}
+read -r -a REFINE <<< "${REFINE:-1 4}"
+read -r -a FETI <<< "${FETI:-By_Body:0 METIS:4 METIS:8}"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
+OUT=$(mktemp -d)
+trap 'rm -rf "$OUT"' EXIT
+
+median() { sort -g | awk '{a[NR]=$1} END {if (NR==0) print "nan"; else if (NR%2) print a[(NR+1)/2]; else print (a[NR/2]+a[NR/2+1])/2}'; }
+
+# run_case ARGS... -> "wall/step newton/step dual/newton setup solve dofs" (medians of REPS)
+run_case() {
+  local wall=() setup=() solve=() newton="" dual="" dofs=""
+  for ((r = 0; r < REPS; r++)); do
+    local log="$OUT/run.log"
+    if ! mpirun -np "$RANKS" "$APP" examples/two_half_rings.xml --output-dir "$OUT/o" \
+         --set "Contact/Formulation=Decomposed Node-To-Segment" --set "Load Stepping/Number of Steps=$STEPS" \
+         --set "Output/VTK=false" "$@" > "$log" 2>&1; then
+      echo "failed"; tail -3 "$log" >&2; return
+    fi
+    dofs=$(sed -n 's/.* elements, \([0-9]*\) DOFs.*/\1/p' "$log")
+    local t
+    t=$(grep "^timing" "$log")
+    setup+=("$(sed -n 's/.*linear setup \([0-9.]*\) s.*/\1/p' <<< "$t")")
+    solve+=("$(sed -n 's/.*linear solve \([0-9.]*\) s.*/\1/p' <<< "$t")")
+    # history.csv: wall_seconds of the last row / rows; Newton and dual sums
+    local h="$OUT/o/history.csv"
+    wall+=("$(awk -F, 'NR>1 {w=$10; n++} END {printf "%.4f", w/n}' "$h")")
+    newton=$(awk -F, 'NR>1 {s+=$4; n++} END {printf "%.2f", s/n}' "$h")
+    dual=$(awk -F, 'NR>1 {s+=$5; t+=$4} END {printf "%.1f", (t ? s/t : 0)}' "$h")
+  done
+  echo "$(printf '%s\n' "${wall[@]}" | median) $newton $dual $(printf '%s\n' "${setup[@]}" | median)" \
+       "$(printf '%s\n' "${solve[@]}" | median) $dofs"
+}
+
+echo "Two half-rings, decomposed NTS, $STEPS steps, $RANKS ranks, median of $REPS runs"
+echo
+echo "| mesh per ring | DOFs | strategy | partition | wall s / step | Newton / step | dual its / Newton it | linear setup s | linear solve s | wall ratio to Monolithic |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
+for f in "${REFINE[@]}"; do
+  nr=$((4 * f)) nc=$((64 * f))
+  mesh=()
+  for ring in "Lower Ring" "Upper Ring"; do
+    mesh+=(--set "Mesh/Bodies/$ring/Annular Sector/Radial Elements=$nr")
+    mesh+=(--set "Mesh/Bodies/$ring/Annular Sector/Circumferential Elements=$nc")
+  done
+  read -r mw mn md ms mv dofs <<< "$(run_case "${mesh[@]}" --set "Solver/Strategy=Monolithic")"
+  echo "| $nr x $nc | $dofs | Monolithic (MUMPS) | - | $mw | $mn | - | $ms | $mv | 1 |"
+  for spec in "${FETI[@]}"; do
+    method=${spec%%:*} method=${method//_/ } n=${spec##*:}
+    read -r w nn d s v _ <<< "$(run_case "${mesh[@]}" --set "Solver/Strategy=FETI-DP" \
+        --set "Partition/Method=$method" --set "Partition/Number of Subdomains=$n")"
+    label="$method"
+    [[ "$n" != 0 ]] && label="$method, $n subdomains"
+    ratio=$(awk -v a="$w" -v b="$mw" 'BEGIN {printf "%.2f", a / b}')
+    echo "| $nr x $nc | $dofs | FETI-DP | $label | $w | $nn | $d | $s | $v | $ratio |"
+  done
+done
