@@ -244,6 +244,20 @@ void Model::buildTopology() {
       if (slots_[k].paired() &&
           subdomainRank_[partition_.elementSubdomain[slots_[k].masterElement]] == comm_->getRank())
         localMasterSlots_.push_back(static_cast<int>(k));
+  if (contact_.decomposed) {
+    // Multiplier DOFs of this rank's counterparts, and the transfers of the
+    // contact-state check (assembleFrozenGaps()).
+    std::vector<GO> lmOv;
+    for (int k : localSlots_) lmOv.push_back(lmDof_[k]);
+    for (int k : localMasterSlots_) lmOv.push_back(lmDof_[k]);
+    std::sort(lmOv.begin(), lmOv.end());
+    lmOv.erase(std::unique(lmOv.begin(), lmOv.end()), lmOv.end());
+    lmOverlapMap_ = Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                         Teuchos::ArrayView<const GO>(lmOv), 0, comm_));
+    lmExporter_ = Teuchos::rcp(new Tpetra::Export<LO, GO, Node>(lmOverlapMap_, multiplierMap_));
+    if (lmAllImporter_.is_null())
+      lmAllImporter_ = Teuchos::rcp(new Tpetra::Import<LO, GO, Node>(multiplierMap_, multiplierAllMap_));
+  }
 
   const Mesh& mesh = *mesh_;
   const int me = comm_->getRank();
@@ -939,20 +953,14 @@ void Model::assembleFrozenGaps(const Vector& u) {
   }
   // Only the multiplier entries travel: Export from the overlap multiplier
   // DOFs to their owners.
-  std::vector<GO> lmOv;
-  for (int k : localSlots_) lmOv.push_back(lmDof_[k]);
-  for (int k : localMasterSlots_) lmOv.push_back(lmDof_[k]);
-  std::sort(lmOv.begin(), lmOv.end());
-  lmOv.erase(std::unique(lmOv.begin(), lmOv.end()), lmOv.end());
-  auto lmOvMap = Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
-                                      Teuchos::ArrayView<const GO>(lmOv), 0, comm_));
-  Vector gOv(lmOvMap), gOwned(multiplierMap_);
+  Vector gOv(lmOverlapMap_), gOwned(multiplierMap_);
   {
     auto src = ov.getData();
     auto dst = gOv.getDataNonConst();
-    for (size_t i = 0; i < lmOv.size(); ++i) dst[i] = src[overlapMap_->getLocalElement(lmOv[i])];
+    for (size_t i = 0; i < lmOverlapMap_->getNodeNumElements(); ++i)
+      dst[i] = src[overlapMap_->getLocalElement(lmOverlapMap_->getGlobalElement(LO(i)))];
   }
-  gOwned.doExport(gOv, Tpetra::Export<LO, GO, Node>(lmOvMap, multiplierMap_), Tpetra::ADD);
+  gOwned.doExport(gOv, *lmExporter_, Tpetra::ADD);
   MultiVector owned(multiplierMap_, 2), all(multiplierAllMap_, 2);
   {
     auto g = gOwned.getData();
@@ -962,7 +970,7 @@ void Model::assembleFrozenGaps(const Vector& u) {
       owned.replaceLocalValue(LO(i), 1, ud[ownedMap_->getLocalElement(lmDof_[localSlots_[i]])]);
     }
   }
-  all.doImport(owned, Tpetra::Import<LO, GO, Node>(multiplierMap_, multiplierAllMap_), Tpetra::INSERT);
+  all.doImport(owned, *lmAllImporter_, Tpetra::INSERT);
   auto g = all.getData(0), lam = all.getData(1);
   for (size_t k = 0; k < slots_.size(); ++k) {
     ContactSlot& s = slots_[k];

@@ -237,6 +237,9 @@ class Model {
   std::vector<std::vector<int>> pairMasterElements_;  ///< per pair: element of each master segment
   Teuchos::RCP<const Map> multiplierMap_;             ///< owned multiplier DOFs
   Teuchos::RCP<const Map> multiplierAllMap_;          ///< every slot's multiplier DOF, on every rank
+  Teuchos::RCP<const Map> lmOverlapMap_;              ///< decomposed: multipliers of this rank's counterparts
+  Teuchos::RCP<const Tpetra::Export<LO, GO, Node>> lmExporter_;    ///< lmOverlapMap_ -> multiplierMap_
+  Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> lmAllImporter_;  ///< multiplierMap_ -> multiplierAllMap_
   std::vector<int> masterSurfaceNodes_;  ///< nodes of the master surfaces (may repeat across pairs)
   double pairingMargin_ = 0.0;
   long distributedQueries_ = 0;  ///< slave queries of distributedSearch(), summed over ranks
