@@ -249,12 +249,24 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
         fixedNodes[b].insert(n);
         for (int c = 0; c < 2; ++c) fixedDir[b][c] = fixedDir[b][c] || d.fix[c];
       }
-    for (int b = 0; b < mesh->numBodies(); ++b)
-      DDC_INPUT_REQUIRE(inContact[b] || (fixedNodes[b].size() >= 2 && fixedDir[b][0] && fixedDir[b][1]),
+    const bool fetiStrategy = params.sublist("Solver").get<std::string>("Strategy") == "FETI-DP";
+    for (int b = 0; b < mesh->numBodies(); ++b) {
+      const bool supported = fixedNodes[b].size() >= 2 && fixedDir[b][0] && fixedDir[b][1];
+      // FETI-DP: contact rows are dual constraints; they cannot remove the
+      // rigid modes of K~ (the coarse problem would be singular).
+      DDC_INPUT_REQUIRE(supported || !inContact[b] || !fetiStrategy,
+                        "body '" << mesh->body(b).name
+                                 << "' is held only by contact: with Solver/Strategy = FETI-DP every body must be "
+                                    "supported by its own prescribed displacements (Boundary Conditions: x and y, "
+                                    "at least two nodes), because the contact rows are dual constraints and cannot "
+                                    "fix the rigid-body modes of the subdomain problems; use Solver/Strategy = "
+                                    "Monolithic, or prescribe displacements on the body");
+      DDC_INPUT_REQUIRE(inContact[b] || supported,
                         "body '" << mesh->body(b).name
                                  << "' is not supported: its prescribed displacements (Boundary Conditions) must "
                                     "act in both x and y and on at least two nodes to remove its rigid-body "
                                     "motion, and no contact pair touches it");
+    }
   }
   std::vector<std::shared_ptr<const ContactElement>> contactElements;
   if (contact.enabled()) {

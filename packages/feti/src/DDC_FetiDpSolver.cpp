@@ -1062,7 +1062,8 @@ void FetiDpSolver::Impl::applyF(const Vector& x, Vector& y) {
 
 /// M^{-1} x = sum_s B_D^s S^s B_D^sT x, S^s = K_DD - K_DI K_II^{-1} K_ID
 /// (Dirichlet) or K_DD (lumped). Primal DOFs count as fixed, so entries of
-/// B on primal DOFs do not enter.
+/// compatibility rows on primal DOFs do not enter; entries of extra rows on
+/// primal or interior DOFs enter lumped and diagonal (scaled^2 K_jj).
 void FetiDpSolver::Impl::applyM(const Vector& x, Vector& y) {
   if (mask.is_null()) {
     lmOvWork->doImport(x, *lmImport, Tpetra::INSERT);
@@ -1078,7 +1079,15 @@ void FetiDpSolver::Impl::applyM(const Vector& x, Vector& y) {
       std::fill(s.vd.begin(), s.vd.end(), 0.0);
       for (const BEntry& e : s.B) {
         const LO r = s.rIdx[e.dof];
-        if (r != kNone && s.dIdx[r] != kNone) s.vd[s.dIdx[r]] += e.scaled * l[e.lm];
+        if (r != kNone && s.dIdx[r] != kNone) {
+          s.vd[s.dIdx[r]] += e.scaled * l[e.lm];
+        } else if (e.extra) {
+          // An extra row's entry on a primal (or interior) DOF: lumped,
+          // diagonal, B_D K_jj B_D^T. Without it a row lying on primal DOFs
+          // only (a slave node on a primal master node) has no
+          // preconditioner at all and CG breaks down.
+          yOv[e.lm] += e.scaled * e.scaled * std::abs(s.diag[e.dof]) * l[e.lm];
+        }
       }
       std::fill(s.wd.begin(), s.wd.end(), 0.0);
       for (const Triplet& t : s.KDD) s.wd[t.i] += t.v * s.vd[t.j];

@@ -525,6 +525,9 @@ std::vector<ExtraRow> extraRows() {
       {{{4, 4, 1}, {7, 1, 1}}, {0.6, 0.8}, -0.2, true},     // primal cross point vs subdomain 1
       {{{3, 7, 0}, {5, 2, 1}}, {1.0, -1.0}, 0.3, false},    // released: multiplier restrained to zero
       {{{4, 2, 0}, {1, 8, 1}, {2, 8, 1}}, {1.0, -0.5, -0.5}, 0.0, true},  // dual interface DOF vs an edge
+      // Primal DOFs only (a slave node on a primal master node): the
+      // preconditioner must still see the row (lumped), or CG breaks down.
+      {{{4, 4, 0}, {8, 4, 1}}, {1.0, -1.0}, 0.05, true},
   };
 }
 
