@@ -21,12 +21,8 @@ REPS=${REPS:-3}
 STEPS=${STEPS:-20}
 read -r -a REFINE <<< "${REFINE:-1 4}"
 read -r -a FETI <<< "${FETI:-By_Body:0 METIS:4 METIS:8}"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
-export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
-OUT=$(mktemp -d)
-trap 'rm -rf "$OUT"' EXIT
-
-median() { sort -g | awk '{a[NR]=$1} END {if (NR==0) print "nan"; else if (NR%2) print a[(NR+1)/2]; else print (a[NR/2]+a[NR/2+1])/2}'; }
+# shellcheck source=common.sh
+. test/benchmark/common.sh
 
 # run_case ARGS... -> "wall/step newton/step dual/newton setup solve dofs" (medians of REPS)
 run_case() {

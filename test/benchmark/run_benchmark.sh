@@ -22,12 +22,8 @@ RANKS=${RANKS:-2}
 REPS=${REPS:-3}
 read -r -a SIZES <<< "${SIZES:-10 20 40}"
 read -r -a SUBS <<< "${SUBDOMAINS:-16 32 64}"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
-export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
-OUT=$(mktemp -d)
-trap 'rm -rf "$OUT"' EXIT
-
-median() { sort -g | awk '{a[NR]=$1} END {if (NR==0) print "nan"; else if (NR%2) print a[(NR+1)/2]; else print (a[NR/2]+a[NR/2+1])/2}'; }
+# shellcheck source=common.sh
+. test/benchmark/common.sh
 
 # run_case LABEL ARGS... -> prints "setup solve iterations memory dofs" (medians) or "failed"
 run_case() {
