@@ -912,8 +912,20 @@ std::array<long, 3> Model::searchCounters() const {
   return c;
 }
 
+bool Model::fullyPrescribed(int k) const {
+  const ContactSlot& s = slots_[k];
+  if (!s.paired()) return false;
+  for (int n : {s.slaveNode, s.master[0], s.master[1]})
+    for (int c = 0; c < 2; ++c)
+      if (!constrained_[dof(n, c)]) return false;
+  return true;
+}
+
 void Model::activateAllPaired() {
-  for (auto& s : slots_) s.active = s.paired();
+  // A pair whose DOFs are all prescribed has a prescribed gap: its
+  // constraint row would be empty (a singular system), so it never becomes
+  // active (updateActiveSet() reports it if it penetrates).
+  for (size_t k = 0; k < slots_.size(); ++k) slots_[k].active = slots_[k].paired() && !fullyPrescribed(int(k));
 }
 
 void Model::refreshSlotGeometry(const std::vector<double>& v) {
@@ -1001,6 +1013,12 @@ std::vector<int> Model::updateActiveSet(const Vector& u) {
     if (s.active && s.state.multiplier > tensionTol) {
       s.active = false;
       changed.push_back(static_cast<int>(k));
+    } else if (!s.active && s.gap < -contact_.penetrationTolerance && fullyPrescribed(int(k))) {
+      DDC_THROW(InputError, describeSlot(int(k))
+                                << ": the slave node and its master segment have all their displacements "
+                                   "prescribed (Boundary Conditions), so contact cannot remove their penetration "
+                                   "(gap "
+                                << s.gap << "); free the contact surfaces or change the prescribed values");
     } else if (!s.active && s.gap < -contact_.penetrationTolerance) {
       s.active = true;
       changed.push_back(static_cast<int>(k));

@@ -129,11 +129,17 @@ class Model {
   /// gathered to every rank (one exchange, counted in exchanges()).
   /// \return true if any slave changed its master segment (new topology).
   bool updatePairing(const Vector& u, bool global, bool freeze);
-  /// Activate every paired slot (Initial Contact State = In Contact).
+  /// Activate every paired slot (Initial Contact State = In Contact), except
+  /// the fully prescribed ones (see fullyPrescribed()).
   void activateAllPaired();
+  /// True if slot k is paired and all DOFs of its slave node and master
+  /// segment are prescribed: its gap is given, contact cannot act on it.
+  bool fullyPrescribed(int k) const;
   /// Update gaps and multipliers from u, then apply the active-set rules:
   /// release an active slot in tension (λ > 0), activate an inactive paired
   /// slot with g_N < -tol. Returns the slots whose state changed.
+  /// \throws InputError (on every rank: the slots are replicated) if a fully
+  ///         prescribed slot penetrates.
   /// Conventional NTS: gaps from the gathered surface positions (a geometry
   /// exchange). Decomposed: the frozen gap is assembled on the multiplier
   /// map from the partial gaps of the slave and master counterparts,
