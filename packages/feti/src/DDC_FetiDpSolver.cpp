@@ -502,8 +502,6 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
   }
   raiseCollectively<std::invalid_argument>(mpi, msg);
 
-  lmOvWork = rcp(new Vector(lmOvMap));
-  lmWork = rcp(new Vector(lmMap));
   coarseOvWork = rcp(new Vector(coarseOvMap));
   coarseWork = rcp(new Vector(coarseMap));
   coarseSol = rcp(new Vector(coarseMap));
