@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "DDC_Analysis.hpp"
+#include "DDC_AnalysisTestDecks.hpp"
 #include "DDC_TestTolerances.hpp"
 
 namespace {
@@ -39,6 +40,7 @@ namespace {
 using PL = Teuchos::ParameterList;
 using Comm = Teuchos::RCP<const Teuchos::Comm<int>>;
 using ddc::test::relDiff;
+using namespace ddc::test;  // deck builders, communicators (DDC_AnalysisTestDecks.hpp)
 
 // ---------------------------------------------------------------------------
 // Named tolerances of this file (see also DDC_TestTolerances.hpp).
@@ -135,8 +137,6 @@ constexpr double kLastContraction = 1e-2;
 // ---------------------------------------------------------------------------
 // Helpers.
 
-Comm worldComm() { return Tpetra::getDefaultComm(); }
-bool isRoot() { return worldComm()->getRank() == 0; }
 
 const char* const kNts = "Node-To-Segment";
 const char* const kDecomposed = "Decomposed Node-To-Segment";
@@ -154,47 +154,30 @@ struct TwoBlocks {
   int steps = 1;
 };
 
-void addBlock(PL& bodies, const std::string& name, double y0, int nx, const TwoBlocks& s) {
-  PL& body = bodies.sublist(name);
-  body.set("Generator", std::string("Rectangle"));
-  PL& r = body.sublist("Rectangle");
-  r.set("Origin X", 0.0);
-  r.set("Origin Y", y0);
-  r.set("Length X", 1.0);
-  r.set("Length Y", 0.5);
-  r.set("Elements X", nx);
-  r.set("Elements Y", s.ny);
-  PL& el = body.sublist("Element");
-  el.set("Type", std::string("Quad4"));
-  PL& mat = el.sublist("Material");
-  mat.set("Type", s.material);
-  mat.set("Young's Modulus", s.E);
-  mat.set("Poisson's Ratio", s.nu);
-}
-
-PL& addDisplacement(PL& deck, const std::string& name, const std::string& set, const std::string& components) {
-  PL& c = deck.sublist("Boundary Conditions").sublist(name);
-  c.set("Type", std::string("Displacement"));
-  c.set("Set", set);
-  c.set("Components", components);
-  return c;
+void addBlock(PL& deck, const std::string& name, double y0, int nx, const TwoBlocks& s) {
+  RectangleSpec r;
+  r.originY = y0;
+  r.lengthY = 0.5;
+  r.nx = nx;
+  r.ny = s.ny;
+  r.material = s.material;
+  r.E = s.E;
+  r.nu = s.nu;
+  addRectangle(deck, name, r);
 }
 
 /// The two blocks, the contact pair, quiet output. No supports or loads.
 PL twoBlockDeck(const TwoBlocks& s) {
   PL deck("DDContact");
-  PL& bodies = deck.sublist("Mesh").sublist("Bodies");
-  addBlock(bodies, "Lower", 0.0, s.nxLower, s);
-  addBlock(bodies, "Upper", 0.5 + s.gap, s.nxUpper, s);
+  addBlock(deck, "Lower", 0.0, s.nxLower, s);
+  addBlock(deck, "Upper", 0.5 + s.gap, s.nxUpper, s);
   PL& c = deck.sublist("Contact");
   c.set("Formulation", s.formulation);
   c.set("Initial Contact State", s.initialState);
   PL& pair = c.sublist("Pairs").sublist("Interface");
   pair.set("Slave", std::string("Upper/bottom"));
   pair.set("Master", std::string("Lower/top"));
-  deck.sublist("Load Stepping").set("Number of Steps", s.steps);
-  deck.sublist("Output").set("Progress", false);
-  deck.sublist("Output").set("VTK", false);
+  setRunOptions(deck, s.steps);
   return deck;
 }
 

@@ -19,14 +19,15 @@
 #include "DDC_ContinuumElement.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_Parameters.hpp"
+#include "DDC_AnalysisTestDecks.hpp"
 #include "DDC_TestTolerances.hpp"
 
 namespace {
 
 using PL = Teuchos::ParameterList;
 using ddc::test::relDiff;
+using namespace ddc::test;  // deck builders, communicators (DDC_AnalysisTestDecks.hpp)
 
-Teuchos::RCP<const Teuchos::Comm<int>> worldComm() { return Tpetra::getDefaultComm(); }
 
 // ---------------------------------------------------------------------------
 // Host element types.
@@ -127,26 +128,8 @@ PL hostDeck(const std::string& elementType, const std::string& material = "Neo-H
   bcs.sublist("Load").set("Set", std::string("Block/right"));
   bcs.sublist("Load").set("Traction X", 100.0);
   bcs.sublist("Load").set("Traction Y", 20.0);
-  deck.sublist("Load Stepping").set("Number of Steps", 3);
-  deck.sublist("Output").set("Progress", false);
-  deck.sublist("Output").set("VTK", false);
+  setRunOptions(deck, 3);
   return deck;
-}
-
-/// Whole displacement field on every rank, indexed [2 n + c] by mesh node.
-std::vector<double> gatherDisplacement(const ddc::Analysis& a) {
-  const ddc::Model& m = a.model();
-  const auto& map = *a.displacement().getMap();
-  auto d = a.displacement().getData();
-  const int n2 = 2 * m.mesh().numNodes();
-  std::vector<double> local(n2, 0.0), global(n2, 0.0);
-  for (int n = 0; n < m.mesh().numNodes(); ++n)
-    for (int c = 0; c < 2; ++c) {
-      const auto l = map.getLocalElement(m.dof(n, c));
-      if (l != Teuchos::OrdinalTraits<ddc::LO>::invalid()) local[2 * n + c] = d[l];
-    }
-  Teuchos::reduceAll(*m.comm(), Teuchos::REDUCE_SUM, n2, local.data(), global.data());
-  return global;
 }
 
 /// max |a - b| / max |b|.

@@ -48,6 +48,7 @@
 #include "DDC_Analysis.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_Substructuring.hpp"
+#include "DDC_AnalysisTestDecks.hpp"
 #include "DDC_TestTolerances.hpp"
 
 namespace {
@@ -55,6 +56,7 @@ namespace {
 using PL = Teuchos::ParameterList;
 using Comm = Teuchos::RCP<const Teuchos::Comm<int>>;
 using ddc::test::relDiff;
+using namespace ddc::test;  // deck builders, communicators (DDC_AnalysisTestDecks.hpp)
 
 // ---------------------------------------------------------------------------
 // Named tolerances of this file (see also DDC_TestTolerances.hpp).
@@ -97,51 +99,18 @@ constexpr double kMaxGrowth = 0.20;
 // ---------------------------------------------------------------------------
 // Helpers.
 
-Comm worldComm() { return Tpetra::getDefaultComm(); }
-bool isRoot() { return worldComm()->getRank() == 0; }
 int worldSize() { return worldComm()->getSize(); }
 
-/// A rectangle body "Block" [0, lx] x [0, ly] with nx x ny Quad4 elements.
+/// A Quad4 rectangle body [x0, x0 + lx] x [y0, y0 + ly], E = 1000, nu = 0.3.
 void addBlock(PL& deck, const std::string& name, double x0, double y0, double lx, double ly, int nx, int ny,
               const std::string& material) {
-  PL& body = deck.sublist("Mesh").sublist("Bodies").sublist(name);
-  body.set("Generator", std::string("Rectangle"));
-  PL& r = body.sublist("Rectangle");
-  r.set("Origin X", x0);
-  r.set("Origin Y", y0);
-  r.set("Length X", lx);
-  r.set("Length Y", ly);
-  r.set("Elements X", nx);
-  r.set("Elements Y", ny);
-  PL& el = body.sublist("Element");
-  el.set("Type", std::string("Quad4"));
-  PL& mat = el.sublist("Material");
-  mat.set("Type", material);
-  mat.set("Young's Modulus", 1000.0);
-  mat.set("Poisson's Ratio", 0.3);
+  RectangleSpec r;
+  r.originX = x0, r.originY = y0, r.lengthX = lx, r.lengthY = ly, r.nx = nx, r.ny = ny;
+  r.material = material;
+  addRectangle(deck, name, r);
 }
 
-PL& addDisplacement(PL& deck, const std::string& name, const std::string& set, const std::string& components) {
-  PL& c = deck.sublist("Boundary Conditions").sublist(name);
-  c.set("Type", std::string("Displacement"));
-  c.set("Set", set);
-  c.set("Components", components);
-  return c;
-}
-
-void addTraction(PL& deck, const std::string& name, const std::string& set, double tx, double ty) {
-  PL& c = deck.sublist("Boundary Conditions").sublist(name);
-  c.set("Type", std::string("Traction"));
-  c.set("Set", set);
-  c.set("Traction X", tx);
-  c.set("Traction Y", ty);
-}
-
-void quiet(PL& deck, int steps) {
-  deck.sublist("Load Stepping").set("Number of Steps", steps);
-  deck.sublist("Output").set("Progress", false);
-  deck.sublist("Output").set("VTK", false);
-}
+void quiet(PL& deck, int steps) { setRunOptions(deck, steps); }
 
 /// How the block is held.
 enum class Support {
@@ -215,22 +184,6 @@ void useMonolithic(PL& deck) {
   PL& s = deck.sublist("Solver");
   s.set("Strategy", std::string("Monolithic"));
   s.sublist("Linear Solver").set("Type", std::string("MUMPS"));
-}
-
-/// The whole displacement field on every rank, indexed [2 n + c] by mesh
-/// node n (independent of the DOF numbering).
-std::vector<double> gatherDisplacement(const ddc::Model& m, const ddc::Vector& u) {
-  const auto& map = *u.getMap();
-  auto d = u.getData();
-  const int n2 = 2 * m.mesh().numNodes();
-  std::vector<double> local(n2, 0.0), global(n2, 0.0);
-  for (int n = 0; n < m.mesh().numNodes(); ++n)
-    for (int c = 0; c < 2; ++c) {
-      const auto l = map.getLocalElement(m.dof(n, c));
-      if (l != Teuchos::OrdinalTraits<ddc::LO>::invalid()) local[2 * n + c] = d[l];
-    }
-  Teuchos::reduceAll(*m.comm(), Teuchos::REDUCE_SUM, n2, local.data(), global.data());
-  return global;
 }
 
 /// ||a - b||_2 / ||b||_2 of two node-indexed fields.

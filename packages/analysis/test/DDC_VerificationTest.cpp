@@ -28,6 +28,7 @@
 
 #include "DDC_Analysis.hpp"
 #include "DDC_Error.hpp"
+#include "DDC_AnalysisTestDecks.hpp"
 #include "DDC_TestTolerances.hpp"
 
 namespace {
@@ -35,6 +36,7 @@ namespace {
 using PL = Teuchos::ParameterList;
 using Comm = Teuchos::RCP<const Teuchos::Comm<int>>;
 using ddc::test::relDiff;
+using namespace ddc::test;  // deck builders, communicators (DDC_AnalysisTestDecks.hpp)
 
 // ---------------------------------------------------------------------------
 // Named tolerances of this file (see also DDC_TestTolerances.hpp).
@@ -83,85 +85,14 @@ constexpr double kEnergyIdentity = 1e-10;
 // ---------------------------------------------------------------------------
 // Helpers.
 
-Comm worldComm() { return Tpetra::getDefaultComm(); }
-Comm selfComm() { return Teuchos::rcp(new Teuchos::MpiComm<int>(MPI_COMM_SELF)); }
-bool isRoot() { return worldComm()->getRank() == 0; }
-
 /// A rectangle body "Block" with one element type and material.
-struct BlockSpec {
-  std::string element = "Quad4";
-  std::string material = "Neo-Hookean";
-  double E = 1000.0, nu = 0.3;
-  double originX = 0.0, originY = 0.0, lengthX = 1.0, lengthY = 1.0;
-  int nx = 4, ny = 4;
-  double distortion = 0.0;
-};
-
-/// The common parts of every deck: quiet, no files, load steps.
-void setRunOptions(PL& deck, int steps) {
-  deck.sublist("Load Stepping").set("Number of Steps", steps);
-  deck.sublist("Output").set("Progress", false);
-  deck.sublist("Output").set("VTK", false);
-}
-
-void setElement(PL& body, const std::string& element, const std::string& material, double E, double nu) {
-  PL& el = body.sublist("Element");
-  el.set("Type", element);
-  PL& mat = el.sublist("Material");
-  mat.set("Type", material);
-  mat.set("Young's Modulus", E);
-  mat.set("Poisson's Ratio", nu);
-}
+using BlockSpec = ddc::test::RectangleSpec;
 
 PL blockDeck(const BlockSpec& s, int steps) {
   PL deck("DDContact");
-  PL& body = deck.sublist("Mesh").sublist("Bodies").sublist("Block");
-  body.set("Generator", std::string("Rectangle"));
-  PL& r = body.sublist("Rectangle");
-  r.set("Origin X", s.originX);
-  r.set("Origin Y", s.originY);
-  r.set("Length X", s.lengthX);
-  r.set("Length Y", s.lengthY);
-  r.set("Elements X", s.nx);
-  r.set("Elements Y", s.ny);
-  r.set("Distortion", s.distortion);
-  setElement(body, s.element, s.material, s.E, s.nu);
+  addRectangle(deck, "Block", s);
   setRunOptions(deck, steps);
   return deck;
-}
-
-/// Add a displacement condition and return its sublist for further values.
-PL& addDisplacement(PL& deck, const std::string& name, const std::string& set, const std::string& components) {
-  PL& c = deck.sublist("Boundary Conditions").sublist(name);
-  c.set("Type", std::string("Displacement"));
-  c.set("Set", set);
-  c.set("Components", components);
-  return c;
-}
-
-void addTraction(PL& deck, const std::string& name, const std::string& set, double tx, double ty) {
-  PL& c = deck.sublist("Boundary Conditions").sublist(name);
-  c.set("Type", std::string("Traction"));
-  c.set("Set", set);
-  c.set("Traction X", tx);
-  c.set("Traction Y", ty);
-}
-
-/// The whole displacement field on every rank of the analysis' communicator,
-/// indexed [2 n + c] by mesh node n (each rank contributes its owned DOFs).
-std::vector<double> gatherDisplacement(const ddc::Analysis& a) {
-  const ddc::Model& m = a.model();
-  const auto& map = *a.displacement().getMap();
-  auto d = a.displacement().getData();
-  const int n2 = 2 * m.mesh().numNodes();
-  std::vector<double> local(n2, 0.0), global(n2, 0.0);
-  for (int n = 0; n < m.mesh().numNodes(); ++n)
-    for (int c = 0; c < 2; ++c) {
-      const auto l = map.getLocalElement(m.dof(n, c));
-      if (l != Teuchos::OrdinalTraits<ddc::LO>::invalid()) local[2 * n + c] = d[l];
-    }
-  Teuchos::reduceAll(*m.comm(), Teuchos::REDUCE_SUM, n2, local.data(), global.data());
-  return global;
 }
 
 /// Element Cauchy stresses (xx, yy, xy, zz) of every element on every rank.

@@ -1,0 +1,108 @@
+// Shared by the analysis tests: in-memory input decks (rectangle bodies,
+// boundary conditions, quiet run options), the communicators, and the
+// displacement field gathered by mesh node.
+#pragma once
+
+#include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_DefaultMpiComm.hpp>
+#include <Teuchos_ParameterList.hpp>
+#include <Tpetra_Core.hpp>
+#include <mpi.h>
+
+#include <string>
+#include <vector>
+
+#include "DDC_Analysis.hpp"
+
+namespace ddc::test {
+
+using PL = Teuchos::ParameterList;
+using Comm = Teuchos::RCP<const Teuchos::Comm<int>>;
+
+inline Comm worldComm() { return Tpetra::getDefaultComm(); }
+inline Comm selfComm() { return Teuchos::rcp(new Teuchos::MpiComm<int>(MPI_COMM_SELF)); }
+inline bool isRoot() { return worldComm()->getRank() == 0; }
+
+/// A "Rectangle" body with one element type and material.
+struct RectangleSpec {
+  double originX = 0.0, originY = 0.0, lengthX = 1.0, lengthY = 1.0;
+  int nx = 4, ny = 4;
+  double distortion = 0.0;
+  std::string element = "Quad4";
+  std::string material = "Neo-Hookean";
+  double E = 1000.0, nu = 0.3;
+};
+
+/// The Element sublist of a body: type and material with E and nu.
+inline void setElement(PL& body, const std::string& element, const std::string& material, double E, double nu) {
+  PL& el = body.sublist("Element");
+  el.set("Type", element);
+  PL& mat = el.sublist("Material");
+  mat.set("Type", material);
+  mat.set("Young's Modulus", E);
+  mat.set("Poisson's Ratio", nu);
+}
+
+/// Add body `name` (sublist Mesh/Bodies/<name>) and return its sublist.
+inline PL& addRectangle(PL& deck, const std::string& name, const RectangleSpec& s) {
+  PL& body = deck.sublist("Mesh").sublist("Bodies").sublist(name);
+  body.set("Generator", std::string("Rectangle"));
+  PL& r = body.sublist("Rectangle");
+  r.set("Origin X", s.originX);
+  r.set("Origin Y", s.originY);
+  r.set("Length X", s.lengthX);
+  r.set("Length Y", s.lengthY);
+  r.set("Elements X", s.nx);
+  r.set("Elements Y", s.ny);
+  r.set("Distortion", s.distortion);
+  setElement(body, s.element, s.material, s.E, s.nu);
+  return body;
+}
+
+/// Add a displacement condition and return its sublist for further values.
+inline PL& addDisplacement(PL& deck, const std::string& name, const std::string& set, const std::string& components) {
+  PL& c = deck.sublist("Boundary Conditions").sublist(name);
+  c.set("Type", std::string("Displacement"));
+  c.set("Set", set);
+  c.set("Components", components);
+  return c;
+}
+
+inline void addTraction(PL& deck, const std::string& name, const std::string& set, double tx, double ty) {
+  PL& c = deck.sublist("Boundary Conditions").sublist(name);
+  c.set("Type", std::string("Traction"));
+  c.set("Set", set);
+  c.set("Traction X", tx);
+  c.set("Traction Y", ty);
+}
+
+/// The common run options of test decks: `steps` load steps, no progress
+/// lines, no VTK files.
+inline void setRunOptions(PL& deck, int steps) {
+  deck.sublist("Load Stepping").set("Number of Steps", steps);
+  deck.sublist("Output").set("Progress", false);
+  deck.sublist("Output").set("VTK", false);
+}
+
+/// The whole displacement field on every rank of the model's communicator,
+/// indexed [2 n + c] by mesh node n (independent of the DOF numbering; each
+/// rank contributes its owned DOFs). Collective.
+inline std::vector<double> gatherDisplacement(const ddc::Model& m, const ddc::Vector& u) {
+  const auto& map = *u.getMap();
+  auto d = u.getData();
+  const int n2 = 2 * m.mesh().numNodes();
+  std::vector<double> local(n2, 0.0), global(n2, 0.0);
+  for (int n = 0; n < m.mesh().numNodes(); ++n)
+    for (int c = 0; c < 2; ++c) {
+      const auto l = map.getLocalElement(m.dof(n, c));
+      if (l != Teuchos::OrdinalTraits<ddc::LO>::invalid()) local[2 * n + c] = d[l];
+    }
+  Teuchos::reduceAll(*m.comm(), Teuchos::REDUCE_SUM, n2, local.data(), global.data());
+  return global;
+}
+
+inline std::vector<double> gatherDisplacement(const ddc::Analysis& a) {
+  return gatherDisplacement(a.model(), a.displacement());
+}
+
+}  // namespace ddc::test
