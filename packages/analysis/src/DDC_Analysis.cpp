@@ -723,7 +723,7 @@ void Analysis::run(const std::string& outputDirectory) {
   if (contact) {
     const auto c = model_->searchCounters();
     std::ostringstream os;
-    os << "contact: " << model_->exchanges() << " pairing updates (" << model_->bytesExchanged()
+    os << "contact: " << model_->exchanges() << " contact-geometry exchanges (" << model_->bytesExchanged()
        << " bytes between ranks); slave queries: " << c[0] << " by tracking (" << c[1]
        << " fell back to the global search), " << c[2] << " by the global search";
     progress(os.str());
