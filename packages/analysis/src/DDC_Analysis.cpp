@@ -438,11 +438,7 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
   // Newton iterations; only their active flags and right-hand sides change.
   std::vector<LO> lmLids;  // owned multiplier DOFs (LIDs in the owned map), in row-map order
   if (feti_ && contact) {
-    const auto entries = model_->contactRowEntries(subdomains_);
-    std::vector<std::vector<ConstraintEntry>> rows(entries.size());
-    for (size_t i = 0; i < entries.size(); ++i)
-      for (const auto& [row, dof, coef] : entries[i]) rows[i].push_back({row, LO(dof), coef});
-    feti_->setConstraintRows(model_->multiplierMap(), rows);
+    feti_->setConstraintRows(model_->multiplierMap(), model_->contactRowEntries(subdomains_));
     for (int k : model_->ownedSlots()) lmLids.push_back(model_->ownedMap()->getLocalElement(model_->multiplierDof(k)));
   }
   auto b = feti_ && contact ? model_->createVector() : Teuchos::null;

@@ -862,9 +862,8 @@ bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
   return changed;
 }
 
-std::vector<std::vector<std::tuple<GO, int, double>>> Model::contactRowEntries(
-    const std::vector<SubdomainSystem>& systems) const {
-  std::vector<std::vector<std::tuple<GO, int, double>>> out(systems.size());
+std::vector<std::vector<ConstraintEntry>> Model::contactRowEntries(const std::vector<SubdomainSystem>& systems) const {
+  std::vector<std::vector<ConstraintEntry>> out(systems.size());
   auto localIndex = [&](const SubdomainSystem& sys, GO g) {
     const auto it = std::lower_bound(sys.dofs.begin(), sys.dofs.end(), g);
     return it != sys.dofs.end() && *it == g ? int(it - sys.dofs.begin()) : -1;
@@ -881,7 +880,7 @@ std::vector<std::vector<std::tuple<GO, int, double>>> Model::contactRowEntries(
     const int row = int(dofs.size()) - 1;
     for (int a = 0; a < row; ++a) {
       const int l = localIndex(systems[sys], dofs[a]);
-      if (l >= 0 && er.tangent(row, a) != 0.0) out[sys].emplace_back(lmDof_[k], l, er.tangent(row, a));
+      if (l >= 0 && er.tangent(row, a) != 0.0) out[sys].push_back({lmDof_[k], LO(l), er.tangent(row, a)});
     }
   };
   for (int k : localSlots_) {

@@ -8,7 +8,6 @@
 #include <array>
 #include <memory>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include "DDC_BoundaryConditions.hpp"
@@ -16,6 +15,7 @@
 #include "DDC_ContactParameters.hpp"
 #include "DDC_DirectSolver.hpp"
 #include "DDC_Element.hpp"
+#include "DDC_FetiDpSolver.hpp"
 #include "DDC_Mesh.hpp"
 #include "DDC_Partition.hpp"
 
@@ -154,8 +154,7 @@ class Model {
   /// entry (their part of the gap is in the residual). Coefficients are the
   /// multiplier row of each counterpart's tangent, so any registered
   /// counterpart pair works.
-  std::vector<std::vector<std::tuple<GO, int, double>>> contactRowEntries(
-      const std::vector<SubdomainSystem>& systems) const;
+  std::vector<std::vector<ConstraintEntry>> contactRowEntries(const std::vector<SubdomainSystem>& systems) const;
   /// This rank's multiplier DOFs (one per slot whose slave node it owns), in
   /// slot order; a one-to-one map.
   Teuchos::RCP<const Map> multiplierMap() const { return multiplierMap_; }
