@@ -15,13 +15,16 @@
 #include <Teuchos_XMLParameterListHelpers.hpp>
 #include <Tpetra_Core.hpp>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <thread>
 
 #include "DDC_Analysis.hpp"
 #include "DDC_Error.hpp"
+#include "DDC_OutputDirectory.hpp"
 #include "DDC_Parameters.hpp"
+#include "DDC_ResultFile.hpp"
 
 namespace {
 
@@ -33,7 +36,9 @@ const char* kUsage =
     "\n"
     "  --output-dir DIR    where results go (default: ddcontact-out/<input stem>);\n"
     "                      written to DIR.partial and moved to DIR when the run succeeds,\n"
-    "                      so a failed run never overwrites earlier results\n"
+    "                      so a failed run never overwrites earlier results; DIR must be\n"
+    "                      new, empty or an earlier ddcontact result (DIR/ddcontact-result.txt),\n"
+    "                      and one run at a time may use it (DIR.lock)\n"
     "  --set PATH=VALUE    override a parameter, e.g. --set \"Load Stepping/Number of Steps=50\"\n"
     "                      (sublists joined by '/', VALUE parsed with the parameter's type)\n"
     "  --print-parameters  print every valid parameter with its default and description\n"
@@ -116,6 +121,15 @@ int run(int argc, char** argv, const Teuchos::RCP<const Teuchos::Comm<int>>& com
   std::string base = inputPath.parent_path().string();
   if (base.empty()) base = ".";
 
+  // The output directory first: a directory in use by another run, or one
+  // DDContact did not write, stops the run before any work is done.
+  std::string command = "ddcontact";
+  for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+  std::error_code ec;
+  ddc::OutputDirectory dir(comm, outDir, {std::filesystem::absolute(inputPath, ec).lexically_normal().string(), command});
+  if (comm->getRank() == 0)
+    for (const auto& note : dir.recoveryNotes()) std::cout << "ddcontact: output: " << note << std::endl;
+
   ddc::Analysis analysis(comm, *params, ddc::ElementFactory::withBuiltins(), base);
   if (comm->getRank() == 0) {
     const auto& m = analysis.model().mesh();
@@ -123,7 +137,7 @@ int run(int argc, char** argv, const Teuchos::RCP<const Teuchos::Comm<int>>& com
               << " elements, " << 2 * m.numNodes() << " DOFs, " << analysis.model().partition().numSubdomains
               << " subdomains on " << comm->getSize() << " ranks" << std::endl;
   }
-  analysis.run(outDir);
+  analysis.run(dir);
   return 0;
 }
 
@@ -158,12 +172,17 @@ int main(int argc, char** argv) {
   auto comm = Tpetra::getDefaultComm();
   int status = 0;
   std::string msg;
+  if (ddc::faultInjectionActive() && comm->getRank() == 0)
+    std::cerr << "ddcontact: test fault injection active: DDCONTACT_FAULT_INJECTION="
+              << std::getenv("DDCONTACT_FAULT_INJECTION") << std::endl;
   try {
     status = run(argc, argv, comm);
   } catch (const ddc::InputError& e) {
     msg = e.what();
   } catch (const ddc::SolverError& e) {
     msg = std::string("solver failure: ") + e.what();
+  } catch (const ddc::OutputError& e) {
+    msg = std::string("output: ") + e.what() + " (earlier results are untouched)";
   } catch (const std::exception& e) {
     msg = std::string("unexpected: ") + e.what();
   }

@@ -23,6 +23,7 @@
 #include "DDC_OutputDirectory.hpp"
 #include "DDC_Parameters.hpp"
 #include "DDC_Partition.hpp"
+#include "DDC_ResultFile.hpp"
 #include "DDC_VtkWriter.hpp"
 
 namespace ddc {
@@ -605,6 +606,20 @@ double Analysis::externalWorkIncrement(const Vector& fint0, const Vector& u0, do
 }
 
 void Analysis::run(const std::string& outputDirectory) {
+  if (outputDirectory.empty()) {
+    runSteps(nullptr);
+    return;
+  }
+  OutputDirectory dir(comm_, outputDirectory);
+  run(dir);
+}
+
+void Analysis::run(OutputDirectory& dir) {
+  for (const auto& note : dir.recoveryNotes()) progress("output: " + note);
+  runSteps(&dir);
+}
+
+void Analysis::runSteps(OutputDirectory* dir) {
   const auto t0 = std::chrono::steady_clock::now();
   auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   const PL& ls = params_.sublist("Load Stepping");
@@ -615,15 +630,28 @@ void Analysis::run(const std::string& outputDirectory) {
   const bool contact = model_->hasContact();
   const bool decomposed = contact && model_->contactOptions().decomposed;
 
-  std::unique_ptr<OutputDirectory> dir;
   std::unique_ptr<HistoryWriter> hist;
   std::unique_ptr<VtkWriter> vtk;
-  if (!outputDirectory.empty()) {
-    dir = std::make_unique<OutputDirectory>(comm_, outputDirectory);
+  if (dir) {
+    DDC_INPUT_REQUIRE(!dir->committed(), "output directory '" << dir->finalPath()
+                                                              << "' was committed already: one run per OutputDirectory");
     auto columns = HistoryWriter::standardColumns();
     columns.insert(columns.end(), {"external_work", "contact_bytes", "bisections"});
     hist = std::make_unique<HistoryWriter>(comm_, dir->path() + "/history.csv", columns);
-    if (comm_->getRank() == 0) Teuchos::writeParameterListToXmlFile(params_, dir->path() + "/parameters.xml");
+    // The validated parameters, defaults included; written with every step
+    // checked (a full disk must not leave an empty file behind).
+    std::string error;
+    if (comm_->getRank() == 0) {
+      try {
+        std::ostringstream xml;
+        Teuchos::writeParameterListToXmlOStream(params_, xml);
+        writeFileAtomically(dir->path() + "/parameters.xml", xml.str());
+      } catch (const OutputError& e) {
+        error = e.what();
+      }
+    }
+    error = firstErrorOnAnyRank(*comm_, error);
+    if (!error.empty()) throw OutputError(error);
     if (out.get<bool>("VTK")) vtk = std::make_unique<VtkWriter>(comm_, dir->path(), "solution.pvd");
   }
   auto writeVtk = [&](int step, double lambda) {
@@ -753,6 +781,7 @@ void Analysis::run(const std::string& outputDirectory) {
     }
   }
   if (dir) {
+    hist->close();
     hist.reset();
     vtk.reset();
     dir->commit();

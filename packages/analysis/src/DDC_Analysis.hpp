@@ -20,6 +20,7 @@
 #include "DDC_ElementFactory.hpp"
 #include "DDC_FetiDpSolver.hpp"
 #include "DDC_Model.hpp"
+#include "DDC_OutputDirectory.hpp"
 #include "DDC_Substructuring.hpp"
 
 namespace ddc {
@@ -73,8 +74,16 @@ class Analysis {
   /// Run every load step. With a non-empty `outputDirectory`, write
   /// history.csv, vtk/ and the validated parameters there: results are
   /// staged in "<dir>.partial" and replace "<dir>" only when the run succeeds.
-  /// \throws SolverError when a step fails after all bisections.
+  /// \throws SolverError when a step fails after all bisections;
+  ///   OutputError when the results cannot be written (earlier results in
+  ///   the directory stay as they were).
   void run(const std::string& outputDirectory);
+
+  /// Run every load step, writing into `dir` (opened by the caller, e.g. the
+  /// ddcontact application before it builds the analysis, so that a
+  /// directory in use or not written by DDContact stops the run before any
+  /// work). Commits `dir` when the run succeeds.
+  void run(OutputDirectory& dir);
 
   const Model& model() const { return *model_; }
   const Vector& displacement() const { return *u_; }
@@ -83,6 +92,7 @@ class Analysis {
   const Teuchos::ParameterList& parameters() const { return params_; }
 
  private:
+  void runSteps(OutputDirectory* dir);
   bool solveIncrement(double lambda0, double lambda1, StepRecord& rec);
   double externalWorkIncrement(const Vector& fint0, const Vector& u0, double lambda0, const Vector& fint1,
                                const Vector& u1, double lambda1) const;

@@ -1,8 +1,6 @@
 #include "DDC_HistoryWriter.hpp"
 
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <set>
 #include <stdexcept>
@@ -69,24 +67,30 @@ HistoryWriter::HistoryWriter(Teuchos::RCP<const Teuchos::Comm<int>> comm, const 
   if (comm_->getRank() == 0) {
     std::error_code ec;
     if (fs::is_directory(fs::path(path), ec)) path_ = (fs::path(path) / defaultFileName()).string();
-    errno = 0;
-    file_.reset(std::fopen(path_.c_str(), "w"));
-    if (!file_) {
-      error = "cannot create history file '" + path_ + "': " + std::strerror(errno);
-    } else {
+    try {
+      file_ = std::make_unique<CheckedFile>(path_);
+    } catch (const OutputError& e) {
+      error = std::string("I") + "history file: " + e.what();
+    }
+    if (error.empty()) try {
       std::string header;
       for (std::size_t i = 0; i < columns_.size(); ++i) {
         if (i) header += ',';
         header += columns_[i];
       }
       header += '\n';
-      if (std::fputs(header.c_str(), file_.get()) < 0 || std::fflush(file_.get()) != 0)
-        error = "cannot write history file '" + path_ + "': " + std::strerror(errno);
+      file_->write(header);
+      file_->flush();
+    } catch (const OutputError& e) {
+      error = std::string("O") + "history file: " + e.what();
     }
   }
   path_ = broadcastFromRoot(*comm_, path_);
+  // A file that cannot be created is a wrong path (input); a failing write
+  // is an output failure (a full disk).
   error = firstErrorOnAnyRank(*comm_, error);
-  if (!error.empty()) throw InputError(error);
+  if (!error.empty() && error[0] == 'I') throw InputError(error.substr(1));
+  if (!error.empty()) throw OutputError(error.substr(1));
 }
 
 HistoryWriter::~HistoryWriter() = default;
@@ -105,13 +109,31 @@ void HistoryWriter::appendRow(const std::vector<double>& values) {
       line += formatValue(values[i]);
     }
     line += '\n';
-    errno = 0;
-    if (!file_ || std::fputs(line.c_str(), file_.get()) < 0 || std::fflush(file_.get()) != 0)
-      error = "cannot write history file '" + path_ + "': " + std::strerror(errno);
+    try {
+      if (!file_) DDC_THROW(OutputError, "cannot write history file '" << path_ << "': it is closed");
+      file_->write(line);
+      file_->flush();
+    } catch (const OutputError& e) {
+      error = e.what();
+    }
   }
   error = firstErrorOnAnyRank(*comm_, error);
-  if (!error.empty()) throw std::runtime_error(error);
+  if (!error.empty()) throw OutputError(error);
   ++numRows_;
+}
+
+void HistoryWriter::close() {
+  std::string error;
+  if (comm_->getRank() == 0 && file_) {
+    try {
+      file_->close();
+    } catch (const OutputError& e) {
+      error = e.what();
+    }
+    file_.reset();
+  }
+  error = firstErrorOnAnyRank(*comm_, error);
+  if (!error.empty()) throw OutputError(error);
 }
 
 }  // namespace ddc

@@ -1,13 +1,14 @@
 // history.csv: one row per converged load step (DESIGN.md §4).
 #pragma once
 
-#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <Teuchos_Comm.hpp>
 #include <Teuchos_RCP.hpp>
+
+#include "DDC_ResultFile.hpp"
 
 namespace ddc {
 
@@ -16,8 +17,11 @@ namespace ddc {
 /// The header line is the column names joined by ','. Each row is written
 /// with full precision ("%.17g", so values read back bit-identical); values
 /// that are integral (|v| < 2^53, e.g. step numbers, iteration counts) are
-/// written without a decimal point. The file is flushed after every row, so
-/// a run that crashes leaves a valid CSV file with all rows completed so far.
+/// written without a decimal point. Every row is handed to the operating
+/// system when it is appended (a run that crashes leaves a valid CSV file with
+/// all rows completed so far), and every write is checked (CheckedFile): a
+/// full disk is an error naming the file, never a silently truncated history.
+/// close() syncs the file to disk; call it before OutputDirectory::commit().
 ///
 /// Constructor and appendRow() are collective: call them on every rank with
 /// the same arguments. Only rank 0 writes; the other ranks take part in the
@@ -39,7 +43,8 @@ class HistoryWriter {
   /// \param columns  column names: non-empty, unique, without ',', '"' or
   ///   line breaks.
   /// \throws InputError (every rank) if the columns are invalid or the file
-  ///   cannot be created.
+  ///   cannot be created; OutputError (every rank) if the header cannot be
+  ///   written (a full disk).
   HistoryWriter(Teuchos::RCP<const Teuchos::Comm<int>> comm, const std::string& path,
                 std::vector<std::string> columns);
 
@@ -49,8 +54,13 @@ class HistoryWriter {
 
   /// Collective. Appends one row and flushes it.
   /// \throws std::invalid_argument (every rank) if values.size() != columns().size();
-  /// \throws std::runtime_error (every rank) if writing fails on rank 0.
+  /// \throws OutputError (a std::runtime_error, every rank) if writing fails on rank 0.
   void appendRow(const std::vector<double>& values);
+
+  /// Collective. Syncs the file to disk (fsync) and closes it; later
+  /// appendRow() calls fail. A second call is a no-op.
+  /// \throws OutputError (every rank) naming the file if the sync or close fails.
+  void close();
 
   /// The file written, resolved as described for the constructor (the same
   /// on every rank: rank 0 resolves it and broadcasts it).
@@ -65,14 +75,10 @@ class HistoryWriter {
   static std::string formatValue(double v);
 
  private:
-  struct FileCloser {
-    void operator()(std::FILE* f) const { if (f) std::fclose(f); }
-  };
-
   Teuchos::RCP<const Teuchos::Comm<int>> comm_;
   std::string path_;
   std::vector<std::string> columns_;
-  std::unique_ptr<std::FILE, FileCloser> file_;
+  std::unique_ptr<CheckedFile> file_;  ///< rank 0 only
   int numRows_ = 0;
 };
 

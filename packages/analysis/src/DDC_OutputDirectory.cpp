@@ -1,12 +1,30 @@
 #include "DDC_OutputDirectory.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <ctime>
 #include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
 #include <system_error>
+#include <thread>
 #include <utility>
 
 #include <Teuchos_CommHelpers.hpp>
 
 #include "DDC_Error.hpp"
+#include "DDC_ResultFile.hpp"
+
+#ifndef DDC_VERSION
+#define DDC_VERSION "unknown"
+#endif
 
 namespace fs = std::filesystem;
 
@@ -28,89 +46,555 @@ std::string firstErrorOnAnyRank(const Teuchos::Comm<int>& comm, const std::strin
 
 namespace {
 
-/// "out/run/" -> "out/run"; rejects paths without a usable last component.
+constexpr const char* kManifestMagic = "ddcontact-result 1";
+constexpr const char* kLockMagic = "ddcontact-lock 1";
+
+/// Errors of the decisions on rank 0, carried to every rank with their kind.
+struct Failure {
+  enum Kind { None, Input, Output } kind = None;
+  std::string message;
+};
+
+std::string broadcastString(const Teuchos::Comm<int>& comm, const std::string& s) {
+  int length = comm.getRank() == 0 ? static_cast<int>(s.size()) : 0;
+  Teuchos::broadcast<int, int>(comm, 0, Teuchos::outArg(length));
+  std::string out = comm.getRank() == 0 ? s : std::string(length, ' ');
+  if (length > 0) Teuchos::broadcast<int, char>(comm, 0, length, &out[0]);
+  return out;
+}
+
+/// Raises the failure (decided on rank 0, or on any rank) on every rank.
+void raiseEverywhere(const Teuchos::Comm<int>& comm, const Failure& f) {
+  const std::string tagged = f.kind == Failure::None ? std::string() : (f.kind == Failure::Input ? "I" : "O") + f.message;
+  const std::string agreed = firstErrorOnAnyRank(comm, tagged);
+  if (agreed.empty()) return;
+  if (agreed[0] == 'I') throw InputError(agreed.substr(1));
+  throw OutputError(agreed.substr(1));
+}
+
+std::string nowUtc() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+std::string hostName() {
+  char buf[256] = {0};
+  if (::gethostname(buf, sizeof buf - 1) != 0) return "unknown";
+  return buf;
+}
+
+std::string oneLine(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  return s;
+}
+
+std::string fsError(const fs::filesystem_error& e) {
+  std::string m = e.code().message();
+  if (!e.path1().empty()) m += " ('" + e.path1().string() + "')";
+  return m;
+}
+
+/// "/a/b/run/" -> "/a/b/run", absolute, with "." / ".." and symbolic links
+/// of the existing part resolved (so "P/sub/.." is P, as the file system sees it).
 fs::path normalisedFinalDir(const std::string& finalDir) {
   DDC_INPUT_REQUIRE(!finalDir.empty(), "output directory: the path is empty");
-  fs::path p = fs::path(finalDir).lexically_normal();
+  std::error_code ec;
+  fs::path p = fs::weakly_canonical(fs::absolute(finalDir, ec), ec);
+  if (ec) p = fs::absolute(finalDir).lexically_normal();
+  p = p.lexically_normal();
   if (!p.has_filename() && p.has_parent_path() && p != p.root_path()) p = p.parent_path();
   const std::string last = p.filename().string();
-  DDC_INPUT_REQUIRE(!last.empty() && last != "." && last != "..",
-                    "output directory '" << finalDir
-                                         << "': expected a path ending in a directory name");
+  DDC_INPUT_REQUIRE(!last.empty() && last != "." && last != ".." && p != p.root_path(),
+                    "output directory '" << finalDir << "' (" << p.string()
+                                         << "): expected a path ending in a directory name");
   return p;
+}
+
+// ---- manifests ---------------------------------------------------------------------
+
+struct Manifest {
+  bool present = false;  ///< a readable manifest with the magic first line
+  std::map<std::string, std::string> fields;
+  std::map<std::string, std::uintmax_t> files;  ///< relative path -> size
+  bool complete() const {
+    auto it = fields.find("status");
+    return present && it != fields.end() && it->second == "complete";
+  }
+};
+
+Manifest readManifest(const fs::path& dir) {
+  Manifest m;
+  std::ifstream in(dir / OutputDirectory::manifestFileName());
+  std::string line;
+  if (!in || !std::getline(in, line) || line != kManifestMagic) return m;
+  m.present = true;
+  while (std::getline(in, line)) {
+    const auto colon = line.find(": ");
+    if (colon == std::string::npos) continue;
+    const std::string key = line.substr(0, colon), value = line.substr(colon + 2);
+    if (key == "file") {
+      std::istringstream is(value);
+      std::uintmax_t size = 0;
+      is >> size;
+      std::string rel;
+      std::getline(is >> std::ws, rel);
+      m.files[rel] = size;
+    } else {
+      m.fields[key] = value;
+    }
+  }
+  return m;
+}
+
+/// Regular files below `dir` (relative paths), the manifest excluded; other
+/// entries that are not directories (links, sockets, ...) are reported too.
+std::vector<std::string> filesBelow(const fs::path& dir) {
+  std::vector<std::string> out;
+  for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator(); ++it) {
+    if (it->is_directory() && !it->is_symlink()) continue;
+    const std::string rel = it->path().lexically_relative(dir).generic_string();
+    if (rel == OutputDirectory::manifestFileName()) continue;
+    out.push_back(rel);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+/// Whether `dir` holds the complete result its manifest describes: status
+/// complete, every listed file present with its size.
+bool completeResult(const fs::path& dir) {
+  const Manifest m = readManifest(dir);
+  if (!m.complete()) return false;
+  for (const auto& [rel, size] : m.files) {
+    std::error_code ec;
+    const fs::path p = dir / rel;
+    if (!fs::is_regular_file(fs::symlink_status(p, ec)) || fs::file_size(p, ec) != size || ec) return false;
+  }
+  return true;
+}
+
+/// Files of `dir` its manifest does not list (someone else put them there).
+std::vector<std::string> foreignFiles(const fs::path& dir, const Manifest& m) {
+  std::vector<std::string> out;
+  for (const auto& rel : filesBelow(dir))
+    if (!m.files.count(rel)) out.push_back(rel);
+  return out;
+}
+
+std::string listSome(const fs::path& dir, const std::vector<std::string>& rels) {
+  std::string s;
+  for (std::size_t i = 0; i < rels.size() && i < 5; ++i) s += (i ? ", '" : "'") + (dir / rels[i]).string() + "'";
+  if (rels.size() > 5) s += " and " + std::to_string(rels.size() - 5) + " more";
+  return s;
+}
+
+bool isEmptyDirectory(const fs::path& p) {
+  std::error_code ec;
+  return fs::is_directory(p, ec) && fs::is_empty(p, ec);
+}
+
+/// Removes a directory DDContact wrote (it has a manifest): its files first,
+/// the manifest last, so that an interrupted removal still leaves a
+/// directory the next run recognises as its own.
+void removeResultTree(const fs::path& dir) {
+  std::vector<fs::path> dirs;
+  bool first = true;
+  for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator(); ++it) {
+    if (it->is_directory() && !it->is_symlink()) {
+      dirs.push_back(it->path());
+      continue;
+    }
+    if (it->path() == dir / OutputDirectory::manifestFileName()) continue;
+    fs::remove(it->path());
+    if (first) {
+      faultInjectionStage("removing-old-result");
+      first = false;
+    }
+  }
+  std::sort(dirs.rbegin(), dirs.rend());  // children before parents
+  for (const auto& d : dirs) fs::remove(d);
+  fs::remove(dir / OutputDirectory::manifestFileName());
+  fs::remove(dir);
+}
+
+void renameChecked(const fs::path& from, const fs::path& to) {
+  if (::rename(from.c_str(), to.c_str()) != 0) {
+    const int err = errno;
+    DDC_THROW(OutputError, "cannot rename '" << from.string() << "' to '" << to.string() << "': " << std::strerror(err));
+  }
+  syncDirectory(to.parent_path().string());
+}
+
+std::string manifestHeader(const RunDescription& run, const std::string& started, int ranks) {
+  std::ostringstream os;
+  os << kManifestMagic << "\n"
+     << "# The mark of a DDContact result directory (doc/user-guide.md, \"The output directory\").\n"
+     << "# DDContact replaces or removes only directories that carry it and lists every file it wrote.\n"
+     << "program: ddcontact " << DDC_VERSION << "\n"
+     << "input: " << oneLine(run.input.empty() ? std::string("(parameter list in memory)") : run.input) << "\n"
+     << "command: " << oneLine(run.command) << "\n"
+     << "ranks: " << ranks << "\n"
+     << "host: " << hostName() << "\n"
+     << "pid: " << ::getpid() << "\n"
+     << "started: " << started << "\n";
+  return os.str();
+}
+
+// ---- the lock ---------------------------------------------------------------------
+
+std::string readSmallFile(int fd) {
+  std::string s(4096, '\0');
+  const ssize_t n = ::pread(fd, &s[0], s.size(), 0);
+  s.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
+  return s;
+}
+
+/// Takes the advisory lock on `lock` (rank 0). Returns the descriptor, or
+/// -1 with `failure` set.
+int acquireLock(const fs::path& lock, const fs::path& final, const RunDescription& run, const std::string& started,
+                Failure& failure) {
+  for (int attempt = 0; attempt < 10; ++attempt) {
+    const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0) {
+      const int err = errno;
+      failure = {Failure::Output, "cannot create the lock file '" + lock.string() + "' of output directory '" +
+                                      final.string() + "': " + std::strerror(err)};
+      return -1;
+    }
+    struct flock fl {};
+    fl.l_type = F_WRLCK;
+    fl.l_whence = SEEK_SET;
+#ifdef F_OFD_SETLK
+    int rc = ::fcntl(fd, F_OFD_SETLK, &fl);
+    if (rc != 0 && errno == EINVAL) rc = ::fcntl(fd, F_SETLK, &fl);
+#else
+    int rc = ::fcntl(fd, F_SETLK, &fl);
+#endif
+    if (rc != 0) {
+      const int err = errno;
+      if (err != EAGAIN && err != EACCES) {
+        ::close(fd);
+        failure = {Failure::Output, "cannot lock '" + lock.string() + "': " + std::strerror(err)};
+        return -1;
+      }
+      // Another process holds it; it writes who it is right after locking.
+      std::string holder = readSmallFile(fd);
+      for (int i = 0; i < 50 && holder.find("started: ") == std::string::npos; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        holder = readSmallFile(fd);
+      }
+      ::close(fd);
+      if (holder.rfind(kLockMagic, 0) != 0 && !holder.empty()) {
+        failure = {Failure::Input, "'" + lock.string() + "' exists and is locked, but was not written by ddcontact; "
+                                   "DDContact needs that name for the lock of output directory '" + final.string() +
+                                   "': choose another --output-dir"};
+        return -1;
+      }
+      std::string who;
+      std::istringstream is(holder);
+      std::string line;
+      std::getline(is, line);
+      while (std::getline(is, line)) who += (who.empty() ? "" : ", ") + line;
+      failure = {Failure::Input, "output directory '" + final.string() + "' is in use by another ddcontact run (" +
+                                     (who.empty() ? std::string("details not yet written") : who) + "; lock file '" +
+                                     lock.string() + "'): wait until it finishes, or choose another --output-dir"};
+      return -1;
+    }
+    // The path may have been unlinked by the previous holder between our
+    // open() and the lock: then we hold a lock nobody else sees. Retry.
+    struct stat a {}, b {};
+    if (::fstat(fd, &a) != 0 || ::stat(lock.c_str(), &b) != 0 || a.st_ino != b.st_ino || a.st_dev != b.st_dev) {
+      ::close(fd);
+      continue;
+    }
+    const std::string previous = readSmallFile(fd);
+    if (!previous.empty() && previous.rfind(kLockMagic, 0) != 0) {
+      ::close(fd);
+      failure = {Failure::Input, "'" + lock.string() + "' exists and was not written by ddcontact; DDContact needs "
+                                 "that name for the lock of output directory '" + final.string() +
+                                 "': move the file away or choose another --output-dir"};
+      return -1;
+    }
+    std::ostringstream info;
+    info << kLockMagic << "\npid: " << ::getpid() << "\nhost: " << hostName() << "\ninput: "
+         << oneLine(run.input.empty() ? std::string("(parameter list in memory)") : run.input)
+         << "\nstarted: " << started << "\n";
+    const std::string text = info.str();
+    if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, text.data(), text.size(), 0) != static_cast<ssize_t>(text.size())) {
+      const int err = errno;
+      ::close(fd);
+      failure = {Failure::Output, "cannot write the lock file '" + lock.string() + "': " + std::strerror(err)};
+      return -1;
+    }
+    return fd;
+  }
+  failure = {Failure::Output, "cannot lock '" + lock.string() + "': it keeps being replaced by other runs"};
+  return -1;
+}
+
+void releaseLock(int& fd, const fs::path& lock) {
+  if (fd < 0) return;
+  // Unlink while holding the lock; a waiting opener detects the unlinked
+  // inode (acquireLock) and retries on a fresh file.
+  ::unlink(lock.c_str());
+  ::close(fd);
+  fd = -1;
+}
+
+/// Whether `p` is usable as one of D, D.partial, D.old: absent, a
+/// directory with a manifest, or an empty directory (removed here).
+/// Otherwise `failure` says why not.
+bool checkOwned(const fs::path& p, const fs::path& final, const std::string& role, Failure& failure) {
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(p, ec);
+  if (!fs::exists(st)) return true;
+  if (!fs::is_directory(st)) {
+    failure = {Failure::Input, "output directory '" + final.string() + "': '" + p.string() +
+                                   "' exists and is not a directory (" + role +
+                                   "); move it away or choose another --output-dir"};
+    return false;
+  }
+  if (readManifest(p).present) return true;
+  if (fs::is_empty(p, ec)) return true;
+  failure = {Failure::Input,
+             "output directory '" + final.string() + "': '" + p.string() + "' exists and was not written by ddcontact (" +
+                 role + ", it has no " + OutputDirectory::manifestFileName() +
+                 "); DDContact never removes or replaces a directory it did not write: choose another --output-dir, or "
+                 "move or remove '" + p.string() + "' yourself"};
+  return false;
+}
+
+/// The checks and recovery of the constructor (rank 0, lock held).
+void prepare(const fs::path& final, const fs::path& staging, const fs::path& old, std::vector<std::string>& notes,
+             Failure& failure) {
+  if (!checkOwned(final, final, "the output directory", failure) ||
+      !checkOwned(staging, final, "the staging directory of a run", failure) ||
+      !checkOwned(old, final, "the previous result during a commit", failure))
+    return;
+  // An earlier result may be replaced only if all its files are DDContact's;
+  // checked before any recovery step moves it.
+  if (fs::exists(final) && !isEmptyDirectory(final)) {
+    const auto foreign = foreignFiles(final, readManifest(final));
+    if (!foreign.empty()) {
+      failure = {Failure::Input, "output directory '" + final.string() +
+                                     "' is an earlier DDContact result but holds files DDContact did not write: " +
+                                     listSome(final, foreign) +
+                                     "; move them elsewhere or choose another --output-dir (a new result replaces "
+                                     "the whole directory)"};
+      return;
+    }
+  }
+  std::error_code ec;
+  // Empty leftovers hold nothing; clear them so the cases below are simple.
+  for (const fs::path& p : {staging, old})
+    if (isEmptyDirectory(p)) fs::remove(p, ec);
+  const bool hasFinal = fs::exists(final);
+
+  // Recovery from a commit interrupted at any stage (see commit()).
+  if (fs::exists(old)) {
+    if (hasFinal && completeResult(final)) {
+      removeResultTree(old);
+      notes.push_back("removed '" + old.string() + "': a commit interrupted in an earlier run had already put the "
+                      "newer complete result in '" + final.string() + "'");
+    } else if (hasFinal && !isEmptyDirectory(final)) {
+      failure = {Failure::Output, "output directory '" + final.string() + "': both it and '" + old.string() +
+                                      "' exist and '" + final.string() + "' is not a complete result; keep the one you "
+                                      "want and remove the other yourself"};
+      return;
+    } else {
+      if (hasFinal) fs::remove(final);  // an empty directory
+      if (fs::exists(staging) && completeResult(staging)) {
+        renameChecked(staging, final);
+        removeResultTree(old);
+        notes.push_back("completed a commit interrupted in an earlier run: its complete result '" + staging.string() +
+                        "' is now '" + final.string() + "'; the result it replaced ('" + old.string() +
+                        "') was removed");
+      } else {
+        renameChecked(old, final);
+        notes.push_back("restored '" + final.string() + "' from '" + old.string() +
+                        "' (a commit was interrupted before the new result was complete)");
+      }
+    }
+  }
+  if (fs::exists(staging)) {
+    if (completeResult(staging)) {
+      // Killed after its manifest was complete, before the renames: finish
+      // that commit (it is the newest complete result).
+      if (fs::exists(final)) {
+        if (isEmptyDirectory(final)) {
+          fs::remove(final);
+        } else {
+          renameChecked(final, old);
+        }
+      }
+      renameChecked(staging, final);
+      if (fs::exists(old)) removeResultTree(old);
+      notes.push_back("completed a commit interrupted in an earlier run: its complete result is now '" +
+                      final.string() + "'");
+    } else {
+      removeResultTree(staging);
+      notes.push_back("removed '" + staging.string() + "', the staging directory of an earlier run that did not "
+                      "finish");
+    }
+  }
+
 }
 
 }  // namespace
 
-OutputDirectory::OutputDirectory(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::string finalDir)
-    : comm_(std::move(comm)) {
+OutputDirectory::OutputDirectory(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::string finalDir, RunDescription run)
+    : comm_(std::move(comm)), run_(std::move(run)) {
   DDC_INPUT_REQUIRE(!comm_.is_null(), "output directory '" << finalDir << "': null communicator");
-  // Same input on every rank, so this check (which may throw) agrees everywhere.
-  const fs::path final = normalisedFinalDir(finalDir);
-  fs::path staging = final;
-  staging += ".partial";
-  finalDir_ = final.string();
-  stagingDir_ = staging.string();
-
-  std::string error;
-  if (comm_->getRank() == 0) {
+  const Teuchos::Comm<int>& c = *comm_;
+  Failure failure;
+  fs::path final;
+  if (c.getRank() == 0) {
     try {
-      std::error_code ec;
-      const fs::file_status st = fs::status(final, ec);
-      if (fs::exists(st) && !fs::is_directory(st)) {
-        error = "output directory '" + finalDir_ + "' exists and is not a directory";
-      } else {
-        fs::remove_all(staging);  // leftover of an earlier failed run
-        fs::create_directories(staging);
-        if (!fs::is_directory(staging)) {
-          error = "cannot create output directory '" + finalDir_ + "' (staging directory '" +
-                  stagingDir_ + "')";
-        }
-      }
-    } catch (const fs::filesystem_error& e) {
-      error = "cannot create output directory '" + finalDir_ + "' (staging directory '" +
-              stagingDir_ + "'): " + e.code().message();
-      if (!e.path1().empty()) error += " at '" + e.path1().string() + "'";
-    } catch (const std::exception& e) {
-      error = "cannot create output directory '" + finalDir_ + "': " + e.what();
+      final = normalisedFinalDir(finalDir);
+    } catch (const InputError& e) {
+      failure = {Failure::Input, e.what()};
     }
   }
-  error = firstErrorOnAnyRank(*comm_, error);
-  if (!error.empty()) throw InputError(error);
+  raiseEverywhere(c, failure);
+  finalDir_ = broadcastString(c, final.string());
+  stagingDir_ = finalDir_ + ".partial";
+  started_ = broadcastString(c, nowUtc());
+
+  std::string notes;
+  if (c.getRank() == 0) {
+    const fs::path staging(stagingDir_), old(finalDir_ + ".old");
+    try {
+      // An existing ancestor that is not a directory is a wrong path.
+      for (fs::path a = final.parent_path(); !a.empty(); a = a.parent_path()) {
+        std::error_code ec;
+        const auto st = fs::status(a, ec);
+        if (fs::exists(st) && !fs::is_directory(st)) {
+          failure = {Failure::Input, "output directory '" + finalDir_ + "': '" + a.string() +
+                                         "' exists and is not a directory"};
+          break;
+        }
+        if (a == a.root_path()) break;
+      }
+      if (failure.kind == Failure::None) fs::create_directories(final.parent_path());
+      if (failure.kind == Failure::None) lockFd_ = acquireLock(lockPath(), final, run_, started_, failure);
+      if (failure.kind == Failure::None) faultInjectionStage("locked");
+      if (failure.kind == Failure::None) prepare(final, staging, old, notes_, failure);
+      if (failure.kind == Failure::None) {
+        fs::create_directory(staging);
+        // Fault-injection name "...:start" tells this write from the commit's.
+        const std::string manifest = (staging / manifestFileName()).string();
+        writeFileAtomically(manifest, manifestHeader(run_, started_, c.getSize()) + "status: running\n",
+                            manifest + ":start");
+        syncDirectory(final.parent_path().string());
+      }
+    } catch (const OutputError& e) {
+      failure = {Failure::Output, e.what()};
+    } catch (const fs::filesystem_error& e) {
+      failure = {Failure::Output, "output directory '" + finalDir_ + "': " + fsError(e)};
+    }
+    for (const auto& n : notes_) notes += n + '\n';
+    if (failure.kind != Failure::None && lockFd_ >= 0) {
+      // Failed after taking the lock: remove a staging directory this run
+      // created if nothing is in it, then release the lock.
+      std::error_code ec;
+      if (fs::is_directory(staging, ec) && fs::is_empty(staging, ec)) fs::remove(staging, ec);
+      releaseLock(lockFd_, lockPath());
+    }
+  }
+  raiseEverywhere(c, failure);
+  notes = broadcastString(c, notes);
+  notes_.clear();
+  std::istringstream is(notes);
+  for (std::string line; std::getline(is, line);) notes_.push_back(line);
+  faultInjectionStage("staged");
+}
+
+OutputDirectory::~OutputDirectory() {
+  if (lockFd_ >= 0 && !committed_) {
+    // A run that failed before writing anything (e.g. bad input found after
+    // the directory was opened) leaves nothing to inspect: remove its
+    // staging directory rather than leave litter. Anything written stays.
+    try {
+      const fs::path staging(stagingDir_);
+      if (filesBelow(staging).empty()) removeResultTree(staging);
+    } catch (const std::exception&) {
+    }
+  }
+  releaseLock(lockFd_, lockPath());
 }
 
 void OutputDirectory::commit() {
   if (committed_) return;
   // Every rank has finished writing into the staging directory.
   comm_->barrier();
-  std::string error;
+  Failure failure;
   if (comm_->getRank() == 0) {
-    const fs::path final(finalDir_);
-    const fs::path staging(stagingDir_);
+    const fs::path final(finalDir_), staging(stagingDir_);
     fs::path old = final;
     old += ".old";
     bool movedOld = false;
     try {
-      fs::remove_all(old);  // leftover of an interrupted commit
-      std::error_code ec;
-      if (fs::exists(fs::symlink_status(final, ec))) {
-        fs::rename(final, old);
-        movedOld = true;
+      faultInjectionStage("commit-begin");
+      // 1. The complete manifest: every file with its size.
+      std::ostringstream os;
+      os << manifestHeader(run_, started_, comm_->getSize()) << "finished: " << nowUtc() << "\n";
+      for (const auto& rel : filesBelow(staging)) {
+        if (rel == std::string(manifestFileName()) + ".tmp") continue;
+        os << "file: " << fs::file_size(staging / rel) << " " << rel << "\n";
       }
-      fs::rename(staging, final);
-      // The new results are in place; failing to delete the old ones is not fatal.
-      fs::remove_all(old, ec);
+      os << "status: complete\n";
+      writeFileAtomically((staging / manifestFileName()).string(), os.str());
+      syncDirectory(final.parent_path().string());
+      faultInjectionStage("commit-manifest-written");
+      // 2. The earlier result must still be ours alone (someone may have
+      //    added files since the run started).
+      if (fs::exists(final) && !isEmptyDirectory(final)) {
+        const Manifest m = readManifest(final);
+        const auto foreign = m.present ? foreignFiles(final, m) : filesBelow(final);
+        if (!m.present || !foreign.empty())
+          DDC_THROW(OutputError, "cannot commit the results to '"
+                                     << finalDir_ << "': since the run started it received files DDContact did not write ("
+                                     << listSome(final, foreign) << "); the new results stay complete in '"
+                                     << stagingDir_ << "' and the next run into '" << finalDir_
+                                     << "' publishes them once those files are moved away");
+      }
+      // 3. The swap: D -> D.old, D.partial -> D.
+      if (fs::exists(final)) {
+        if (isEmptyDirectory(final)) {
+          fs::remove(final);
+        } else {
+          renameChecked(final, old);
+          movedOld = true;
+          faultInjectionStage("commit-old-moved");
+        }
+      }
+      renameChecked(staging, final);
+      faultInjectionStage("commit-new-moved");
+    } catch (const OutputError& e) {
+      failure = {Failure::Output, e.what()};
     } catch (const fs::filesystem_error& e) {
-      error = "cannot commit output directory '" + finalDir_ + "' (from staging directory '" +
-              stagingDir_ + "'): " + e.code().message();
-      if (movedOld) {
-        std::error_code ec;
-        if (!fs::exists(fs::symlink_status(final, ec))) fs::rename(old, final, ec);
+      failure = {Failure::Output, "cannot commit output directory '" + finalDir_ + "': " + fsError(e)};
+    }
+    if (failure.kind != Failure::None && movedOld && !fs::exists(final)) {
+      // Put the earlier result back; the new one stays complete in staging.
+      std::error_code ec;
+      fs::rename(old, final, ec);
+    }
+    if (failure.kind == Failure::None && movedOld) {
+      // 4. The new result is in place; failing to delete the old one is not
+      //    fatal (the next run removes it and says so).
+      try {
+        removeResultTree(old);
+      } catch (const fs::filesystem_error&) {
       }
     }
   }
-  error = firstErrorOnAnyRank(*comm_, error);
-  if (!error.empty()) throw InputError(error);
+  raiseEverywhere(*comm_, failure);
   committed_ = true;
 }
 

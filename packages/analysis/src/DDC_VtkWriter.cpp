@@ -1,7 +1,6 @@
 #include "DDC_VtkWriter.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -15,17 +14,13 @@
 
 #include "DDC_Error.hpp"
 #include "DDC_OutputDirectory.hpp"
+#include "DDC_ResultFile.hpp"
 
 namespace fs = std::filesystem;
 
 namespace ddc {
 
 namespace {
-
-struct FileCloser {
-  void operator()(std::FILE* f) const { if (f) std::fclose(f); }
-};
-using File = std::unique_ptr<std::FILE, FileCloser>;
 
 /// Number of nodes of the supported VTK cell types, -1 if unsupported.
 int nodesPerCell(unsigned char type) {
@@ -174,137 +169,112 @@ std::string broadcastString(const Teuchos::Comm<int>& comm, int root, const std:
   return out;
 }
 
-void writeValues(std::FILE* f, const std::vector<double>& v, int components, int written) {
+void writeValues(CheckedFile& f, const std::vector<double>& v, int components, int written) {
   const std::size_t n = components > 0 ? v.size() / components : 0;
   for (std::size_t i = 0; i < n; ++i) {
-    std::fputs("         ", f);
+    f.write("         ");
     for (int c = 0; c < written; ++c) {
       const double x = c < components ? v[i * components + c] : 0.0;
-      std::fprintf(f, c ? " %.17g" : "%.17g", x);
+      f.printf(c ? " %.17g" : "%.17g", x);
     }
-    std::fputc('\n', f);
+    f.write("\n");
   }
 }
 
-void writeFieldArrays(std::FILE* f, const std::vector<VtkField>& fields) {
+void writeFieldArrays(CheckedFile& f, const std::vector<VtkField>& fields) {
   for (const VtkField& fd : fields) {
     const int w = writtenComponents(fd.components);
-    std::fprintf(f,
-                 "        <DataArray type=\"Float64\" Name=\"%s\" NumberOfComponents=\"%d\" "
+    f.printf("        <DataArray type=\"Float64\" Name=\"%s\" NumberOfComponents=\"%d\" "
                  "format=\"ascii\">\n",
                  xmlEscape(fd.name).c_str(), w);
     writeValues(f, fd.values, fd.components, w);
-    std::fputs("        </DataArray>\n", f);
+    f.write("        </DataArray>\n");
   }
 }
 
-std::string errnoText() { return errno ? std::strerror(errno) : "I/O error"; }
-
-/// Closes `f` and reports an error if writing or closing failed.
-std::string finish(File& f, const std::string& path) {
-  const bool bad = std::ferror(f.get()) != 0;
-  errno = 0;
-  const int rc = std::fclose(f.release());
-  if (bad || rc != 0) return "VtkWriter: cannot write '" + path + "': " + errnoText();
-  return std::string();
-}
-
-std::string writeVtu(const std::string& path, const VtkPiece& p) {
-  errno = 0;
-  File file(std::fopen(path.c_str(), "w"));
-  if (!file) return "VtkWriter: cannot create '" + path + "': " + errnoText();
-  std::FILE* f = file.get();
-  std::fputs("<?xml version=\"1.0\"?>\n", f);
-  std::fputs("<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n", f);
-  std::fputs("  <UnstructuredGrid>\n", f);
-  std::fprintf(f, "    <Piece NumberOfPoints=\"%d\" NumberOfCells=\"%d\">\n", p.numPoints(),
+void writeVtu(const std::string& path, const VtkPiece& p) {
+  CheckedFile f(path);
+  f.write("<?xml version=\"1.0\"?>\n");
+  f.write("<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n");
+  f.write("  <UnstructuredGrid>\n");
+  f.printf("    <Piece NumberOfPoints=\"%d\" NumberOfCells=\"%d\">\n", p.numPoints(),
                p.numCells());
-  std::fputs("      <PointData>\n", f);
+  f.write("      <PointData>\n");
   writeFieldArrays(f, p.pointData);
-  std::fputs("      </PointData>\n", f);
-  std::fputs("      <CellData>\n", f);
+  f.write("      </PointData>\n");
+  f.write("      <CellData>\n");
   writeFieldArrays(f, p.cellData);
-  std::fputs("      </CellData>\n", f);
-  std::fputs("      <Points>\n", f);
-  std::fputs("        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n", f);
+  f.write("      </CellData>\n");
+  f.write("      <Points>\n");
+  f.write("        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
   writeValues(f, p.points, 3, 3);
-  std::fputs("        </DataArray>\n", f);
-  std::fputs("      </Points>\n", f);
-  std::fputs("      <Cells>\n", f);
-  std::fputs("        <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n", f);
+  f.write("        </DataArray>\n");
+  f.write("      </Points>\n");
+  f.write("      <Cells>\n");
+  f.write("        <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n");
   int begin = 0;
   for (int c = 0; c < p.numCells(); ++c) {
-    std::fputs("         ", f);
+    f.write("         ");
     for (int k = begin; k < p.offsets[c]; ++k)
-      std::fprintf(f, k > begin ? " %d" : "%d", p.connectivity[k]);
-    std::fputc('\n', f);
+      f.printf(k > begin ? " %d" : "%d", p.connectivity[k]);
+    f.write("\n");
     begin = p.offsets[c];
   }
-  std::fputs("        </DataArray>\n", f);
-  std::fputs("        <DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n", f);
-  for (int c = 0; c < p.numCells(); ++c) std::fprintf(f, "         %d\n", p.offsets[c]);
-  std::fputs("        </DataArray>\n", f);
-  std::fputs("        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n", f);
+  f.write("        </DataArray>\n");
+  f.write("        <DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n");
+  for (int c = 0; c < p.numCells(); ++c) f.printf("         %d\n", p.offsets[c]);
+  f.write("        </DataArray>\n");
+  f.write("        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
   for (int c = 0; c < p.numCells(); ++c)
-    std::fprintf(f, "         %d\n", static_cast<int>(p.types[c]));
-  std::fputs("        </DataArray>\n", f);
-  std::fputs("      </Cells>\n", f);
-  std::fputs("    </Piece>\n", f);
-  std::fputs("  </UnstructuredGrid>\n", f);
-  std::fputs("</VTKFile>\n", f);
-  return finish(file, path);
+    f.printf("         %d\n", static_cast<int>(p.types[c]));
+  f.write("        </DataArray>\n");
+  f.write("      </Cells>\n");
+  f.write("    </Piece>\n");
+  f.write("  </UnstructuredGrid>\n");
+  f.write("</VTKFile>\n");
+  f.close();
 }
 
-std::string writePvtu(const std::string& path, int step, const std::vector<FieldDecl>& decls,
+void writePvtu(const std::string& path, int step, const std::vector<FieldDecl>& decls,
                       const std::vector<int>& pieceIds) {
-  errno = 0;
-  File file(std::fopen(path.c_str(), "w"));
-  if (!file) return "VtkWriter: cannot create '" + path + "': " + errnoText();
-  std::FILE* f = file.get();
-  std::fputs("<?xml version=\"1.0\"?>\n", f);
-  std::fputs("<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n",
-             f);
-  std::fputs("  <PUnstructuredGrid GhostLevel=\"0\">\n", f);
+  CheckedFile f(path);
+  f.write("<?xml version=\"1.0\"?>\n");
+  f.write("<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n");
+  f.write("  <PUnstructuredGrid GhostLevel=\"0\">\n");
   for (int pass = 0; pass < 2; ++pass) {
     const bool point = pass == 0;
-    std::fputs(point ? "    <PPointData>\n" : "    <PCellData>\n", f);
+    f.write(point ? "    <PPointData>\n" : "    <PCellData>\n");
     for (const FieldDecl& d : decls) {
       if (d.point != point) continue;
-      std::fprintf(f, "      <PDataArray type=\"Float64\" Name=\"%s\" NumberOfComponents=\"%d\"/>\n",
+      f.printf("      <PDataArray type=\"Float64\" Name=\"%s\" NumberOfComponents=\"%d\"/>\n",
                    xmlEscape(d.name).c_str(), writtenComponents(d.components));
     }
-    std::fputs(point ? "    </PPointData>\n" : "    </PCellData>\n", f);
+    f.write(point ? "    </PPointData>\n" : "    </PCellData>\n");
   }
-  std::fputs("    <PPoints>\n", f);
-  std::fputs("      <PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>\n", f);
-  std::fputs("    </PPoints>\n", f);
+  f.write("    <PPoints>\n");
+  f.write("      <PDataArray type=\"Float64\" NumberOfComponents=\"3\"/>\n");
+  f.write("    </PPoints>\n");
   for (int id : pieceIds)
-    std::fprintf(f, "    <Piece Source=\"%s\"/>\n", VtkWriter::vtuFileName(step, id).c_str());
-  std::fputs("  </PUnstructuredGrid>\n", f);
-  std::fputs("</VTKFile>\n", f);
-  return finish(file, path);
+    f.printf("    <Piece Source=\"%s\"/>\n", VtkWriter::vtuFileName(step, id).c_str());
+  f.write("  </PUnstructuredGrid>\n");
+  f.write("</VTKFile>\n");
+  f.close();
 }
 
-std::string writePvd(const std::string& path, const std::vector<std::pair<int, double>>& steps) {
-  const std::string tmp = path + ".tmp";
-  errno = 0;
-  File file(std::fopen(tmp.c_str(), "w"));
-  if (!file) return "VtkWriter: cannot create '" + tmp + "': " + errnoText();
-  std::FILE* f = file.get();
-  std::fputs("<?xml version=\"1.0\"?>\n", f);
-  std::fputs("<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n", f);
-  std::fputs("  <Collection>\n", f);
-  for (const auto& s : steps)
-    std::fprintf(f, "    <DataSet timestep=\"%.17g\" group=\"\" part=\"0\" file=\"%s\"/>\n",
-                 s.second, VtkWriter::pvtuFileName(s.first).c_str());
-  std::fputs("  </Collection>\n", f);
-  std::fputs("</VTKFile>\n", f);
-  std::string e = finish(file, tmp);
-  if (!e.empty()) return e;
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) return "VtkWriter: cannot replace '" + path + "': " + ec.message();
-  return std::string();
+/// The time series is rewritten after every step, atomically: a reader (or
+/// a crash) sees the previous complete series or the new one.
+void writePvd(const std::string& path, const std::vector<std::pair<int, double>>& steps) {
+  std::string text = "<?xml version=\"1.0\"?>\n"
+                     "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+                     "  <Collection>\n";
+  char line[256];
+  for (const auto& s : steps) {
+    std::snprintf(line, sizeof line, "    <DataSet timestep=\"%.17g\" group=\"\" part=\"0\" file=\"%s\"/>\n",
+                  s.second, VtkWriter::pvtuFileName(s.first).c_str());
+    text += line;
+  }
+  text += "  </Collection>\n</VTKFile>\n";
+  writeFileAtomically(path, text);
 }
 
 }  // namespace
@@ -421,12 +391,13 @@ void VtkWriter::writeStep(int step, double time, const std::vector<VtkPiece>& lo
   if (!error.empty()) throw std::invalid_argument(error);
 
   // 3. Every rank writes its pieces.
-  for (const VtkPiece& p : localPieces) {
-    error = writeVtu((fs::path(vtkDir_) / vtuFileName(step, p.id)).string(), p);
-    if (!error.empty()) break;
+  try {
+    for (const VtkPiece& p : localPieces) writeVtu((fs::path(vtkDir_) / vtuFileName(step, p.id)).string(), p);
+  } catch (const OutputError& e) {
+    error = std::string("VtkWriter: ") + e.what();
   }
   error = firstErrorOnAnyRank(comm, error);
-  if (!error.empty()) throw std::runtime_error(error);
+  if (!error.empty()) throw OutputError(error);
 
   // 4. Rank 0 writes the step file and the time series.
   auto it = std::lower_bound(steps_.begin(), steps_.end(), std::make_pair(step, time),
@@ -438,12 +409,15 @@ void VtkWriter::writeStep(int step, double time, const std::vector<VtkPiece>& lo
   else
     steps_.insert(it, std::make_pair(step, time));
   if (rank == 0) {
-    error = writePvtu((fs::path(vtkDir_) / pvtuFileName(step)).string(), step, parseSignature(sig),
-                      allIds);
-    if (error.empty()) error = writePvd(pvdPath(), steps_);
+    try {
+      writePvtu((fs::path(vtkDir_) / pvtuFileName(step)).string(), step, parseSignature(sig), allIds);
+      writePvd(pvdPath(), steps_);
+    } catch (const OutputError& e) {
+      error = std::string("VtkWriter: ") + e.what();
+    }
   }
   error = firstErrorOnAnyRank(comm, error);
-  if (!error.empty()) throw std::runtime_error(error);
+  if (!error.empty()) throw OutputError(error);
 }
 
 }  // namespace ddc

@@ -77,7 +77,8 @@ class VtkWriter {
   /// \throws std::invalid_argument (every rank) if a piece is inconsistent
   ///   (sizes, indices, cell types, duplicate piece ids across ranks, fields
   ///   differing between pieces) or step < 0; nothing is written then.
-  /// \throws std::runtime_error (every rank) if a file cannot be written.
+  /// \throws OutputError (a std::runtime_error, every rank) naming the file and the
+  ///   operating system's reason if a file cannot be written, synced or closed.
   void writeStep(int step, double time, const std::vector<VtkPiece>& localPieces);
 
   /// `directory/vtk`.

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -19,6 +20,7 @@
 #include "DDC_Error.hpp"
 #include "DDC_HistoryWriter.hpp"
 #include "DDC_OutputDirectory.hpp"
+#include "DDC_ResultFile.hpp"
 #include "DDC_VtkWriter.hpp"
 
 namespace fs = std::filesystem;
@@ -110,6 +112,18 @@ class OutputTest : public ::testing::Test {
   int rank() const { return comm_->getRank(); }
   int size() const { return comm_->getSize(); }
 
+  /// A committed DDContact result in `final` holding `files` (relative path
+  /// -> content), written by rank 0.
+  void makeResult(const fs::path& final, const std::vector<std::pair<std::string, std::string>>& files) {
+    OutputDirectory out(comm_, final.string());
+    if (rank() == 0)
+      for (const auto& [rel, text] : files) {
+        fs::create_directories((fs::path(out.path()) / rel).parent_path());
+        writeFile(fs::path(out.path()) / rel, text);
+      }
+    out.commit();
+  }
+
   Comm comm_;
   fs::path base_;
 };
@@ -126,11 +140,7 @@ TEST_F(OutputTest, FirstErrorOnAnyRankAgrees) {
 
 TEST_F(OutputTest, UncommittedRunLeavesEarlierResultsUntouched) {
   const fs::path final = base_ / "run";
-  if (rank() == 0) {
-    fs::create_directories(final);
-    writeFile(final / "history.csv", "earlier results\n");
-  }
-  comm_->barrier();
+  makeResult(final, {{"history.csv", "earlier results\n"}});
   {
     OutputDirectory out(comm_, final.string());
     EXPECT_EQ(fs::path(out.path()), fs::path(final.string() + ".partial"));
@@ -150,12 +160,7 @@ TEST_F(OutputTest, UncommittedRunLeavesEarlierResultsUntouched) {
 
 TEST_F(OutputTest, CommitReplacesEarlierResults) {
   const fs::path final = base_ / "deeper" / "run";  // parent created as needed
-  if (rank() == 0) {
-    fs::create_directories(final / "vtk");
-    writeFile(final / "history.csv", "earlier results\n");
-    writeFile(final / "vtk" / "stale.vtu", "stale\n");
-  }
-  comm_->barrier();
+  makeResult(final, {{"history.csv", "earlier results\n"}, {"vtk/stale.vtu", "stale\n"}});
   OutputDirectory out(comm_, final.string() + "/");  // trailing separator is fine
   EXPECT_EQ(out.finalPath(), final.string());
   writeFile(fs::path(out.path()) / ("rank" + std::to_string(rank()) + ".txt"), "new\n");
@@ -173,16 +178,22 @@ TEST_F(OutputTest, CommitReplacesEarlierResults) {
 
 TEST_F(OutputTest, CommitWithoutEarlierResultsAndStaleStagingIsCleared) {
   const fs::path final = base_ / "run";
-  if (rank() == 0) {
-    fs::create_directories(final.string() + ".partial");
-    writeFile(fs::path(final.string() + ".partial") / "leftover.txt", "from a failed run\n");
+  {
+    // A run that failed: its staging directory stays behind.
+    OutputDirectory failed(comm_, final.string());
+    if (rank() == 0) writeFile(fs::path(failed.path()) / "leftover.txt", "from a failed run\n");
+    comm_->barrier();
   }
-  comm_->barrier();
   OutputDirectory out(comm_, final.string());
   EXPECT_FALSE(fs::exists(fs::path(out.path()) / "leftover.txt"));
+  ASSERT_EQ(out.recoveryNotes().size(), 1u);  // said, not silent
+  EXPECT_NE(out.recoveryNotes()[0].find("did not finish"), std::string::npos) << out.recoveryNotes()[0];
   out.commit();
   EXPECT_TRUE(fs::is_directory(final));
-  EXPECT_TRUE(fs::is_empty(final));
+  // Nothing was written but the manifest that marks the result as DDContact's.
+  std::vector<std::string> entries;
+  for (const auto& e : fs::directory_iterator(final)) entries.push_back(e.path().filename().string());
+  EXPECT_EQ(entries, std::vector<std::string>{OutputDirectory::manifestFileName()});
 }
 
 TEST_F(OutputTest, ParentPathIsAFileRaisesInputErrorOnEveryRank) {
@@ -199,6 +210,272 @@ TEST_F(OutputTest, ParentPathIsAFileRaisesInputErrorOnEveryRank) {
   EXPECT_THROW(OutputDirectory(comm_, (base_ / "blocker").string()), ddc::InputError);
   EXPECT_THROW(OutputDirectory(comm_, ""), ddc::InputError);
   EXPECT_EQ(readFile(base_ / "blocker"), "a file, not a directory\n");
+}
+
+// The mark of a result, recovery from interrupted commits, the run lock
+// (doc/user-guide.md, "The output directory").
+
+/// Every regular file below `dir` with its content, for before/after checks.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> out;
+  if (!fs::exists(dir)) return out;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) out[e.path().lexically_relative(dir).string()] = readFile(e.path());
+  return out;
+}
+
+std::string manifestStatus(const fs::path& dir) {
+  const std::string m = readFile(dir / OutputDirectory::manifestFileName());
+  const auto pos = m.rfind("status: ");
+  return pos == std::string::npos ? std::string("<none>") : m.substr(pos + 8, m.find('\n', pos) - pos - 8);
+}
+
+TEST_F(OutputTest, ForeignDirectoryIsNeverRemovedOrReplaced) {
+  const fs::path mine = base_ / "mine";
+  if (rank() == 0) {
+    fs::create_directories(mine / "notes");
+    writeFile(mine / "thesis.tex", "two years of work\n");
+    writeFile(mine / "notes" / "a.txt", "a\n");
+  }
+  comm_->barrier();
+  const auto before = snapshot(mine);
+  // Directly, and through a path that only resolves to it ("mine/notes/..").
+  for (const std::string path : {mine.string(), (mine / "notes" / "..").string(), mine.string() + "/"}) {
+    try {
+      OutputDirectory out(comm_, path);
+      ADD_FAILURE() << "expected ddc::InputError for " << path;
+    } catch (const ddc::InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("'" + mine.string() + "' exists and was not written by ddcontact"), std::string::npos) << what;
+      EXPECT_NE(what.find("choose another --output-dir"), std::string::npos) << what;
+    }
+  }
+  comm_->barrier();
+  EXPECT_EQ(snapshot(mine), before);
+  EXPECT_FALSE(fs::exists(mine.string() + ".partial"));
+  EXPECT_FALSE(fs::exists(mine.string() + ".lock"));  // the lock is released on failure
+}
+
+TEST_F(OutputTest, ForeignStagingOrOldDirectoryIsNeverRemoved) {
+  const fs::path final = base_ / "run";
+  for (const char* suffix : {".partial", ".old"}) {
+    const fs::path other = final.string() + suffix;
+    if (rank() == 0) {
+      fs::create_directories(other);
+      writeFile(other / "keep.txt", "not ddcontact's\n");
+    }
+    comm_->barrier();
+    try {
+      OutputDirectory out(comm_, final.string());
+      ADD_FAILURE() << "expected ddc::InputError for a foreign " << suffix;
+    } catch (const ddc::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("'" + other.string() + "' exists and was not written by ddcontact"),
+                std::string::npos)
+          << e.what();
+    }
+    comm_->barrier();
+    EXPECT_EQ(readFile(other / "keep.txt"), "not ddcontact's\n");
+    if (rank() == 0) fs::remove_all(other);
+    comm_->barrier();
+  }
+}
+
+TEST_F(OutputTest, EarlierResultWithForeignFilesIsRefused) {
+  const fs::path final = base_ / "run";
+  makeResult(final, {{"history.csv", "earlier\n"}});
+  if (rank() == 0) writeFile(final / "my_plot.png", "user's plot\n");
+  comm_->barrier();
+  const auto before = snapshot(final);
+  try {
+    OutputDirectory out(comm_, final.string());
+    ADD_FAILURE() << "expected ddc::InputError";
+  } catch (const ddc::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("holds files DDContact did not write: '" + (final / "my_plot.png").string()),
+              std::string::npos)
+        << e.what();
+  }
+  comm_->barrier();
+  EXPECT_EQ(snapshot(final), before);
+}
+
+TEST_F(OutputTest, EmptyDirectoryMayBeUsed) {
+  const fs::path final = base_ / "empty";
+  if (rank() == 0) fs::create_directories(final);
+  comm_->barrier();
+  OutputDirectory out(comm_, final.string());
+  if (rank() == 0) writeFile(fs::path(out.path()) / "history.csv", "new\n");
+  out.commit();
+  EXPECT_EQ(readFile(final / "history.csv"), "new\n");
+  EXPECT_EQ(manifestStatus(final), "complete");
+}
+
+TEST_F(OutputTest, ManifestListsEveryFileOfACommittedResult) {
+  const fs::path final = base_ / "run";
+  makeResult(final, {{"history.csv", "1,2\n"}, {"vtk/a.vtu", "abc"}});
+  const std::string m = readFile(final / OutputDirectory::manifestFileName());
+  EXPECT_EQ(m.rfind("ddcontact-result 1\n", 0), 0u) << m;
+  EXPECT_NE(m.find("\nfile: 4 history.csv\n"), std::string::npos) << m;
+  EXPECT_NE(m.find("\nfile: 3 vtk/a.vtu\n"), std::string::npos) << m;
+  EXPECT_NE(m.find("\nprogram: ddcontact "), std::string::npos) << m;
+  EXPECT_EQ(manifestStatus(final), "complete");
+  EXPECT_FALSE(fs::exists(final.string() + ".lock"));
+}
+
+TEST_F(OutputTest, SecondRunIntoTheSameDirectoryStopsNamingTheFirst) {
+  const fs::path final = base_ / "run";
+  makeResult(final, {{"history.csv", "earlier\n"}});
+  const auto before = snapshot(final);
+  OutputDirectory first(comm_, final.string());
+  // Open file descriptions lock independently (fcntl OFD locks), so a second
+  // OutputDirectory in this process meets the first's lock as another run would.
+  try {
+    OutputDirectory second(comm_, final.string());
+    ADD_FAILURE() << "expected ddc::InputError";
+  } catch (const ddc::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("is in use by another ddcontact run"), std::string::npos) << what;
+    // The lock is held by rank 0's process.
+    int pid0 = static_cast<int>(::getpid());
+    Teuchos::broadcast<int, int>(*comm_, 0, Teuchos::outArg(pid0));
+    EXPECT_NE(what.find("pid: " + std::to_string(pid0)), std::string::npos) << what;
+  }
+  comm_->barrier();
+  EXPECT_TRUE(fs::exists(first.path()));  // the first run's staging is intact
+  if (rank() == 0) writeFile(fs::path(first.path()) / "history.csv", "first\n");
+  first.commit();
+  EXPECT_EQ(readFile(final / "history.csv"), "first\n");
+  (void)before;
+}
+
+TEST_F(OutputTest, ForeignLockFileIsNotOverwritten) {
+  const fs::path final = base_ / "run";
+  if (rank() == 0) writeFile(final.string() + ".lock", "someone's file\n");
+  comm_->barrier();
+  EXPECT_THROW(OutputDirectory(comm_, final.string()), ddc::InputError);
+  comm_->barrier();
+  EXPECT_EQ(readFile(final.string() + ".lock"), "someone's file\n");
+}
+
+// Each intermediate state of a commit (OutputDirectory::commit), rebuilt by
+// hand, and what the next run makes of it: the newest complete result ends up
+// in D, and no complete result is lost before a newer one is in place.
+class OutputRecoveryTest : public OutputTest {
+ protected:
+  void SetUp() override {
+    OutputTest::SetUp();
+    final_ = base_ / "run";
+    partial_ = final_.string() + ".partial";
+    old_ = final_.string() + ".old";
+    // The old and the new complete results, made under other names.
+    makeResult(base_ / "old-result", {{"history.csv", "old\n"}});
+    makeResult(base_ / "new-result", {{"history.csv", "new\n"}, {"vtk/s.vtu", "new vtu\n"}});
+  }
+  void place(const std::string& which, const fs::path& where) {
+    if (rank() == 0) fs::rename(base_ / which, where);
+    comm_->barrier();
+  }
+  /// A staging directory of a run that did not finish.
+  void unfinishedStaging() {
+    OutputDirectory failed(comm_, (base_ / "unfinished").string());
+    if (rank() == 0) writeFile(fs::path(failed.path()) / "history.csv", "partial\n");
+    comm_->barrier();
+    place("unfinished.partial", partial_);
+  }
+  /// Opens the directory as the next run does; returns the history in D.
+  std::string nextRun(std::vector<std::string>* notes = nullptr) {
+    OutputDirectory next(comm_, final_.string());
+    if (notes) *notes = next.recoveryNotes();
+    EXPECT_FALSE(fs::exists(old_));
+    EXPECT_EQ(manifestStatus(final_), "complete");
+    EXPECT_EQ(manifestStatus(partial_), "running");  // the next run's own staging
+    const std::string history = readFile(final_ / "history.csv");
+    // Rank 0 removes the empty staging directory when `next` goes: every rank
+    // looks at it first.
+    comm_->barrier();
+    return history;
+  }
+  fs::path final_, partial_, old_;
+};
+
+TEST_F(OutputRecoveryTest, KilledDuringTheRunKeepsTheOldResult) {
+  place("old-result", final_);
+  unfinishedStaging();
+  std::vector<std::string> notes;
+  EXPECT_EQ(nextRun(&notes), "old\n");
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("did not finish"), std::string::npos);
+}
+
+TEST_F(OutputRecoveryTest, KilledAfterTheManifestPublishesTheNewResult) {
+  place("old-result", final_);
+  place("new-result", partial_);  // complete manifest, not yet renamed
+  EXPECT_EQ(nextRun(), "new\n");
+  EXPECT_EQ(readFile(final_ / "vtk" / "s.vtu"), "new vtu\n");
+}
+
+TEST_F(OutputRecoveryTest, KilledAfterMovingTheOldResultPublishesTheNewResult) {
+  place("old-result", old_);
+  place("new-result", partial_);
+  std::vector<std::string> notes;
+  EXPECT_EQ(nextRun(&notes), "new\n");
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("completed a commit interrupted"), std::string::npos) << notes[0];
+}
+
+TEST_F(OutputRecoveryTest, KilledAfterPublishingRemovesTheOldResult) {
+  place("old-result", old_);
+  place("new-result", final_);
+  EXPECT_EQ(nextRun(), "new\n");
+}
+
+TEST_F(OutputRecoveryTest, KilledWhileRemovingTheOldResultFinishesTheRemoval) {
+  place("old-result", old_);
+  place("new-result", final_);
+  if (rank() == 0) fs::remove(old_ / "history.csv");  // half removed: manifest still there
+  comm_->barrier();
+  EXPECT_EQ(nextRun(), "new\n");
+}
+
+TEST_F(OutputRecoveryTest, OldResultWithoutANewOneIsRestored) {
+  place("old-result", old_);
+  unfinishedStaging();
+  EXPECT_EQ(nextRun(), "old\n");
+}
+
+// A real full disk: /dev/full fails every write with ENOSPC.
+TEST_F(OutputTest, FullDiskIsAnErrorNamingTheFile) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  if (rank() == 0) {
+    try {
+      ddc::CheckedFile f("/dev/full");
+      f.write(std::string(100, 'x'));
+      f.close();
+      ADD_FAILURE() << "expected ddc::OutputError";
+    } catch (const ddc::OutputError& e) {
+      EXPECT_NE(std::string(e.what()).find("cannot write '/dev/full': No space left on device"), std::string::npos)
+          << e.what();
+    }
+  }
+  try {
+    HistoryWriter h(comm_, "/dev/full", {"step"});
+    ADD_FAILURE() << "expected ddc::OutputError on every rank";
+  } catch (const ddc::OutputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'/dev/full': No space left on device"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(OutputTest, AtomicWriteKeepsTheOldContentWhenItFails) {
+  if (rank() == 0) {
+    const fs::path p = base_ / "parameters.xml";
+    writeFile(p, "old\n");
+    ddc::writeFileAtomically(p.string(), "new\n");
+    EXPECT_EQ(readFile(p), "new\n");
+    EXPECT_FALSE(fs::exists(p.string() + ".tmp"));
+    // The temporary file cannot be created (a directory holds its name).
+    fs::create_directories(p.string() + ".tmp");
+    EXPECT_THROW(ddc::writeFileAtomically(p.string(), "newer\n"), ddc::OutputError);
+    EXPECT_EQ(readFile(p), "new\n");
+  }
 }
 
 // ---------------------------------------------------------------- HistoryWriter

@@ -26,6 +26,16 @@ class SolverError : public std::runtime_error {
   explicit SolverError(const std::string& what) : std::runtime_error(what) {}
 };
 
+/// The results could not be written: a full disk, a failed write, sync or
+/// close, a permission problem, a directory in use by another run or holding
+/// files DDContact did not write. The message names the path and the
+/// operating system's reason. Earlier results are never touched by the
+/// failure (doc/user-guide.md, "The output directory").
+class OutputError : public std::runtime_error {
+ public:
+  explicit OutputError(const std::string& what) : std::runtime_error(what) {}
+};
+
 }  // namespace ddc
 
 /// Throw ddc::InputError with a streamed message if `cond` is false.
