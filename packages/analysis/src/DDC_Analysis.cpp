@@ -412,7 +412,7 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
   const double etol = nw.get<double>("Energy Tolerance");
   const bool printIt = nw.get<bool>("Print Iterations");
   const bool contact = model_->hasContact();
-  const bool conventional = contact && !model_->contactOptions().decomposed;
+  const bool conventional = contact && !model_->decomposedContact();
 
   auto u = model_->createVector();
   u->assign(*u_);
@@ -613,7 +613,7 @@ void Analysis::run(const std::string& outputDirectory) {
   const int maxBisect = ls.get<int>("Max Bisections");
   const PL& out = params_.sublist("Output");
   const bool contact = model_->hasContact();
-  const bool decomposed = contact && model_->contactOptions().decomposed;
+  const bool decomposed = model_->decomposedContact();
 
   std::unique_ptr<OutputDirectory> dir;
   std::unique_ptr<HistoryWriter> hist;

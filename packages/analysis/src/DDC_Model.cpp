@@ -90,6 +90,9 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
     for (int n = 0; n < mesh_->numNodes(); ++n)
       if (isSurface[n]) surfaceNodes_.push_back(n);
   }
+  // The formulation alone says nothing about whether the contact maps exist:
+  // with no pairs there are none, and the run is a plain analysis.
+  decomposed_ = contact_.decomposed && hasContact();
   buildDofNumbering();
   buildConstraints();
   if (hasContact()) {
@@ -239,12 +242,12 @@ void Model::buildTopology() {
   // Decomposed contact: the master counterpart of a slot lives on the rank
   // of its master segment's element.
   localMasterSlots_.clear();
-  if (contact_.decomposed)
+  if (decomposed_)
     for (size_t k = 0; k < slots_.size(); ++k)
       if (slots_[k].paired() &&
           subdomainRank_[partition_.elementSubdomain[slots_[k].masterElement]] == comm_->getRank())
         localMasterSlots_.push_back(static_cast<int>(k));
-  if (contact_.decomposed) {
+  if (decomposed_) {
     // Multiplier DOFs of this rank's counterparts, and the transfers of the
     // contact-state check (assembleFrozenGaps()).
     std::vector<GO> lmOv;
@@ -307,7 +310,7 @@ void Model::buildTopology() {
     addGhosts(dofs);
   }
   for (int k : localSlots_) {
-    contact_.decomposed && slots_[k].paired() ? slaveSideDofs(k, dofs) : slotDofs(k, dofs);
+    decomposed_ && slots_[k].paired() ? slaveSideDofs(k, dofs) : slotDofs(k, dofs);
     addGhosts(dofs);
   }
   for (int k : localMasterSlots_) {
@@ -339,7 +342,7 @@ void Model::buildTopology() {
     addLocal(dofs);
   }
   for (int k : localSlots_) {
-    contact_.decomposed && slots_[k].paired() ? slaveSideDofs(k, dofs) : slotDofs(k, dofs);
+    decomposed_ && slots_[k].paired() ? slaveSideDofs(k, dofs) : slotDofs(k, dofs);
     addLocal(dofs);
   }
   for (int k : localMasterSlots_) {
@@ -568,7 +571,7 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
   // Decomposed contact: each counterpart where it lives (the slave's on the
   // owner of the slave node, the master's on the rank of the master
   // segment's element); they share only the multiplier DOF.
-  if (failedElement < 0 && contact_.decomposed) {
+  if (failedElement < 0 && decomposed_) {
     for (int k : localSlots_) {
       if (!slots_[k].paired()) {
         lids.assign(1, overlapMap_->getLocalElement(lmDof_[k]));
@@ -585,7 +588,7 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
     }
   }
   // Contact slots owned here. Unpaired slots carry only Π = ½λ² (λ = 0).
-  if (failedElement < 0 && !contact_.decomposed)
+  if (failedElement < 0 && !decomposed_)
     for (int k : localSlots_) {
       const ContactSlot& s = slots_[k];
       slotDofs(k, dofs);
@@ -783,11 +786,12 @@ void Model::distributedSearch(const Vector& u, std::vector<std::vector<ContactCa
 }
 
 bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
+  if (!hasContact()) return false;  // no surface maps exist
   // Decomposed contact pairs at step ends only (global search): the
   // geometry goes only where bounding boxes say it is needed. Conventional
   // NTS (the monolithic reference) tracks the pairing inside Newton on
   // replicated surface positions.
-  const bool distributed = contact_.decomposed && global;
+  const bool distributed = decomposed_ && global;
   std::vector<double> v;
   std::vector<std::vector<ContactCandidate>> found;
   std::vector<std::vector<char>> pastEnd;
@@ -994,7 +998,8 @@ void Model::assembleFrozenGaps(const Vector& u) {
 }
 
 std::vector<int> Model::updateActiveSet(const Vector& u) {
-  if (contact_.decomposed) {
+  if (!hasContact()) return {};  // no surface or multiplier maps exist
+  if (decomposed_) {
     assembleFrozenGaps(u);
   } else {
     std::vector<double> v;

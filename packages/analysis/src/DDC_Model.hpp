@@ -120,6 +120,11 @@ class Model {
 
   // ---- contact ---------------------------------------------------------------
   bool hasContact() const { return !slots_.empty(); }
+  /// Decomposed contact in use: Contact/Formulation = Decomposed
+  /// Node-To-Segment *and* at least one pair. With no pairs the formulation
+  /// is moot and the model is a plain one (no multiplier maps exist); test
+  /// this, never contactOptions().decomposed alone.
+  bool decomposedContact() const { return decomposed_; }
   const ContactOptions& contactOptions() const { return contact_; }
   const std::vector<ContactSlot>& contactSlots() const { return slots_; }
   /// Pair every slave node with a master segment at the state u (tracking
@@ -127,7 +132,8 @@ class Model {
   /// `freeze`, the projection ξ^p and normal n^p of the decomposed element
   /// are taken from this configuration. Collective: surface positions are
   /// gathered to every rank (one exchange, counted in exchanges()).
-  /// \return true if any slave changed its master segment (new topology).
+  /// \return true if any slave changed its master segment (new topology);
+  ///         false without contact (nothing to pair).
   bool updatePairing(const Vector& u, bool global, bool freeze);
   /// Activate every paired slot (Initial Contact State = In Contact), except
   /// the fully prescribed ones (see fullyPrescribed()).
@@ -145,6 +151,7 @@ class Model {
   /// map from the partial gaps of the slave and master counterparts,
   /// evaluated where they live; only multiplier-map values (gap, λ per
   /// slot) move between ranks, no geometry.
+  /// Without contact: nothing to do, returns no slots.
   std::vector<int> updateActiveSet(const Vector& u);
   /// Decomposed contact in FETI-DP: the constraint row of every contact slot
   /// (row id = the slot's multiplier DOF), split into the entries of the
@@ -156,7 +163,7 @@ class Model {
   /// counterpart pair works.
   std::vector<std::vector<ConstraintEntry>> contactRowEntries(const std::vector<SubdomainSystem>& systems) const;
   /// This rank's multiplier DOFs (one per slot whose slave node it owns), in
-  /// slot order; a one-to-one map.
+  /// slot order; a one-to-one map. Null without contact.
   Teuchos::RCP<const Map> multiplierMap() const { return multiplierMap_; }
   /// Slots whose multiplier this rank owns, in the order of multiplierMap().
   const std::vector<int>& ownedSlots() const { return localSlots_; }
@@ -211,6 +218,7 @@ class Model {
   Partition partition_;
   BoundaryConditions bcs_;
   ContactOptions contact_;
+  bool decomposed_ = false;  ///< see decomposedContact()
   std::shared_ptr<const ContactElement> ntsElement_, slaveElement_, masterElement_;
 
   std::vector<int> subdomainRank_;

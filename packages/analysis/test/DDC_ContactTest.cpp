@@ -13,7 +13,9 @@
 //   4. two half-rings (examples/two_half_rings.xml, 100 steps): frictionless
 //      contact between hyperelastic bodies is conservative, so the strain
 //      energy equals the external work; Newton converges superlinearly in
-//      contact steps once the active set has settled.
+//      contact steps once the active set has settled;
+//   5. Contact/Formulation = Decomposed Node-To-Segment without any pair is
+//      a plain analysis (issue 9, item 6(a): it crashed).
 // Decks are in-memory Teuchos::ParameterLists (the half-rings deck is read
 // from examples/). The measured numbers are printed on rank 0 for
 // doc/verification.md.
@@ -33,6 +35,10 @@
 
 #include "DDC_Analysis.hpp"
 #include "DDC_AnalysisTestDecks.hpp"
+#include "DDC_ElementFactory.hpp"
+#include "DDC_MeshGenerators.hpp"
+#include "DDC_Model.hpp"
+#include "DDC_Partition.hpp"
 #include "DDC_TestTolerances.hpp"
 
 namespace {
@@ -133,6 +139,14 @@ constexpr double kResidualFloor = 1e-12;
 /// least 100-fold: measured >= 2458 over all contact steps; linear
 /// convergence at the rates above gives 3 to 5.
 constexpr double kLastContraction = 1e-2;
+
+/// Two decks that define the same model (a Contact sublist that adds no
+/// pair): the same equations solved by the same solver. On one rank the runs
+/// are bitwise equal; a 2-rank MUMPS solve is reproducible only to round-off
+/// (two identical 2-rank runs differ by up to ~2e-14 relative, measured).
+/// A model that differs at all (a multiplier, another partition) differs by
+/// far more than this.
+constexpr double kSameModel = 1e-12;
 
 // ---------------------------------------------------------------------------
 // Helpers.
@@ -520,6 +534,86 @@ TEST(HalfRings, EnergyBalanceAndNewtonConvergence) {
       std::printf("\n");
     }
   }
+}
+
+// ---------------------------------------------------------------------------
+// 5. Decomposed formulation without contact pairs.
+
+class DecomposedWithoutPairs : public testing::TestWithParam<std::string> {};
+
+/// A 1 x 1 block (4 x 2 Quad4) fixed on the left, pulled on the right, with
+/// Solver/Strategy `strategy` (FETI-DP: 4 subdomains, Belos to 1e-12), and,
+/// if `contact`, a Contact sublist with the decomposed formulation and an
+/// empty Pairs sublist.
+PL pulledBlock(const std::string& strategy, bool contact) {
+  PL deck("DDContact");
+  RectangleSpec r;
+  r.ny = 2;
+  addRectangle(deck, "Block", r);
+  addDisplacement(deck, "Fixed", "Block/left", "XY");
+  addDisplacement(deck, "Pulled", "Block/right", "X").set("Value X", 0.1);
+  setRunOptions(deck, 2);
+  deck.sublist("Solver").set("Strategy", strategy);
+  if (strategy == "FETI-DP") {
+    deck.sublist("Partition").set("Number of Subdomains", 4);
+    deck.sublist("Solver").sublist("FETI-DP").sublist("Belos").set("Convergence Tolerance", 1e-12);
+  }
+  if (contact) {
+    PL& c = deck.sublist("Contact");
+    c.set("Formulation", std::string(kDecomposed));
+    c.sublist("Pairs");
+  }
+  return deck;
+}
+
+TEST_P(DecomposedWithoutPairs, RunsAsThePlainAnalysis) {
+  PL withContact = pulledBlock(GetParam(), true), plain = pulledBlock(GetParam(), false);
+  ddc::Analysis a(worldComm(), withContact), b(worldComm(), plain);
+  a.run("");
+  b.run("");
+  EXPECT_FALSE(a.model().hasContact());
+  EXPECT_FALSE(a.model().decomposedContact()) << "no pair: no decomposed contact, whatever the formulation";
+  ASSERT_EQ(a.history().size(), b.history().size());
+  for (size_t i = 0; i < a.history().size(); ++i) {
+    const auto& x = a.history()[i];
+    const auto& y = b.history()[i];
+    EXPECT_EQ(x.activeContacts, 0);
+    EXPECT_EQ(x.contactExchanges, 0);
+    EXPECT_EQ(x.contactForce[0], 0.0);
+    EXPECT_EQ(x.contactForce[1], 0.0);
+    EXPECT_EQ(x.newtonIterations, y.newtonIterations);
+    EXPECT_GT(x.strainEnergy, 0.0);
+    EXPECT_LE(relDiff(x.strainEnergy, y.strainEnergy), kSameModel) << "step " << x.step;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Strategies, DecomposedWithoutPairs, testing::Values("Monolithic", "FETI-DP"),
+                         formulationName);
+
+TEST(DecomposedWithoutPairs, ContactCallsOnAModelWithoutPairsDoNothing) {
+  // A host code may drive the Model itself: the contact calls must not reach
+  // for the multiplier and surface maps that only exist with pairs.
+  auto mesh = std::make_shared<ddc::Mesh>();
+  PL rect("Rectangle");
+  rect.set("Elements X", 4);
+  rect.set("Elements Y", 2);
+  ddc::generateRectangle(*mesh, "Block", ddc::CellType::Quad4, rect, "Rectangle");
+  PL el("Element");
+  el.set("Type", std::string("Quad4"));
+  el.sublist("Material").set("Type", std::string("Neo-Hookean"));
+  std::vector<std::shared_ptr<const ddc::Element>> elements{
+      ddc::ElementFactory::withBuiltins().create(el, "Element")};
+  ddc::ContactOptions options;
+  options.decomposed = true;  // and no pair
+  ddc::Model m(worldComm(), mesh, elements, ddc::partitionMetis(*mesh, worldComm()->getSize()),
+               ddc::BoundaryConditions{}, options);
+  EXPECT_FALSE(m.hasContact());
+  EXPECT_FALSE(m.decomposedContact());
+  auto u = m.createVector();
+  EXPECT_FALSE(m.updatePairing(*u, true, true));
+  EXPECT_TRUE(m.updateActiveSet(*u).empty());
+  EXPECT_TRUE(m.multiplierMap().is_null());
+  EXPECT_EQ(m.ownedMap()->getGlobalNumElements(), static_cast<size_t>(2 * mesh->numNodes())) << "no multiplier DOF";
 }
 
 }  // namespace
