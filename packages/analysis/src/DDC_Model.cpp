@@ -85,7 +85,17 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
       }
       pairingMargin_ = std::max(pairingMargin_, contact_.searchRadius + 4.0 * longest);
       for (int n : master.nodes()) masterSurfaceNodes_.push_back(n);
-      searches_.push_back(std::make_unique<ContactSearch>(std::move(master), slaves, contact_.searchRadius));
+      // The facing rule (doc/contact.md "Which slave nodes pair"): slave
+      // nodal normals from the slave segments, master element depths from
+      // the reference mesh. Every search of this pair applies it.
+      FacingRule rule;
+      rule.slaveSegments = masterSegmentsFromSideSet(*mesh_, def.slaveSet);
+      rule.masterDepths = masterElementDepths(*mesh_, def.masterSet);
+      for (const auto& sg : rule.slaveSegments)
+        for (int n : sg) isSurface[n] = 1;
+      pairRules_.push_back(rule);
+      searches_.push_back(
+          std::make_unique<ContactSearch>(std::move(master), slaves, contact_.searchRadius, std::move(rule)));
     }
     for (int n = 0; n < mesh_->numNodes(); ++n)
       if (isSurface[n]) surfaceNodes_.push_back(n);
@@ -122,6 +132,27 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
                                           Teuchos::ArrayView<const GO>(ownedLm), 0, comm_));
     multiplierAllMap_ = Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
                                              Teuchos::ArrayView<const GO>(lmDof_), 0, comm_));
+    // Decomposed pairing (distributedSearch()): the slave nodal normals need
+    // the positions of the nodes next to each slave node on the slave
+    // surface; those owned by another rank than the slave's are sent to it.
+    if (decomposed_) {
+      std::vector<std::pair<int, int>> sends;  // (node, rank) with node owned here
+      for (size_t p = 0; p < pairSlots_.size(); ++p) {
+        std::vector<int> slaveNodes;
+        for (int k : pairSlots_[p]) slaveNodes.push_back(slots_[k].slaveNode);
+        std::sort(slaveNodes.begin(), slaveNodes.end());
+        for (const auto& sg : pairRules_[p].slaveSegments)
+          for (int end = 0; end < 2; ++end) {
+            const int a = sg[end], b = sg[1 - end];
+            if (!std::binary_search(slaveNodes.begin(), slaveNodes.end(), a)) continue;
+            if (nodeOwner_[b] == comm_->getRank() && nodeOwner_[a] != nodeOwner_[b])
+              sends.emplace_back(b, nodeOwner_[a]);
+          }
+      }
+      std::sort(sends.begin(), sends.end());
+      sends.erase(std::unique(sends.begin(), sends.end()), sends.end());
+      slaveNeighbourSends_ = std::move(sends);
+    }
     // Initial pairing in the reference configuration.
     auto zero = createVector();
     updatePairing(*zero, /*global=*/true, /*freeze=*/true);
@@ -716,6 +747,14 @@ void Model::distributedSearch(const Vector& u, std::vector<std::vector<ContactCa
         send[r].push_back({n, x.x(), x.y()});
     }
   }
+  //    With them, the slave-surface neighbours of other ranks' slave nodes
+  //    (the facing rule's nodal normals), unless already on the way.
+  for (const auto& [node, r] : slaveNeighbourSends_) {
+    const int n = node;
+    if (std::any_of(send[r].begin(), send[r].end(), [n](const NodePosition& q) { return q.node == n; })) continue;
+    const Eigen::Vector2d x = ownedPosition(n);
+    send[r].push_back({n, x.x(), x.y()});
+  }
   long bytes = 0;
   for (int r = 0; r < P; ++r)
     if (r != me) bytes += long(send[r].size() * sizeof(NodePosition));
@@ -723,6 +762,10 @@ void Model::distributedSearch(const Vector& u, std::vector<std::vector<ContactCa
   std::map<int, Eigen::Vector2d> known;
   for (const auto& np : recv) known[np.node] = Eigen::Vector2d(np.x, np.y);
   for (int k : localSlots_) known[slots_[k].slaveNode] = ownedPosition(slots_[k].slaveNode);
+  for (size_t p = 0; p < pairRules_.size(); ++p)  // slave-surface neighbours owned here
+    for (const auto& sg : pairRules_[p].slaveSegments)
+      for (int n : sg)
+        if (nodeOwner_[n] == me && !known.count(n)) known[n] = ownedPosition(n);
   // 3. Per pair: the global search for this rank's slaves over the master
   //    segments whose nodes arrived (kept in their global order, so ties
   //    break as in the replicated search).
@@ -740,7 +783,12 @@ void Model::distributedSearch(const Vector& u, std::vector<std::vector<ContactCa
         segs.push_back(whole.segment(g)), globalIndex.push_back(g);
     std::vector<ContactCandidate> found(localSlaves.size());
     if (!localSlaves.empty() && !segs.empty()) {
-      ContactSearch search(MasterSurface(segs), localSlaves, searches_[p]->searchRadius());
+      // The pair's facing rule on the segments that arrived (same numbers as
+      // the replicated search: the rule needs nothing else).
+      FacingRule rule;
+      rule.slaveSegments = pairRules_[p].slaveSegments;
+      for (int g : globalIndex) rule.masterDepths.push_back(pairRules_[p].masterDepths[g]);
+      ContactSearch search(MasterSurface(segs), localSlaves, searches_[p]->searchRadius(), std::move(rule));
       search.update([&](int n) { return known.at(n); }, true);
       found = search.candidates();
       queries += long(localSlaves.size());
@@ -829,15 +877,18 @@ bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
       // keeps it. Without it a slave sitting on a master node can flip
       // between the two adjacent segments every iteration and Newton stalls.
       constexpr double kPairingHysteresis = 1e-2;  // fraction of the segment length
+      // The kept segment must pass the facing rule like any pairing.
       if (!distributed && !global && s.paired() && m0 >= 0 && (m0 != s.master[0] || m1 != s.master[1])) {
         const Eigen::Vector2d xs = currentPosition(s.slaveNode, v), x1 = currentPosition(s.master[0], v),
                               x2 = currentPosition(s.master[1], v);
         const Eigen::Vector2d t = x2 - x1;
         const double xi = (xs - x1).dot(t) / t.squaredNorm();
-        if (xi >= -kPairingHysteresis && xi <= 1.0 + kPairingHysteresis) {
-          const Eigen::Vector2d n(t.y(), -t.x());
-          s.gap = n.normalized().dot(xs - x1);
-          s.normal = n.normalized();
+        const Eigen::Vector2d n = Eigen::Vector2d(t.y(), -t.x()).normalized();
+        const double gap = n.dot(xs - x1);
+        if (xi >= -kPairingHysteresis && xi <= 1.0 + kPairingHysteresis &&
+            facingVerdict(c.slaveNormal, n, gap, search.penetrationLimit(s.segment)) == ContactRejection::None) {
+          s.gap = gap;
+          s.normal = n;
           if (freeze) {
             s.state.frozenXi = xi;
             s.state.frozenNormal = s.normal;
@@ -848,6 +899,7 @@ bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
       if (m0 != s.master[0] || m1 != s.master[1]) changed = true;
       s.master[0] = m0;
       s.master[1] = m1;
+      s.segment = m0 >= 0 ? c.segment : -1;
       s.masterElement = m0 >= 0 ? pairMasterElements_[p][c.segment] : -1;
       if (m0 < 0) {
         s.active = false;

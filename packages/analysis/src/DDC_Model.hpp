@@ -13,6 +13,7 @@
 #include "DDC_BoundaryConditions.hpp"
 #include "DDC_ContactElement.hpp"
 #include "DDC_ContactParameters.hpp"
+#include "DDC_ContactSearch.hpp"
 #include "DDC_DirectSolver.hpp"
 #include "DDC_Element.hpp"
 #include "DDC_FetiDpSolver.hpp"
@@ -44,6 +45,7 @@ struct ContactSlot {
   int pair = 0;
   int slaveNode = -1;
   int master[2] = {-1, -1};  ///< master segment nodes; -1: not paired
+  int segment = -1;          ///< index of that segment in the pair's master surface (-1: not paired)
   int masterElement = -1;    ///< the element whose side the master segment is (-1: not paired)
   bool active = false;
   ContactPairState state;    ///< multiplier, frozen ξ^p / n^p
@@ -240,6 +242,8 @@ class Model {
   // contact
   std::vector<ContactSlot> slots_;
   std::vector<std::unique_ptr<ContactSearch>> searches_;  ///< one per pair
+  std::vector<FacingRule> pairRules_;                      ///< per pair: slave segments, master element depths
+  std::vector<std::pair<int, int>> slaveNeighbourSends_;   ///< decomposed: (owned slave-surface node, rank needing it)
   std::vector<std::vector<int>> pairSlots_;                ///< slots of each pair, in search order
   std::vector<int> surfaceNodes_;                          ///< nodes whose positions are gathered
   std::vector<int> surfaceIndex_;                          ///< node -> index in surfaceNodes_ or -1

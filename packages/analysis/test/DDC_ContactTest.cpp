@@ -15,7 +15,10 @@
 //      energy equals the external work; Newton converges superlinearly in
 //      contact steps once the active set has settled;
 //   5. Contact/Formulation = Decomposed Node-To-Segment without any pair is
-//      a plain analysis (issue 9, item 6(a): it crashed).
+//      a plain analysis (issue 9, item 6(a): it crashed);
+//   6. the facing rule (doc/contact.md "Which slave nodes pair"): a pair of
+//      the bottom and the top of one thin strip never pairs (it squashed the
+//      strip), in both search paths alike.
 // Decks are in-memory Teuchos::ParameterLists (the half-rings deck is read
 // from examples/). The measured numbers are printed on rank 0 for
 // doc/verification.md.
@@ -140,12 +143,14 @@ constexpr double kResidualFloor = 1e-12;
 /// convergence at the rates above gives 3 to 5.
 constexpr double kLastContraction = 1e-2;
 
-/// Two decks that define the same model (a Contact sublist that adds no
-/// pair): the same equations solved by the same solver. On one rank the runs
-/// are bitwise equal; a 2-rank MUMPS solve is reproducible only to round-off
+/// Two decks that give the same equations for the displacements (a Contact
+/// sublist that adds no pair; a pair that never pairs, whose multipliers are
+/// decoupled and restrained to 0): the same solution up to the round-off of
+/// the linear solves. On one rank and without extra DOFs the runs are
+/// bitwise equal; a 2-rank MUMPS solve is reproducible only to round-off
 /// (two identical 2-rank runs differ by up to ~2e-14 relative, measured).
-/// A model that differs at all (a multiplier, another partition) differs by
-/// far more than this.
+/// A contact force that acts at all changes the energy by orders of
+/// magnitude more (the thin strip below: its elements invert).
 constexpr double kSameModel = 1e-12;
 
 // ---------------------------------------------------------------------------
@@ -614,6 +619,95 @@ TEST(DecomposedWithoutPairs, ContactCallsOnAModelWithoutPairsDoNothing) {
   EXPECT_TRUE(m.updateActiveSet(*u).empty());
   EXPECT_TRUE(m.multiplierMap().is_null());
   EXPECT_EQ(m.ownedMap()->getGlobalNumElements(), static_cast<size_t>(2 * mesh->numNodes())) << "no multiplier DOF";
+}
+
+// ---------------------------------------------------------------------------
+// 6. The facing rule.
+
+/// A 4 x 0.25 strip of 12 x 1 Quad4 ("Strip"), x-fixed on the left and pinned
+/// at its bottom-left corner, its right end loaded by a traction 0.1 down, and
+/// the pair "Self" = Strip/bottom against Strip/top (if `selfPair`). With
+/// `block`, a 1 x 0.5 block (4 x 2) on the strip's top at x in [1.5, 2.5],
+/// pressed down by 0.01, x-fixed on its left, with the pair "Block" =
+/// Block/bottom against Strip/top.
+PL stripDeck(const std::string& formulation, bool selfPair, bool block, int steps) {
+  PL deck("DDContact");
+  RectangleSpec strip;
+  strip.lengthX = 4.0;
+  strip.lengthY = 0.25;
+  strip.nx = 12;
+  strip.ny = 1;
+  addRectangle(deck, "Strip", strip);
+  addDisplacement(deck, "Strip left", "Strip/left", "X");
+  addDisplacement(deck, "Strip pin", "Strip/bottom left", "Y");
+  addTraction(deck, "Tip", "Strip/right", 0.0, -0.1);
+  PL& c = deck.sublist("Contact");
+  c.set("Formulation", formulation);
+  if (selfPair) {
+    c.sublist("Pairs").sublist("Self").set("Slave", std::string("Strip/bottom"));
+    c.sublist("Pairs").sublist("Self").set("Master", std::string("Strip/top"));
+  }
+  if (block) {
+    RectangleSpec b;
+    b.originX = 1.5;
+    b.originY = 0.25;
+    b.lengthY = 0.5;
+    b.ny = 2;
+    addRectangle(deck, "Block", b);
+    addDisplacement(deck, "Block left", "Block/left", "X");
+    addDisplacement(deck, "Block top", "Block/top", "Y").set("Value Y", -0.01);
+    c.sublist("Pairs").sublist("Block").set("Slave", std::string("Block/bottom"));
+    c.sublist("Pairs").sublist("Block").set("Master", std::string("Strip/top"));
+  }
+  setRunOptions(deck, steps);
+  return deck;
+}
+
+class FacingRuleRun : public testing::TestWithParam<std::string> {};
+
+TEST_P(FacingRuleRun, ThinStripIsNotInContactWithItself) {
+  // Every bottom node is within the search radius (1/3) of the top segment
+  // across the strip, 0.25 behind it: without the facing rule all 13 were
+  // paired and activated, the strip was squashed and Newton failed (det F < 0).
+  PL withPair = stripDeck(GetParam(), true, false, 4), plain = stripDeck(GetParam(), false, false, 4);
+  ddc::Analysis a(worldComm(), withPair), b(worldComm(), plain);
+  a.run("");
+  b.run("");
+  ASSERT_EQ(a.model().contactSlots().size(), 13u);
+  for (size_t k = 0; k < a.model().contactSlots().size(); ++k)
+    EXPECT_FALSE(a.model().contactSlots()[k].paired()) << a.model().describeSlot(static_cast<int>(k));
+  ASSERT_EQ(a.history().size(), b.history().size());
+  for (size_t i = 0; i < a.history().size(); ++i) {
+    const auto& x = a.history()[i];
+    EXPECT_EQ(x.activeContacts, 0);
+    EXPECT_EQ(x.contactForce[0], 0.0);
+    EXPECT_EQ(x.contactForce[1], 0.0);
+    EXPECT_LE(relDiff(x.strainEnergy, b.history()[i].strainEnergy), kSameModel) << "step " << x.step;
+  }
+  EXPECT_GT(a.history().back().strainEnergy, 0.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Formulations, FacingRuleRun, testing::Values(kNts, kDecomposed), formulationName);
+
+TEST(FacingRule, BothSearchPathsPairTheSameSlaveNodes) {
+  // The replicated search (conventional element) and the bounding-box
+  // exchange with a search per rank (decomposed element; on 2 ranks the strip
+  // is cut, so slave-surface neighbours come from the other rank) in the
+  // reference configuration: the self pair never pairs, the block's slave
+  // nodes all pair with the strip's top (touching, gap 0).
+  PL conventional = stripDeck(kNts, true, true, 1), decomposed = stripDeck(kDecomposed, true, true, 1);
+  ddc::Analysis nts(worldComm(), conventional), dec(worldComm(), decomposed);
+  const auto& a = nts.model().contactSlots();
+  const auto& b = dec.model().contactSlots();
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_EQ(a.size(), 13u + 5u);
+  for (size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].paired(), a[k].pair == 1) << nts.model().describeSlot(static_cast<int>(k));
+    EXPECT_EQ(a[k].paired(), b[k].paired()) << dec.model().describeSlot(static_cast<int>(k));
+    EXPECT_EQ(a[k].master[0], b[k].master[0]);
+    EXPECT_EQ(a[k].master[1], b[k].master[1]);
+    EXPECT_EQ(a[k].gap, b[k].gap);
+  }
 }
 
 }  // namespace
