@@ -4,11 +4,13 @@
 #include <Tpetra_Export.hpp>
 #include <Tpetra_Import.hpp>
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <cmath>
 #include <numeric>
 #include <sstream>
 
+#include "DDC_BodyLocator.hpp"
 #include "DDC_ContactSearch.hpp"
 #include "DDC_DecomposedNodeToSegment.hpp"
 #include "DDC_Error.hpp"
@@ -156,6 +158,7 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
     // Initial pairing in the reference configuration.
     auto zero = createVector();
     updatePairing(*zero, /*global=*/true, /*freeze=*/true);
+    checkInitialPenetration();
   }
   buildTopology();
   assembleTractions();
@@ -916,6 +919,81 @@ bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
   }
   if (changed && ownedGraph_.get()) buildTopology();
   return changed;
+}
+
+void Model::checkInitialPenetration() const {
+  // doc/contact.md "Which slave nodes pair": a slave node inside the master
+  // body that the search does not pair keeps λ = 0 for ever, so the bodies
+  // would silently stay overlapped there. Reference configuration,
+  // replicated mesh and slots: every rank reaches the same verdict.
+  const Mesh& mesh = *mesh_;
+  for (size_t p = 0; p < pairSlots_.size(); ++p) {
+    const auto& def = contact_.pairs[p];
+    std::unique_ptr<BodyLocator> locator;
+    int first = -1, count = 0, element = -1;
+    for (int k : pairSlots_[p]) {
+      if (slots_[k].paired()) continue;
+      if (!locator) {
+        const std::string body = def.masterSet.substr(0, def.masterSet.find('/'));
+        locator = std::make_unique<BodyLocator>(mesh, mesh.bodyIndex(body));
+      }
+      const auto& X = mesh.coord(slots_[k].slaveNode);
+      const int e = locator->elementContaining(Eigen::Vector2d(X[0], X[1]));
+      if (e < 0) continue;
+      if (first < 0) first = k, element = e;
+      ++count;
+    }
+    if (first < 0) continue;
+    // Why the first such node is not paired: the pair's search (same radius,
+    // same facing rule) on that node alone.
+    const ContactSearch& whole = *searches_[p];
+    const int node = slots_[first].slaveNode;
+    auto reference = [&](int n) { return Eigen::Vector2d(mesh.coord(n)[0], mesh.coord(n)[1]); };
+    ContactSearch probe(whole.master(), {node}, whole.searchRadius(), pairRules_[p]);
+    probe.update(reference, true);
+    const ContactCandidate& c = probe.candidates()[0];
+    // Depth: distance to the nearest point of the master surface.
+    const Eigen::Vector2d xs = reference(node);
+    double depth = std::numeric_limits<double>::infinity();
+    for (int g = 0; g < whole.master().numSegments(); ++g) {
+      const Eigen::Vector2d a = reference(whole.master().segment(g)[0]), b = reference(whole.master().segment(g)[1]);
+      const double xi = std::min(1.0, std::max(0.0, (xs - a).dot(b - a) / (b - a).squaredNorm()));
+      depth = std::min(depth, (xs - a - xi * (b - a)).norm());
+    }
+    std::ostringstream why;
+    const int seg = c.rejectedSegment >= 0 ? c.rejectedSegment : c.segment;
+    const auto segNodes = [&](int g) {
+      std::ostringstream o;
+      o << "(nodes " << whole.master().segment(g)[0] << ", " << whole.master().segment(g)[1] << ")";
+      return o.str();
+    };
+    if (c.rejection == ContactRejection::TooDeep) {
+      why << "it lies " << -c.gap << " behind its nearest master segment " << segNodes(seg)
+          << ", not less than half the depth of that segment's element (" << whole.penetrationLimit(seg) << " = "
+          << kFacingDepthFraction << " x " << pairRules_[p].masterDepths[seg] << ")";
+    } else if (c.rejection == ContactRejection::NotFacing) {
+      why << "its outward normal (" << c.slaveNormal.x() << ", " << c.slaveNormal.y()
+          << ") does not face the outward normal (" << c.normal.x() << ", " << c.normal.y()
+          << ") of its nearest master segment " << segNodes(seg);
+    } else if (c.segment < 0) {
+      why << "it is farther than the search radius (" << whole.searchRadius()
+          << ", Contact/Search Radius) from every master segment";
+    } else {
+      // Paired by the search but past a free end of the master surface
+      // (updatePairing()): the only other way a node stays unpaired.
+      why << "it lies beyond a free end of the master surface (nearest segment " << segNodes(seg) << ")";
+    }
+    DDC_THROW(InputError, "contact pair 'Contact/Pairs/"
+                              << def.name << "': slave node " << node << " at (" << xs.x() << ", " << xs.y()
+                              << ") of the slave side set '" << def.slaveSet << "' starts inside the master body (element "
+                              << element << "), at depth " << depth << " below the master side set '" << def.masterSet
+                              << "', and contact cannot push it out: " << why.str()
+                              << " (doc/contact.md, 'Which slave nodes pair')"
+                              << (count > 1 ? "; " + std::to_string(count - 1) + " more slave node(s) of this pair likewise"
+                                            : std::string())
+                              << ". Move the bodies apart so that they at most touch, or overlap by less than half an "
+                                 "element, in the reference configuration");
+  }
 }
 
 std::vector<std::vector<ConstraintEntry>> Model::contactRowEntries(const std::vector<SubdomainSystem>& systems) const {

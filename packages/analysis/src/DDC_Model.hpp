@@ -211,6 +211,12 @@ class Model {
   /// exchange, counted with its bytes.
   void distributedSearch(const Vector& u, std::vector<std::vector<ContactCandidate>>& cands,
                          std::vector<std::vector<char>>& pastFreeEnd);
+  /// After the initial pairing: a slave node that starts inside the master
+  /// body of its pair and is not paired (farther than the search radius
+  /// from the master surface, or rejected by the facing rule) can never be
+  /// pushed out; throws InputError naming the pair, the node and the depth
+  /// (replicated data: the same on every rank).
+  void checkInitialPenetration() const;
   /// Decomposed: g_N and λ of every slot from the counterparts (see updateActiveSet()).
   void assembleFrozenGaps(const Vector& u);
 

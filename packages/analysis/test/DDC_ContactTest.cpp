@@ -18,7 +18,9 @@
 //      a plain analysis (issue 9, item 6(a): it crashed);
 //   6. the facing rule (doc/contact.md "Which slave nodes pair"): a pair of
 //      the bottom and the top of one thin strip never pairs (it squashed the
-//      strip), in both search paths alike.
+//      strip), in both search paths alike;
+//   7. a slave node that starts inside the master body where contact cannot
+//      reach it is an input error naming the pair, the node and the depth.
 // Decks are in-memory Teuchos::ParameterLists (the half-rings deck is read
 // from examples/). The measured numbers are printed on rank 0 for
 // doc/verification.md.
@@ -39,6 +41,7 @@
 #include "DDC_Analysis.hpp"
 #include "DDC_AnalysisTestDecks.hpp"
 #include "DDC_ElementFactory.hpp"
+#include "DDC_Error.hpp"
 #include "DDC_MeshGenerators.hpp"
 #include "DDC_Model.hpp"
 #include "DDC_Partition.hpp"
@@ -709,5 +712,98 @@ TEST(FacingRule, BothSearchPathsPairTheSameSlaveNodes) {
     EXPECT_EQ(a[k].gap, b[k].gap);
   }
 }
+
+// ---------------------------------------------------------------------------
+// 7. Slave nodes that start inside the master body.
+
+/// The message of the InputError that constructing an Analysis of `deck`
+/// throws, or "(no InputError)".
+std::string inputErrorOf(PL deck) {
+  try {
+    ddc::Analysis a(worldComm(), deck);
+  } catch (const ddc::InputError& e) {
+    return e.what();
+  }
+  return "(no InputError)";
+}
+
+/// Two blocks (3 master segments of 1/3 under 4 slave segments, element
+/// depth 0.25, search radius 1/3), the upper one starting `overlap` inside
+/// the lower one, on rollers and pressed by 0.01.
+PL overlappingBlocks(const std::string& formulation, double overlap) {
+  TwoBlocks s;
+  s.nxLower = 3;
+  s.nxUpper = 4;
+  s.formulation = formulation;
+  s.gap = -overlap;
+  PL deck = twoBlockDeck(s);
+  addRollers(deck);
+  addDisplacement(deck, "Upper top", "Upper/top", "Y").set("Value Y", -0.01);
+  return deck;
+}
+
+class InitialPenetration : public testing::TestWithParam<std::string> {};
+
+TEST_P(InitialPenetration, TooDeepForTheFacingRuleIsAnInputError) {
+  // 0.2 behind Lower/top: within the radius, but not less than ½ · 0.25.
+  const std::string msg = inputErrorOf(overlappingBlocks(GetParam(), 0.2));
+  EXPECT_NE(msg.find("contact pair 'Contact/Pairs/Interface': slave node "), std::string::npos) << msg;
+  EXPECT_NE(msg.find(" at (0.25, 0.3) of the slave side set 'Upper/bottom' starts inside the master body"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("at depth 0.2 below the master side set 'Lower/top'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("not less than half the depth of that segment's element (0.125 = 0.5 x 0.25)"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("2 more slave node(s)"), std::string::npos) << msg << ": the interior slave nodes x = 0.5, 0.75";
+}
+
+TEST_P(InitialPenetration, BeyondTheSearchRadiusIsAnInputError) {
+  const std::string msg = inputErrorOf(overlappingBlocks(GetParam(), 0.4));
+  EXPECT_NE(msg.find(" at (0.25, 0.1) of the slave side set 'Upper/bottom' starts inside the master body"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("at depth 0.4 below"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("farther than the search radius (0.333333"), std::string::npos) << msg;
+}
+
+TEST_P(InitialPenetration, OnAMeshLineOfTheMasterBodyIsInside) {
+  // 0.25 deep: the slave nodes lie exactly on the line between the lower
+  // block's two element rows (no element's interior holds them).
+  const std::string msg = inputErrorOf(overlappingBlocks(GetParam(), 0.25));
+  EXPECT_NE(msg.find("at (0.25, 0.25) of the slave side set 'Upper/bottom' starts inside the master body"),
+            std::string::npos)
+      << msg;
+}
+
+TEST_P(InitialPenetration, ShallowOverlapIsPushedOut) {
+  // 0.05 < ½ · 0.25: paired, activated, and the contact pushes the upper
+  // block out (every slave node in contact, a compressive force).
+  PL deck = overlappingBlocks(GetParam(), 0.05);
+  ddc::Analysis a(worldComm(), deck);
+  a.run("");
+  const auto& rec = a.history().back();
+  EXPECT_EQ(rec.activeContacts, 5);
+  EXPECT_GT(rec.contactForce[1], 0.0);
+}
+
+TEST_P(InitialPenetration, SlaveSurfaceFacingAwayInsideIsAnInputError) {
+  // The whole upper block starts inside the lower one (y in [-0.2, 0.3]
+  // inside [0, 0.5]) and its top is the slave surface: 0.2 below Lower/top,
+  // its normal +y like the master's.
+  TwoBlocks s;
+  s.nxLower = 3;
+  s.nxUpper = 4;
+  s.formulation = GetParam();
+  s.gap = -0.7;
+  PL deck = twoBlockDeck(s);
+  deck.sublist("Contact").sublist("Pairs").sublist("Interface").set("Slave", std::string("Upper/top"));
+  addRollers(deck);
+  const std::string msg = inputErrorOf(deck);
+  EXPECT_NE(msg.find("of the slave side set 'Upper/top' starts inside the master body"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("its outward normal (0, 1) does not face the outward normal (0, 1)"), std::string::npos) << msg;
+}
+
+INSTANTIATE_TEST_SUITE_P(Formulations, InitialPenetration, testing::Values(kNts, kDecomposed), formulationName);
 
 }  // namespace
