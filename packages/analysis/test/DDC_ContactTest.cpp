@@ -20,7 +20,9 @@
 //      the bottom and the top of one thin strip never pairs (it squashed the
 //      strip), in both search paths alike;
 //   7. a slave node that starts inside the master body where contact cannot
-//      reach it is an input error naming the pair, the node and the depth.
+//      reach it is an input error naming the pair, the node and the depth;
+//   8. duplicated and mirrored pairs are input errors naming both pairs,
+//      compared by nodes and segments, not by side-set names.
 // Decks are in-memory Teuchos::ParameterLists (the half-rings deck is read
 // from examples/). The measured numbers are printed on rank 0 for
 // doc/verification.md.
@@ -31,15 +33,18 @@
 #include <Teuchos_XMLParameterListHelpers.hpp>
 #include <Tpetra_Core.hpp>
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "DDC_Analysis.hpp"
 #include "DDC_AnalysisTestDecks.hpp"
+#include "DDC_ContactParameters.hpp"
 #include "DDC_ElementFactory.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_MeshGenerators.hpp"
@@ -805,5 +810,91 @@ TEST_P(InitialPenetration, SlaveSurfaceFacingAwayInsideIsAnInputError) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Formulations, InitialPenetration, testing::Values(kNts, kDecomposed), formulationName);
+
+// ---------------------------------------------------------------------------
+// 8. Pairs that overlap.
+
+/// Two blocks ("Lower" 3 x 2, "Upper" 4 x 2 Quad4 on top of it) with extra
+/// side sets under other names over the same sides: "Upper/contact" =
+/// Upper/bottom, "Lower/contact" = Lower/top, and "Upper/bottom half" = the
+/// first two segments of Upper/bottom.
+std::shared_ptr<ddc::Mesh> blocksWithRenamedSets() {
+  auto m = std::make_shared<ddc::Mesh>();
+  for (const auto& [name, y0, nx] : {std::tuple<const char*, double, int>{"Lower", 0.0, 3}, {"Upper", 0.5, 4}}) {
+    PL r("Rectangle");
+    r.set("Origin Y", y0);
+    r.set("Length Y", 0.5);
+    r.set("Elements X", nx);
+    r.set("Elements Y", 2);
+    ddc::generateRectangle(*m, name, ddc::CellType::Quad4, r, "R");
+  }
+  const int lower = m->bodyIndex("Lower"), upper = m->bodyIndex("Upper");
+  m->addSideSet(upper, "contact", m->sideSet("Upper/bottom"));
+  m->addSideSet(lower, "contact", m->sideSet("Lower/top"));
+  auto half = m->sideSet("Upper/bottom");
+  std::sort(half.begin(), half.end(), [&](const ddc::Segment& a, const ddc::Segment& b) {
+    return m->coord(a.nodes[0])[0] + m->coord(a.nodes[1])[0] < m->coord(b.nodes[0])[0] + m->coord(b.nodes[1])[0];
+  });
+  half.resize(2);
+  m->addSideSet(upper, "bottom half", half);
+  return m;
+}
+
+/// ContactOptions::fromParameters on those blocks with the pairs
+/// {name, slave, master}: the InputError's message, or "(no InputError)".
+std::string pairsError(const std::vector<std::array<std::string, 3>>& pairs) {
+  const auto mesh = blocksWithRenamedSets();
+  PL c("Contact");
+  for (const auto& p : pairs) {
+    c.sublist("Pairs").sublist(p[0]).set("Slave", p[1]);
+    c.sublist("Pairs").sublist(p[0]).set("Master", p[2]);
+  }
+  try {
+    ddc::ContactOptions::fromParameters(c, *mesh, "Contact");
+  } catch (const ddc::InputError& e) {
+    return e.what();
+  }
+  return "(no InputError)";
+}
+
+TEST(OverlappingPairs, DuplicatedPairsAreInputErrorsWhateverTheSetNames) {
+  for (const auto& second : std::vector<std::array<std::string, 3>>{
+           {"B", "Upper/bottom", "Lower/top"},        // the same pair twice
+           {"B", "Upper/contact", "Lower/contact"},   // the same surfaces under other names
+           {"B", "Upper/bottom half", "Lower/top"},   // a part of the slave surface
+           {"B", "Upper/left", "Lower/top"}}) {       // only the corner node shared
+    const std::string msg = pairsError({{"A", "Upper/bottom", "Lower/top"}, second});
+    EXPECT_NE(msg.find("contact pairs 'Contact/Pairs/A' and 'Contact/Pairs/B' duplicate each other: slave node "),
+              std::string::npos)
+        << second[1] << " / " << second[2] << ": " << msg;
+    EXPECT_NE(msg.find("' and '" + second[1] + "')"), std::string::npos) << msg;
+  }
+}
+
+TEST(OverlappingPairs, MirroredPairsAreInputErrorsWhateverTheSetNames) {
+  for (const auto& second : std::vector<std::array<std::string, 3>>{{"B", "Lower/top", "Upper/bottom"},
+                                                                    {"B", "Lower/contact", "Upper/contact"},
+                                                                    {"B", "Lower/top", "Upper/bottom half"}}) {
+    const std::string msg = pairsError({{"A", "Upper/bottom", "Lower/top"}, second});
+    EXPECT_NE(msg.find("contact pairs 'Contact/Pairs/A' and 'Contact/Pairs/B' mirror each other: the slave surface of "
+                       "the first ('Upper/bottom') and the master surface of the second ('" +
+                       second[2] + "') share the segment of nodes "),
+              std::string::npos)
+        << second[1] << " / " << second[2] << ": " << msg;
+  }
+}
+
+TEST(OverlappingPairs, PairsThatShareOnlyOneSideAreAccepted) {
+  // One slave surface against two master surfaces without a common segment,
+  // two slave surfaces against one master without a common slave node, and
+  // a chain (the second pair's slave is the first pair's master body, but
+  // another side of it): all legitimate.
+  EXPECT_EQ(pairsError({{"A", "Upper/bottom", "Lower/top"}, {"B", "Upper/bottom", "Lower/right"}}),
+            "(no InputError)");
+  EXPECT_EQ(pairsError({{"A", "Upper/bottom", "Lower/top"}, {"B", "Upper/right", "Lower/right"}}),
+            "(no InputError)");
+  EXPECT_EQ(pairsError({{"A", "Upper/bottom", "Lower/top"}, {"B", "Lower/right", "Upper/right"}}),
+            "(no InputError)");
+}
 
 }  // namespace
