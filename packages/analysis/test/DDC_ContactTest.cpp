@@ -629,6 +629,17 @@ TEST(DecomposedWithoutPairs, ContactCallsOnAModelWithoutPairsDoNothing) {
   EXPECT_EQ(m.ownedMap()->getGlobalNumElements(), static_cast<size_t>(2 * mesh->numNodes())) << "no multiplier DOF";
 }
 
+/// The message of the InputError that constructing an Analysis of `deck`
+/// throws, or "(no InputError)".
+std::string inputErrorOf(PL deck) {
+  try {
+    ddc::Analysis a(worldComm(), deck);
+  } catch (const ddc::InputError& e) {
+    return e.what();
+  }
+  return "(no InputError)";
+}
+
 // ---------------------------------------------------------------------------
 // 6. The facing rule.
 
@@ -697,6 +708,17 @@ TEST_P(FacingRuleRun, ThinStripIsNotInContactWithItself) {
 
 INSTANTIATE_TEST_SUITE_P(Formulations, FacingRuleRun, testing::Values(kNts, kDecomposed), formulationName);
 
+TEST(FacingRule, ASelfContactPairDoesNotSupportItsBody) {
+  // Forces between two surfaces of one body are internal: a strip held only
+  // by its self pair is unsupported (a singular matrix), reported as such.
+  PL deck = stripDeck(kNts, true, false, 1);
+  deck.sublist("Boundary Conditions").remove("Strip left");
+  deck.sublist("Boundary Conditions").remove("Strip pin");
+  const std::string msg = inputErrorOf(deck);
+  EXPECT_NE(msg.find("body 'Strip' is not supported"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("no contact pair joins it to another body"), std::string::npos) << msg;
+}
+
 TEST(FacingRule, BothSearchPathsPairTheSameSlaveNodes) {
   // The replicated search (conventional element) and the bounding-box
   // exchange with a search per rank (decomposed element; on 2 ranks the strip
@@ -721,16 +743,6 @@ TEST(FacingRule, BothSearchPathsPairTheSameSlaveNodes) {
 // ---------------------------------------------------------------------------
 // 7. Slave nodes that start inside the master body.
 
-/// The message of the InputError that constructing an Analysis of `deck`
-/// throws, or "(no InputError)".
-std::string inputErrorOf(PL deck) {
-  try {
-    ddc::Analysis a(worldComm(), deck);
-  } catch (const ddc::InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
-}
 
 /// Two blocks (3 master segments of 1/3 under 4 slave segments, element
 /// depth 0.25, search radius 1/3), the upper one starting `overlap` inside
