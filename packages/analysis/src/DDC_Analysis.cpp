@@ -231,16 +231,20 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
 
   auto bcs = BoundaryConditions::fromParameters(params.sublist("Boundary Conditions"), *mesh, "Boundary Conditions");
   auto contact = ContactOptions::fromParameters(params.sublist("Contact"), *mesh, "Contact");
-  // Every body that no contact pair touches must be supported by its
+  // Every body that no contact pair joins to another body must be supported by its
   // prescribed displacements: both directions and at least two nodes (a
   // single pinned node leaves the rotation free). Otherwise the global
   // (and the FETI-DP coarse) matrix is singular, which MUMPS would factorise
   // without complaint.
   {
+    // A pair between two surfaces of one body (self-contact) cannot hold it:
+    // its forces are internal to the body.
     std::vector<char> inContact(mesh->numBodies(), 0);
-    for (const auto& pr : contact.pairs)
-      for (const auto& set : {pr.slaveSet, pr.masterSet})
-        inContact[mesh->bodyIndex(set.substr(0, set.find('/')))] = 1;
+    for (const auto& pr : contact.pairs) {
+      const int slaveBody = mesh->bodyIndex(pr.slaveSet.substr(0, pr.slaveSet.find('/')));
+      const int masterBody = mesh->bodyIndex(pr.masterSet.substr(0, pr.masterSet.find('/')));
+      if (slaveBody != masterBody) inContact[slaveBody] = inContact[masterBody] = 1;
+    }
     std::vector<std::set<int>> fixedNodes(mesh->numBodies());
     std::vector<std::array<bool, 2>> fixedDir(mesh->numBodies(), {false, false});
     for (const auto& d : bcs.displacements)
@@ -266,7 +270,7 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
                         "body '" << mesh->body(b).name
                                  << "' is not supported: its prescribed displacements (Boundary Conditions) must "
                                     "act in both x and y and on at least two nodes to remove its rigid-body "
-                                    "motion, and no contact pair touches it");
+                                    "motion, and no contact pair joins it to another body");
     }
   }
   std::vector<std::shared_ptr<const ContactElement>> contactElements;
@@ -413,7 +417,7 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
   const double etol = nw.get<double>("Energy Tolerance");
   const bool printIt = nw.get<bool>("Print Iterations");
   const bool contact = model_->hasContact();
-  const bool conventional = contact && !model_->contactOptions().decomposed;
+  const bool conventional = contact && !model_->decomposedContact();
 
   auto u = model_->createVector();
   u->assign(*u_);
@@ -628,7 +632,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
   const int maxBisect = ls.get<int>("Max Bisections");
   const PL& out = params_.sublist("Output");
   const bool contact = model_->hasContact();
-  const bool decomposed = contact && model_->contactOptions().decomposed;
+  const bool decomposed = model_->decomposedContact();
 
   std::unique_ptr<HistoryWriter> hist;
   std::unique_ptr<VtkWriter> vtk;

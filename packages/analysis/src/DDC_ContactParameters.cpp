@@ -1,11 +1,116 @@
 #include "DDC_ContactParameters.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <utility>
 
 #include "DDC_Error.hpp"
 #include "DDC_Parameters.hpp"
 
 namespace ddc {
+
+namespace {
+
+using Edge = std::pair<int, int>;
+
+/// The segments of side set `set` as sorted node pairs, sorted (orientation
+/// does not matter for "the same segment").
+std::vector<Edge> segmentsOf(const Mesh& mesh, const std::string& set) {
+  std::vector<Edge> out;
+  for (const Segment& s : mesh.sideSet(set))
+    out.emplace_back(std::min(s.nodes[0], s.nodes[1]), std::max(s.nodes[0], s.nodes[1]));
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+/// The first element common to two sorted ranges, if any.
+template <class T>
+bool firstCommon(const std::vector<T>& a, const std::vector<T>& b, T& out) {
+  auto i = a.begin();
+  auto j = b.begin();
+  while (i != a.end() && j != b.end()) {
+    if (*i < *j) {
+      ++i;
+    } else if (*j < *i) {
+      ++j;
+    } else {
+      out = *i;
+      return true;
+    }
+  }
+  return false;
+}
+
+/// Pairs must not constrain one thing twice (doc/contact.md "Pairs that
+/// overlap"); the comparison is by nodes and segments, so two side sets of
+/// different names over the same curve count as the same surface.
+void checkPairsDoNotOverlap(const std::vector<ContactPairDefinition>& pairs, const Mesh& mesh,
+                            const std::string& path) {
+  struct Sets {
+    std::vector<int> slaveNodes;  // the pair's slave nodes: not on its master surface
+    std::vector<Edge> slaveSegments, masterSegments;
+  };
+  std::vector<Sets> sets;
+  for (const auto& d : pairs) {
+    Sets s;
+    s.slaveSegments = segmentsOf(mesh, d.slaveSet);
+    s.masterSegments = segmentsOf(mesh, d.masterSet);
+    std::vector<int> master;
+    for (const Edge& e : s.masterSegments) master.insert(master.end(), {e.first, e.second});
+    std::sort(master.begin(), master.end());
+    for (int n : mesh.nodeSet(d.slaveSet))
+      if (!std::binary_search(master.begin(), master.end(), n)) s.slaveNodes.push_back(n);
+    std::sort(s.slaveNodes.begin(), s.slaveNodes.end());
+    sets.push_back(std::move(s));
+  }
+  auto where = [&](size_t i) { return "'" + path + "/Pairs/" + pairs[i].name + "'"; };
+  auto segment = [&](const Edge& e) {
+    std::ostringstream os;
+    os << "nodes " << e.first << "-" << e.second << " at (" << mesh.coord(e.first)[0] << ", " << mesh.coord(e.first)[1]
+       << ")-(" << mesh.coord(e.second)[0] << ", " << mesh.coord(e.second)[1] << ")";
+    return os.str();
+  };
+  for (size_t i = 0; i < pairs.size(); ++i)
+    for (size_t j = i + 1; j < pairs.size(); ++j) {
+      int node = -1;
+      Edge e{-1, -1}, f{-1, -1};
+      // Duplicated: a slave node of both pairs and a master segment of both.
+      // Its nearest segment may then be the same in both pairs: two identical
+      // constraint rows, singular whenever both are active.
+      DDC_INPUT_REQUIRE(!(firstCommon(sets[i].slaveNodes, sets[j].slaveNodes, node) &&
+                          firstCommon(sets[i].masterSegments, sets[j].masterSegments, e)),
+                        "contact pairs " << where(i) << " and " << where(j) << " duplicate each other: slave node "
+                                         << node << " at (" << mesh.coord(node)[0] << ", " << mesh.coord(node)[1]
+                                         << ") is a slave of both (Slave '" << pairs[i].slaveSet << "' and '"
+                                         << pairs[j].slaveSet << "') and their master surfaces ('" << pairs[i].masterSet
+                                         << "' and '" << pairs[j].masterSet << "') share the segment of " << segment(e)
+                                         << ", so the node could get two identical contact constraints (a singular "
+                                            "system); a slave node may belong to several pairs only if their master "
+                                            "surfaces share no segment: remove the duplicated pair");
+      // Mirrored: each pair's slave surface overlaps the other's master
+      // surface (two-pass node-to-segment): with Lagrange multipliers the
+      // constraints of the two passes are dependent on matching meshes
+      // (identical up to sign: singular) and over-constrain the interface
+      // otherwise.
+      DDC_INPUT_REQUIRE(!(firstCommon(sets[i].slaveSegments, sets[j].masterSegments, e) &&
+                          firstCommon(sets[i].masterSegments, sets[j].slaveSegments, f)),
+                        "contact pairs " << where(i) << " and " << where(j) << " mirror each other: the slave "
+                                         << "surface of the first ('" << pairs[i].slaveSet << "') and the master "
+                                         << "surface of the second ('" << pairs[j].masterSet << "') share the segment of "
+                                         << segment(e) << ", and the master surface of the first ('"
+                                         << pairs[i].masterSet << "') and the slave surface of the second ('"
+                                         << pairs[j].slaveSet << "') share the segment of " << segment(f)
+                                         << "; contact on one interface in both directions (two-pass node-to-segment) "
+                                            "over-constrains it: the Lagrange-multiplier rows of the two passes are "
+                                            "dependent on matching meshes (a singular system) and conflict otherwise, "
+                                            "and the reported contact force adds both directions: keep one of the two "
+                                            "pairs");
+    }
+}
+
+}  // namespace
 
 Teuchos::RCP<const Teuchos::ParameterList> ContactOptions::getValidParameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("Contact"));
@@ -77,6 +182,7 @@ ContactOptions ContactOptions::fromParameters(Teuchos::ParameterList& list, cons
     }
     o.pairs.push_back(d);
   }
+  checkPairsDoNotOverlap(o.pairs, mesh, path);
   const double h = segments ? lengthSum / segments : 1.0;
   o.searchRadius = list.get<double>("Search Radius");
   DDC_INPUT_REQUIRE(o.searchRadius >= 0.0, "parameter '" << path << "/Search Radius' must be >= 0 (0: automatic)");

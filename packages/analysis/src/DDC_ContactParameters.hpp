@@ -33,7 +33,12 @@ struct ContactOptions {
 
   static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
   /// Validate "Contact" (in place) against the mesh: sets must exist, be
-  /// Quad4 sides, and slave and master must differ.
+  /// Quad4 sides, and slave and master must differ; no two pairs may share a
+  /// slave node and a master segment (duplicated pairs) or each have its
+  /// slave surface on the other's master surface (mirrored pairs), compared
+  /// by nodes and segments, not by names (doc/contact.md "Pairs that
+  /// overlap"). Every rank holds the mesh, so every rank throws alike.
+  /// \throws InputError naming the parameter path or both pairs.
   static ContactOptions fromParameters(Teuchos::ParameterList& list, const Mesh& mesh, const std::string& path);
 };
 

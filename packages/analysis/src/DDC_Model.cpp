@@ -4,11 +4,13 @@
 #include <Tpetra_Export.hpp>
 #include <Tpetra_Import.hpp>
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <cmath>
 #include <numeric>
 #include <sstream>
 
+#include "DDC_BodyLocator.hpp"
 #include "DDC_ContactSearch.hpp"
 #include "DDC_DecomposedNodeToSegment.hpp"
 #include "DDC_Error.hpp"
@@ -85,11 +87,24 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
       }
       pairingMargin_ = std::max(pairingMargin_, contact_.searchRadius + 4.0 * longest);
       for (int n : master.nodes()) masterSurfaceNodes_.push_back(n);
-      searches_.push_back(std::make_unique<ContactSearch>(std::move(master), slaves, contact_.searchRadius));
+      // The facing rule (doc/contact.md "Which slave nodes pair"): slave
+      // nodal normals from the slave segments, master element depths from
+      // the reference mesh. Every search of this pair applies it.
+      FacingRule rule;
+      rule.slaveSegments = masterSegmentsFromSideSet(*mesh_, def.slaveSet);
+      rule.masterDepths = masterElementDepths(*mesh_, def.masterSet);
+      for (const auto& sg : rule.slaveSegments)
+        for (int n : sg) isSurface[n] = 1;
+      pairRules_.push_back(rule);
+      searches_.push_back(
+          std::make_unique<ContactSearch>(std::move(master), slaves, contact_.searchRadius, std::move(rule)));
     }
     for (int n = 0; n < mesh_->numNodes(); ++n)
       if (isSurface[n]) surfaceNodes_.push_back(n);
   }
+  // The formulation alone says nothing about whether the contact maps exist:
+  // with no pairs there are none, and the run is a plain analysis.
+  decomposed_ = contact_.decomposed && hasContact();
   buildDofNumbering();
   buildConstraints();
   if (hasContact()) {
@@ -119,9 +134,31 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
                                           Teuchos::ArrayView<const GO>(ownedLm), 0, comm_));
     multiplierAllMap_ = Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
                                              Teuchos::ArrayView<const GO>(lmDof_), 0, comm_));
+    // Decomposed pairing (distributedSearch()): the slave nodal normals need
+    // the positions of the nodes next to each slave node on the slave
+    // surface; those owned by another rank than the slave's are sent to it.
+    if (decomposed_) {
+      std::vector<std::pair<int, int>> sends;  // (node, rank) with node owned here
+      for (size_t p = 0; p < pairSlots_.size(); ++p) {
+        std::vector<int> slaveNodes;
+        for (int k : pairSlots_[p]) slaveNodes.push_back(slots_[k].slaveNode);
+        std::sort(slaveNodes.begin(), slaveNodes.end());
+        for (const auto& sg : pairRules_[p].slaveSegments)
+          for (int end = 0; end < 2; ++end) {
+            const int a = sg[end], b = sg[1 - end];
+            if (!std::binary_search(slaveNodes.begin(), slaveNodes.end(), a)) continue;
+            if (nodeOwner_[b] == comm_->getRank() && nodeOwner_[a] != nodeOwner_[b])
+              sends.emplace_back(b, nodeOwner_[a]);
+          }
+      }
+      std::sort(sends.begin(), sends.end());
+      sends.erase(std::unique(sends.begin(), sends.end()), sends.end());
+      slaveNeighbourSends_ = std::move(sends);
+    }
     // Initial pairing in the reference configuration.
     auto zero = createVector();
     updatePairing(*zero, /*global=*/true, /*freeze=*/true);
+    checkInitialPenetration();
   }
   buildTopology();
   assembleTractions();
@@ -239,12 +276,12 @@ void Model::buildTopology() {
   // Decomposed contact: the master counterpart of a slot lives on the rank
   // of its master segment's element.
   localMasterSlots_.clear();
-  if (contact_.decomposed)
+  if (decomposed_)
     for (size_t k = 0; k < slots_.size(); ++k)
       if (slots_[k].paired() &&
           subdomainRank_[partition_.elementSubdomain[slots_[k].masterElement]] == comm_->getRank())
         localMasterSlots_.push_back(static_cast<int>(k));
-  if (contact_.decomposed) {
+  if (decomposed_) {
     // Multiplier DOFs of this rank's counterparts, and the transfers of the
     // contact-state check (assembleFrozenGaps()).
     std::vector<GO> lmOv;
@@ -307,7 +344,7 @@ void Model::buildTopology() {
     addGhosts(dofs);
   }
   for (int k : localSlots_) {
-    contact_.decomposed && slots_[k].paired() ? slaveSideDofs(k, dofs) : slotDofs(k, dofs);
+    decomposed_ && slots_[k].paired() ? slaveSideDofs(k, dofs) : slotDofs(k, dofs);
     addGhosts(dofs);
   }
   for (int k : localMasterSlots_) {
@@ -339,7 +376,7 @@ void Model::buildTopology() {
     addLocal(dofs);
   }
   for (int k : localSlots_) {
-    contact_.decomposed && slots_[k].paired() ? slaveSideDofs(k, dofs) : slotDofs(k, dofs);
+    decomposed_ && slots_[k].paired() ? slaveSideDofs(k, dofs) : slotDofs(k, dofs);
     addLocal(dofs);
   }
   for (int k : localMasterSlots_) {
@@ -568,7 +605,7 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
   // Decomposed contact: each counterpart where it lives (the slave's on the
   // owner of the slave node, the master's on the rank of the master
   // segment's element); they share only the multiplier DOF.
-  if (failedElement < 0 && contact_.decomposed) {
+  if (failedElement < 0 && decomposed_) {
     for (int k : localSlots_) {
       if (!slots_[k].paired()) {
         lids.assign(1, overlapMap_->getLocalElement(lmDof_[k]));
@@ -585,7 +622,7 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
     }
   }
   // Contact slots owned here. Unpaired slots carry only Π = ½λ² (λ = 0).
-  if (failedElement < 0 && !contact_.decomposed)
+  if (failedElement < 0 && !decomposed_)
     for (int k : localSlots_) {
       const ContactSlot& s = slots_[k];
       slotDofs(k, dofs);
@@ -713,6 +750,14 @@ void Model::distributedSearch(const Vector& u, std::vector<std::vector<ContactCa
         send[r].push_back({n, x.x(), x.y()});
     }
   }
+  //    With them, the slave-surface neighbours of other ranks' slave nodes
+  //    (the facing rule's nodal normals), unless already on the way.
+  for (const auto& [node, r] : slaveNeighbourSends_) {
+    const int n = node;
+    if (std::any_of(send[r].begin(), send[r].end(), [n](const NodePosition& q) { return q.node == n; })) continue;
+    const Eigen::Vector2d x = ownedPosition(n);
+    send[r].push_back({n, x.x(), x.y()});
+  }
   long bytes = 0;
   for (int r = 0; r < P; ++r)
     if (r != me) bytes += long(send[r].size() * sizeof(NodePosition));
@@ -720,6 +765,10 @@ void Model::distributedSearch(const Vector& u, std::vector<std::vector<ContactCa
   std::map<int, Eigen::Vector2d> known;
   for (const auto& np : recv) known[np.node] = Eigen::Vector2d(np.x, np.y);
   for (int k : localSlots_) known[slots_[k].slaveNode] = ownedPosition(slots_[k].slaveNode);
+  for (size_t p = 0; p < pairRules_.size(); ++p)  // slave-surface neighbours owned here
+    for (const auto& sg : pairRules_[p].slaveSegments)
+      for (int n : sg)
+        if (nodeOwner_[n] == me && !known.count(n)) known[n] = ownedPosition(n);
   // 3. Per pair: the global search for this rank's slaves over the master
   //    segments whose nodes arrived (kept in their global order, so ties
   //    break as in the replicated search).
@@ -737,7 +786,12 @@ void Model::distributedSearch(const Vector& u, std::vector<std::vector<ContactCa
         segs.push_back(whole.segment(g)), globalIndex.push_back(g);
     std::vector<ContactCandidate> found(localSlaves.size());
     if (!localSlaves.empty() && !segs.empty()) {
-      ContactSearch search(MasterSurface(segs), localSlaves, searches_[p]->searchRadius());
+      // The pair's facing rule on the segments that arrived (same numbers as
+      // the replicated search: the rule needs nothing else).
+      FacingRule rule;
+      rule.slaveSegments = pairRules_[p].slaveSegments;
+      for (int g : globalIndex) rule.masterDepths.push_back(pairRules_[p].masterDepths[g]);
+      ContactSearch search(MasterSurface(segs), localSlaves, searches_[p]->searchRadius(), std::move(rule));
       search.update([&](int n) { return known.at(n); }, true);
       found = search.candidates();
       queries += long(localSlaves.size());
@@ -783,11 +837,12 @@ void Model::distributedSearch(const Vector& u, std::vector<std::vector<ContactCa
 }
 
 bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
+  if (!hasContact()) return false;  // no surface maps exist
   // Decomposed contact pairs at step ends only (global search): the
   // geometry goes only where bounding boxes say it is needed. Conventional
   // NTS (the monolithic reference) tracks the pairing inside Newton on
   // replicated surface positions.
-  const bool distributed = contact_.decomposed && global;
+  const bool distributed = decomposed_ && global;
   std::vector<double> v;
   std::vector<std::vector<ContactCandidate>> found;
   std::vector<std::vector<char>> pastEnd;
@@ -825,15 +880,18 @@ bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
       // keeps it. Without it a slave sitting on a master node can flip
       // between the two adjacent segments every iteration and Newton stalls.
       constexpr double kPairingHysteresis = 1e-2;  // fraction of the segment length
+      // The kept segment must pass the facing rule like any pairing.
       if (!distributed && !global && s.paired() && m0 >= 0 && (m0 != s.master[0] || m1 != s.master[1])) {
         const Eigen::Vector2d xs = currentPosition(s.slaveNode, v), x1 = currentPosition(s.master[0], v),
                               x2 = currentPosition(s.master[1], v);
         const Eigen::Vector2d t = x2 - x1;
         const double xi = (xs - x1).dot(t) / t.squaredNorm();
-        if (xi >= -kPairingHysteresis && xi <= 1.0 + kPairingHysteresis) {
-          const Eigen::Vector2d n(t.y(), -t.x());
-          s.gap = n.normalized().dot(xs - x1);
-          s.normal = n.normalized();
+        const Eigen::Vector2d n = Eigen::Vector2d(t.y(), -t.x()).normalized();
+        const double gap = n.dot(xs - x1);
+        if (xi >= -kPairingHysteresis && xi <= 1.0 + kPairingHysteresis &&
+            facingVerdict(c.slaveNormal, n, gap, search.penetrationLimit(s.segment)) == ContactRejection::None) {
+          s.gap = gap;
+          s.normal = n;
           if (freeze) {
             s.state.frozenXi = xi;
             s.state.frozenNormal = s.normal;
@@ -844,6 +902,7 @@ bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
       if (m0 != s.master[0] || m1 != s.master[1]) changed = true;
       s.master[0] = m0;
       s.master[1] = m1;
+      s.segment = m0 >= 0 ? c.segment : -1;
       s.masterElement = m0 >= 0 ? pairMasterElements_[p][c.segment] : -1;
       if (m0 < 0) {
         s.active = false;
@@ -860,6 +919,81 @@ bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
   }
   if (changed && ownedGraph_.get()) buildTopology();
   return changed;
+}
+
+void Model::checkInitialPenetration() const {
+  // doc/contact.md "Which slave nodes pair": a slave node inside the master
+  // body that the search does not pair keeps λ = 0 for ever, so the bodies
+  // would silently stay overlapped there. Reference configuration,
+  // replicated mesh and slots: every rank reaches the same verdict.
+  const Mesh& mesh = *mesh_;
+  for (size_t p = 0; p < pairSlots_.size(); ++p) {
+    const auto& def = contact_.pairs[p];
+    std::unique_ptr<BodyLocator> locator;
+    int first = -1, count = 0, element = -1;
+    for (int k : pairSlots_[p]) {
+      if (slots_[k].paired()) continue;
+      if (!locator) {
+        const std::string body = def.masterSet.substr(0, def.masterSet.find('/'));
+        locator = std::make_unique<BodyLocator>(mesh, mesh.bodyIndex(body));
+      }
+      const auto& X = mesh.coord(slots_[k].slaveNode);
+      const int e = locator->elementContaining(Eigen::Vector2d(X[0], X[1]));
+      if (e < 0) continue;
+      if (first < 0) first = k, element = e;
+      ++count;
+    }
+    if (first < 0) continue;
+    // Why the first such node is not paired: the pair's search (same radius,
+    // same facing rule) on that node alone.
+    const ContactSearch& whole = *searches_[p];
+    const int node = slots_[first].slaveNode;
+    auto reference = [&](int n) { return Eigen::Vector2d(mesh.coord(n)[0], mesh.coord(n)[1]); };
+    ContactSearch probe(whole.master(), {node}, whole.searchRadius(), pairRules_[p]);
+    probe.update(reference, true);
+    const ContactCandidate& c = probe.candidates()[0];
+    // Depth: distance to the nearest point of the master surface.
+    const Eigen::Vector2d xs = reference(node);
+    double depth = std::numeric_limits<double>::infinity();
+    for (int g = 0; g < whole.master().numSegments(); ++g) {
+      const Eigen::Vector2d a = reference(whole.master().segment(g)[0]), b = reference(whole.master().segment(g)[1]);
+      const double xi = std::min(1.0, std::max(0.0, (xs - a).dot(b - a) / (b - a).squaredNorm()));
+      depth = std::min(depth, (xs - a - xi * (b - a)).norm());
+    }
+    std::ostringstream why;
+    const int seg = c.rejectedSegment >= 0 ? c.rejectedSegment : c.segment;
+    const auto segNodes = [&](int g) {
+      std::ostringstream o;
+      o << "(nodes " << whole.master().segment(g)[0] << ", " << whole.master().segment(g)[1] << ")";
+      return o.str();
+    };
+    if (c.rejection == ContactRejection::TooDeep) {
+      why << "it lies " << -c.gap << " behind its nearest master segment " << segNodes(seg)
+          << ", not less than half the depth of that segment's element (" << whole.penetrationLimit(seg) << " = "
+          << kFacingDepthFraction << " x " << pairRules_[p].masterDepths[seg] << ")";
+    } else if (c.rejection == ContactRejection::NotFacing) {
+      why << "its outward normal (" << c.slaveNormal.x() << ", " << c.slaveNormal.y()
+          << ") does not face the outward normal (" << c.normal.x() << ", " << c.normal.y()
+          << ") of its nearest master segment " << segNodes(seg);
+    } else if (c.segment < 0) {
+      why << "it is farther than the search radius (" << whole.searchRadius()
+          << ", Contact/Search Radius) from every master segment";
+    } else {
+      // Paired by the search but past a free end of the master surface
+      // (updatePairing()): the only other way a node stays unpaired.
+      why << "it lies beyond a free end of the master surface (nearest segment " << segNodes(seg) << ")";
+    }
+    DDC_THROW(InputError, "contact pair 'Contact/Pairs/"
+                              << def.name << "': slave node " << node << " at (" << xs.x() << ", " << xs.y()
+                              << ") of the slave side set '" << def.slaveSet << "' starts inside the master body (element "
+                              << element << "), at depth " << depth << " below the master side set '" << def.masterSet
+                              << "', and contact cannot push it out: " << why.str()
+                              << " (doc/contact.md, 'Which slave nodes pair')"
+                              << (count > 1 ? "; " + std::to_string(count - 1) + " more slave node(s) of this pair likewise"
+                                            : std::string())
+                              << ". Move the bodies apart so that they at most touch, or overlap by less than half an "
+                                 "element, in the reference configuration");
+  }
 }
 
 std::vector<std::vector<ConstraintEntry>> Model::contactRowEntries(const std::vector<SubdomainSystem>& systems) const {
@@ -994,7 +1128,8 @@ void Model::assembleFrozenGaps(const Vector& u) {
 }
 
 std::vector<int> Model::updateActiveSet(const Vector& u) {
-  if (contact_.decomposed) {
+  if (!hasContact()) return {};  // no surface or multiplier maps exist
+  if (decomposed_) {
     assembleFrozenGaps(u);
   } else {
     std::vector<double> v;

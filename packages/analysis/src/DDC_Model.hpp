@@ -13,6 +13,7 @@
 #include "DDC_BoundaryConditions.hpp"
 #include "DDC_ContactElement.hpp"
 #include "DDC_ContactParameters.hpp"
+#include "DDC_ContactSearch.hpp"
 #include "DDC_DirectSolver.hpp"
 #include "DDC_Element.hpp"
 #include "DDC_FetiDpSolver.hpp"
@@ -44,6 +45,7 @@ struct ContactSlot {
   int pair = 0;
   int slaveNode = -1;
   int master[2] = {-1, -1};  ///< master segment nodes; -1: not paired
+  int segment = -1;          ///< index of that segment in the pair's master surface (-1: not paired)
   int masterElement = -1;    ///< the element whose side the master segment is (-1: not paired)
   bool active = false;
   ContactPairState state;    ///< multiplier, frozen ξ^p / n^p
@@ -120,6 +122,11 @@ class Model {
 
   // ---- contact ---------------------------------------------------------------
   bool hasContact() const { return !slots_.empty(); }
+  /// Decomposed contact in use: Contact/Formulation = Decomposed
+  /// Node-To-Segment *and* at least one pair. With no pairs the formulation
+  /// is moot and the model is a plain one (no multiplier maps exist); test
+  /// this, never contactOptions().decomposed alone.
+  bool decomposedContact() const { return decomposed_; }
   const ContactOptions& contactOptions() const { return contact_; }
   const std::vector<ContactSlot>& contactSlots() const { return slots_; }
   /// Pair every slave node with a master segment at the state u (tracking
@@ -127,7 +134,8 @@ class Model {
   /// `freeze`, the projection ξ^p and normal n^p of the decomposed element
   /// are taken from this configuration. Collective: surface positions are
   /// gathered to every rank (one exchange, counted in exchanges()).
-  /// \return true if any slave changed its master segment (new topology).
+  /// \return true if any slave changed its master segment (new topology);
+  ///         false without contact (nothing to pair).
   bool updatePairing(const Vector& u, bool global, bool freeze);
   /// Activate every paired slot (Initial Contact State = In Contact), except
   /// the fully prescribed ones (see fullyPrescribed()).
@@ -145,6 +153,7 @@ class Model {
   /// map from the partial gaps of the slave and master counterparts,
   /// evaluated where they live; only multiplier-map values (gap, λ per
   /// slot) move between ranks, no geometry.
+  /// Without contact: nothing to do, returns no slots.
   std::vector<int> updateActiveSet(const Vector& u);
   /// Decomposed contact in FETI-DP: the constraint row of every contact slot
   /// (row id = the slot's multiplier DOF), split into the entries of the
@@ -156,7 +165,7 @@ class Model {
   /// counterpart pair works.
   std::vector<std::vector<ConstraintEntry>> contactRowEntries(const std::vector<SubdomainSystem>& systems) const;
   /// This rank's multiplier DOFs (one per slot whose slave node it owns), in
-  /// slot order; a one-to-one map.
+  /// slot order; a one-to-one map. Null without contact.
   Teuchos::RCP<const Map> multiplierMap() const { return multiplierMap_; }
   /// Slots whose multiplier this rank owns, in the order of multiplierMap().
   const std::vector<int>& ownedSlots() const { return localSlots_; }
@@ -202,6 +211,12 @@ class Model {
   /// exchange, counted with its bytes.
   void distributedSearch(const Vector& u, std::vector<std::vector<ContactCandidate>>& cands,
                          std::vector<std::vector<char>>& pastFreeEnd);
+  /// After the initial pairing: a slave node that starts inside the master
+  /// body of its pair and is not paired (farther than the search radius
+  /// from the master surface, or rejected by the facing rule) can never be
+  /// pushed out; throws InputError naming the pair, the node and the depth
+  /// (replicated data: the same on every rank).
+  void checkInitialPenetration() const;
   /// Decomposed: g_N and λ of every slot from the counterparts (see updateActiveSet()).
   void assembleFrozenGaps(const Vector& u);
 
@@ -211,6 +226,7 @@ class Model {
   Partition partition_;
   BoundaryConditions bcs_;
   ContactOptions contact_;
+  bool decomposed_ = false;  ///< see decomposedContact()
   std::shared_ptr<const ContactElement> ntsElement_, slaveElement_, masterElement_;
 
   std::vector<int> subdomainRank_;
@@ -232,6 +248,8 @@ class Model {
   // contact
   std::vector<ContactSlot> slots_;
   std::vector<std::unique_ptr<ContactSearch>> searches_;  ///< one per pair
+  std::vector<FacingRule> pairRules_;                      ///< per pair: slave segments, master element depths
+  std::vector<std::pair<int, int>> slaveNeighbourSends_;   ///< decomposed: (owned slave-surface node, rank needing it)
   std::vector<std::vector<int>> pairSlots_;                ///< slots of each pair, in search order
   std::vector<int> surfaceNodes_;                          ///< nodes whose positions are gathered
   std::vector<int> surfaceIndex_;                          ///< node -> index in surfaceNodes_ or -1

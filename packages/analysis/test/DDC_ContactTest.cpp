@@ -13,7 +13,16 @@
 //   4. two half-rings (examples/two_half_rings.xml, 100 steps): frictionless
 //      contact between hyperelastic bodies is conservative, so the strain
 //      energy equals the external work; Newton converges superlinearly in
-//      contact steps once the active set has settled.
+//      contact steps once the active set has settled;
+//   5. Contact/Formulation = Decomposed Node-To-Segment without any pair is
+//      a plain analysis (issue 9, item 6(a): it crashed);
+//   6. the facing rule (doc/contact.md "Which slave nodes pair"): a pair of
+//      the bottom and the top of one thin strip never pairs (it squashed the
+//      strip), in both search paths alike;
+//   7. a slave node that starts inside the master body where contact cannot
+//      reach it is an input error naming the pair, the node and the depth;
+//   8. duplicated and mirrored pairs are input errors naming both pairs,
+//      compared by nodes and segments, not by side-set names.
 // Decks are in-memory Teuchos::ParameterLists (the half-rings deck is read
 // from examples/). The measured numbers are printed on rank 0 for
 // doc/verification.md.
@@ -24,15 +33,23 @@
 #include <Teuchos_XMLParameterListHelpers.hpp>
 #include <Tpetra_Core.hpp>
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "DDC_Analysis.hpp"
 #include "DDC_AnalysisTestDecks.hpp"
+#include "DDC_ContactParameters.hpp"
+#include "DDC_ElementFactory.hpp"
+#include "DDC_Error.hpp"
+#include "DDC_MeshGenerators.hpp"
+#include "DDC_Model.hpp"
+#include "DDC_Partition.hpp"
 #include "DDC_TestTolerances.hpp"
 
 namespace {
@@ -133,6 +150,16 @@ constexpr double kResidualFloor = 1e-12;
 /// least 100-fold: measured >= 2458 over all contact steps; linear
 /// convergence at the rates above gives 3 to 5.
 constexpr double kLastContraction = 1e-2;
+
+/// Two decks that give the same equations for the displacements (a Contact
+/// sublist that adds no pair; a pair that never pairs, whose multipliers are
+/// decoupled and restrained to 0): the same solution up to the round-off of
+/// the linear solves. On one rank and without extra DOFs the runs are
+/// bitwise equal; a 2-rank MUMPS solve is reproducible only to round-off
+/// (two identical 2-rank runs differ by up to ~2e-14 relative, measured).
+/// A contact force that acts at all changes the energy by orders of
+/// magnitude more (the thin strip below: its elements invert).
+constexpr double kSameModel = 1e-12;
 
 // ---------------------------------------------------------------------------
 // Helpers.
@@ -520,6 +547,366 @@ TEST(HalfRings, EnergyBalanceAndNewtonConvergence) {
       std::printf("\n");
     }
   }
+}
+
+// ---------------------------------------------------------------------------
+// 5. Decomposed formulation without contact pairs.
+
+class DecomposedWithoutPairs : public testing::TestWithParam<std::string> {};
+
+/// A 1 x 1 block (4 x 2 Quad4) fixed on the left, pulled on the right, with
+/// Solver/Strategy `strategy` (FETI-DP: 4 subdomains, Belos to 1e-12), and,
+/// if `contact`, a Contact sublist with the decomposed formulation and an
+/// empty Pairs sublist.
+PL pulledBlock(const std::string& strategy, bool contact) {
+  PL deck("DDContact");
+  RectangleSpec r;
+  r.ny = 2;
+  addRectangle(deck, "Block", r);
+  addDisplacement(deck, "Fixed", "Block/left", "XY");
+  addDisplacement(deck, "Pulled", "Block/right", "X").set("Value X", 0.1);
+  setRunOptions(deck, 2);
+  deck.sublist("Solver").set("Strategy", strategy);
+  if (strategy == "FETI-DP") {
+    deck.sublist("Partition").set("Number of Subdomains", 4);
+    deck.sublist("Solver").sublist("FETI-DP").sublist("Belos").set("Convergence Tolerance", 1e-12);
+  }
+  if (contact) {
+    PL& c = deck.sublist("Contact");
+    c.set("Formulation", std::string(kDecomposed));
+    c.sublist("Pairs");
+  }
+  return deck;
+}
+
+TEST_P(DecomposedWithoutPairs, RunsAsThePlainAnalysis) {
+  PL withContact = pulledBlock(GetParam(), true), plain = pulledBlock(GetParam(), false);
+  ddc::Analysis a(worldComm(), withContact), b(worldComm(), plain);
+  a.run("");
+  b.run("");
+  EXPECT_FALSE(a.model().hasContact());
+  EXPECT_FALSE(a.model().decomposedContact()) << "no pair: no decomposed contact, whatever the formulation";
+  ASSERT_EQ(a.history().size(), b.history().size());
+  for (size_t i = 0; i < a.history().size(); ++i) {
+    const auto& x = a.history()[i];
+    const auto& y = b.history()[i];
+    EXPECT_EQ(x.activeContacts, 0);
+    EXPECT_EQ(x.contactExchanges, 0);
+    EXPECT_EQ(x.contactForce[0], 0.0);
+    EXPECT_EQ(x.contactForce[1], 0.0);
+    EXPECT_EQ(x.newtonIterations, y.newtonIterations);
+    EXPECT_GT(x.strainEnergy, 0.0);
+    EXPECT_LE(relDiff(x.strainEnergy, y.strainEnergy), kSameModel) << "step " << x.step;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Strategies, DecomposedWithoutPairs, testing::Values("Monolithic", "FETI-DP"),
+                         formulationName);
+
+TEST(DecomposedWithoutPairs, ContactCallsOnAModelWithoutPairsDoNothing) {
+  // A host code may drive the Model itself: the contact calls must not reach
+  // for the multiplier and surface maps that only exist with pairs.
+  auto mesh = std::make_shared<ddc::Mesh>();
+  PL rect("Rectangle");
+  rect.set("Elements X", 4);
+  rect.set("Elements Y", 2);
+  ddc::generateRectangle(*mesh, "Block", ddc::CellType::Quad4, rect, "Rectangle");
+  PL el("Element");
+  el.set("Type", std::string("Quad4"));
+  el.sublist("Material").set("Type", std::string("Neo-Hookean"));
+  std::vector<std::shared_ptr<const ddc::Element>> elements{
+      ddc::ElementFactory::withBuiltins().create(el, "Element")};
+  ddc::ContactOptions options;
+  options.decomposed = true;  // and no pair
+  ddc::Model m(worldComm(), mesh, elements, ddc::partitionMetis(*mesh, worldComm()->getSize()),
+               ddc::BoundaryConditions{}, options);
+  EXPECT_FALSE(m.hasContact());
+  EXPECT_FALSE(m.decomposedContact());
+  auto u = m.createVector();
+  EXPECT_FALSE(m.updatePairing(*u, true, true));
+  EXPECT_TRUE(m.updateActiveSet(*u).empty());
+  EXPECT_TRUE(m.multiplierMap().is_null());
+  EXPECT_EQ(m.ownedMap()->getGlobalNumElements(), static_cast<size_t>(2 * mesh->numNodes())) << "no multiplier DOF";
+}
+
+/// The message of the InputError that constructing an Analysis of `deck`
+/// throws, or "(no InputError)".
+std::string inputErrorOf(PL deck) {
+  try {
+    ddc::Analysis a(worldComm(), deck);
+  } catch (const ddc::InputError& e) {
+    return e.what();
+  }
+  return "(no InputError)";
+}
+
+// ---------------------------------------------------------------------------
+// 6. The facing rule.
+
+/// A 4 x 0.25 strip of 12 x 1 Quad4 ("Strip"), x-fixed on the left and pinned
+/// at its bottom-left corner, its right end loaded by a traction 0.1 down, and
+/// the pair "Self" = Strip/bottom against Strip/top (if `selfPair`). With
+/// `block`, a 1 x 0.5 block (4 x 2) on the strip's top at x in [1.5, 2.5],
+/// pressed down by 0.01, x-fixed on its left, with the pair "Block" =
+/// Block/bottom against Strip/top.
+PL stripDeck(const std::string& formulation, bool selfPair, bool block, int steps) {
+  PL deck("DDContact");
+  RectangleSpec strip;
+  strip.lengthX = 4.0;
+  strip.lengthY = 0.25;
+  strip.nx = 12;
+  strip.ny = 1;
+  addRectangle(deck, "Strip", strip);
+  addDisplacement(deck, "Strip left", "Strip/left", "X");
+  addDisplacement(deck, "Strip pin", "Strip/bottom left", "Y");
+  addTraction(deck, "Tip", "Strip/right", 0.0, -0.1);
+  PL& c = deck.sublist("Contact");
+  c.set("Formulation", formulation);
+  if (selfPair) {
+    c.sublist("Pairs").sublist("Self").set("Slave", std::string("Strip/bottom"));
+    c.sublist("Pairs").sublist("Self").set("Master", std::string("Strip/top"));
+  }
+  if (block) {
+    RectangleSpec b;
+    b.originX = 1.5;
+    b.originY = 0.25;
+    b.lengthY = 0.5;
+    b.ny = 2;
+    addRectangle(deck, "Block", b);
+    addDisplacement(deck, "Block left", "Block/left", "X");
+    addDisplacement(deck, "Block top", "Block/top", "Y").set("Value Y", -0.01);
+    c.sublist("Pairs").sublist("Block").set("Slave", std::string("Block/bottom"));
+    c.sublist("Pairs").sublist("Block").set("Master", std::string("Strip/top"));
+  }
+  setRunOptions(deck, steps);
+  return deck;
+}
+
+class FacingRuleRun : public testing::TestWithParam<std::string> {};
+
+TEST_P(FacingRuleRun, ThinStripIsNotInContactWithItself) {
+  // Every bottom node is within the search radius (1/3) of the top segment
+  // across the strip, 0.25 behind it: without the facing rule all 13 were
+  // paired and activated, the strip was squashed and Newton failed (det F < 0).
+  PL withPair = stripDeck(GetParam(), true, false, 4), plain = stripDeck(GetParam(), false, false, 4);
+  ddc::Analysis a(worldComm(), withPair), b(worldComm(), plain);
+  a.run("");
+  b.run("");
+  ASSERT_EQ(a.model().contactSlots().size(), 13u);
+  for (size_t k = 0; k < a.model().contactSlots().size(); ++k)
+    EXPECT_FALSE(a.model().contactSlots()[k].paired()) << a.model().describeSlot(static_cast<int>(k));
+  ASSERT_EQ(a.history().size(), b.history().size());
+  for (size_t i = 0; i < a.history().size(); ++i) {
+    const auto& x = a.history()[i];
+    EXPECT_EQ(x.activeContacts, 0);
+    EXPECT_EQ(x.contactForce[0], 0.0);
+    EXPECT_EQ(x.contactForce[1], 0.0);
+    EXPECT_LE(relDiff(x.strainEnergy, b.history()[i].strainEnergy), kSameModel) << "step " << x.step;
+  }
+  EXPECT_GT(a.history().back().strainEnergy, 0.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Formulations, FacingRuleRun, testing::Values(kNts, kDecomposed), formulationName);
+
+TEST(FacingRule, ASelfContactPairDoesNotSupportItsBody) {
+  // Forces between two surfaces of one body are internal: a strip held only
+  // by its self pair is unsupported (a singular matrix), reported as such.
+  PL deck = stripDeck(kNts, true, false, 1);
+  deck.sublist("Boundary Conditions").remove("Strip left");
+  deck.sublist("Boundary Conditions").remove("Strip pin");
+  const std::string msg = inputErrorOf(deck);
+  EXPECT_NE(msg.find("body 'Strip' is not supported"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("no contact pair joins it to another body"), std::string::npos) << msg;
+}
+
+TEST(FacingRule, BothSearchPathsPairTheSameSlaveNodes) {
+  // The replicated search (conventional element) and the bounding-box
+  // exchange with a search per rank (decomposed element; on 2 ranks the strip
+  // is cut, so slave-surface neighbours come from the other rank) in the
+  // reference configuration: the self pair never pairs, the block's slave
+  // nodes all pair with the strip's top (touching, gap 0).
+  PL conventional = stripDeck(kNts, true, true, 1), decomposed = stripDeck(kDecomposed, true, true, 1);
+  ddc::Analysis nts(worldComm(), conventional), dec(worldComm(), decomposed);
+  const auto& a = nts.model().contactSlots();
+  const auto& b = dec.model().contactSlots();
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_EQ(a.size(), 13u + 5u);
+  for (size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].paired(), a[k].pair == 1) << nts.model().describeSlot(static_cast<int>(k));
+    EXPECT_EQ(a[k].paired(), b[k].paired()) << dec.model().describeSlot(static_cast<int>(k));
+    EXPECT_EQ(a[k].master[0], b[k].master[0]);
+    EXPECT_EQ(a[k].master[1], b[k].master[1]);
+    EXPECT_EQ(a[k].gap, b[k].gap);
+  }
+}
+
+// ---------------------------------------------------------------------------
+// 7. Slave nodes that start inside the master body.
+
+
+/// Two blocks (3 master segments of 1/3 under 4 slave segments, element
+/// depth 0.25, search radius 1/3), the upper one starting `overlap` inside
+/// the lower one, on rollers and pressed by 0.01.
+PL overlappingBlocks(const std::string& formulation, double overlap) {
+  TwoBlocks s;
+  s.nxLower = 3;
+  s.nxUpper = 4;
+  s.formulation = formulation;
+  s.gap = -overlap;
+  PL deck = twoBlockDeck(s);
+  addRollers(deck);
+  addDisplacement(deck, "Upper top", "Upper/top", "Y").set("Value Y", -0.01);
+  return deck;
+}
+
+class InitialPenetration : public testing::TestWithParam<std::string> {};
+
+TEST_P(InitialPenetration, TooDeepForTheFacingRuleIsAnInputError) {
+  // 0.2 behind Lower/top: within the radius, but not less than ½ · 0.25.
+  const std::string msg = inputErrorOf(overlappingBlocks(GetParam(), 0.2));
+  EXPECT_NE(msg.find("contact pair 'Contact/Pairs/Interface': slave node "), std::string::npos) << msg;
+  EXPECT_NE(msg.find(" at (0.25, 0.3) of the slave side set 'Upper/bottom' starts inside the master body"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("at depth 0.2 below the master side set 'Lower/top'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("not less than half the depth of that segment's element (0.125 = 0.5 x 0.25)"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("2 more slave node(s)"), std::string::npos) << msg << ": the interior slave nodes x = 0.5, 0.75";
+}
+
+TEST_P(InitialPenetration, BeyondTheSearchRadiusIsAnInputError) {
+  const std::string msg = inputErrorOf(overlappingBlocks(GetParam(), 0.4));
+  EXPECT_NE(msg.find(" at (0.25, 0.1) of the slave side set 'Upper/bottom' starts inside the master body"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("at depth 0.4 below"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("farther than the search radius (0.333333"), std::string::npos) << msg;
+}
+
+TEST_P(InitialPenetration, OnAMeshLineOfTheMasterBodyIsInside) {
+  // 0.25 deep: the slave nodes lie exactly on the line between the lower
+  // block's two element rows (no element's interior holds them).
+  const std::string msg = inputErrorOf(overlappingBlocks(GetParam(), 0.25));
+  EXPECT_NE(msg.find("at (0.25, 0.25) of the slave side set 'Upper/bottom' starts inside the master body"),
+            std::string::npos)
+      << msg;
+}
+
+TEST_P(InitialPenetration, ShallowOverlapIsPushedOut) {
+  // 0.05 < ½ · 0.25: paired, activated, and the contact pushes the upper
+  // block out (every slave node in contact, a compressive force).
+  PL deck = overlappingBlocks(GetParam(), 0.05);
+  ddc::Analysis a(worldComm(), deck);
+  a.run("");
+  const auto& rec = a.history().back();
+  EXPECT_EQ(rec.activeContacts, 5);
+  EXPECT_GT(rec.contactForce[1], 0.0);
+}
+
+TEST_P(InitialPenetration, SlaveSurfaceFacingAwayInsideIsAnInputError) {
+  // The whole upper block starts inside the lower one (y in [-0.2, 0.3]
+  // inside [0, 0.5]) and its top is the slave surface: 0.2 below Lower/top,
+  // its normal +y like the master's.
+  TwoBlocks s;
+  s.nxLower = 3;
+  s.nxUpper = 4;
+  s.formulation = GetParam();
+  s.gap = -0.7;
+  PL deck = twoBlockDeck(s);
+  deck.sublist("Contact").sublist("Pairs").sublist("Interface").set("Slave", std::string("Upper/top"));
+  addRollers(deck);
+  const std::string msg = inputErrorOf(deck);
+  EXPECT_NE(msg.find("of the slave side set 'Upper/top' starts inside the master body"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("its outward normal (0, 1) does not face the outward normal (0, 1)"), std::string::npos) << msg;
+}
+
+INSTANTIATE_TEST_SUITE_P(Formulations, InitialPenetration, testing::Values(kNts, kDecomposed), formulationName);
+
+// ---------------------------------------------------------------------------
+// 8. Pairs that overlap.
+
+/// Two blocks ("Lower" 3 x 2, "Upper" 4 x 2 Quad4 on top of it) with extra
+/// side sets under other names over the same sides: "Upper/contact" =
+/// Upper/bottom, "Lower/contact" = Lower/top, and "Upper/bottom half" = the
+/// first two segments of Upper/bottom.
+std::shared_ptr<ddc::Mesh> blocksWithRenamedSets() {
+  auto m = std::make_shared<ddc::Mesh>();
+  for (const auto& [name, y0, nx] : {std::tuple<const char*, double, int>{"Lower", 0.0, 3}, {"Upper", 0.5, 4}}) {
+    PL r("Rectangle");
+    r.set("Origin Y", y0);
+    r.set("Length Y", 0.5);
+    r.set("Elements X", nx);
+    r.set("Elements Y", 2);
+    ddc::generateRectangle(*m, name, ddc::CellType::Quad4, r, "R");
+  }
+  const int lower = m->bodyIndex("Lower"), upper = m->bodyIndex("Upper");
+  m->addSideSet(upper, "contact", m->sideSet("Upper/bottom"));
+  m->addSideSet(lower, "contact", m->sideSet("Lower/top"));
+  auto half = m->sideSet("Upper/bottom");
+  std::sort(half.begin(), half.end(), [&](const ddc::Segment& a, const ddc::Segment& b) {
+    return m->coord(a.nodes[0])[0] + m->coord(a.nodes[1])[0] < m->coord(b.nodes[0])[0] + m->coord(b.nodes[1])[0];
+  });
+  half.resize(2);
+  m->addSideSet(upper, "bottom half", half);
+  return m;
+}
+
+/// ContactOptions::fromParameters on those blocks with the pairs
+/// {name, slave, master}: the InputError's message, or "(no InputError)".
+std::string pairsError(const std::vector<std::array<std::string, 3>>& pairs) {
+  const auto mesh = blocksWithRenamedSets();
+  PL c("Contact");
+  for (const auto& p : pairs) {
+    c.sublist("Pairs").sublist(p[0]).set("Slave", p[1]);
+    c.sublist("Pairs").sublist(p[0]).set("Master", p[2]);
+  }
+  try {
+    ddc::ContactOptions::fromParameters(c, *mesh, "Contact");
+  } catch (const ddc::InputError& e) {
+    return e.what();
+  }
+  return "(no InputError)";
+}
+
+TEST(OverlappingPairs, DuplicatedPairsAreInputErrorsWhateverTheSetNames) {
+  for (const auto& second : std::vector<std::array<std::string, 3>>{
+           {"B", "Upper/bottom", "Lower/top"},        // the same pair twice
+           {"B", "Upper/contact", "Lower/contact"},   // the same surfaces under other names
+           {"B", "Upper/bottom half", "Lower/top"},   // a part of the slave surface
+           {"B", "Upper/left", "Lower/top"}}) {       // only the corner node shared
+    const std::string msg = pairsError({{"A", "Upper/bottom", "Lower/top"}, second});
+    EXPECT_NE(msg.find("contact pairs 'Contact/Pairs/A' and 'Contact/Pairs/B' duplicate each other: slave node "),
+              std::string::npos)
+        << second[1] << " / " << second[2] << ": " << msg;
+    EXPECT_NE(msg.find("' and '" + second[1] + "')"), std::string::npos) << msg;
+  }
+}
+
+TEST(OverlappingPairs, MirroredPairsAreInputErrorsWhateverTheSetNames) {
+  for (const auto& second : std::vector<std::array<std::string, 3>>{{"B", "Lower/top", "Upper/bottom"},
+                                                                    {"B", "Lower/contact", "Upper/contact"},
+                                                                    {"B", "Lower/top", "Upper/bottom half"}}) {
+    const std::string msg = pairsError({{"A", "Upper/bottom", "Lower/top"}, second});
+    EXPECT_NE(msg.find("contact pairs 'Contact/Pairs/A' and 'Contact/Pairs/B' mirror each other: the slave surface of "
+                       "the first ('Upper/bottom') and the master surface of the second ('" +
+                       second[2] + "') share the segment of nodes "),
+              std::string::npos)
+        << second[1] << " / " << second[2] << ": " << msg;
+  }
+}
+
+TEST(OverlappingPairs, PairsThatShareOnlyOneSideAreAccepted) {
+  // One slave surface against two master surfaces without a common segment,
+  // two slave surfaces against one master without a common slave node, and
+  // a chain (the second pair's slave is the first pair's master body, but
+  // another side of it): all legitimate.
+  EXPECT_EQ(pairsError({{"A", "Upper/bottom", "Lower/top"}, {"B", "Upper/bottom", "Lower/right"}}),
+            "(no InputError)");
+  EXPECT_EQ(pairsError({{"A", "Upper/bottom", "Lower/top"}, {"B", "Upper/right", "Lower/right"}}),
+            "(no InputError)");
+  EXPECT_EQ(pairsError({{"A", "Upper/bottom", "Lower/top"}, {"B", "Lower/right", "Upper/right"}}),
+            "(no InputError)");
 }
 
 }  // namespace

@@ -97,6 +97,73 @@ ContactSearch::ContactSearch(MasterSurface master, std::vector<int> slaveNodes, 
     local_.push_back({master_.localNode(master_.segment(k)[0]), master_.localNode(master_.segment(k)[1])});
 }
 
+ContactSearch::ContactSearch(MasterSurface master, std::vector<int> slaveNodes, double searchRadius, FacingRule rule,
+                             int maxTrackingSteps)
+    : ContactSearch(std::move(master), std::move(slaveNodes), searchRadius, maxTrackingSteps) {
+  DDC_INPUT_REQUIRE(static_cast<int>(rule.masterDepths.size()) == master_.numSegments(),
+                    "contact search: " << rule.masterDepths.size() << " master element depths for "
+                                       << master_.numSegments() << " master segments");
+  for (std::size_t k = 0; k < rule.masterDepths.size(); ++k)
+    DDC_INPUT_REQUIRE(std::isfinite(rule.masterDepths[k]) && rule.masterDepths[k] > 0.0,
+                      "contact search: the element of master segment " << k << " has depth " << rule.masterDepths[k]
+                                                                        << "; it must be positive");
+  // Slave segments at each slave node (a node has one or two on a simple
+  // surface; more are accepted, their normals are summed alike).
+  std::vector<int> order(slaves_.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return slaves_[a] < slaves_[b]; });
+  auto slaveIndex = [&](int node) {
+    auto it = std::lower_bound(order.begin(), order.end(), node, [&](int i, int n) { return slaves_[i] < n; });
+    return it != order.end() && slaves_[*it] == node ? *it : -1;
+  };
+  slaveSegmentsAt_.assign(slaves_.size(), {});
+  for (std::size_t g = 0; g < rule.slaveSegments.size(); ++g) {
+    const auto& sg = rule.slaveSegments[g];
+    DDC_INPUT_REQUIRE(sg[0] >= 0 && sg[1] >= 0 && sg[0] != sg[1],
+                      "contact search: slave segment " << g << " (nodes " << sg[0] << ", " << sg[1]
+                                                       << ") must join two distinct nodes");
+    for (int n : sg) {
+      const int i = slaveIndex(n);
+      if (i >= 0) slaveSegmentsAt_[i].push_back(static_cast<int>(g));
+    }
+  }
+  for (std::size_t i = 0; i < slaves_.size(); ++i)
+    DDC_INPUT_REQUIRE(!slaveSegmentsAt_[i].empty(),
+                      "contact search: slave node " << slaves_[i] << " is on no slave segment (the facing rule needs "
+                                                       "its outward normal)");
+  rule_ = std::move(rule);
+  hasRule_ = true;
+}
+
+double ContactSearch::penetrationLimit(int k) const {
+  return hasRule_ ? kFacingDepthFraction * rule_.masterDepths[k] : std::numeric_limits<double>::infinity();
+}
+
+Eigen::Vector2d ContactSearch::slaveNormal(std::size_t i,
+                                           const std::function<Eigen::Vector2d(int node)>& currentPosition) const {
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (int g : slaveSegmentsAt_[i]) {
+    const auto& sg = rule_.slaveSegments[g];
+    const Eigen::Vector2d t = currentPosition(sg[1]) - currentPosition(sg[0]);
+    const double len = t.norm();
+    if (!(len > 0.0) || !std::isfinite(len))
+      DDC_THROW(SolverError, "contact search: slave segment (nodes " << sg[0] << ", " << sg[1]
+                                                                     << ") has zero or non-finite length");
+    sum += Eigen::Vector2d(t.y(), -t.x()) / len;  // the unit outward normal (body on the left)
+  }
+  const double n = sum.norm();
+  // Normals that cancel (a fold of the slave surface) give no direction: such
+  // a node faces nothing.
+  return n > 0.0 ? Eigen::Vector2d(sum / n) : Eigen::Vector2d::Zero();
+}
+
+ContactRejection facingVerdict(const Eigen::Vector2d& slaveNormal, const Eigen::Vector2d& masterNormal, double gap,
+                               double penetrationLimit) {
+  if (!(slaveNormal.dot(masterNormal) < 0.0)) return ContactRejection::NotFacing;
+  if (gap < 0.0 && !(-gap < penetrationLimit)) return ContactRejection::TooDeep;
+  return ContactRejection::None;
+}
+
 ContactSearch::Eval ContactSearch::evaluate(int k, const Eigen::Vector2d& xs) {
   ++counters_.projections;
   const Eigen::Vector2d& x1 = x_[local_[k][0]];
@@ -252,6 +319,16 @@ void ContactSearch::update(const std::function<Eigen::Vector2d(int node)>& curre
     c.point = e.point;
     c.distance = std::sqrt(e.d2);
     c.viaCorner = e.outside;
+    if (hasRule_) {
+      // The facing rule acts on the nearest segment only (header): a slave
+      // whose nearest segment fails it is not paired with another one.
+      c.slaveNormal = slaveNormal(i, currentPosition);
+      c.rejection = facingVerdict(c.slaveNormal, c.normal, c.gap, penetrationLimit(k));
+      if (c.rejection != ContactRejection::None) {
+        c.rejectedSegment = k;
+        c.segment = -1;
+      }
+    }
   }
 }
 
@@ -268,6 +345,27 @@ std::vector<std::array<int, 2>> masterSegmentsFromSideSet(const Mesh& mesh, cons
     out.push_back({s.nodes[0], s.nodes[1]});
   }
   return out;
+}
+
+std::vector<double> masterElementDepths(const Mesh& mesh, const std::string& sideSet) {
+  const auto segments = masterSegmentsFromSideSet(mesh, sideSet);  // checks the set and its sides
+  const auto& sides = mesh.sideSet(sideSet);
+  std::vector<double> depth(sides.size(), 0.0);
+  for (std::size_t k = 0; k < sides.size(); ++k) {
+    const auto& a = mesh.coord(segments[k][0]);
+    const auto& b = mesh.coord(segments[k][1]);
+    const Eigen::Vector2d t(b[0] - a[0], b[1] - a[1]);
+    const Eigen::Vector2d n = Eigen::Vector2d(t.y(), -t.x()).normalized();
+    const int e = sides[k].element;
+    for (int i = 0; i < mesh.elementNumNodes(e); ++i) {
+      const auto& x = mesh.coord(mesh.elementNodes(e)[i]);
+      depth[k] = std::max(depth[k], -n.dot(Eigen::Vector2d(x[0] - a[0], x[1] - a[1])));
+    }
+    DDC_INPUT_REQUIRE(depth[k] > 0.0, "side set '" << sideSet << "': element " << e
+                                                   << " has no extent behind its side " << sides[k].localSide
+                                                   << " (degenerate element)");
+  }
+  return depth;
 }
 
 }  // namespace ddc

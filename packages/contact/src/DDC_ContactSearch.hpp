@@ -32,6 +32,20 @@
 //    `cand.viaCorner && master.neighbour(cand.segment, cand.xi < 0.5 ? 0 : 1) < 0`.
 //  - No candidate (farther than the radius from every segment): segment = −1;
 //    the slave has left the master surface.
+//  - Facing rule (doc/contact.md "Which slave nodes pair"; only with a
+//    FacingRule): the nearest segment k found above is accepted only if
+//      (a) n_s·n_k < 0, n_s the slave node's outward normal (the normalised
+//          sum of the unit outward normals of the slave segments at the node,
+//          current configuration), n_k segment k's outward normal; and
+//      (b) a slave behind the segment (g < 0) is less deep than
+//          kFacingDepthFraction times the depth of the element that owns
+//          segment k (its extent normal to the segment, reference
+//          configuration): −g < ½ depth_k.
+//    Otherwise the slave is not paired (segment = −1) and the candidate says
+//    why (rejection, rejectedSegment; its ξ, gap, normal, ... are those of
+//    the rejected segment). The rule acts on the result of the key above, so
+//    tracking and the global search still agree bitwise, and a pairing the
+//    rule accepts is exactly the pairing without the rule.
 #pragma once
 
 #include <Eigen/Dense>
@@ -76,6 +90,42 @@ class MasterSurface {
   std::vector<int> nodes_;
 };
 
+/// Which part of the facing rule rejected the nearest master segment.
+enum class ContactRejection {
+  None,       ///< accepted (or no segment within the radius)
+  NotFacing,  ///< n_s·n_m >= 0: the slave surface does not face the segment
+  TooDeep     ///< behind the segment by kFacingDepthFraction of its element's depth or more
+};
+
+/// Fraction of the master element's depth a slave may lie behind the master
+/// segment and still be paired with it (doc/contact.md "Which slave nodes
+/// pair"): deeper, it is nearer the far side of that element than the
+/// segment, which a contact increment cannot produce on a mesh that resolves
+/// the motion, but a node of the other side of a thin body (or a node that
+/// started inside the master body) always is.
+constexpr double kFacingDepthFraction = 0.5;
+
+/// The facing rule's verdict for a slave node with outward normal
+/// `slaveNormal` at gap `gap` from a master segment with outward normal
+/// `masterNormal`, allowed to lie `penetrationLimit` behind it (the rule at
+/// the top of this file; used by ContactSearch and by every consumer that
+/// keeps a pairing the search did not make, so the rule is one function).
+ContactRejection facingVerdict(const Eigen::Vector2d& slaveNormal, const Eigen::Vector2d& masterNormal, double gap,
+                               double penetrationLimit);
+
+/// What the facing rule needs besides the master surface: the slave surface
+/// (for nodal normals) and the depth of each master segment's element.
+struct FacingRule {
+  /// Segments of the slave surface (mesh node ids), oriented with the slave
+  /// body on the left (e.g. from masterSegmentsFromSideSet() on the slave side
+  /// set). Every slave node must be on one; the positions of the other nodes
+  /// of the segments at a slave node are read in update().
+  std::vector<std::array<int, 2>> slaveSegments;
+  /// Per master segment (MasterSurface order): the depth of the element that
+  /// owns it (masterElementDepths()), > 0.
+  std::vector<double> masterDepths;
+};
+
 /// The pairing of one slave node (see the geometry rules at the top).
 struct ContactCandidate {
   /// Master segment index in MasterSurface, −1 if none within the radius.
@@ -93,6 +143,14 @@ struct ContactCandidate {
   /// The slave projects outside the chosen segment: a convex corner's blind
   /// spot or beyond a free end.
   bool viaCorner = false;
+  /// The slave node's outward normal n_s (zero without a FacingRule, or if
+  /// the normals of its slave segments cancel).
+  Eigen::Vector2d slaveNormal = Eigen::Vector2d::Zero();
+  /// Not None: the nearest segment within the radius, `rejectedSegment`, failed
+  /// the facing rule; segment is then −1 and xi, gap, distance, normal, point
+  /// and viaCorner describe the rejected segment.
+  ContactRejection rejection = ContactRejection::None;
+  int rejectedSegment = -1;
 };
 
 /// Work counters, cumulative over all update() calls. "Query" = one slave
@@ -141,10 +199,17 @@ class ContactSearch {
   ///         on the master surface.
   ContactSearch(MasterSurface master, std::vector<int> slaveNodes, double searchRadius,
                 int maxTrackingSteps = 8);
+  /// The same with the facing rule (see the top of this file).
+  /// \throws InputError as above, and if a slave node is on no slave segment,
+  ///         a slave segment repeats a node or has a negative id, or the
+  ///         depths are not one positive finite value per master segment.
+  ContactSearch(MasterSurface master, std::vector<int> slaveNodes, double searchRadius, FacingRule rule,
+                int maxTrackingSteps = 8);
 
   /// Pair every slave node with a master segment in the current configuration.
   /// \param currentPosition current coordinates x = X + u of a mesh node id
-  ///        (called once per master and slave node)
+  ///        (called for every master and slave node and, with a FacingRule,
+  ///        for the nodes of the slave segments at the slave nodes)
   /// \param forceGlobal ignore previous pairings (global search for all)
   /// \throws SolverError if a master segment has zero length or a position
   ///         is not finite.
@@ -156,6 +221,10 @@ class ContactSearch {
   const std::vector<int>& slaveNodes() const { return slaves_; }
   const MasterSurface& master() const { return master_; }
   double searchRadius() const { return radius_; }
+  bool hasFacingRule() const { return hasRule_; }
+  /// How deep a slave may lie behind master segment k and be paired with it:
+  /// kFacingDepthFraction × its element's depth (infinite without a FacingRule).
+  double penetrationLimit(int k) const;
 
   const ContactSearchCounters& counters() const { return counters_; }
   /// Shortcuts for counters().globalSearches / .trackingCalls (per query).
@@ -182,6 +251,11 @@ class ContactSearch {
   // positions in that order.
   std::vector<std::array<int, 2>> local_;
   std::vector<Eigen::Vector2d> x_;
+  // Facing rule: the rule, and per slave the slave segments at it.
+  bool hasRule_ = false;
+  FacingRule rule_;
+  std::vector<std::vector<int>> slaveSegmentsAt_;
+  Eigen::Vector2d slaveNormal(std::size_t i, const std::function<Eigen::Vector2d(int node)>& currentPosition) const;
   // Bin grid (valid when gridValid_): sorted (cell key, segment) pairs.
   bool gridValid_ = false;
   double x0_ = 0, y0_ = 0, xHi_ = 0, yHi_ = 0, h_ = 1;
@@ -194,5 +268,14 @@ class ContactSearch {
 ///         or has 3-node (Quad9) sides: "contact surfaces must be Quad4 sides
 ///         for now".
 std::vector<std::array<int, 2>> masterSegmentsFromSideSet(const Mesh& mesh, const std::string& sideSet);
+
+/// For each segment of side set `sideSet` (the order of
+/// masterSegmentsFromSideSet()): the depth of the element it is a side of,
+/// i.e. how far the element's nodes reach behind the segment along its inward
+/// normal, max_a −n·(X_a − X_1), in the reference configuration. For a
+/// rectangular element: its height over that side.
+/// \throws InputError as masterSegmentsFromSideSet(), or if an element has no
+///         depth (degenerate).
+std::vector<double> masterElementDepths(const Mesh& mesh, const std::string& sideSet);
 
 }  // namespace ddc

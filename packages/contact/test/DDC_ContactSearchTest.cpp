@@ -629,3 +629,225 @@ TEST(MasterSegmentsFromSideSet, RejectsQuad9SidesAndUnknownSets) {
   EXPECT_THAT(msg, HasSubstr("B/top"));
   EXPECT_THAT(inputErrorOf([&] { masterSegmentsFromSideSet(m, "B/nope"); }), HasSubstr("B/nope"));
 }
+
+// --- the facing rule ------------------------------------------------------------
+
+namespace {
+
+/// The facing rule written out independently of DDC_ContactSearch.cpp: the
+/// slave normal as the normalised sum of its segments' unit outward normals,
+/// then n_s·n_m < 0 and, behind the segment, −g < ½ depth.
+ddc::ContactRejection referenceVerdict(const Geometry& g, const Segs& slaveSegs, int slave, const ContactCandidate& c,
+                                       double depth) {
+  double sx = 0.0, sy = 0.0;
+  for (const auto& s : slaveSegs) {
+    if (s[0] != slave && s[1] != slave) continue;
+    const double tx = g.x[s[1]].x() - g.x[s[0]].x(), ty = g.x[s[1]].y() - g.x[s[0]].y();
+    const double len = std::sqrt(tx * tx + ty * ty);
+    sx += ty / len;
+    sy += -tx / len;
+  }
+  const double len = std::sqrt(sx * sx + sy * sy);
+  const double dot = len > 0.0 ? (sx * c.normal.x() + sy * c.normal.y()) / len : 0.0;
+  if (!(dot < 0.0)) return ddc::ContactRejection::NotFacing;
+  if (c.gap < 0.0 && !(-c.gap < 0.5 * depth)) return ddc::ContactRejection::TooDeep;
+  return ddc::ContactRejection::None;
+}
+
+ddc::FacingRule uniformRule(const Segs& slaveSegs, int numMasterSegments, double depth) {
+  ddc::FacingRule r;
+  r.slaveSegments = slaveSegs;
+  r.masterDepths.assign(numMasterSegments, depth);
+  return r;
+}
+
+/// Master: y = 0 from x = 1 to x = 0 (body below, n = +y), element depth 0.25.
+/// Slave: one node at (0.5, y) on two slave segments to (0.3, y') and
+/// (0.7, y'), ordered so that the slave body is above (n_s = −y) or, with
+/// `facingAway`, below (n_s = +y).
+struct OneSlave {
+  Geometry g;
+  Segs slaveSegs;
+  int slave = -1;
+  OneSlave(double y, bool facingAway) {
+    g.addNode(Vec(1, 0));
+    g.addNode(Vec(0, 0));
+    g.segs = {{0, 1}};
+    const int left = g.addNode(Vec(0.3, y + 0.01)), right = g.addNode(Vec(0.7, y + 0.01));
+    slave = g.addNode(Vec(0.5, y));
+    // Body above: travel left to right along its bottom (n = (t_y, −t_x) points down).
+    slaveSegs = facingAway ? Segs{{right, slave}, {slave, left}} : Segs{{left, slave}, {slave, right}};
+  }
+  ContactCandidate pair(double radius = 0.5) {
+    ContactSearch s(MasterSurface(g.segs), {slave}, radius, uniformRule(slaveSegs, 1, 0.25));
+    s.update(g.position(), true);
+    return s.candidates()[0];
+  }
+};
+
+}  // namespace
+
+TEST(FacingRule, VerdictIsStrictInBothParts) {
+  const Vec up(0, 1), down(0, -1), side(1, 0);
+  EXPECT_EQ(ddc::facingVerdict(down, up, 0.1, 0.125), ddc::ContactRejection::None);
+  EXPECT_EQ(ddc::facingVerdict(up, up, 0.1, 0.125), ddc::ContactRejection::NotFacing);
+  // Perpendicular normals do not face each other (n_s·n_m = 0 exactly).
+  EXPECT_EQ(ddc::facingVerdict(side, up, 0.1, 0.125), ddc::ContactRejection::NotFacing);
+  // A node without a normal (its segments' normals cancel) faces nothing.
+  EXPECT_EQ(ddc::facingVerdict(Vec::Zero(), up, 0.1, 0.125), ddc::ContactRejection::NotFacing);
+  EXPECT_EQ(ddc::facingVerdict(down, up, -0.1, 0.125), ddc::ContactRejection::None);
+  EXPECT_EQ(ddc::facingVerdict(down, up, -0.125, 0.125), ddc::ContactRejection::TooDeep);  // −g < limit, strictly
+  EXPECT_EQ(ddc::facingVerdict(down, up, -0.2, 0.125), ddc::ContactRejection::TooDeep);
+  // In front of the segment the depth limit does not apply (the search radius does).
+  EXPECT_EQ(ddc::facingVerdict(down, up, 5.0, 0.125), ddc::ContactRejection::None);
+}
+
+TEST(FacingRule, PenetratingNodeOfAnotherBodyPairsUpToHalfTheElementDepth) {
+  // Separated, touching and penetrating by less than ½ · 0.25: paired, and
+  // exactly as without the rule.
+  for (double y : {0.1, 0.0, -0.05, -0.124}) {
+    OneSlave o(y, false);
+    const ContactCandidate c = o.pair();
+    ContactSearch plain(MasterSurface(o.g.segs), {o.slave}, 0.5);
+    plain.update(o.g.position(), true);
+    EXPECT_EQ(c.segment, 0) << "y = " << y;
+    EXPECT_EQ(c.rejection, ddc::ContactRejection::None);
+    EXPECT_EQ(c.gap, plain.candidates()[0].gap);
+    EXPECT_EQ(c.xi, plain.candidates()[0].xi);
+    EXPECT_TRUE(c.slaveNormal.isApprox(Vec(0, -1)));
+  }
+  // At or beyond half the depth: not paired, and the candidate says why.
+  for (double y : {-0.125, -0.2}) {
+    const ContactCandidate c = OneSlave(y, false).pair();
+    EXPECT_EQ(c.segment, -1) << "y = " << y;
+    EXPECT_EQ(c.rejection, ddc::ContactRejection::TooDeep);
+    EXPECT_EQ(c.rejectedSegment, 0);
+    EXPECT_NEAR(c.gap, y, kRoundoff);
+  }
+}
+
+TEST(FacingRule, SlaveSurfaceFacingAwayIsNotPaired) {
+  // Same positions, the slave body below its surface: both normals point up.
+  for (double y : {0.1, -0.05}) {
+    const ContactCandidate c = OneSlave(y, true).pair();
+    EXPECT_EQ(c.segment, -1) << "y = " << y;
+    EXPECT_EQ(c.rejection, ddc::ContactRejection::NotFacing);
+    EXPECT_TRUE(c.slaveNormal.isApprox(Vec(0, 1)));
+  }
+}
+
+TEST(FacingRule, ThinBodyBottomIsNotPairedWithItsOwnTop) {
+  // One element through the thickness (0.25), 12 along 4: every bottom node
+  // is 0.25 from the top segment above it, inside the radius 1/3 (the mean
+  // top segment length).
+  ddc::Mesh m;
+  auto p = rectParams(4.0, 0.25, 12, 1);
+  ddc::generateRectangle(m, "Strip", ddc::CellType::Quad4, p, "R");
+  const Segs top = masterSegmentsFromSideSet(m, "Strip/top");
+  const auto depths = ddc::masterElementDepths(m, "Strip/top");
+  ASSERT_EQ(depths.size(), top.size());
+  for (double d : depths) EXPECT_NEAR(d, 0.25, kRoundoff);
+  Geometry g;
+  for (int n = 0; n < m.numNodes(); ++n) g.addNode(Vec(m.coord(n)[0], m.coord(n)[1]));
+  const std::vector<int> bottom = m.nodeSet("Strip/bottom");
+  ddc::FacingRule rule{masterSegmentsFromSideSet(m, "Strip/bottom"), depths};
+  ContactSearch with(MasterSurface(top), bottom, 1.0 / 3.0, rule), without(MasterSurface(top), bottom, 1.0 / 3.0);
+  with.update(g.position(), true);
+  without.update(g.position(), true);
+  ASSERT_EQ(bottom.size(), 13u);
+  for (std::size_t i = 0; i < bottom.size(); ++i) {
+    // Without the rule: paired through the body (the reported 13 spurious contacts).
+    EXPECT_GE(without.candidates()[i].segment, 0);
+    EXPECT_NEAR(without.candidates()[i].gap, -0.25, kRoundoff);
+    // Opposed normals (bottom down, top up), but behind by the full depth.
+    const ContactCandidate& c = with.candidates()[i];
+    EXPECT_EQ(c.segment, -1) << "bottom node " << bottom[i];
+    EXPECT_EQ(c.rejection, ddc::ContactRejection::TooDeep);
+    EXPECT_LT(c.slaveNormal.dot(c.normal), 0.0);
+  }
+  // Bending the strip (tracking from the rejected state, then global) keeps
+  // every bottom node unpaired: the thickness stays near 0.25.
+  for (int n = 0; n < m.numNodes(); ++n) {
+    const double x = m.coord(n)[0];
+    g.x[n] += Vec(0.0, -0.05 * x * x);
+  }
+  with.update(g.position(), false);
+  for (const auto& c : with.candidates()) EXPECT_EQ(c.rejection, ddc::ContactRejection::TooDeep);
+}
+
+TEST(FacingRule, TrackingAndGlobalSearchAgreeWithTheReference) {
+  // A slave chain (body above, n_s ≈ −y) lowered in steps onto and through a
+  // wavy master surface (body below, n ≈ +y) of element depth 0.1: nodes are
+  // paired, then rejected as too deep, some not facing where the chain is
+  // tilted by noise. Tracking, a fresh global search and the brute-force
+  // reference with the rule written out independently must agree.
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Geometry g;
+  addWavyPolyline(g, 80, 8.0, 0.1, 2.0, 0.0, rng);
+  const int numMaster = static_cast<int>(g.segs.size());
+  const double depth = 0.1, radius = 0.3;
+  std::vector<int> slaves;
+  Segs slaveSegs;
+  for (int i = 0; i <= 60; ++i) slaves.push_back(g.addNode(Vec(1.0 + 0.1 * i, 0.25 + 0.02 * u(rng))));
+  for (int i = 0; i < 60; ++i) slaveSegs.push_back({slaves[i], slaves[i + 1]});
+  // Two slave nodes turned upside down (a fold of the slave chain): they face away.
+  std::swap(g.x[slaves[20]], g.x[slaves[21]]);
+  ContactSearch tracked(MasterSurface(g.segs), slaves, radius, uniformRule(slaveSegs, numMaster, depth));
+  int accepted = 0, tooDeep = 0, notFacing = 0;
+  for (int step = 0; step < 40; ++step) {
+    for (int n : slaves) g.x[n] += Vec(0.01 * u(rng), -0.01);
+    tracked.update(g.position(), false);
+    ContactSearch fresh(MasterSurface(g.segs), slaves, radius, uniformRule(slaveSegs, numMaster, depth));
+    fresh.update(g.position(), true);
+    for (std::size_t i = 0; i < slaves.size(); ++i) {
+      const ContactCandidate& a = tracked.candidates()[i];
+      const ContactCandidate& b = fresh.candidates()[i];
+      ASSERT_EQ(a.segment, b.segment) << "step " << step << " slave " << i;
+      ASSERT_EQ(a.rejection, b.rejection) << "step " << step << " slave " << i;
+      ASSERT_EQ(a.rejectedSegment, b.rejectedSegment);
+      ASSERT_EQ(a.gap, b.gap);
+      // The reference: the nearest segment by brute force, then the rule.
+      const ContactCandidate ref = bruteForce(g, g.x[slaves[i]], radius);
+      const int k = b.segment >= 0 ? b.segment : b.rejectedSegment;
+      ASSERT_EQ(k >= 0, ref.segment >= 0) << "step " << step << " slave " << i;
+      if (k < 0) continue;
+      ContactCandidate c = b;
+      c.segment = k;
+      ASSERT_TRUE(sameCandidate(c, ref)) << "step " << step << " slave " << i;
+      ASSERT_EQ(b.rejection, referenceVerdict(g, slaveSegs, slaves[i], b, depth)) << "step " << step << " slave " << i;
+      if (b.rejection == ddc::ContactRejection::None) ++accepted;
+      if (b.rejection == ddc::ContactRejection::TooDeep) ++tooDeep;
+      if (b.rejection == ddc::ContactRejection::NotFacing) ++notFacing;
+    }
+  }
+  // All three outcomes occurred.
+  EXPECT_GT(accepted, 0);
+  EXPECT_GT(tooDeep, 0);
+  EXPECT_GT(notFacing, 0);
+}
+
+TEST(FacingRule, RejectsInconsistentRuleData) {
+  const MasterSurface m(Segs{{0, 1}, {1, 2}});
+  EXPECT_THAT(inputErrorOf([&] { ContactSearch(m, {3}, 1.0, uniformRule(Segs{{3, 4}}, 1, 0.1)); }),
+              HasSubstr("1 master element depths for 2 master segments"));
+  EXPECT_THAT(inputErrorOf([&] { ContactSearch(m, {3}, 1.0, uniformRule(Segs{{3, 4}}, 2, 0.0)); }),
+              HasSubstr("must be positive"));
+  EXPECT_THAT(inputErrorOf([&] { ContactSearch(m, {3, 5}, 1.0, uniformRule(Segs{{3, 4}}, 2, 0.1)); }),
+              HasSubstr("slave node 5 is on no slave segment"));
+  EXPECT_THAT(inputErrorOf([&] { ContactSearch(m, {3}, 1.0, uniformRule(Segs{{3, 3}}, 2, 0.1)); }),
+              HasSubstr("must join two distinct nodes"));
+}
+
+TEST(MasterSegmentsFromSideSet, ElementDepthIsTheExtentBehindTheSide) {
+  ddc::Mesh m;
+  auto p = rectParams(2.0, 1.0, 4, 2);  // elements 0.5 x 0.5
+  ddc::generateRectangle(m, "Block", ddc::CellType::Quad4, p, "R");
+  for (const char* set : {"Block/top", "Block/left", "Block/right", "Block/bottom"})
+    for (double d : ddc::masterElementDepths(m, set)) EXPECT_NEAR(d, 0.5, kRoundoff) << set;
+  ddc::Mesh flat;
+  auto q = rectParams(2.0, 0.3, 4, 3);  // 0.5 x 0.1
+  ddc::generateRectangle(flat, "F", ddc::CellType::Quad4, q, "R");
+  for (double d : ddc::masterElementDepths(flat, "F/top")) EXPECT_NEAR(d, 0.1, kRoundoff);
+  for (double d : ddc::masterElementDepths(flat, "F/left")) EXPECT_NEAR(d, 0.5, kRoundoff);
+}
