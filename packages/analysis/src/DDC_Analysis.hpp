@@ -73,7 +73,8 @@ class Analysis {
   /// Run every load step. With a non-empty `outputDirectory`, write
   /// history.csv, vtk/ and the validated parameters there: results are
   /// staged in "<dir>.partial" and replace "<dir>" only when the run succeeds.
-  /// \throws SolverError when a step fails after all bisections.
+  /// \throws SolverError when a step fails after all bisections, or when the
+  ///         run ends without a converged step (nothing is committed then).
   void run(const std::string& outputDirectory);
 
   const Model& model() const { return *model_; }
