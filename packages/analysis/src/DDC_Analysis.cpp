@@ -18,6 +18,7 @@
 #include "DDC_NodeToSegment.hpp"
 #include "DDC_Gmsh.hpp"
 #include "DDC_HistoryWriter.hpp"
+#include "DDC_InputDeck.hpp"
 #include "DDC_MeshGenerators.hpp"
 #include "DDC_ModelOutput.hpp"
 #include "DDC_OutputDirectory.hpp"
@@ -215,6 +216,9 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
     validateLevel(params.sublist(s), valid->sublist(s), s);
   DDC_INPUT_REQUIRE(params.isSublist("Mesh"), "sublist 'Mesh' is required");
   progressEnabled_ = params.sublist("Output").get<bool>("Progress");
+  // Every rank reads the mesh and map files named in the parameters: a file
+  // missing or different on some ranks must fail all ranks alike.
+  requireSameFilesOnEveryRank(*comm_, namedInputFiles(params, baseDirectory));
 
   // Mesh and one element evaluator per body.
   auto mesh = buildMesh(params.sublist("Mesh"), factory_, baseDirectory);
