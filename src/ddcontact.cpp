@@ -5,23 +5,26 @@
 //   ddcontact examples/elastic_block.xml --set "Mesh/Bodies/Block/Rectangle/Refinement=4"
 //   ddcontact --print-parameters > doc/parameters.md
 //
-// Steps: (1) parse the command line, (2) read the XML deck and apply --set
-// overrides, (3) validate and build the analysis, (4) run it into the output
-// directory. Any error ends the run on every rank with a message naming the
-// file / parameter / mesh entity and a non-zero exit status.
+// Steps: (1) take rank 0's command line on every rank and parse it, (2) read
+// the XML deck on rank 0 (strictly: ddc::readDeck) and broadcast it, apply
+// --set overrides, (3) validate and build the analysis, (4) run it into the
+// output directory. Any error ends the run on every rank with a message
+// naming the file / parameter / mesh entity and a non-zero exit status.
 #include <mpi.h>
 
+#include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_DefaultMpiComm.hpp>
-#include <Teuchos_XMLParameterListHelpers.hpp>
 #include <Tpetra_Core.hpp>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <thread>
+#include <vector>
 
 #include "DDC_Analysis.hpp"
 #include "DDC_Error.hpp"
+#include "DDC_InputDeck.hpp"
 #include "DDC_OutputDirectory.hpp"
 #include "DDC_Parameters.hpp"
 #include "DDC_ResultFile.hpp"
@@ -32,7 +35,9 @@ const char* kUsage =
     "usage: ddcontact INPUT.xml [--output-dir DIR] [--set PATH=VALUE]...\n"
     "       ddcontact --help | --print-parameters\n"
     "\n"
-    "Runs the analysis described by the Teuchos XML parameter file INPUT.xml.\n"
+    "Runs the analysis described by the Teuchos XML parameter file INPUT.xml. Rank 0 reads it\n"
+    "(strictly: every value must parse as its type, every name appear once per list) and every\n"
+    "rank uses its contents; every rank also uses rank 0's command line.\n"
     "\n"
     "  --output-dir DIR    where results go (default: ddcontact-out/<input stem>);\n"
     "                      written to DIR.partial and moved to DIR when the run succeeds,\n"
@@ -53,17 +58,18 @@ struct Options {
   bool help = false, printParameters = false;
 };
 
-Options parse(int argc, char** argv) {
+Options parse(const std::vector<std::string>& args) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
+  const int argc = static_cast<int>(args.size());
+  for (int i = 0; i < argc; ++i) {
+    const std::string& a = args[i];
     if (a == "--help" || a == "-h") {
       o.help = true;
     } else if (a == "--print-parameters") {
       o.printParameters = true;
     } else if (a == "--output-dir" || a == "--set") {
       DDC_INPUT_REQUIRE(i + 1 < argc, "option " << a << " needs a value\n" << kUsage);
-      (a == "--set" ? o.sets.emplace_back() : o.outputDir) = argv[++i];
+      (a == "--set" ? o.sets.emplace_back() : o.outputDir) = args[++i];
     } else if (a.rfind("--output-dir=", 0) == 0) {
       o.outputDir = a.substr(13);
     } else if (a.rfind("--set=", 0) == 0) {
@@ -79,24 +85,28 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-/// Read the deck: a missing or malformed file is an InputError naming it.
-Teuchos::RCP<Teuchos::ParameterList> readDeck(const std::string& file) {
-  DDC_INPUT_REQUIRE(std::filesystem::is_regular_file(file), "input file '" << file << "' does not exist");
-  try {
-    return Teuchos::getParametersFromXmlFile(file);
-  } catch (const std::exception& e) {
-    // Teuchos prefixes a source location and the failed test; its last
-    // paragraph is the readable part ("XML parse error at line 4: ...").
-    std::string what = e.what();
-    while (!what.empty() && (what.back() == '\n' || what.back() == ' ')) what.pop_back();
-    const auto cut = what.rfind("\n\n");
-    if (cut != std::string::npos) what = what.substr(cut + 2);
-    DDC_THROW(ddc::InputError, "input file '" << file << "' is not a valid Teuchos XML parameter list: " << what);
+/// Every rank runs rank 0's command line. An MPMD launch (`mpirun -np 1
+/// ddcontact a.xml : -np 1 ddcontact b.xml`) would otherwise give the ranks
+/// different decks, overrides or output directories, and they would wait
+/// for each other in different collectives for ever. Rank 0 says so when a
+/// rank was started with other arguments.
+std::vector<std::string> commandLine(int argc, char** argv, const Teuchos::Comm<int>& comm) {
+  const std::vector<std::string> mine(argv + 1, argv + argc);
+  std::vector<std::string> args = ddc::broadcastStrings(comm, mine);
+  const int differs = args != mine ? comm.getRank() : comm.getSize();
+  int firstDiffering = comm.getSize();
+  Teuchos::reduceAll<int, int>(comm, Teuchos::REDUCE_MIN, differs, Teuchos::outArg(firstDiffering));
+  if (firstDiffering < comm.getSize() && comm.getRank() == 0) {
+    std::cerr << "ddcontact: note: rank " << firstDiffering
+              << " was started with other arguments than rank 0; every rank runs rank 0's:";
+    for (const auto& a : args) std::cerr << " '" << a << "'";
+    std::cerr << std::endl;
   }
+  return args;
 }
 
-int run(int argc, char** argv, const Teuchos::RCP<const Teuchos::Comm<int>>& comm) {
-  const Options o = parse(argc, argv);
+int run(const std::vector<std::string>& args, const Teuchos::RCP<const Teuchos::Comm<int>>& comm) {
+  const Options o = parse(args);
   if (o.help) {
     if (comm->getRank() == 0) std::cout << kUsage;
     return 0;
@@ -111,7 +121,8 @@ int run(int argc, char** argv, const Teuchos::RCP<const Teuchos::Comm<int>>& com
     return 0;
   }
   DDC_INPUT_REQUIRE(!o.input.empty(), "no input file given\n" << kUsage);
-  auto params = readDeck(o.input);
+  // Rank 0 reads and checks the deck, every rank parses the text it broadcasts.
+  auto params = ddc::readDeck(*comm, o.input);
   const auto valid = ddc::Analysis::getValidParameters();
   for (const auto& s : o.sets) ddc::applyOverride(*params, *valid, s);
 
@@ -124,7 +135,7 @@ int run(int argc, char** argv, const Teuchos::RCP<const Teuchos::Comm<int>>& com
   // The output directory first: a directory in use by another run, or one
   // DDContact did not write, stops the run before any work is done.
   std::string command = "ddcontact";
-  for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+  for (const auto& a : args) command += " " + a;
   std::error_code ec;
   ddc::OutputDirectory dir(comm, outDir, {std::filesystem::absolute(inputPath, ec).lexically_normal().string(), command});
   if (comm->getRank() == 0)
@@ -176,7 +187,7 @@ int main(int argc, char** argv) {
     std::cerr << "ddcontact: test fault injection active: DDCONTACT_FAULT_INJECTION="
               << std::getenv("DDCONTACT_FAULT_INJECTION") << std::endl;
   try {
-    status = run(argc, argv, comm);
+    status = run(commandLine(argc, argv, *comm), comm);
   } catch (const ddc::InputError& e) {
     msg = e.what();
   } catch (const ddc::SolverError& e) {

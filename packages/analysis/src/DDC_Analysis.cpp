@@ -18,6 +18,7 @@
 #include "DDC_NodeToSegment.hpp"
 #include "DDC_Gmsh.hpp"
 #include "DDC_HistoryWriter.hpp"
+#include "DDC_InputDeck.hpp"
 #include "DDC_MeshGenerators.hpp"
 #include "DDC_ModelOutput.hpp"
 #include "DDC_OutputDirectory.hpp"
@@ -69,23 +70,30 @@ Teuchos::RCP<PL> bodyValidParameters(const ElementFactory& factory) {
 
 Teuchos::RCP<PL> loadSteppingValidParameters() {
   auto pl = Teuchos::rcp(new PL("Load Stepping"));
-  pl->set("Number of Steps", 10, "Number of equal load steps from load factor 0 to the final load factor.");
-  pl->set("Final Load Factor", 1.0, "Load factor at the end of the analysis (boundary values scale with it).");
+  pl->set("Number of Steps", 10, "Number of equal load steps from load factor 0 to the final load factor.",
+          greaterThan(0));
+  pl->set("Final Load Factor", 1.0,
+          "Load factor at the end of the analysis (boundary values scale with it). Load factors run from 0 up "
+          "to it, so it is positive: a reversed load is given by the signs of the boundary values.",
+          greaterThan(0.0));
   pl->set("Max Bisections", 6,
           "How many times a load step may be halved when Newton fails (diverges, exceeds its iteration "
-          "limit or inverts an element) before the analysis stops with an error.");
+          "limit or inverts an element) before the analysis stops with an error.",
+          atLeast(0));
   return pl;
 }
 
 Teuchos::RCP<PL> newtonValidParameters() {
   auto pl = Teuchos::rcp(new PL("Newton"));
-  pl->set("Max Iterations", 25, "Maximum Newton iterations (linear solves) per load step.");
+  pl->set("Max Iterations", 25, "Maximum Newton iterations (linear solves) per load step.", greaterThan(0));
   pl->set("Residual Tolerance", 1e-8,
           "Converged when ||r|| <= tol * ||r_0|| (r_0: first residual of the step, with the consistent "
-          "predictor of prescribed displacements) ...");
-  pl->set("Absolute Residual Tolerance", 1e-10, "... or when ||r|| <= this absolute value (force units)");
+          "predictor of prescribed displacements) ...",
+          atLeast(0.0));
+  pl->set("Absolute Residual Tolerance", 1e-10, "... or when ||r|| <= this absolute value (force units)",
+          atLeast(0.0));
   pl->set("Energy Tolerance", 1e-16,
-          "and the energy norm |du . r| <= tol * |du_0 . r_0| (both criteria must hold).");
+          "and the energy norm |du . r| <= tol * |du_0 . r_0| (both criteria must hold).", atLeast(0.0));
   pl->set("Print Iterations", false, "Print the residual and energy norm of every Newton iteration.");
   return pl;
 }
@@ -108,14 +116,14 @@ Teuchos::RCP<PL> solverValidParameters() {
 
 Teuchos::RCP<PL> partitionValidParameters() {
   auto pl = Teuchos::rcp(new PL("Partition"));
-  pl->set("Number of Subdomains", 0, "Number of subdomains; 0 means one per MPI rank.");
+  pl->set("Number of Subdomains", 0, "Number of subdomains; 0 means one per MPI rank.", atLeast(0));
   pl->set("Method", "METIS",
           "METIS: METIS_PartMeshDual over all bodies. By Body: each body one subdomain. Box Grid: a regular "
           "grid of boxes over the mesh's bounding box (Box Grid X x Box Grid Y subdomains, by element "
           "centroid). Element Map File: one subdomain id per element, read from a file.",
           enumValidator({"METIS", "By Body", "Box Grid", "Element Map File"}, "Method"));
-  pl->set("Box Grid X", 2, "Box Grid: number of boxes along x.");
-  pl->set("Box Grid Y", 2, "Box Grid: number of boxes along y.");
+  pl->set("Box Grid X", 2, "Box Grid: number of boxes along x.", greaterThan(0));
+  pl->set("Box Grid Y", 2, "Box Grid: number of boxes along y.", greaterThan(0));
   pl->set("Element Map File", "",
           "Element Map File: file with one subdomain id per element (mesh element order, whitespace "
           "separated, '#' comments); relative to the input deck's directory.");
@@ -125,7 +133,8 @@ Teuchos::RCP<PL> partitionValidParameters() {
 Teuchos::RCP<PL> outputValidParameters() {
   auto pl = Teuchos::rcp(new PL("Output"));
   pl->set("VTK", true, "Write VTK files (vtk/*.vtu, *.pvtu, solution.pvd).");
-  pl->set("VTK Interval", 1, "Write VTK every this many converged steps (the last step is always written).");
+  pl->set("VTK Interval", 1, "Write VTK every this many converged steps (the last step is always written).",
+          greaterThan(0));
   pl->set("Progress", true, "Print one progress line per converged step on rank 0.");
   return pl;
 }
@@ -208,6 +217,9 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
     validateLevel(params.sublist(s), valid->sublist(s), s);
   DDC_INPUT_REQUIRE(params.isSublist("Mesh"), "sublist 'Mesh' is required");
   progressEnabled_ = params.sublist("Output").get<bool>("Progress");
+  // Every rank reads the mesh and map files named in the parameters: a file
+  // missing or different on some ranks must fail all ranks alike.
+  requireSameFilesOnEveryRank(*comm_, namedInputFiles(params, baseDirectory));
 
   // Mesh and one element evaluator per body.
   auto mesh = buildMesh(params.sublist("Mesh"), factory_, baseDirectory);
@@ -289,7 +301,6 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
 
   const PL& part = params.sublist("Partition");
   int nsub = part.get<int>("Number of Subdomains");
-  DDC_INPUT_REQUIRE(nsub >= 0, "parameter 'Partition/Number of Subdomains' must be >= 0 (0: one per rank), got " << nsub);
   if (nsub == 0) nsub = comm_->getSize();
   Partition partition;
   const std::string method = part.get<std::string>("Method");
@@ -318,15 +329,6 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
                     "'Partition/Number of Subdomains' (" << partition.numSubdomains << ") must be at least the number of MPI ranks ("
                                                           << comm_->getSize() << ")");
 
-  const PL& ls = params.sublist("Load Stepping");
-  DDC_INPUT_REQUIRE(ls.get<int>("Number of Steps") > 0,
-                    "parameter 'Load Stepping/Number of Steps' must be > 0, got " << ls.get<int>("Number of Steps"));
-  DDC_INPUT_REQUIRE(ls.get<int>("Max Bisections") >= 0, "parameter 'Load Stepping/Max Bisections' must be >= 0");
-  const PL& nw = params.sublist("Newton");
-  DDC_INPUT_REQUIRE(nw.get<int>("Max Iterations") > 0, "parameter 'Newton/Max Iterations' must be > 0");
-  for (const char* t : {"Residual Tolerance", "Absolute Residual Tolerance", "Energy Tolerance"})
-    DDC_INPUT_REQUIRE(nw.get<double>(t) >= 0.0, "parameter 'Newton/" << t << "' must be >= 0");
-  DDC_INPUT_REQUIRE(params.sublist("Output").get<int>("VTK Interval") > 0, "parameter 'Output/VTK Interval' must be > 0");
 
   const bool feti = params.sublist("Solver").get<std::string>("Strategy") == "FETI-DP";
   if (feti) {
@@ -747,6 +749,15 @@ void Analysis::runSteps(OutputDirectory* dir) {
       const bool last = n == nsteps && lambda >= target - 1e-14 * std::abs(finalLambda);
       if (++vtkCounter % out.get<int>("VTK Interval") == 0 || last) writeVtk(static_cast<int>(history_.size()), lambda);
     }
+  }
+  // The validators make every run step (Number of Steps > 0, Final Load
+  // Factor > 0 and finite); should anything still leave no converged step,
+  // the run must fail rather than commit a history.csv without rows.
+  if (history_.empty() || !(lambda > 0.0)) {
+    std::ostringstream os;
+    os << "the analysis made no converged load step (Load Stepping/Number of Steps = " << nsteps
+       << ", Load Stepping/Final Load Factor = " << finalLambda << "), so there are no results";
+    throw SolverError(os.str());
   }
   if (contact) {
     const auto c = model_->searchCounters();

@@ -74,9 +74,10 @@ class Analysis {
   /// Run every load step. With a non-empty `outputDirectory`, write
   /// history.csv, vtk/ and the validated parameters there: results are
   /// staged in "<dir>.partial" and replace "<dir>" only when the run succeeds.
-  /// \throws SolverError when a step fails after all bisections;
-  ///   OutputError when the results cannot be written (earlier results in
-  ///   the directory stay as they were).
+  /// \throws SolverError when a step fails after all bisections, or when the
+  ///         run ends without a converged step (nothing is committed then);
+  ///         OutputError when the results cannot be written (earlier results
+  ///         in the directory stay as they were).
   void run(const std::string& outputDirectory);
 
   /// Run every load step, writing into `dir` (opened by the caller, e.g. the

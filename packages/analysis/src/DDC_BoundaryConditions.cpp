@@ -29,19 +29,27 @@ Teuchos::RCP<const Teuchos::ParameterList> BoundaryConditions::getValidParameter
                      "Displacement, a side set for Traction).");
   pl->set("Components", "XY", "Displacement: which components are prescribed.",
           enumValidator({"X", "Y", "XY"}, "Components"));
-  pl->set("Value X", 0.0, "Displacement: x displacement at load factor 1 (scaled by the load factor).");
-  pl->set("Value Y", 0.0, "Displacement: y displacement at load factor 1 (scaled by the load factor).");
+  // Every value must be finite (the validators): a NaN or inf would reach the
+  // solver as a non-finite residual and end the run with bisections.
+  pl->set("Value X", 0.0, "Displacement: x displacement at load factor 1 (scaled by the load factor).",
+          finiteNumber());
+  pl->set("Value Y", 0.0, "Displacement: y displacement at load factor 1 (scaled by the load factor).",
+          finiteNumber());
   for (const char* g : {"Gradient XX", "Gradient XY", "Gradient YX", "Gradient YY"})
     pl->set(g, 0.0,
             "Displacement: component of the displacement gradient H at load factor 1 (Gradient XY = "
-            "du_x/dY); adds H (X - centre) to the values, for affine fields.");
+            "du_x/dY); adds H (X - centre) to the values, for affine fields.",
+            finiteNumber());
   pl->set("Rotation Angle", 0.0,
           "Displacement: rigid rotation (degrees, counter-clockwise) about the centre at load factor 1, "
-          "added to the values; the angle grows linearly with the load factor. Needs Components = XY.");
-  pl->set("Center X", 0.0, "Displacement: x of the centre of the rotation and of the gradient field.");
-  pl->set("Center Y", 0.0, "Displacement: y of the centre of the rotation and of the gradient field.");
-  pl->set("Traction X", 0.0, "Traction: x force per unit reference length at load factor 1.");
-  pl->set("Traction Y", 0.0, "Traction: y force per unit reference length at load factor 1.");
+          "added to the values; the angle grows linearly with the load factor. Needs Components = XY.",
+          finiteNumber());
+  pl->set("Center X", 0.0, "Displacement: x of the centre of the rotation and of the gradient field.",
+          finiteNumber());
+  pl->set("Center Y", 0.0, "Displacement: y of the centre of the rotation and of the gradient field.",
+          finiteNumber());
+  pl->set("Traction X", 0.0, "Traction: x force per unit reference length at load factor 1.", finiteNumber());
+  pl->set("Traction Y", 0.0, "Traction: y force per unit reference length at load factor 1.", finiteNumber());
   return pl;
 }
 

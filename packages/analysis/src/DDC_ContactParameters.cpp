@@ -129,9 +129,10 @@ Teuchos::RCP<const Teuchos::ParameterList> ContactOptions::getValidParameters() 
           enumValidator({"In Contact", "Previous Step"}, "Initial Contact State"));
   pl->set("Search Radius", 0.0,
           "Slave nodes farther than this from every master segment are not paired. 0: automatic, the mean "
-          "master segment length.");
+          "master segment length.",
+          atLeast(0.0));
   pl->set("Penetration Tolerance", 1e-6,
-          "An inactive pair is activated when g_N < -tol * (mean master segment length).");
+          "An inactive pair is activated when g_N < -tol * (mean master segment length).", atLeast(0.0));
   Teuchos::ParameterList pairs("Pairs");
   Teuchos::ParameterList pair("<Pair Name>");
   pair.set("Slave", "", "Slave side set 'Body/set' (its nodes carry the Lagrange multipliers).");
@@ -185,10 +186,8 @@ ContactOptions ContactOptions::fromParameters(Teuchos::ParameterList& list, cons
   checkPairsDoNotOverlap(o.pairs, mesh, path);
   const double h = segments ? lengthSum / segments : 1.0;
   o.searchRadius = list.get<double>("Search Radius");
-  DDC_INPUT_REQUIRE(o.searchRadius >= 0.0, "parameter '" << path << "/Search Radius' must be >= 0 (0: automatic)");
   if (o.searchRadius == 0.0) o.searchRadius = h;
   const double tol = list.get<double>("Penetration Tolerance");
-  DDC_INPUT_REQUIRE(tol >= 0.0, "parameter '" << path << "/Penetration Tolerance' must be >= 0");
   o.penetrationTolerance = tol * h;
   return o;
 }

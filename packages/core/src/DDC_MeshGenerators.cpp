@@ -140,22 +140,18 @@ std::array<double, 2> cosSinDegrees(double deg) {
   return {std::cos(rad), std::sin(rad)};
 }
 
-/// Element count times refinement, checked so that the node grid fits an int.
+/// Element count times refinement, checked so that the node grid fits an int
+/// (the count itself is > 0 by its validator).
 int refinedCount(Teuchos::ParameterList& params, const std::string& name, int refinement,
                  const std::string& path) {
   const int n = params.get<int>(name);
-  DDC_INPUT_REQUIRE(n > 0, "parameter '" << joinPath(path, name) << "' must be > 0, got " << n);
   const long long r = static_cast<long long>(n) * refinement;
   DDC_INPUT_REQUIRE(2 * r + 1 < 46000, "parameter '" << joinPath(path, name) << "' times 'Refinement' ("
                                                      << r << ") is too large for a 2-D structured mesh");
   return static_cast<int>(r);
 }
 
-int getRefinement(Teuchos::ParameterList& params, const std::string& path) {
-  const int r = params.get<int>("Refinement");
-  DDC_INPUT_REQUIRE(r >= 1, "parameter '" << joinPath(path, "Refinement") << "' must be >= 1, got " << r);
-  return r;
-}
+int getRefinement(Teuchos::ParameterList& params) { return params.get<int>("Refinement"); }
 
 }  // namespace
 
@@ -165,18 +161,19 @@ Teuchos::RCP<const Teuchos::ParameterList> RectangleGenerator::getValidParameter
   static Teuchos::RCP<const Teuchos::ParameterList> valid;
   if (valid.is_null()) {
     auto pl = Teuchos::rcp(new Teuchos::ParameterList("Rectangle"));
-    pl->set("Origin X", 0.0, "x of the lower-left corner");
-    pl->set("Origin Y", 0.0, "y of the lower-left corner");
-    pl->set("Length X", 1.0, "width (> 0)");
-    pl->set("Length Y", 1.0, "height (> 0)");
-    pl->set("Elements X", 4, "number of elements along x (> 0), before refinement");
-    pl->set("Elements Y", 4, "number of elements along y (> 0), before refinement");
+    pl->set("Origin X", 0.0, "x of the lower-left corner", finiteNumber());
+    pl->set("Origin Y", 0.0, "y of the lower-left corner", finiteNumber());
+    pl->set("Length X", 1.0, "width", greaterThan(0.0));
+    pl->set("Length Y", 1.0, "height", greaterThan(0.0));
+    pl->set("Elements X", 4, "number of elements along x, before refinement", greaterThan(0));
+    pl->set("Elements Y", 4, "number of elements along y, before refinement", greaterThan(0));
     pl->set("Refinement", 1,
-            "multiplies both element counts (>= 1); refine a benchmark from the command line with "
-            "--set");
+            "multiplies both element counts; refine a benchmark from the command line with --set", atLeast(1));
     pl->set("Distortion", 0.0,
             "random but reproducible (fixed seed) displacement of the interior element vertices, as "
-            "a fraction of the element size, in [0, 0.3]; for patch tests on distorted meshes");
+            "a fraction of the element size (larger values than the maximum can invert elements); for "
+            "patch tests on distorted meshes",
+            between(0.0, kMaxDistortion));
     valid = pl;
   }
   return valid;
@@ -189,19 +186,10 @@ int generateRectangle(Mesh& mesh, const std::string& bodyName, CellType type,
   const double y0 = params.get<double>("Origin Y");
   const double lx = params.get<double>("Length X");
   const double ly = params.get<double>("Length Y");
-  DDC_INPUT_REQUIRE(lx > 0 && std::isfinite(lx),
-                    "parameter '" << joinPath(path, "Length X") << "' must be > 0, got " << lx);
-  DDC_INPUT_REQUIRE(ly > 0 && std::isfinite(ly),
-                    "parameter '" << joinPath(path, "Length Y") << "' must be > 0, got " << ly);
-  DDC_INPUT_REQUIRE(std::isfinite(x0) && std::isfinite(y0),
-                    "parameters '" << joinPath(path, "Origin X") << "' and 'Origin Y' must be finite");
-  const int refinement = getRefinement(params, path);
+  const int refinement = getRefinement(params);
   const int nx = refinedCount(params, "Elements X", refinement, path);
   const int ny = refinedCount(params, "Elements Y", refinement, path);
   const double distortion = params.get<double>("Distortion");
-  DDC_INPUT_REQUIRE(distortion >= 0.0 && distortion <= kMaxDistortion,
-                    "parameter '" << joinPath(path, "Distortion") << "' must lie in [0, " << kMaxDistortion
-                                  << "] (larger values can invert elements), got " << distortion);
 
   const int body = mesh.beginBody(bodyName, type);
   Grid g;
@@ -267,22 +255,21 @@ Teuchos::RCP<const Teuchos::ParameterList> AnnularSectorGenerator::getValidParam
   static Teuchos::RCP<const Teuchos::ParameterList> valid;
   if (valid.is_null()) {
     auto pl = Teuchos::rcp(new Teuchos::ParameterList("Annular Sector"));
-    pl->set("Center X", 0.0, "x of the centre of the circles");
-    pl->set("Center Y", 0.0, "y of the centre of the circles");
-    pl->set("Inner Radius", 1.5, "inner radius (> 0)");
-    pl->set("Outer Radius", 2.0, "outer radius (> Inner Radius)");
+    pl->set("Center X", 0.0, "x of the centre of the circles", finiteNumber());
+    pl->set("Center Y", 0.0, "y of the centre of the circles", finiteNumber());
+    pl->set("Inner Radius", 1.5, "inner radius", greaterThan(0.0));
+    pl->set("Outer Radius", 2.0, "outer radius (> Inner Radius)", greaterThan(0.0));
     pl->set("Start Angle", 0.0,
-            "angle of the 'start' radial edge in degrees, counter-clockwise from the +x axis");
+            "angle of the 'start' radial edge in degrees, counter-clockwise from the +x axis", finiteNumber());
     pl->set("End Angle", 180.0,
             "angle of the 'end' radial edge in degrees; may be smaller than Start Angle (the sector "
             "is then swept clockwise); End Angle - Start Angle must be nonzero and less than 360 in "
-            "magnitude");
-    pl->set("Radial Elements", 4, "number of elements through the thickness (> 0), before refinement");
-    pl->set("Circumferential Elements", 64,
-            "number of elements along the arc (> 0), before refinement");
+            "magnitude",
+            finiteNumber());
+    pl->set("Radial Elements", 4, "number of elements through the thickness, before refinement", greaterThan(0));
+    pl->set("Circumferential Elements", 64, "number of elements along the arc, before refinement", greaterThan(0));
     pl->set("Refinement", 1,
-            "multiplies both element counts (>= 1); refine a benchmark from the command line with "
-            "--set");
+            "multiplies both element counts; refine a benchmark from the command line with --set", atLeast(1));
     valid = pl;
   }
   return valid;
@@ -297,21 +284,15 @@ int generateAnnularSector(Mesh& mesh, const std::string& bodyName, CellType type
   const double ro = params.get<double>("Outer Radius");
   const double start = params.get<double>("Start Angle");
   const double end = params.get<double>("End Angle");
-  DDC_INPUT_REQUIRE(std::isfinite(cx) && std::isfinite(cy),
-                    "parameters '" << joinPath(path, "Center X") << "' and 'Center Y' must be finite");
-  DDC_INPUT_REQUIRE(ri > 0 && std::isfinite(ri),
-                    "parameter '" << joinPath(path, "Inner Radius") << "' must be > 0, got " << ri);
-  DDC_INPUT_REQUIRE(ro > ri && std::isfinite(ro), "parameter '" << joinPath(path, "Outer Radius")
-                                                                << "' must be greater than 'Inner Radius' ("
-                                                                << ri << "), got " << ro);
-  DDC_INPUT_REQUIRE(std::isfinite(start) && std::isfinite(end),
-                    "parameters '" << joinPath(path, "Start Angle") << "' and 'End Angle' must be finite");
+  // Each value is in range by its validator; these are the relations between them.
+  DDC_INPUT_REQUIRE(ro > ri, "parameter '" << joinPath(path, "Outer Radius") << "' must be greater than 'Inner Radius' ("
+                                            << ri << "), got " << ro);
   const double sweep = end - start;
   DDC_INPUT_REQUIRE(sweep != 0.0 && std::abs(sweep) < 360.0,
                     "parameters '" << joinPath(path, "Start Angle") << "' (" << start << ") and 'End Angle' ("
                                    << end << ") must differ by more than 0 and less than 360 degrees (a "
                                    << "closed ring is not supported; use two sectors)");
-  const int refinement = getRefinement(params, path);
+  const int refinement = getRefinement(params);
   const int nr = refinedCount(params, "Radial Elements", refinement, path);
   const int nc = refinedCount(params, "Circumferential Elements", refinement, path);
 

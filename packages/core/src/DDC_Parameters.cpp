@@ -1,8 +1,17 @@
 #include "DDC_Parameters.hpp"
 
 #include <Teuchos_StrUtils.hpp>
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <climits>
+#include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <sstream>
+#include <stdexcept>
+#include <typeinfo>
 
 #include "DDC_Error.hpp"
 
@@ -19,6 +28,190 @@ std::string templateName(const Teuchos::ParameterList& valid) {
   const std::string& n = valid.name(it);
   if (n.size() >= 2 && n.front() == '<' && n.back() == '>' && valid.isSublist(n)) return n;
   return "";
+}
+
+// ------------------------------------------------------------ NumberValidator
+
+namespace {
+
+/// Shortest text that reads back as the same value ("0.3", "1e-10", "-1").
+std::string formatNumber(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+std::string formatNumber(int v) { return std::to_string(v); }
+
+template <class T>
+bool isFiniteValue(T v) {
+  if constexpr (std::is_floating_point<T>::value) {
+    return std::isfinite(v);
+  } else {
+    (void)v;
+    return true;
+  }
+}
+
+}  // namespace
+
+template <class T>
+NumberValidator<T>::NumberValidator(std::optional<Bound> lower, std::optional<Bound> upper, std::vector<T> alsoAllowed)
+    : lower_(lower), upper_(upper), alsoAllowed_(std::move(alsoAllowed)) {
+  // Programming errors of a getValidParameters(), not user input.
+  if ((lower_ && !isFiniteValue(lower_->value)) || (upper_ && !isFiniteValue(upper_->value)))
+    throw std::invalid_argument("NumberValidator: the bounds must be finite");
+  if (lower_ && upper_ && !(lower_->value < upper_->value || (lower_->value == upper_->value && lower_->inclusive &&
+                                                               upper_->inclusive)))
+    throw std::invalid_argument("NumberValidator: empty range");
+}
+
+template <class T>
+bool NumberValidator<T>::accepts(T value) const {
+  if (!isFiniteValue(value)) return false;
+  for (const T a : alsoAllowed_)
+    if (value == a) return true;
+  if (lower_ && !(lower_->inclusive ? value >= lower_->value : value > lower_->value)) return false;
+  if (upper_ && !(upper_->inclusive ? value <= upper_->value : value < upper_->value)) return false;
+  return true;
+}
+
+template <class T>
+std::string NumberValidator<T>::rule() const {
+  std::string r;
+  for (const T a : alsoAllowed_) r += formatNumber(a) + " or ";
+  if (lower_ && upper_) {
+    r += std::string("in ") + (lower_->inclusive ? "[" : "(") + formatNumber(lower_->value) + ", " +
+         formatNumber(upper_->value) + (upper_->inclusive ? "]" : ")");
+  } else if (lower_) {
+    r += (lower_->inclusive ? ">= " : "> ") + formatNumber(lower_->value);
+  } else if (upper_) {
+    r += (upper_->inclusive ? "<= " : "< ") + formatNumber(upper_->value);
+  }
+  // A one-sided or no bound does not exclude +-inf: say so for doubles.
+  if (std::is_floating_point<T>::value && !(lower_ && upper_)) r += (lower_ || upper_) ? " and finite" : "finite";
+  return r;
+}
+
+template <class T>
+std::string NumberValidator<T>::violation(const Teuchos::ParameterEntry& entry) const {
+  const std::string type = Teuchos::TypeNameTraits<T>::name();
+  if (entry.isList()) return "must be a " + type + ", not a sublist";
+  const Teuchos::any& a = entry.getAny(false);
+  if (a.type() != typeid(T)) {
+    std::ostringstream os;
+    os << "must be of type " << type << ", got " << a.typeName() << " (value '" << a << "')";
+    return os.str();
+  }
+  const T v = Teuchos::any_cast<T>(a);
+  if (accepts(v)) return "";
+  // "must lie in [0, 0.3]" reads better than "must be in [0, 0.3]".
+  const bool interval = lower_ && upper_ && alsoAllowed_.empty();
+  return std::string("must ") + (interval ? "lie " : "be ") + rule() + ", got " + formatNumber(v);
+}
+
+template <class T>
+const std::string NumberValidator<T>::getXMLTypeName() const {
+  return "NumberValidator(" + Teuchos::TypeNameTraits<T>::name() + ")";
+}
+
+template <class T>
+void NumberValidator<T>::printDoc(const std::string& docString, std::ostream& out) const {
+  Teuchos::StrUtils::printLines(out, "# ", docString);
+  out << "#   Valid values: " << rule() << "\n";
+}
+
+template <class T>
+void NumberValidator<T>::validate(const Teuchos::ParameterEntry& entry, const std::string& paramName,
+                                  const std::string& sublistName) const {
+  const std::string why = violation(entry);
+  if (why.empty()) return;
+  const std::string msg = "parameter '" + paramName + "' in list '" + sublistName + "' " + why;
+  if (entry.isList() || entry.getAny(false).type() != typeid(T))
+    throw Teuchos::Exceptions::InvalidParameterType(msg);
+  throw Teuchos::Exceptions::InvalidParameterValue(msg);
+}
+
+template class NumberValidator<int>;
+template class NumberValidator<double>;
+
+template <class T>
+Teuchos::RCP<const NumberValidator<T>> greaterThan(T lower) {
+  return Teuchos::rcp(new NumberValidator<T>(typename NumberValidator<T>::Bound{lower, false}, std::nullopt));
+}
+
+template <class T>
+Teuchos::RCP<const NumberValidator<T>> atLeast(T lower) {
+  return Teuchos::rcp(new NumberValidator<T>(typename NumberValidator<T>::Bound{lower, true}, std::nullopt));
+}
+
+template <class T>
+Teuchos::RCP<const NumberValidator<T>> between(T lower, T upper, Interval ends) {
+  const bool lowerIn = ends == Interval::Closed || ends == Interval::RightOpen;
+  const bool upperIn = ends == Interval::Closed || ends == Interval::LeftOpen;
+  return Teuchos::rcp(new NumberValidator<T>(typename NumberValidator<T>::Bound{lower, lowerIn},
+                                             typename NumberValidator<T>::Bound{upper, upperIn}));
+}
+
+template Teuchos::RCP<const NumberValidator<int>> greaterThan<int>(int);
+template Teuchos::RCP<const NumberValidator<double>> greaterThan<double>(double);
+template Teuchos::RCP<const NumberValidator<int>> atLeast<int>(int);
+template Teuchos::RCP<const NumberValidator<double>> atLeast<double>(double);
+template Teuchos::RCP<const NumberValidator<int>> between<int>(int, int, Interval);
+template Teuchos::RCP<const NumberValidator<double>> between<double>(double, double, Interval);
+
+Teuchos::RCP<const NumberValidator<double>> finiteNumber() {
+  return Teuchos::rcp(new NumberValidator<double>(std::nullopt, std::nullopt));
+}
+
+// ------------------------------------------------------------- strict parsing
+
+const std::vector<std::string>& parsableTypes() {
+  static const std::vector<std::string> types{"int", "double", "bool", "string"};
+  return types;
+}
+
+Teuchos::any parseValue(const std::string& type, const std::string& text, const std::string& what) {
+  const char* const begin = text.c_str();
+  const char* const end = begin + text.size();
+  if (type == "int") {
+    // std::from_chars: decimal digits with an optional '-', no blanks, no
+    // base prefix; a leading '+' is allowed here as in C.
+    const char* first = begin;
+    if (first != end && *first == '+' && first + 1 != end && std::isdigit(static_cast<unsigned char>(first[1])))
+      ++first;
+    int v = 0;
+    const auto r = std::from_chars(first, end, v);
+    if (r.ec == std::errc::result_out_of_range && r.ptr == end)
+      DDC_THROW(InputError, what << " expects an integer, got '" << text
+                                 << "': out of range, integers are between " << INT_MIN << " and " << INT_MAX);
+    DDC_INPUT_REQUIRE(r.ec == std::errc() && r.ptr == end && first != end,
+                      what << " expects an integer, got '" << text << "'");
+    return Teuchos::any(v);
+  }
+  if (type == "double") {
+    // std::strtod skips leading blanks; the whole text must be the number.
+    const bool blank = !text.empty() && std::isspace(static_cast<unsigned char>(text.front()));
+    char* stop = nullptr;
+    errno = 0;
+    const double v = std::strtod(begin, &stop);
+    DDC_INPUT_REQUIRE(!text.empty() && !blank && stop == end, what << " expects a number, got '" << text << "'");
+    // ERANGE with a finite result is an underflow to (nearly) zero: the
+    // value strtod gives is the nearest double, keep it.
+    if (errno == ERANGE && std::isinf(v))
+      DDC_THROW(InputError, what << " expects a number, got '" << text << "': out of range, numbers are between "
+                                 << formatNumber(-std::numeric_limits<double>::max()) << " and "
+                                 << formatNumber(std::numeric_limits<double>::max()));
+    return Teuchos::any(v);
+  }
+  if (type == "bool") {
+    DDC_INPUT_REQUIRE(text == "true" || text == "false", what << " expects true or false, got '" << text << "'");
+    return Teuchos::any(text == "true");
+  }
+  if (type == "string") return Teuchos::any(text);
+  throw std::invalid_argument("parseValue: cannot parse type '" + type + "'");
 }
 
 namespace {
@@ -63,7 +256,10 @@ void validateLevel(Teuchos::ParameterList& user, const Teuchos::ParameterList& v
                       "parameter '" << joinPath(path, n) << "' must be a " << typeName(*ve) << ", not a "
                                     << typeName(ue));
     if (ue.isList()) continue;
-    if (ve->validator().get()) {
+    if (auto rule = Teuchos::rcp_dynamic_cast<const NumberRuleValidator>(ve->validator()); rule.get()) {
+      const std::string why = rule->violation(ue);
+      DDC_INPUT_REQUIRE(why.empty(), "parameter '" << joinPath(path, n) << "' " << why);
+    } else if (ve->validator().get()) {
       try {
         ve->validator()->validate(ue, n, user.name());
       } catch (const std::exception& ex) {
@@ -93,6 +289,10 @@ void validateLevel(Teuchos::ParameterList& user, const Teuchos::ParameterList& v
     const Teuchos::ParameterEntry& ve = valid.entry(it);
     if (ve.isList() || user.isParameter(n)) continue;
     user.setEntry(n, ve);
+    // The validator stays with the valid list: Teuchos can write a list with
+    // our own validators only with an XML converter for them, and the user's
+    // list is written as parameters.xml.
+    user.getEntryPtr(n)->setValidator(Teuchos::null);
     user.getEntryPtr(n)->getAny(true);  // not "unused"
   }
 }
@@ -140,11 +340,53 @@ const Teuchos::ParameterEntry* findValid(const Teuchos::ParameterList* valid,
   return nullptr;
 }
 
-template <class T>
-bool parseNumber(const std::string& s, T& v) {
-  std::istringstream is(s);
-  is >> v;
-  return !is.fail() && is.eof();
+/// "<Body Name>" -> "body", "<Condition Name>" -> "condition".
+std::string templateNoun(const std::string& templ) {
+  std::string n = templ.substr(1, templ.size() - 2);
+  const std::string suffix = " Name";
+  if (n.size() > suffix.size() && n.compare(n.size() - suffix.size(), suffix.size(), suffix) == 0)
+    n.erase(n.size() - suffix.size());
+  for (auto& c : n) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return n;
+}
+
+/// "body" -> "bodies", "pair" -> "pairs".
+std::string plural(const std::string& noun) {
+  if (noun.size() > 1 && noun.back() == 'y' && std::string("aeiou").find(noun[noun.size() - 2]) == std::string::npos)
+    return noun.substr(0, noun.size() - 1) + "ies";
+  if (!noun.empty() && (noun.back() == 's' || noun.back() == 'x')) return noun + "es";
+  return noun + "s";
+}
+
+/// The sublist names of `list`, quoted: "'Block', 'Base'".
+std::string sublistNames(const Teuchos::ParameterList& list) {
+  std::string out;
+  for (auto it = list.begin(); it != list.end(); ++it)
+    if (list.isSublist(list.name(it))) out += (out.empty() ? "'" : ", '") + list.name(it) + "'";
+  return out;
+}
+
+/// The type --set guesses for a path no valid list knows.
+std::string guessType(const std::string& value) {
+  for (const char* t : {"int", "double", "bool"}) {
+    try {
+      parseValue(t, value, "");
+      return t;
+    } catch (const InputError&) {
+    }
+  }
+  return "string";
+}
+
+void setValue(Teuchos::ParameterList& list, const std::string& name, const Teuchos::any& v) {
+  if (v.type() == typeid(int))
+    list.set(name, Teuchos::any_cast<int>(v));
+  else if (v.type() == typeid(double))
+    list.set(name, Teuchos::any_cast<double>(v));
+  else if (v.type() == typeid(bool))
+    list.set(name, Teuchos::any_cast<bool>(v));
+  else
+    list.set(name, Teuchos::any_cast<std::string>(v));
 }
 
 }  // namespace
@@ -160,35 +402,36 @@ void applyOverride(Teuchos::ParameterList& user, const Teuchos::ParameterList& v
   for (const auto& p : parts)
     DDC_INPUT_REQUIRE(!p.empty(), "--set: empty name in parameter path '" << path << "'");
   Teuchos::ParameterList* list = &user;
+  const Teuchos::ParameterList* validList = &valid;  // null once off the valid tree
+  std::string walked;
   for (size_t i = 0; i + 1 < parts.size(); ++i) {
-    DDC_INPUT_REQUIRE(!list->isParameter(parts[i]) || list->isSublist(parts[i]),
-                      "--set: '" << parts[i] << "' in '" << path << "' is a parameter, not a sublist");
-    list = &list->sublist(parts[i]);
+    const std::string& part = parts[i];
+    const std::string templ = validList ? templateName(*validList) : std::string();
+    if (!templ.empty()) {
+      // Below a template every name is the user's own (a body, a condition,
+      // a pair): a missing one is a misspelling, not a new entity to create.
+      const std::string noun = templateNoun(templ);
+      const std::string names = sublistNames(*list);
+      DDC_INPUT_REQUIRE(list->isSublist(part), "--set: no " << noun << " '" << part << "' in '" << walked << "'; "
+                                                            << (names.empty() ? "there are no " + plural(noun)
+                                                                              : plural(noun) + " are " + names));
+    }
+    DDC_INPUT_REQUIRE(!list->isParameter(part) || list->isSublist(part),
+                      "--set: '" << part << "' in '" << path << "' is a parameter, not a sublist");
+    list = &list->sublist(part);
+    const std::string key = templ.empty() ? part : templ;
+    validList = validList && validList->isSublist(key) ? &validList->sublist(key) : nullptr;
+    walked = joinPath(walked, part);
   }
   const std::string& name = parts.back();
   const Teuchos::ParameterEntry* typed = list->getEntryPtr(name);
   if (!typed) typed = findValid(&valid, parts);
   DDC_INPUT_REQUIRE(!(typed && typed->isList()), "--set: '" << path << "' is a sublist, not a parameter");
-  const std::string type = typed ? typed->getAny(false).typeName() : std::string();
-  int iv;
-  double dv;
-  if (type == "int" || (type.empty() && parseNumber(value, iv))) {
-    DDC_INPUT_REQUIRE(parseNumber(value, iv), "--set: parameter '" << path << "' expects an integer, got '"
-                                                                   << value << "'");
-    list->set(name, iv);
-  } else if (type == "double" || (type.empty() && parseNumber(value, dv))) {
-    DDC_INPUT_REQUIRE(parseNumber(value, dv), "--set: parameter '" << path << "' expects a number, got '"
-                                                                   << value << "'");
-    list->set(name, dv);
-  } else if (type == "bool" || (type.empty() && (value == "true" || value == "false"))) {
-    DDC_INPUT_REQUIRE(value == "true" || value == "false",
-                      "--set: parameter '" << path << "' expects true or false, got '" << value << "'");
-    list->set(name, value == "true");
-  } else {
-    DDC_INPUT_REQUIRE(type.empty() || type == "string",
-                      "--set: parameter '" << path << "' has type " << type << ", which --set cannot parse");
-    list->set(name, value);
-  }
+  const std::string type = typed ? typed->getAny(false).typeName() : guessType(value);
+  const auto& types = parsableTypes();
+  DDC_INPUT_REQUIRE(std::find(types.begin(), types.end(), type) != types.end(),
+                    "--set: parameter '" << path << "' has type " << type << ", which --set cannot parse");
+  setValue(*list, name, parseValue(type, value, "--set: parameter '" + path + "'"));
 }
 
 void printParameterDoc(const Teuchos::ParameterList& valid, std::ostream& os, const std::string& path,
@@ -198,7 +441,7 @@ void printParameterDoc(const Teuchos::ParameterList& valid, std::ostream& os, co
     const auto& e = valid.entry(it);
     if (e.isList()) continue;
     if (!any) {
-      os << "| parameter | type | default | description |\n| --- | --- | --- | --- |\n";
+      os << "| parameter | type | default | valid values | description |\n| --- | --- | --- | --- | --- |\n";
       any = true;
     }
     std::string doc = e.docString();
@@ -206,15 +449,16 @@ void printParameterDoc(const Teuchos::ParameterList& valid, std::ostream& os, co
       if (c == '\n' || c == '|') c = ' ';
     std::ostringstream def;
     def << e.getAny(false);
+    // Valid values: the range of a number, the names of an enumeration.
     std::string vals;
-    if (e.validator().get() && e.validator()->validStringValues().get()) {
+    if (auto rule = Teuchos::rcp_dynamic_cast<const NumberRuleValidator>(e.validator()); rule.get()) {
+      vals = "`" + rule->rule() + "`";
+    } else if (e.validator().get() && e.validator()->validStringValues().get()) {
       auto v = e.validator()->validStringValues();
-      vals = " One of:";
-      for (size_t i = 0; i < v->size(); ++i) vals += (i ? ", `" : " `") + (*v)[i] + "`";
-      vals += ".";
+      for (size_t i = 0; i < v->size(); ++i) vals += (i ? ", `" : "`") + (*v)[i] + "`";
     }
-    os << "| `" << valid.name(it) << "` | " << e.getAny(false).typeName() << " | `" << def.str() << "` | "
-       << doc << vals << " |\n";
+    os << "| `" << valid.name(it) << "` | " << e.getAny(false).typeName() << " | `" << def.str() << "` | " << vals
+       << " | " << doc << " |\n";
   }
   if (any) os << "\n";
   for (auto it = valid.begin(); it != valid.end(); ++it) {

@@ -71,10 +71,11 @@ Teuchos::RCP<const Teuchos::ParameterList> Material::getValidParameters() {
             "W = lambda/2 (tr E)^2 + mu E:E. 'Linear Elastic': small strain, geometrically "
             "linear elements (for verification).",
             enumValidator(names, "Type"));
-    pl->set("Young's Modulus", 1000.0, "Young's modulus E (> 0).");
+    pl->set("Young's Modulus", 1000.0, "Young's modulus E.", greaterThan(0.0));
     pl->set("Poisson's Ratio", 0.3,
-            "Poisson's ratio nu, -1 < nu < 0.5; the Lame constants are the 3-D ones "
-            "(plane strain).");
+            "Poisson's ratio nu; the Lame constants are the 3-D ones (plane strain), so nu = 0.5 "
+            "(incompressible) and nu = -1 make them infinite.",
+            between(-1.0, 0.5, Interval::Open));
     return Teuchos::RCP<const Teuchos::ParameterList>(pl);
   }();
   return valid;
@@ -85,10 +86,6 @@ std::shared_ptr<Material> createMaterial(Teuchos::ParameterList& params, const s
   const std::string type = params.get<std::string>("Type");
   const double E = params.get<double>("Young's Modulus");
   const double nu = params.get<double>("Poisson's Ratio");
-  DDC_INPUT_REQUIRE(E > 0, "parameter '" << joinPath(path, "Young's Modulus") << "' must be > 0, got "
-                                         << E);
-  DDC_INPUT_REQUIRE(nu > -1 && nu < 0.5, "parameter '" << joinPath(path, "Poisson's Ratio")
-                                                       << "' must satisfy -1 < nu < 0.5, got " << nu);
   if (type == "Neo-Hookean") return std::make_shared<NeoHookean>(E, nu);
   if (type == "St. Venant-Kirchhoff") return std::make_shared<StVenantKirchhoff>(E, nu);
   if (type == "Linear Elastic") return std::make_shared<LinearElastic>(E, nu);

@@ -25,7 +25,8 @@ class Material {
  public:
   /// \param youngsModulus E > 0
   /// \param poissonsRatio -1 < nu < 0.5
-  /// \pre the ranges are checked by createMaterial(); direct construction
+  /// \pre the ranges are checked by the validators of getValidParameters()
+  ///      (in createMaterial()); direct construction
   ///      with values out of range is a programming error.
   Material(double youngsModulus, double poissonsRatio);
   virtual ~Material() = default;

@@ -1131,7 +1131,7 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
             "A subdomain's remainder stiffness K_rr whose 1-norm condition estimate (one inverse-iteration step "
             "with a pseudo-random vector) exceeds this is reported singular (insufficient primal DOFs); a direct "
             "solver may factorise a singular matrix with tiny pivots instead of failing. 0 disables the check.",
-            rcp(new Teuchos::EnhancedNumberValidator<double>(0.0, 1e300, 1.0)));
+            atLeast(0.0));
     Teuchos::ParameterList belos("Belos");
     belos.set("Solver Type", std::string("CG"),
               "Belos solver for F lambda = d (Belos::SolverFactory names): CG (symmetric tangents, the "
@@ -1140,15 +1140,16 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
               enumValidator(belosSolverNames(), "Solver Type"));
     belos.set("Convergence Tolerance", 1e-10,
               "Relative residual ||d - F lambda|| / ||d|| at which Belos stops (its implicit residual).",
-              rcp(new Teuchos::EnhancedNumberValidator<double>(0.0, 1.0, 1e-12)));
-    belos.set("Maximum Iterations", 500,
-              "Iteration limit; reaching it without convergence is a SolverError.",
-              rcp(new Teuchos::EnhancedNumberValidator<int>(1, INT_MAX, 1)));
+              between(0.0, 1.0));
+    belos.set("Maximum Iterations", 500, "Iteration limit; reaching it without convergence is a SolverError.",
+              greaterThan(0));
     belos.set("Verbosity", 0,
               "Belos::MsgType bit mask: 0 silent, 1 Errors, 2 Warnings, 4 IterationDetails, 16 FinalSummary, "
               "32 TimingDetails, 64 StatusTestDetails (with Output Frequency > 0: the residual per iteration).",
-              rcp(new Teuchos::EnhancedNumberValidator<int>(0, INT_MAX, 1)));
-    belos.set("Output Frequency", -1, "Print the status test every this many iterations (-1: only at the end).");
+              atLeast(0));
+    // Belos takes the iteration count modulo the frequency: 0 would divide by zero.
+    belos.set("Output Frequency", -1, "Print the status test every this many iterations (-1: only at the end).",
+              Teuchos::rcp(new NumberValidator<int>(NumberValidator<int>::Bound{1, true}, std::nullopt, {-1})));
     // sublist(name, false, doc) keeps the doc string (set(name, list, doc) drops it).
     pl->sublist("Belos", false, "Dual iterations on F lambda = d (passed to Belos::SolverFactory).")
         .setParameters(belos);

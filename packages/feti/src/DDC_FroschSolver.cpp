@@ -196,7 +196,8 @@ Teuchos::RCP<const Teuchos::ParameterList> FroschSolver::getValidParameters() {
   static const Teuchos::RCP<const Teuchos::ParameterList> valid = [] {
     auto pl = Teuchos::rcp(new Teuchos::ParameterList(kType));
     addCommonParameters(*pl, "Belos pseudo-block GMRES (restarted after 200 vectors), right-preconditioned.");
-    pl->set("Overlap", 1, "layers of matrix-graph neighbours added to each rank's rows to form its subdomain (>= 0)");
+    pl->set("Overlap", 1, "layers of matrix-graph neighbours added to each rank's rows to form its subdomain",
+            atLeast(0));
     pl->sublist("FROSch", false,
                 "FROSch::TwoLevelPreconditioner's parameter list, applied over the defaults shown here entry by entry. "
                 "FROSch does not validate it: after the first numeric() every entry you set that FROSch did not read "
@@ -218,7 +219,6 @@ FroschSolver::FroschSolver(const Teuchos::ParameterList& params)
       impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   if (params.isParameter("Overlap")) m.overlap = params.get<int>("Overlap");
-  DDC_INPUT_REQUIRE(m.overlap >= 0, "parameter '" << kType << "/Overlap' must be >= 0, got " << m.overlap);
   if (params.isSublist("FROSch")) m.user = params.sublist("FROSch");
   for (const char* fixed : {"Dimension", "DofsPerNode", "Overlap"})
     DDC_INPUT_REQUIRE(!m.user.isParameter(fixed), "parameter '" << kType << "/FROSch/" << fixed << "' is set by the "

@@ -88,11 +88,14 @@ struct IterativeSolver::Impl {
 void IterativeSolver::addCommonParameters(Teuchos::ParameterList& pl, const std::string& solverDoc) {
   pl.set("Convergence Tolerance", 1e-10,
          "Stop when ||b - A x|| / ||b|| <= this (x starts from 0). " + solverDoc +
-             " solve() throws SolverError if a right-hand side does not get there.");
-  pl.set("Maximum Iterations", 1000, "Most Belos iterations per solve() before it throws SolverError.");
+             " solve() throws SolverError if a right-hand side does not get there.",
+         between(0.0, 1.0, Interval::Open));
+  pl.set("Maximum Iterations", 1000, "Most Belos iterations per solve() before it throws SolverError.",
+         greaterThan(0));
   pl.set("Verbosity", 0,
          "0: silent; 1: Belos final summary and the preconditioner's setup summary; 2: also the residual "
-         "of every iteration (rank 0 prints).");
+         "of every iteration (rank 0 prints).",
+         between(0, 2));
   pl.set("Null Space", std::string(kRigidBodyModes),
          "Near-null space the preconditioner's coarse space reproduces. 'Rigid Body Modes': the 3 rigid-body "
          "modes of 2-D elasticity from the nodal coordinates of setCoordinates() (required before numeric()); "
@@ -109,12 +112,6 @@ IterativeSolver::IterativeSolver(const Teuchos::ParameterList& params, const std
   impl_->maxIters = params.get<int>("Maximum Iterations");
   verbosity_ = params.get<int>("Verbosity");
   impl_->rigidBodyModes = params.get<std::string>("Null Space") == kRigidBodyModes;
-  DDC_INPUT_REQUIRE(impl_->tol > 0.0 && impl_->tol < 1.0, "parameter '" << type << "/Convergence Tolerance' must be "
-                                                                        << "in (0, 1), got " << impl_->tol);
-  DDC_INPUT_REQUIRE(impl_->maxIters > 0,
-                    "parameter '" << type << "/Maximum Iterations' must be > 0, got " << impl_->maxIters);
-  DDC_INPUT_REQUIRE(verbosity_ >= 0 && verbosity_ <= 2,
-                    "parameter '" << type << "/Verbosity' must be 0, 1 or 2, got " << verbosity_);
 }
 
 IterativeSolver::~IterativeSolver() = default;

@@ -213,7 +213,7 @@ Teuchos::RCP<const Teuchos::ParameterList> MumpsSolver::getValidParameters() {
     pl->set("Memory Relaxation Percent", 30,
             "MUMPS ICNTL(14): percentage added to the estimated working space. On INFOG(1) = -8/-9 the "
             "factorisation is retried once with twice this value (at least 20), kept for later factorisations.",
-            Teuchos::rcp(new Teuchos::EnhancedNumberValidator<int>(0, 100000, 10)));
+            between(0, 100000));
     pl->set("Verbose", false, "Let MUMPS print its diagnostics (ICNTL(1..4)); silent otherwise.");
     return Teuchos::RCP<const Teuchos::ParameterList>(pl);
   }();
