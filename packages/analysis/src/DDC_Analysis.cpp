@@ -476,7 +476,10 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
     const double rnorm = r->norm2();
     rec.residualHistory.push_back(rnorm);
     if (!std::isfinite(rnorm)) {
-      rec.failure = "non-finite residual";
+      const std::string where = model_->describeNonFinite(*r);
+      rec.failure = "Newton iteration " + std::to_string(it) + ": non-finite residual" +
+                    (where.empty() ? std::string() : ": " + where);
+      progress("    " + rec.failure);
       return false;
     }
     if (it == 0) r0 = rnorm;
@@ -565,7 +568,10 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
       std::cout << line << std::endl;
     }
     if (!std::isfinite(energy)) {
-      rec.failure = "non-finite correction";
+      const std::string where = model_->describeNonFinite(*du);
+      rec.failure = "Newton iteration " + std::to_string(it) + ": non-finite correction" +
+                    (where.empty() ? std::string() : ": " + where);
+      progress("    " + rec.failure);
       return false;
     }
     if (!changed.empty() || pairingChanged) {

@@ -12,6 +12,7 @@
 
 #include "DDC_BodyLocator.hpp"
 #include "DDC_ContactSearch.hpp"
+#include "DDC_ContinuumElement.hpp"
 #include "DDC_DecomposedNodeToSegment.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_MpiRecords.hpp"
@@ -1187,6 +1188,107 @@ std::string Model::describeSlot(int k) const {
   const auto& X = mesh_->coord(s.slaveNode);
   os << "pair '" << contact_.pairs[s.pair].name << "' slave node " << s.slaveNode << " at (" << X[0] << ", " << X[1]
      << ")";
+  return os.str();
+}
+
+namespace {
+
+/// A material parameter for a message, flagged if it is non-finite or
+/// extreme (beyond what products in the element arithmetic survive).
+std::string materialValue(const char* name, double v, bool extreme) {
+  std::ostringstream os;
+  os << name << " = " << v;
+  if (!std::isfinite(v))
+    os << " (non-finite)";
+  else if (extreme)
+    os << " (extreme)";
+  return os.str();
+}
+
+}  // namespace
+
+std::string Model::describeNonFinite(const Vector& v) const {
+  const auto data = v.getData();
+  const auto& map = *v.getMap();
+  // Non-finite entry of smallest global id; otherwise largest |entry|.
+  GO firstBad = std::numeric_limits<GO>::max();
+  double largest = 0.0;
+  GO largestAt = -1;
+  for (size_t l = 0; l < data.size(); ++l) {
+    const GO g = map.getGlobalElement(static_cast<LO>(l));
+    if (!std::isfinite(data[l])) {
+      firstBad = std::min(firstBad, g);
+    } else if (std::abs(data[l]) > largest) {
+      largest = std::abs(data[l]);
+      largestAt = g;
+    }
+  }
+  GO bad = firstBad;
+  Teuchos::reduceAll<int, GO>(*comm_, Teuchos::REDUCE_MIN, firstBad, Teuchos::outArg(bad));
+  GO at = bad;
+  std::string what;
+  if (bad != std::numeric_limits<GO>::max()) {
+    // What the value is, from its owner (a NaN would not survive a sum
+    // over ranks, so the owner sends a code).
+    double code = 0.0, agreed = 0.0;
+    if (map.isNodeGlobalElement(bad)) {
+      const double value = data[map.getLocalElement(bad)];
+      code = std::isnan(value) ? 1.0 : (value > 0 ? 2.0 : 3.0);
+    }
+    Teuchos::reduceAll<int, double>(*comm_, Teuchos::REDUCE_MAX, code, Teuchos::outArg(agreed));
+    what = agreed == 1.0 ? "NaN" : agreed == 2.0 ? "+inf" : "-inf";
+  } else {
+    double globalLargest = 0.0;
+    Teuchos::reduceAll<int, double>(*comm_, Teuchos::REDUCE_MAX, largest, Teuchos::outArg(globalLargest));
+    double normSquared = 0.0;
+    for (size_t l = 0; l < data.size(); ++l) normSquared += data[l] * data[l];
+    double total = 0.0;
+    Teuchos::reduceAll<int, double>(*comm_, Teuchos::REDUCE_SUM, normSquared, Teuchos::outArg(total));
+    if (std::isfinite(total)) return "";
+    GO candidate = largest == globalLargest ? largestAt : std::numeric_limits<GO>::max();
+    Teuchos::reduceAll<int, GO>(*comm_, Teuchos::REDUCE_MIN, candidate, Teuchos::outArg(at));
+    std::ostringstream os;
+    os << "no entry is non-finite but the norm overflows; the largest entry is " << globalLargest;
+    what = os.str();
+  }
+
+  std::ostringstream os;
+  // The mesh and the DOF numbering are replicated: every rank names the same place.
+  for (size_t k = 0; k < lmDof_.size(); ++k)
+    if (lmDof_[k] == at) {
+      os << (bad == at ? what + " at the contact multiplier of " : what + ", at the contact multiplier of ")
+         << describeSlot(static_cast<int>(k));
+      return os.str();
+    }
+  int node = -1, component = -1;
+  for (int n = 0; n < mesh_->numNodes() && node < 0; ++n)
+    for (int c = 0; c < 2; ++c)
+      if (dof(n, c) == at) node = n, component = c;
+  if (node < 0) {
+    os << what << " at DOF " << at;
+    return os.str();
+  }
+  const auto& X = mesh_->coord(node);
+  os << what << (bad == at ? " at " : ", at ") << (component == 0 ? "u_x" : "u_y") << " of node " << node << " ("
+     << X[0] << ", " << X[1] << ")";
+  for (int e = 0; e < mesh_->numElements(); ++e) {
+    const int* nodes = mesh_->elementNodes(e);
+    if (std::find(nodes, nodes + mesh_->elementNumNodes(e), node) == nodes + mesh_->elementNumNodes(e)) continue;
+    const int b = mesh_->elementBody(e);
+    os << ", in element " << e << " of body '" << mesh_->body(b).name << "'";
+    if (const auto* ce = dynamic_cast<const ContinuumElement*>(elements_[b].get())) {
+      const Material& m = ce->material();
+      // Extreme: beyond 1e100 or below 1e-100 (energies and tangents carry
+      // the modulus times squared strains), or lambda/mu > 1e8 (Poisson's
+      // ratio within about 5e-9 of 0.5).
+      const double E = m.youngsModulus();
+      const bool extremeE = std::abs(E) > 1e100 || std::abs(E) < 1e-100;
+      const bool extremeNu = m.mu() != 0.0 && std::abs(m.lambda() / m.mu()) > 1e8;
+      os << " (material " << m.typeName() << ": " << materialValue("Young's Modulus", E, extremeE) << ", "
+         << materialValue("Poisson's Ratio", m.poissonsRatio(), extremeNu) << ")";
+    }
+    break;
+  }
   return os.str();
 }
 

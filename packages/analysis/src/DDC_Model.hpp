@@ -177,6 +177,15 @@ class Model {
   void restoreContactState(const std::vector<ContactSlot>& saved);
   /// "pair 'P' slave node n at (x, y)" for messages.
   std::string describeSlot(int k) const;
+  /// Collective. Where a vector of the owned layout (a residual or a
+  /// correction) first goes wrong, for the failure message of a Newton
+  /// iteration: its non-finite entry of smallest global id, or, if every
+  /// entry is finite (the norm overflowed), its entry of largest magnitude;
+  /// named by node, component, coordinates, body, element and material
+  /// (parameters that are non-finite or extreme flagged: see
+  /// doc/user-guide.md, "Solution method"), or by contact slot. The same
+  /// text on every rank; "" if the vector is finite and its norm is too.
+  std::string describeNonFinite(const Vector& v) const;
   /// Contact-geometry exchanges (gathers of surface positions: every pairing
   /// update, and for conventional NTS every active-set update) since
   /// construction; search counters.
