@@ -11,7 +11,9 @@
 #                               must have left its exit status there, and
 #                               each must match EXPECT (a rank killed by
 #                               MPI_Abort, or hanging, leaves none)
-#   -DFILES=<|-list>            files that must exist afterwards (optional)
+#   -DFILES=<|-list>            files that must exist afterwards and have been
+#                               written by this run (not older than its start;
+#                               optional)
 string(REPLACE "|" ";" CMD "${CMD}")
 string(REPLACE "|" ";" FILES "${FILES}")
 
@@ -39,9 +41,16 @@ if(STATUS_DIR)
   file(REMOVE_RECURSE "${STATUS_DIR}")
   file(MAKE_DIRECTORY "${STATUS_DIR}")
 endif()
-foreach(f ${FILES})
-  file(REMOVE "${f}")
-endforeach()
+# Files of an earlier run are left alone (removing a result's manifest would
+# make it a directory DDContact refuses to replace); freshness is checked
+# against this marker instead.
+if(FILES)
+  string(MD5 marker_name "${CMD}")
+  set(marker "${CMAKE_CURRENT_BINARY_DIR}/run-case-${marker_name}.start")
+  # (CMake compares modification times at the file system's resolution,
+  # nanoseconds on Linux.)
+  file(TOUCH "${marker}")
+endif()
 execute_process(COMMAND ${CMD} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 set(all "${out}${err}")
 message("${all}")
@@ -87,5 +96,8 @@ endif()
 foreach(f ${FILES})
   if(NOT EXISTS "${f}")
     message(FATAL_ERROR "expected output file ${f} is missing")
+  endif()
+  if("${marker}" IS_NEWER_THAN "${f}" AND NOT "${f}" IS_NEWER_THAN "${marker}")
+    message(FATAL_ERROR "expected output file ${f} was not written by this run (older than its start)")
   endif()
 endforeach()
