@@ -48,5 +48,10 @@ if(NOT TARGET DDContact_Trilinos)
   endif()
   target_include_directories(DDContact_Trilinos SYSTEM INTERFACE ${DDC_PTSCOTCH_INCLUDE_DIR})
   target_link_libraries(DDContact_Trilinos INTERFACE ${Trilinos_LIBRARIES} MPI::MPI_CXX)
+  if(DDContact_ENABLE_SANITIZERS)
+    # Instrumented DDContact libraries need the sanitizer runtimes in every
+    # program that links them, host codes included.
+    target_link_options(DDContact_Trilinos INTERFACE -fsanitize=address,undefined)
+  endif()
   install(TARGETS DDContact_Trilinos EXPORT DDContactTargets)
 endif()
