@@ -15,17 +15,22 @@ set(DDC_TEST_ENVIRONMENT
   "OMPI_MCA_btl_vader_single_copy_mechanism=none"
   "OPENBLAS_NUM_THREADS=1"
   "OMP_NUM_THREADS=1")
+# Per-test time limits (a hang fails instead of stalling the suite).
+set(DDC_TEST_TIMEOUT 600)
+set(DDC_TEST_TIMEOUT_LONG 900)
 if(DDContact_ENABLE_SANITIZERS)
   # A report ends the process with a non-zero status, so the test fails.
-  # Leak stacks are unwound the slow way: Open MPI and Trilinos are built
-  # without frame pointers, and the fast unwinder stops in them, before the
-  # frames the suppressions name. Open MPI keeps its components loaded so
-  # that their frames have module names.
+  # Leak stacks use the fast (frame-pointer) unwinder: its first frame, the
+  # caller of malloc, names the library, which is all the suppressions need.
+  # That frame has a module name because the sanitizer build keeps run-time
+  # loaded modules mapped (packages/core/src/DDC_SanitizerSupport.cpp).
   list(APPEND DDC_TEST_ENVIRONMENT
-    "ASAN_OPTIONS=detect_leaks=1:fast_unwind_on_malloc=0:exitcode=86"
+    "ASAN_OPTIONS=detect_leaks=1:exitcode=86"
     "LSAN_OPTIONS=suppressions=${PROJECT_SOURCE_DIR}/test/sanitizers/lsan.supp:print_suppressions=0"
-    "UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:exitcode=87"
-    "OMPI_MCA_mca_base_component_disable_dlclose=1")
+    "UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:exitcode=87")
+  # Instrumented code runs several times slower.
+  set(DDC_TEST_TIMEOUT 3600)
+  set(DDC_TEST_TIMEOUT_LONG 5400)
 endif()
 
 # ddc_mpi_command(<out-var> <ranks> cmd...) : the command line under mpirun.
@@ -48,7 +53,7 @@ function(ddc_add_unit_test name)
     ddc_mpi_command(cmd ${np} $<TARGET_FILE:${name}>)
     add_test(NAME ${name}_np${np} COMMAND ${cmd})
     set_tests_properties(${name}_np${np} PROPERTIES
-      ENVIRONMENT "${DDC_TEST_ENVIRONMENT}" PROCESSORS ${np} TIMEOUT 600
+      ENVIRONMENT "${DDC_TEST_ENVIRONMENT}" PROCESSORS ${np} TIMEOUT ${DDC_TEST_TIMEOUT}
       LABELS "unit;${T_LABELS}")
   endforeach()
 endfunction()

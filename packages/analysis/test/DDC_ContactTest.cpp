@@ -50,6 +50,7 @@
 #include "DDC_MeshGenerators.hpp"
 #include "DDC_Model.hpp"
 #include "DDC_Partition.hpp"
+#include "DDC_TestErrors.hpp"
 #include "DDC_TestTolerances.hpp"
 
 namespace {
@@ -632,12 +633,7 @@ TEST(DecomposedWithoutPairs, ContactCallsOnAModelWithoutPairsDoNothing) {
 /// The message of the InputError that constructing an Analysis of `deck`
 /// throws, or "(no InputError)".
 std::string inputErrorOf(PL deck) {
-  try {
-    ddc::Analysis a(worldComm(), deck);
-  } catch (const ddc::InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
+  return ddc::test::inputErrorOf([&] { ddc::Analysis a(worldComm(), deck); });
 }
 
 // ---------------------------------------------------------------------------
@@ -861,12 +857,7 @@ std::string pairsError(const std::vector<std::array<std::string, 3>>& pairs) {
     c.sublist("Pairs").sublist(p[0]).set("Slave", p[1]);
     c.sublist("Pairs").sublist(p[0]).set("Master", p[2]);
   }
-  try {
-    ddc::ContactOptions::fromParameters(c, *mesh, "Contact");
-  } catch (const ddc::InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
+  return ddc::test::inputErrorOf([&] { ddc::ContactOptions::fromParameters(c, *mesh, "Contact"); });
 }
 
 TEST(OverlappingPairs, DuplicatedPairsAreInputErrorsWhateverTheSetNames) {
@@ -902,11 +893,11 @@ TEST(OverlappingPairs, PairsThatShareOnlyOneSideAreAccepted) {
   // a chain (the second pair's slave is the first pair's master body, but
   // another side of it): all legitimate.
   EXPECT_EQ(pairsError({{"A", "Upper/bottom", "Lower/top"}, {"B", "Upper/bottom", "Lower/right"}}),
-            "(no InputError)");
+            ddc::test::kNoInputError);
   EXPECT_EQ(pairsError({{"A", "Upper/bottom", "Lower/top"}, {"B", "Upper/right", "Lower/right"}}),
-            "(no InputError)");
+            ddc::test::kNoInputError);
   EXPECT_EQ(pairsError({{"A", "Upper/bottom", "Lower/top"}, {"B", "Lower/right", "Upper/right"}}),
-            "(no InputError)");
+            ddc::test::kNoInputError);
 }
 
 }  // namespace

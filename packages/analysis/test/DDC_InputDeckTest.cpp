@@ -18,6 +18,7 @@
 #include "DDC_Error.hpp"
 #include "DDC_InputDeck.hpp"
 #include "DDC_Parameters.hpp"
+#include "DDC_TestErrors.hpp"
 
 namespace fs = std::filesystem;
 using ddc::InputError;
@@ -27,16 +28,9 @@ using PL = Teuchos::ParameterList;
 
 namespace {
 
-using ddc::test::worldComm;
+using ddc::test::inputErrorOf;
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
-}
+using ddc::test::worldComm;
 
 /// The same message on every rank (collective).
 void expectSameOnEveryRank(const std::string& msg) {
@@ -45,7 +39,7 @@ void expectSameOnEveryRank(const std::string& msg) {
 }
 
 std::string parseError(const std::string& text) {
-  return errorOf([&] { ddc::parseDeck(text, "deck.xml"); });
+  return inputErrorOf([&] { ddc::parseDeck(text, "deck.xml"); });
 }
 
 /// A deck whose Load Stepping list holds `entries` (XML text).
@@ -175,7 +169,7 @@ TEST(ParseDeck, RepositoryDecksReadAsTeuchosReadsThem) {
       if (e.path().extension() != ".xml" || name == "malformed.xml") continue;
       SCOPED_TRACE(e.path().string());
       if (name.rfind("xml_", 0) == 0) {
-        EXPECT_THAT(errorOf([&] { ddc::parseDeck(readText(e.path()), name); }),
+        EXPECT_THAT(inputErrorOf([&] { ddc::parseDeck(readText(e.path()), name); }),
                     StartsWith("input file '" + name + "': "));
         ++refused;
         continue;
@@ -255,17 +249,17 @@ TEST(ReadDeck, ErrorsOnRankZeroReachEveryRank) {
   // Rank 0's names, as every rank has them in ddcontact.
   const std::string rootDir = ddc::broadcastStrings(*worldComm(), {dir.string()}).front();
   const std::string missing = rootDir + "/does_not_exist.xml";
-  std::string msg = errorOf([&] { ddc::readDeck(*worldComm(), missing); });
+  std::string msg = inputErrorOf([&] { ddc::readDeck(*worldComm(), missing); });
   EXPECT_EQ(msg, "input file '" + missing + "' does not exist");
   expectSameOnEveryRank(msg);
-  msg = errorOf([&] { ddc::readDeck(*worldComm(), rootDir); });
+  msg = inputErrorOf([&] { ddc::readDeck(*worldComm(), rootDir); });
   EXPECT_EQ(msg, "input file '" + rootDir + "' is a directory, expected a Teuchos XML parameter file");
   expectSameOnEveryRank(msg);
   // A value error found on rank 0.
   const std::string bad = (dir / "bad.xml").string();
   if (worldComm()->getRank() == 0) std::ofstream(bad) << deckWith(param("Number of Steps", "int", "3abc"));
   const std::string badOnRoot = ddc::broadcastStrings(*worldComm(), {bad}).front();
-  msg = errorOf([&] { ddc::readDeck(*worldComm(), badOnRoot); });
+  msg = inputErrorOf([&] { ddc::readDeck(*worldComm(), badOnRoot); });
   EXPECT_THAT(msg, HasSubstr("bad.xml': parameter 'Load Stepping/Number of Steps' expects an integer, got '3abc'"));
   expectSameOnEveryRank(msg);
   worldComm()->barrier();
@@ -313,13 +307,13 @@ TEST(RequireSameFilesOnEveryRank, FilesMissingOrDifferentOnSomeRanksFailEveryRan
   if (size > 1) {
     // Only on rank 0.
     const std::string some = rank == 0 ? file("some.msh", "mesh") : (dir / "some.msh").string();
-    std::string msg = errorOf([&] { ddc::requireSameFilesOnEveryRank(*worldComm(), {{"Mesh/Bodies/B/Gmsh/File", some}}); });
+    std::string msg = inputErrorOf([&] { ddc::requireSameFilesOnEveryRank(*worldComm(), {{"Mesh/Bodies/B/Gmsh/File", some}}); });
     EXPECT_THAT(msg, HasSubstr("'Mesh/Bodies/B/Gmsh/File' = '"));
     EXPECT_THAT(msg, HasSubstr("': the file can be read on 1 of " + std::to_string(size) +
                                " ranks but not on rank 1; every rank reads it"));
     // Different contents per rank.
     const std::string differs = file("differs.map", "0 0 " + std::to_string(rank));
-    msg = errorOf([&] { ddc::requireSameFilesOnEveryRank(*worldComm(), {{"Partition/Element Map File", differs}}); });
+    msg = inputErrorOf([&] { ddc::requireSameFilesOnEveryRank(*worldComm(), {{"Partition/Element Map File", differs}}); });
     EXPECT_THAT(msg, HasSubstr("'Partition/Element Map File' = '"));
     EXPECT_THAT(msg, HasSubstr("': the file differs between ranks"));
   }

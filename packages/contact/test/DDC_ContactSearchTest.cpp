@@ -15,6 +15,7 @@
 #include "DDC_Error.hpp"
 #include "DDC_Mesh.hpp"
 #include "DDC_MeshGenerators.hpp"
+#include "DDC_TestErrors.hpp"
 #include "DDC_TestTolerances.hpp"
 
 using ddc::ContactCandidate;
@@ -27,6 +28,8 @@ using Vec = Eigen::Vector2d;
 using Segs = std::vector<std::array<int, 2>>;
 
 namespace {
+
+using ddc::test::inputErrorOf;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -150,15 +153,6 @@ void expectMatchesBruteForce(const ContactSearch& search, const Geometry& g, con
   for (std::size_t i = 0; i < c.size(); ++i)
     EXPECT_TRUE(sameCandidate(c[i], bruteForce(g, g.x[search.slaveNodes()[i]], search.searchRadius())))
         << where << ", slave " << i << " at (" << g.x[search.slaveNodes()[i]].transpose() << ")";
-}
-
-std::string inputErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
 }
 
 Teuchos::ParameterList rectParams(double lx, double ly, int nx, int ny) {

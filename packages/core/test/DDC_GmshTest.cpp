@@ -12,6 +12,7 @@
 #include "DDC_CoreTestUtils.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_Gmsh.hpp"
+#include "DDC_TestErrors.hpp"
 #include "DDC_TestTolerances.hpp"
 
 using ddc::CellType;
@@ -20,6 +21,8 @@ using ddc::Mesh;
 using ::testing::HasSubstr;
 
 namespace {
+
+using ddc::test::inputErrorOf;
 
 const std::string kData = std::string(DDC_SOURCE_DIR) + "/packages/core/test/data";
 
@@ -47,17 +50,8 @@ std::string replaced(std::string text, const std::string& from, const std::strin
   return text;
 }
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
-}
-
 std::string readError(const std::string& file, CellType t = CellType::Quad4, const std::string& surface = "") {
-  return errorOf([&] {
+  return inputErrorOf([&] {
     Mesh m;
     ddc::readGmshFile(m, "Body", t, file, surface);
   });
@@ -167,16 +161,16 @@ TEST(Gmsh, ReadGmshBodyResolvesRelativePathsAndValidates) {
   EXPECT_EQ(ddc::readGmshBody(m, "Block2", CellType::Quad4, p, "G", "/nonexistent"), 1);
 
   Teuchos::ParameterList q;
-  EXPECT_THAT(errorOf([&] { ddc::readGmshBody(m, "C", CellType::Quad4, q, "Mesh/Bodies/C/Gmsh", kData); }),
+  EXPECT_THAT(inputErrorOf([&] { ddc::readGmshBody(m, "C", CellType::Quad4, q, "Mesh/Bodies/C/Gmsh", kData); }),
               HasSubstr("parameter 'Mesh/Bodies/C/Gmsh/File' is required"));
   Teuchos::ParameterList r;
   r.set("File", std::string("rect2x1.msh"));
   r.set("Physical surface", std::string("block"));
-  EXPECT_THAT(errorOf([&] { ddc::readGmshBody(m, "C", CellType::Quad4, r, "Mesh/Bodies/C/Gmsh", kData); }),
+  EXPECT_THAT(inputErrorOf([&] { ddc::readGmshBody(m, "C", CellType::Quad4, r, "Mesh/Bodies/C/Gmsh", kData); }),
               HasSubstr("unknown parameter 'Mesh/Bodies/C/Gmsh/Physical surface'"));
   Teuchos::ParameterList s;
   s.set("File", std::string("missing.msh"));
-  const std::string e = errorOf([&] { ddc::readGmshBody(m, "C", CellType::Quad4, s, "Mesh/Bodies/C/Gmsh", kData); });
+  const std::string e = inputErrorOf([&] { ddc::readGmshBody(m, "C", CellType::Quad4, s, "Mesh/Bodies/C/Gmsh", kData); });
   EXPECT_THAT(e, HasSubstr("Mesh/Bodies/C/Gmsh/File"));
   EXPECT_THAT(e, HasSubstr("cannot open Gmsh file '" + kData + "/missing.msh'"));
   // Failed reads left the mesh unchanged.

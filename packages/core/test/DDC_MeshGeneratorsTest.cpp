@@ -10,6 +10,7 @@
 #include "DDC_CoreTestUtils.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_MeshGenerators.hpp"
+#include "DDC_TestErrors.hpp"
 #include "DDC_TestTolerances.hpp"
 
 using ddc::CellType;
@@ -19,6 +20,8 @@ using ddc::Segment;
 using ::testing::HasSubstr;
 
 namespace {
+
+using ddc::test::inputErrorOf;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -31,15 +34,6 @@ Teuchos::ParameterList rectParams(double x0, double y0, double lx, double ly, in
   p.set("Elements X", nx);
   p.set("Elements Y", ny);
   return p;
-}
-
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
 }
 
 double totalArea(const Mesh& m, double* minDet) {
@@ -215,7 +209,7 @@ TEST(RectangleGenerator, DistortionOnFineMeshesStaysValid) {
 TEST(RectangleGenerator, ParameterErrorsNameThePath) {
   const std::string path = "Mesh/Bodies/Block/Rectangle";
   auto run = [&](Teuchos::ParameterList p) {
-    return errorOf([&] {
+    return inputErrorOf([&] {
       Mesh m;
       ddc::generateRectangle(m, "Block", CellType::Quad4, p, path);
     });
@@ -384,7 +378,7 @@ TEST(AnnularSectorGenerator, RefinementMultipliesCounts) {
 TEST(AnnularSectorGenerator, ParameterErrors) {
   const std::string path = "Mesh/Bodies/Ring/Annular Sector";
   auto run = [&](Sector s, int nr = 2, int nc = 4) {
-    return errorOf([&] { makeSector(CellType::Quad4, s, nr, nc); });
+    return inputErrorOf([&] { makeSector(CellType::Quad4, s, nr, nc); });
   };
   Sector s;
   s.end = s.start;
@@ -402,7 +396,7 @@ TEST(AnnularSectorGenerator, ParameterErrors) {
   Mesh m;
   Teuchos::ParameterList p;
   p.set("Inner radius", 1.0);  // misspelt
-  EXPECT_THAT(errorOf([&] { ddc::generateAnnularSector(m, "Ring", CellType::Quad4, p, path); }),
+  EXPECT_THAT(inputErrorOf([&] { ddc::generateAnnularSector(m, "Ring", CellType::Quad4, p, path); }),
               HasSubstr("unknown parameter '" + path + "/Inner radius'"));
 }
 
@@ -417,6 +411,6 @@ TEST(MeshGenerators, SeveralBodiesAndDuplicateNames) {
   EXPECT_EQ(m.body(1).firstElement, 4);
   for (int n : m.nodeSet("Ring/all")) EXPECT_GE(n, 9);
   auto p2 = rectParams(0, 0, 1, 1, 2, 2);
-  EXPECT_THAT(errorOf([&] { ddc::generateRectangle(m, "Block", CellType::Quad4, p2, "R"); }),
+  EXPECT_THAT(inputErrorOf([&] { ddc::generateRectangle(m, "Block", CellType::Quad4, p2, "R"); }),
               HasSubstr("two bodies are named 'Block'"));
 }

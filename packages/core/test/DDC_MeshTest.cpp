@@ -6,6 +6,7 @@
 
 #include "DDC_Error.hpp"
 #include "DDC_Mesh.hpp"
+#include "DDC_TestErrors.hpp"
 
 using ddc::CellType;
 using ddc::InputError;
@@ -14,14 +15,7 @@ using ::testing::HasSubstr;
 
 namespace {
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
-}
+using ddc::test::inputErrorOf;
 
 /// Unit square, one Quad4, in body `name`.
 void addSquare(Mesh& m, const std::string& name, double x0 = 0.0) {
@@ -53,10 +47,10 @@ TEST(Mesh, BodiesSetsAndSegments) {
   EXPECT_EQ(m.nodeSet("B/right"), (std::vector<int>{5, 6, 7}));
   EXPECT_TRUE(m.hasNodeSet("B/right"));
   EXPECT_FALSE(m.hasSideSet("A/right"));
-  EXPECT_THAT(errorOf([&] { m.sideSet("A/right"); }), HasSubstr("no side set named 'A/right'"));
-  EXPECT_THAT(errorOf([&] { m.sideSet("A/right"); }), HasSubstr("'B/right'"));
-  EXPECT_THAT(errorOf([&] { m.nodeSet("C/x"); }), HasSubstr("no node set named 'C/x'"));
-  EXPECT_THAT(errorOf([&] { m.bodyIndex("C"); }), HasSubstr("bodies are 'A', 'B'"));
+  EXPECT_THAT(inputErrorOf([&] { m.sideSet("A/right"); }), HasSubstr("no side set named 'A/right'"));
+  EXPECT_THAT(inputErrorOf([&] { m.sideSet("A/right"); }), HasSubstr("'B/right'"));
+  EXPECT_THAT(inputErrorOf([&] { m.nodeSet("C/x"); }), HasSubstr("no node set named 'C/x'"));
+  EXPECT_THAT(inputErrorOf([&] { m.bodyIndex("C"); }), HasSubstr("bodies are 'A', 'B'"));
 }
 
 TEST(Mesh, Quad9Segment) {
@@ -79,13 +73,13 @@ TEST(Mesh, CheckErrors) {
     Mesh m;
     addSquare(m, "A");
     m.beginBody("Empty", CellType::Quad4);
-    EXPECT_THAT(errorOf([&] { m.check(); }), HasSubstr("body 'Empty' has no elements"));
+    EXPECT_THAT(inputErrorOf([&] { m.check(); }), HasSubstr("body 'Empty' has no elements"));
   }
   {
     Mesh m;
     addSquare(m, "A");
     m.addNode(5, 5);
-    EXPECT_THAT(errorOf([&] { m.check(); }), HasSubstr("node 4 at (5, 5) belongs to no element"));
+    EXPECT_THAT(inputErrorOf([&] { m.check(); }), HasSubstr("node 4 at (5, 5) belongs to no element"));
   }
   {
     Mesh m;
@@ -94,13 +88,13 @@ TEST(Mesh, CheckErrors) {
     for (int i = 0; i < 3; ++i) m.addNode(i, 0);
     const int nodes[4] = {4, 5, 6, 0};  // node 0 belongs to body A
     m.addElement(nodes);
-    EXPECT_THAT(errorOf([&] { m.check(); }), HasSubstr("references node 0 outside the body"));
+    EXPECT_THAT(inputErrorOf([&] { m.check(); }), HasSubstr("references node 0 outside the body"));
   }
   {
     Mesh m;
     addSquare(m, "A");
-    EXPECT_THAT(errorOf([&] { m.beginBody("A", CellType::Quad9); }), HasSubstr("two bodies are named 'A'"));
-    EXPECT_THAT(errorOf([&] { m.beginBody("A/B", CellType::Quad9); }), HasSubstr("contain no '/'"));
-    EXPECT_THAT(errorOf([&] { m.beginBody("", CellType::Quad9); }), HasSubstr("must be non-empty"));
+    EXPECT_THAT(inputErrorOf([&] { m.beginBody("A", CellType::Quad9); }), HasSubstr("two bodies are named 'A'"));
+    EXPECT_THAT(inputErrorOf([&] { m.beginBody("A/B", CellType::Quad9); }), HasSubstr("contain no '/'"));
+    EXPECT_THAT(inputErrorOf([&] { m.beginBody("", CellType::Quad9); }), HasSubstr("must be non-empty"));
   }
 }

@@ -13,6 +13,7 @@
 
 #include "DDC_Error.hpp"
 #include "DDC_Parameters.hpp"
+#include "DDC_TestErrors.hpp"
 
 using ddc::InputError;
 using ::testing::HasSubstr;
@@ -21,14 +22,7 @@ using PL = Teuchos::ParameterList;
 
 namespace {
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
-}
+using ddc::test::inputErrorOf;
 
 const double kNan = std::numeric_limits<double>::quiet_NaN();
 const double kInf = std::numeric_limits<double>::infinity();
@@ -53,7 +47,7 @@ template <class T>
 std::string messageFor(const std::string& name, T value) {
   PL user;
   user.set(name, value);
-  return errorOf([&] { ddc::validateLevel(user, validList(), "Load Stepping"); });
+  return inputErrorOf([&] { ddc::validateLevel(user, validList(), "Load Stepping"); });
 }
 
 TEST(NumberValidator, RulesInWords) {
@@ -130,7 +124,7 @@ TEST(ValidateLevel, WrongTypeNamesBothTypes) {
             "parameter 'Load Stepping/Number of Steps' must be of type int, got double (value '2.5')");
   PL user;
   user.sublist("Number of Steps");
-  EXPECT_THAT(errorOf([&] { ddc::validateLevel(user, validList(), "Load Stepping"); }),
+  EXPECT_THAT(inputErrorOf([&] { ddc::validateLevel(user, validList(), "Load Stepping"); }),
               HasSubstr("'Load Stepping/Number of Steps' must be a int, not a sublist"));
 }
 
@@ -168,7 +162,7 @@ TEST(NumberValidator, WorksInTeuchosValidateParameters) {
 // ------------------------------------------------------------- parseValue
 
 std::string parseError(const std::string& type, const std::string& text) {
-  return errorOf([&] { ddc::parseValue(type, text, "P"); });
+  return inputErrorOf([&] { ddc::parseValue(type, text, "P"); });
 }
 
 TEST(ParseValue, IntegersAreWholeDecimalNumbersInRange) {
@@ -245,28 +239,28 @@ TEST(ApplyOverride, ParsesWithTheDeclaredType) {
   EXPECT_EQ(user.sublist("Load Stepping").get<double>("Final Load Factor"), 2.5);
   ddc::applyOverride(user, valid, "Load Stepping/Final Load Factor=3");  // an int text for a double
   EXPECT_EQ(user.sublist("Load Stepping").get<double>("Final Load Factor"), 3.0);
-  EXPECT_EQ(errorOf([&] { ddc::applyOverride(user, valid, "Load Stepping/Number of Steps=two"); }),
+  EXPECT_EQ(inputErrorOf([&] { ddc::applyOverride(user, valid, "Load Stepping/Number of Steps=two"); }),
             "--set: parameter 'Load Stepping/Number of Steps' expects an integer, got 'two'");
-  EXPECT_EQ(errorOf([&] { ddc::applyOverride(user, valid, "Load Stepping/Number of Steps=2.9"); }),
+  EXPECT_EQ(inputErrorOf([&] { ddc::applyOverride(user, valid, "Load Stepping/Number of Steps=2.9"); }),
             "--set: parameter 'Load Stepping/Number of Steps' expects an integer, got '2.9'");
-  EXPECT_EQ(errorOf([&] { ddc::applyOverride(user, valid, "Load Stepping/Number of Steps=99999999999"); }),
+  EXPECT_EQ(inputErrorOf([&] { ddc::applyOverride(user, valid, "Load Stepping/Number of Steps=99999999999"); }),
             "--set: parameter 'Load Stepping/Number of Steps' expects an integer, got '99999999999': out of range, "
             "integers are between -2147483648 and 2147483647");
-  EXPECT_EQ(errorOf([&] { ddc::applyOverride(user, valid, "Load Stepping/Final Load Factor=abc"); }),
+  EXPECT_EQ(inputErrorOf([&] { ddc::applyOverride(user, valid, "Load Stepping/Final Load Factor=abc"); }),
             "--set: parameter 'Load Stepping/Final Load Factor' expects a number, got 'abc'");
 }
 
 TEST(ApplyOverride, MisspeltTemplateNameIsAnErrorNamingTheKnownOnes) {
   PL user = userDeck();
   const PL valid = validWithTemplates();
-  EXPECT_EQ(errorOf([&] { ddc::applyOverride(user, valid, "Mesh/Bodies/Blok/Rectangle/Refinement=4"); }),
+  EXPECT_EQ(inputErrorOf([&] { ddc::applyOverride(user, valid, "Mesh/Bodies/Blok/Rectangle/Refinement=4"); }),
             "--set: no body 'Blok' in 'Mesh/Bodies'; bodies are 'Block', 'Base'");
   EXPECT_FALSE(user.sublist("Mesh").sublist("Bodies").isSublist("Blok")) << "no new body was created";
-  EXPECT_EQ(errorOf([&] { ddc::applyOverride(user, valid, "Boundary Conditions/Fixd/Value X=1"); }),
+  EXPECT_EQ(inputErrorOf([&] { ddc::applyOverride(user, valid, "Boundary Conditions/Fixd/Value X=1"); }),
             "--set: no condition 'Fixd' in 'Boundary Conditions'; there are no conditions");
   // Outside templates missing sublists are still created (validation names
   // a misspelt one later).
-  EXPECT_EQ(errorOf([&] { ddc::applyOverride(user, valid, "Load Steping/Number of Steps=2"); }), "(no InputError)");
+  EXPECT_EQ(inputErrorOf([&] { ddc::applyOverride(user, valid, "Load Steping/Number of Steps=2"); }), ddc::test::kNoInputError);
   EXPECT_TRUE(user.isSublist("Load Steping"));
 }
 

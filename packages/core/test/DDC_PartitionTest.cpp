@@ -9,6 +9,7 @@
 #include "DDC_Error.hpp"
 #include "DDC_MeshGenerators.hpp"
 #include "DDC_Partition.hpp"
+#include "DDC_TestErrors.hpp"
 
 using ddc::CellType;
 using ddc::InputError;
@@ -17,14 +18,7 @@ using ::testing::HasSubstr;
 
 namespace {
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
-}
+using ddc::test::inputErrorOf;
 
 Mesh rectangle(int nx, int ny, CellType t = CellType::Quad4, const std::string& name = "Block",
                Mesh m = Mesh(), double x0 = 0.0) {
@@ -129,10 +123,10 @@ TEST(Partition, BodyInTwoPieces) {
 
 TEST(Partition, Errors) {
   const Mesh m = rectangle(2, 2);
-  EXPECT_THAT(errorOf([&] { ddc::partitionMetis(m, 0); }),
+  EXPECT_THAT(inputErrorOf([&] { ddc::partitionMetis(m, 0); }),
               HasSubstr("'Partition/Number of Subdomains' must be > 0, got 0"));
-  EXPECT_THAT(errorOf([&] { ddc::partitionMetis(m, -2); }), HasSubstr("must be > 0"));
-  EXPECT_THAT(errorOf([&] { ddc::partitionMetis(m, 5); }),
+  EXPECT_THAT(inputErrorOf([&] { ddc::partitionMetis(m, -2); }), HasSubstr("must be > 0"));
+  EXPECT_THAT(inputErrorOf([&] { ddc::partitionMetis(m, 5); }),
               HasSubstr("'Partition/Number of Subdomains' (5) exceeds the number of elements of the mesh (4)"));
   const auto one = ddc::partitionMetis(m, 1);
   EXPECT_EQ(one.numSubdomains, 1);
@@ -146,7 +140,7 @@ TEST(Partition, SubdomainOwnerRank) {
   EXPECT_EQ(ddc::subdomainOwnerRank(3, 1), (std::vector<int>{0, 0, 0}));
   EXPECT_EQ(ddc::subdomainsOfRank(9, 4, 0), (std::vector<int>{0, 1, 2}));
   EXPECT_EQ(ddc::subdomainsOfRank(9, 4, 3), (std::vector<int>{7, 8}));
-  EXPECT_THAT(errorOf([] { ddc::subdomainOwnerRank(2, 3); }),
+  EXPECT_THAT(inputErrorOf([] { ddc::subdomainOwnerRank(2, 3); }),
               HasSubstr("'Partition/Number of Subdomains' (2) must be at least the number of MPI ranks (3)"));
-  EXPECT_THAT(errorOf([] { ddc::subdomainOwnerRank(2, 0); }), HasSubstr("ranks must be >= 1"));
+  EXPECT_THAT(inputErrorOf([] { ddc::subdomainOwnerRank(2, 0); }), HasSubstr("ranks must be >= 1"));
 }
