@@ -7,7 +7,7 @@
 
 namespace ddc {
 
-double DisplacementCondition::prescribed(int c, const std::array<double, 2>& X, double lambda) const {
+double DisplacementCondition::prescribed(int c, const std::array<double, 3>& X, double lambda) const {
   const double dx = X[0] - center[0], dy = X[1] - center[1];
   double u = lambda * (value[c] + gradient[c][0] * dx + gradient[c][1] * dy);
   if (angleRadians != 0.0) {

@@ -25,7 +25,7 @@ struct DisplacementCondition {
   double angleRadians = 0.0;
   double center[2] = {0.0, 0.0};
   /// Prescribed value of component `c` at reference position X and load factor λ.
-  double prescribed(int c, const std::array<double, 2>& X, double lambda) const;
+  double prescribed(int c, const std::array<double, 3>& X, double lambda) const;
 };
 
 /// A dead traction (force per unit reference length) on a side set, scaled by λ.

@@ -36,7 +36,8 @@ BodyLocator::BodyLocator(const Mesh& mesh, int body)
   std::map<std::pair<int, int>, int> edgeCount;
   auto edgeKey = [&](int e, int a) {
     const int* nodes = mesh_.elementNodes(e);
-    const int p = nodes[a], q = nodes[(a + 1) % 4];
+    const auto& side = referenceCell(mesh_.elementType(e)).facets[a];
+    const int p = nodes[side.nodes[0]], q = nodes[side.nodes[1]];
     return std::make_pair(std::min(p, q), std::max(p, q));
   };
   for (int i = 0; i < numElements_; ++i)
@@ -72,8 +73,9 @@ long long BodyLocator::cell(double v, double origin, long long n) const {
 bool BodyLocator::inClosure(int e, const Eigen::Vector2d& x) const {
   const int* nodes = mesh_.elementNodes(e);
   for (int a = 0; a < 4; ++a) {
-    const auto& p = mesh_.coord(nodes[a]);
-    const auto& q = mesh_.coord(nodes[(a + 1) % 4]);
+    const auto& side = referenceCell(mesh_.elementType(e)).facets[a];
+    const auto& p = mesh_.coord(nodes[side.nodes[0]]);
+    const auto& q = mesh_.coord(nodes[side.nodes[1]]);
     const Eigen::Vector2d t(q[0] - p[0], q[1] - p[1]), d(x.x() - p[0], x.y() - p[1]);
     // Not right of the edge by more than the margin: t × d >= −margin · |t|².
     if (!(t.x() * d.y() - t.y() * d.x() >= -kInsideMargin * t.squaredNorm())) return false;
@@ -84,8 +86,9 @@ bool BodyLocator::inClosure(int e, const Eigen::Vector2d& x) const {
 bool BodyLocator::onBoundaryEdge(int e, int a, const Eigen::Vector2d& x) const {
   if (!boundaryEdge_[e - firstElement_][a]) return false;
   const int* nodes = mesh_.elementNodes(e);
-  const auto& p = mesh_.coord(nodes[a]);
-  const auto& q = mesh_.coord(nodes[(a + 1) % 4]);
+  const auto& side = referenceCell(mesh_.elementType(e)).facets[a];
+  const auto& p = mesh_.coord(nodes[side.nodes[0]]);
+  const auto& q = mesh_.coord(nodes[side.nodes[1]]);
   const Eigen::Vector2d t(q[0] - p[0], q[1] - p[1]), d(x.x() - p[0], x.y() - p[1]);
   const double xi = std::min(1.0, std::max(0.0, d.dot(t) / t.squaredNorm()));
   return (d - xi * t).norm() <= kInsideMargin * t.norm();

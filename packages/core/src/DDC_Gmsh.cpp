@@ -334,12 +334,12 @@ std::string listNames(const std::set<std::string>& names) {
   return os.str();
 }
 
-/// Twice the signed area of the corner polygon of an element.
-double twiceArea(const std::vector<std::array<double, 2>>& xy, const int* n) {
+/// Twice the signed area of the corner polygon of a 2-D element.
+double twiceArea(const std::vector<std::array<double, 2>>& xy, CellType type, const int* n) {
   double a = 0.0;
-  for (int k = 0; k < 4; ++k) {
-    const auto& p = xy[n[k]];
-    const auto& q = xy[n[(k + 1) % 4]];
+  for (const auto& side : referenceCell(type).facets) {
+    const auto& p = xy[n[side.nodes[0]]];
+    const auto& q = xy[n[side.nodes[1]]];
     a += p[0] * q[1] - q[0] * p[1];
   }
   return a;
@@ -471,7 +471,7 @@ int readGmshFile(Mesh& mesh, const std::string& bodyName, CellType type, const s
     for (size_t e = 0; e < b->tags.size(); ++e) {
       int n[9];
       for (int i = 0; i < nen; ++i) n[i] = local.at(b->nodes[e * nen + i]);
-      const double a2 = twiceArea(xy, n);
+      const double a2 = twiceArea(xy, type, n);
       double h2 = 0.0;  // squared longest corner-to-corner distance, for scale
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j)
@@ -497,8 +497,9 @@ int readGmshFile(Mesh& mesh, const std::string& bodyName, CellType type, const s
   std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> sides;
   for (int e = 0; e < ne; ++e) {
     const int* n = &conn[static_cast<size_t>(e) * nen];
-    for (int s = 0; s < 4; ++s) {
-      const int p = n[s], q = n[(s + 1) % 4];
+    const auto& facets = referenceCell(type).facets;
+    for (int s = 0; s < static_cast<int>(facets.size()); ++s) {
+      const int p = n[facets[s].nodes[0]], q = n[facets[s].nodes[1]];
       sides[{std::min(p, q), std::max(p, q)}].push_back({e, s});
     }
   }
@@ -540,7 +541,7 @@ int readGmshFile(Mesh& mesh, const std::string& bodyName, CellType type, const s
         fail("line element " + std::to_string(b.tags[l]) + " of physical curve '" + firstName +
              "' lies inside the body (on a side shared by two elements); side sets must lie on the boundary");
       const auto es = it->second[0];
-      if (quad9 && conn[static_cast<size_t>(es.first) * nen + 4 + es.second] != n[2])
+      if (quad9 && conn[static_cast<size_t>(es.first) * nen + referenceCell(type).facets[es.second].nodes[2]] != n[2])
         fail("the middle node of line element " + std::to_string(b.tags[l]) + " of physical curve '" + firstName +
              "' is not the mid-side node of the element side it lies on");
       for (int pt : phys) {

@@ -7,9 +7,6 @@
 
 namespace ddc {
 
-int numCellNodes(CellType t) { return t == CellType::Quad4 ? 4 : 9; }
-const char* cellTypeName(CellType t) { return t == CellType::Quad4 ? "Quad4" : "Quad9"; }
-
 namespace {
 std::string joinNames(const std::vector<std::string>& names) {
   std::ostringstream os;
@@ -24,6 +21,17 @@ int Mesh::beginBody(const std::string& name, CellType cellType) {
     DDC_INPUT_REQUIRE(b.name != name, "mesh: two bodies are named '" << name << "'");
   DDC_INPUT_REQUIRE(!name.empty() && name.find('/') == std::string::npos,
                     "mesh: body name '" << name << "' must be non-empty and contain no '/'");
+  const auto& types = elementCellTypes();
+  DDC_INPUT_REQUIRE(std::find(types.begin(), types.end(), cellType) != types.end(),
+                    "mesh: body '" << name << "': " << cellTypeName(cellType)
+                                   << " is a facet cell type, not an element type");
+  const int d = cellDimension(cellType);
+  DDC_INPUT_REQUIRE(bodies_.empty() || d == dim_,
+                    "mesh: body '" << name << "' has " << d << "-D cells (" << cellTypeName(cellType)
+                                   << ") but body '" << bodies_.front().name << "' has " << dim_ << "-D cells ("
+                                   << cellTypeName(bodies_.front().cellType)
+                                   << "); all bodies of a mesh must have the same dimension");
+  dim_ = d;
   Body b;
   b.name = name;
   b.cellType = cellType;
@@ -33,9 +41,10 @@ int Mesh::beginBody(const std::string& name, CellType cellType) {
   return numBodies() - 1;
 }
 
-int Mesh::addNode(double x, double y) {
+int Mesh::addNode(double x, double y, double z) {
   DDC_ASSERT(!bodies_.empty(), "addNode before beginBody");
-  coords_.push_back({x, y});
+  DDC_ASSERT(dim_ == 3 || z == 0.0, "addNode: z = " << z << " in a 2-D mesh");
+  coords_.push_back({x, y, z});
   bodies_.back().numNodes++;
   return numNodes() - 1;
 }
@@ -69,19 +78,29 @@ void Mesh::addSideSet(int body, const std::string& localName, std::vector<Segmen
 }
 
 Segment Mesh::makeSegment(int e, int localSide) const {
-  DDC_ASSERT(localSide >= 0 && localSide < 4, "bad local side " << localSide);
+  const auto& facets = referenceCell(elementType(e)).facets;
+  DDC_ASSERT(localSide >= 0 && localSide < static_cast<int>(facets.size()), "bad local side " << localSide);
+  const auto& f = facets[localSide];
   Segment s;
   s.element = e;
   s.localSide = localSide;
+  s.numNodes = static_cast<int>(f.nodes.size());
   const int* en = elementNodes(e);
-  s.nodes[0] = en[localSide];
-  s.nodes[1] = en[(localSide + 1) % 4];
-  s.numNodes = 2;
-  if (elementType(e) == CellType::Quad9) {
-    s.nodes[2] = en[4 + localSide];
-    s.numNodes = 3;
-  }
+  for (int i = 0; i < s.numNodes; ++i) s.nodes[i] = en[f.nodes[i]];
   return s;
+}
+
+int Mesh::elementNumFacets(int e) const {
+  return static_cast<int>(referenceCell(elementType(e)).facets.size());
+}
+
+std::vector<int> Mesh::facetKey(int e, int f) const {
+  const auto& facet = referenceCell(elementType(e)).facets.at(f);
+  const int* en = elementNodes(e);
+  std::vector<int> key;
+  for (int i = 0; i < referenceCell(facet.type).numCorners; ++i) key.push_back(en[facet.nodes[i]]);
+  std::sort(key.begin(), key.end());
+  return key;
 }
 
 int Mesh::bodyIndex(const std::string& name) const {
@@ -137,6 +156,7 @@ void Mesh::check() const {
   }
   for (int n = 0; n < numNodes(); ++n)
     DDC_INPUT_REQUIRE(used[n], "mesh: node " << n << " at (" << coords_[n][0] << ", " << coords_[n][1]
+                                            << (dim_ == 3 ? ", " + std::to_string(coords_[n][2]) : std::string())
                                             << ") belongs to no element");
 }
 

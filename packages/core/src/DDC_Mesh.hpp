@@ -1,4 +1,4 @@
-// Two-dimensional mesh of several bodies with named node sets and side sets.
+// Mesh of several bodies with named node sets and side sets, in 2-D or 3-D.
 #pragma once
 
 #include <array>
@@ -6,27 +6,22 @@
 #include <string>
 #include <vector>
 
+#include "DDC_ReferenceCell.hpp"
+
 namespace ddc {
 
-/// Element geometry. Node ordering follows Gmsh: corners counter-clockwise,
-/// then (Quad9) mid-side nodes 4:(0-1) 5:(1-2) 6:(2-3) 7:(3-0), centre 8.
-enum class CellType { Quad4, Quad9 };
-
-/// Number of nodes of a cell type.
-int numCellNodes(CellType t);
-/// Human-readable name ("Quad4", "Quad9").
-const char* cellTypeName(CellType t);
-
-/// A boundary segment: side `localSide` of element `element` (side s runs
-/// from corner s to corner (s+1)%4). Nodes are listed in the element's
-/// counter-clockwise sense: for a body on the left of the direction of
-/// travel the outward normal is n = (dy, -dx)/|.|. Two nodes for Quad4,
-/// three (start, end, middle) for Quad9.
+/// A boundary facet: facet `localSide` of element `element` as described by
+/// referenceCell(cell type).facets (a side of a 2-D cell, a face of a 3-D
+/// cell), with the element's global node numbers in the facet's node order
+/// and outward orientation: in 2-D a side runs with the body on its left,
+/// outward normal n = (dy, -dx)/|.|, two nodes for Quad4 and three (start,
+/// end, middle) for Quad9; in 3-D the face corners run counter-clockwise
+/// seen from outside (4/8/9 nodes for Hex8/20/27 faces, 3/6 for Tet4/10).
 struct Segment {
   int element = -1;
   int localSide = -1;
   int numNodes = 0;
-  std::array<int, 3> nodes{{-1, -1, -1}};
+  std::array<int, 9> nodes{{-1, -1, -1, -1, -1, -1, -1, -1, -1}};
 };
 
 /// A body: a contiguous range of elements and nodes with one cell type.
@@ -37,16 +32,19 @@ struct Body {
   int firstElement = 0, numElements = 0;
 };
 
-/// A replicated 2-D mesh. Bodies do not share nodes. Set names are qualified
+/// A replicated mesh of one dimension (2 or 3, set by its first body's cell
+/// type; bodies of another dimension are refused). Bodies do not share nodes. Set names are qualified
 /// by the body: "Upper Ring/outer". Each side set also defines a node set of
 /// the same name (the nodes of its segments).
 class Mesh {
  public:
   /// Start a new body; nodes and elements added afterwards belong to it.
-  /// \pre no body with this name yet (throws InputError otherwise).
+  /// Throws InputError if a body has this name already, `cellType` is not an
+  /// element cell type, or its dimension differs from the other bodies'.
   int beginBody(const std::string& name, CellType cellType);
-  /// Add a node of the current body; returns its global index.
-  int addNode(double x, double y);
+  /// Add a node of the current body; returns its global index. 2-D meshes
+  /// keep z = 0.
+  int addNode(double x, double y, double z = 0.0);
   /// Add an element of the current body; `nodes` holds numCellNodes() global
   /// node indices in Gmsh order. Returns the element index.
   int addElement(const int* nodes);
@@ -55,8 +53,16 @@ class Mesh {
   void addNodeSet(int body, const std::string& localName, std::vector<int> nodes);
   /// Name a set of element sides; also defines the node set of the same name.
   void addSideSet(int body, const std::string& localName, std::vector<Segment> segments);
-  /// The segment for side `localSide` of element `e`, oriented as documented.
+  /// The facet `localSide` of element `e`, oriented as documented.
   Segment makeSegment(int e, int localSide) const;
+  /// Number of facets (sides or faces) of element `e`.
+  int elementNumFacets(int e) const;
+  /// The corner nodes of facet `f` of element `e`, sorted: equal for the two
+  /// elements that share the facet.
+  std::vector<int> facetKey(int e, int f) const;
+
+  /// Spatial dimension: 2 or 3, 0 before the first body.
+  int dim() const { return dim_; }
 
   int numBodies() const { return static_cast<int>(bodies_.size()); }
   const Body& body(int b) const { return bodies_.at(b); }
@@ -65,8 +71,9 @@ class Mesh {
 
   int numNodes() const { return static_cast<int>(coords_.size()); }
   int numElements() const { return static_cast<int>(elemBody_.size()); }
-  const std::array<double, 2>& coord(int n) const { return coords_[n]; }
-  std::array<double, 2>& coord(int n) { return coords_[n]; }
+  /// Coordinates (x, y, z); z = 0 in 2-D.
+  const std::array<double, 3>& coord(int n) const { return coords_[n]; }
+  std::array<double, 3>& coord(int n) { return coords_[n]; }
   int elementBody(int e) const { return elemBody_[e]; }
   CellType elementType(int e) const { return bodies_[elemBody_[e]].cellType; }
   int elementNumNodes(int e) const { return elemOffset_[e + 1] - elemOffset_[e]; }
@@ -86,8 +93,9 @@ class Mesh {
   void check() const;
 
  private:
+  int dim_ = 0;
   std::vector<Body> bodies_;
-  std::vector<std::array<double, 2>> coords_;
+  std::vector<std::array<double, 3>> coords_;
   std::vector<int> elemBody_;
   std::vector<int> elemOffset_{0};
   std::vector<int> elemNodes_;

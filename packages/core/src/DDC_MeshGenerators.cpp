@@ -94,25 +94,24 @@ void addStructuredBody(Mesh& mesh, int body, const Grid& g, CellType type, bool 
                        const std::vector<std::array<double, 2>>& xy,
                        const std::array<std::string, 4>& sideNames) {
   for (const auto& p : xy) mesh.addNode(p[0], p[1]);
-  const int nn = numCellNodes(type);
+  const ReferenceCell& ref = referenceCell(type);
   std::vector<Segment> sides[4];
   for (int j = 0; j < g.nb; ++j) {
     for (int i = 0; i < g.na; ++i) {
       const auto c = cellCorners(g, i, j, flip);
       int nodes[9];
       for (int k = 0; k < 4; ++k) nodes[k] = g.node(c[k][0], c[k][1]);
-      if (nn == 9) {
-        for (int k = 0; k < 4; ++k) {
-          const auto& p = c[k];
-          const auto& q = c[(k + 1) % 4];
-          nodes[4 + k] = g.node((p[0] + q[0]) / 2, (p[1] + q[1]) / 2);
+      for (const auto& edge : ref.edges)
+        if (edge.middle >= 0) {
+          const auto& p = c[edge.start];
+          const auto& q = c[edge.end];
+          nodes[edge.middle] = g.node((p[0] + q[0]) / 2, (p[1] + q[1]) / 2);
         }
-        nodes[8] = g.node(g.m * i + 1, g.m * j + 1);
-      }
+      if (type == CellType::Quad9) nodes[8] = g.node(g.m * i + 1, g.m * j + 1);
       const int e = mesh.addElement(nodes);
-      for (int s = 0; s < 4; ++s)
+      for (int s = 0; s < static_cast<int>(ref.facets.size()); ++s)
         for (int side = 0; side < 4; ++side)
-          if (onGridSide(g, c[s], side) && onGridSide(g, c[(s + 1) % 4], side))
+          if (onGridSide(g, c[ref.facets[s].nodes[0]], side) && onGridSide(g, c[ref.facets[s].nodes[1]], side))
             sides[side].push_back(mesh.makeSegment(e, s));
     }
   }

@@ -24,18 +24,14 @@ constexpr const char* kParam = "Partition/Number of Subdomains";
 /// Fixed METIS seed: the same partition on every rank and every run.
 constexpr idx_t kMetisSeed = 42;
 
-/// Edge-neighbours of each element (elements sharing two corner nodes).
+/// Facet-neighbours of each element (elements sharing a side in 2-D, a face
+/// in 3-D).
 std::vector<std::vector<int>> edgeNeighbours(const Mesh& mesh) {
-  std::map<std::pair<int, int>, std::vector<int>> byEdge;
-  for (int e = 0; e < mesh.numElements(); ++e) {
-    const int* n = mesh.elementNodes(e);
-    for (int s = 0; s < 4; ++s) {
-      const int p = n[s], q = n[(s + 1) % 4];
-      byEdge[{std::min(p, q), std::max(p, q)}].push_back(e);
-    }
-  }
+  std::map<std::vector<int>, std::vector<int>> byFacet;
+  for (int e = 0; e < mesh.numElements(); ++e)
+    for (int f = 0; f < mesh.elementNumFacets(e); ++f) byFacet[mesh.facetKey(e, f)].push_back(e);
   std::vector<std::vector<int>> nb(mesh.numElements());
-  for (const auto& kv : byEdge)
+  for (const auto& kv : byFacet)
     for (int a : kv.second)
       for (int b : kv.second)
         if (a != b) nb[a].push_back(b);

@@ -78,8 +78,8 @@ TEST(Gmsh, ReadsQuad4RectangleWithSets) {
   EXPECT_EQ(m.numNodes(), 6);
   EXPECT_EQ(m.numElements(), 2);
   // Compact numbering in tag order: tag 10 -> 0, ..., 60 -> 5.
-  EXPECT_EQ(m.coord(0), (std::array<double, 2>{0.0, 0.0}));
-  EXPECT_EQ(m.coord(5), (std::array<double, 2>{2.0, 1.0}));
+  EXPECT_EQ(m.coord(0), (std::array<double, 3>{0.0, 0.0, 0.0}));
+  EXPECT_EQ(m.coord(5), (std::array<double, 3>{2.0, 1.0, 0.0}));
   // Element 5 is clockwise in the file and must have been reordered.
   double area = 0;
   for (int e = 0; e < 2; ++e) {
@@ -95,8 +95,8 @@ TEST(Gmsh, ReadsQuad4RectangleWithSets) {
   EXPECT_EQ(m.nodeSet("Block/left").size(), 2u);
   // The "right" line runs top to bottom in the file; the segment follows the body.
   const auto& r = m.sideSet("Block/right")[0];
-  EXPECT_EQ(m.coord(r.nodes[0]), (std::array<double, 2>{2.0, 0.0}));
-  EXPECT_EQ(m.coord(r.nodes[1]), (std::array<double, 2>{2.0, 1.0}));
+  EXPECT_EQ(m.coord(r.nodes[0]), (std::array<double, 3>{2.0, 0.0, 0.0}));
+  EXPECT_EQ(m.coord(r.nodes[1]), (std::array<double, 3>{2.0, 1.0, 0.0}));
   expectOutward(m, b, "Block/left");
   expectOutward(m, b, "Block/right");
   // Physical point and physical surface -> node sets.
@@ -117,9 +117,9 @@ TEST(Gmsh, ReadsQuad9WithParametricNodesAndThreeNodeLines) {
   const auto& segs = m.sideSet("Plate/bottom");
   ASSERT_EQ(segs.size(), 1u);
   ASSERT_EQ(segs[0].numNodes, 3);
-  EXPECT_EQ(m.coord(segs[0].nodes[0]), (std::array<double, 2>{0.0, 0.0}));
-  EXPECT_EQ(m.coord(segs[0].nodes[1]), (std::array<double, 2>{2.0, 0.0}));
-  EXPECT_EQ(m.coord(segs[0].nodes[2]), (std::array<double, 2>{1.0, 0.0}));
+  EXPECT_EQ(m.coord(segs[0].nodes[0]), (std::array<double, 3>{0.0, 0.0, 0.0}));
+  EXPECT_EQ(m.coord(segs[0].nodes[1]), (std::array<double, 3>{2.0, 0.0, 0.0}));
+  EXPECT_EQ(m.coord(segs[0].nodes[2]), (std::array<double, 3>{1.0, 0.0, 0.0}));
   expectOutward(m, 0, "Plate/bottom");
   EXPECT_EQ(m.nodeSet("Plate/plate").size(), 9u);
 }
@@ -141,8 +141,8 @@ TEST(Gmsh, PhysicalSurfaceSelectsOneBody) {
   // The shared curve is on the boundary of each body separately.
   for (const char* s : {"A/left", "A/interface", "B/right", "B/interface"})
     expectOutward(m, std::string(s)[0] == 'A' ? a : b, s);
-  EXPECT_EQ(m.coord(m.sideSet("A/interface")[0].nodes[0]), (std::array<double, 2>{1.0, 0.0}));
-  EXPECT_EQ(m.coord(m.sideSet("B/interface")[0].nodes[0]), (std::array<double, 2>{1.0, 1.0}));
+  EXPECT_EQ(m.coord(m.sideSet("A/interface")[0].nodes[0]), (std::array<double, 3>{1.0, 0.0, 0.0}));
+  EXPECT_EQ(m.coord(m.sideSet("B/interface")[0].nodes[0]), (std::array<double, 3>{1.0, 1.0, 0.0}));
   EXPECT_FALSE(m.hasNodeSet("A/pad"));
   EXPECT_EQ(m.nodeSet("B/pad").size(), 4u);
   // Without a selection the shared curve is interior: rejected.

@@ -93,10 +93,10 @@ TEST(RectangleGenerator, Quad4CountsSetsAreaOrientation) {
   EXPECT_EQ(m.nodeSet("Block/all").size(), 20u);
   const auto corner = [&](const std::string& n) { return m.coord(m.nodeSet("Block/" + n).at(0)); };
   EXPECT_EQ(m.nodeSet("Block/top right").size(), 1u);
-  EXPECT_EQ(corner("bottom left"), (std::array<double, 2>{1.0, -1.0}));
-  EXPECT_EQ(corner("bottom right"), (std::array<double, 2>{3.0, -1.0}));
-  EXPECT_EQ(corner("top left"), (std::array<double, 2>{1.0, 0.5}));
-  EXPECT_EQ(corner("top right"), (std::array<double, 2>{3.0, 0.5}));
+  EXPECT_EQ(corner("bottom left"), (std::array<double, 3>{1.0, -1.0, 0.0}));
+  EXPECT_EQ(corner("bottom right"), (std::array<double, 3>{3.0, -1.0, 0.0}));
+  EXPECT_EQ(corner("top left"), (std::array<double, 3>{1.0, 0.5, 0.0}));
+  EXPECT_EQ(corner("top right"), (std::array<double, 3>{3.0, 0.5, 0.0}));
   for (int n : m.nodeSet("Block/right")) EXPECT_EQ(m.coord(n)[0], 3.0);
   for (int n : m.nodeSet("Block/top")) EXPECT_EQ(m.coord(n)[1], 0.5);
   auto inside = [](double x, double y) { return x > 1.0 && x < 3.0 && y > -1.0 && y < 0.5; };
