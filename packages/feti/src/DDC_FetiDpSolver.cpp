@@ -1,5 +1,5 @@
-// FETI-DP dual-interface solver (DESIGN.md §1 "Dual-interface solver:
-// FETI-DP", §2 design card): see DDC_FetiDpSolver.hpp for the method.
+// FETI-DP dual-interface solver (doc/feti-dp.md): see DDC_FetiDpSolver.hpp
+// for the method.
 //
 // Data layout on each rank:
 //  - per subdomain (Sub): the split of K^s into remainder (r) / primal (Pi)
