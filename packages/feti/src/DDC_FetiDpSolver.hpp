@@ -1,8 +1,8 @@
 // FETI-DP dual-interface solver: the algebra only (doc/feti-dp.md; Farhat,
 // Lesoinne, LeTallec, Pierson & Rixen 2001).
 //
-// It knows no mesh and no contact (DESIGN.md §3): the caller hands it, per
-// subdomain, the global ids of the subdomain's free DOFs, which of them are
+// It knows no mesh and no contact (doc/architecture.md): the caller hands
+// it, per subdomain, the global ids of the subdomain's free DOFs, which of them are
 // primal (assembled globally into the coarse problem) and the subdomain
 // stiffness K^s on MPI_COMM_SELF. From that it builds the interface
 // compatibility constraints B, the partially assembled operator
@@ -87,7 +87,7 @@ struct ConstraintEntry {
 ///    to zero: F, d and the preconditioner are masked, F -> P F P,
 ///    d -> P (B K~^{-1} f~ - c), M^{-1} -> P M^{-1} P. This class does not
 ///    decide which rows are active (an inequality is the caller's active
-///    set), nor what the rows mean (DESIGN.md §3). With extra rows the
+///    set), nor what the rows mean (doc/architecture.md). With extra rows the
 ///    problem is the saddle point K u + B_c^T mu = b, B_c u = c (active
 ///    rows; mu = 0 on the others), mu from constraintMultipliers().
 ///
