@@ -1,4 +1,4 @@
-// FETI-DP solver (DESIGN.md §1, verification ladder rung 3, §6): synthetic
+// FETI-DP solver (doc/feti-dp.md; rung 3 of doc/verification.md): synthetic
 // structured-grid problems (scalar Laplacian and plane-stress elasticity
 // with bilinear quads), split into Sx x Sy subdomains with the left edge
 // fixed (eliminated), primal DOFs at the cross points and at the ends of
