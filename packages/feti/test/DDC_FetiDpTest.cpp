@@ -287,7 +287,7 @@ RCP<Vector> directSolve(const Problem& pb, const Vector& b) {
   solver->numeric();
   auto u = rcp(new Vector(pb.ownedMap()));
   solver->solve(b, *u);
-  // check the reference by its residual (DESIGN.md §2: check every direct solve)
+  // check the reference by its residual (doc/trilinos-notes.md: check every direct solve)
   Vector r(pb.ownedMap());
   K->apply(*u, r);
   r.update(1.0, b, -1.0);
