@@ -156,7 +156,7 @@ History readHistory(const std::string& label, const std::string& file) {
   if (header.empty()) FIG4_INPUT_ERROR(file << ": empty file (expected a history.csv header)");
   std::map<std::string, size_t> col;
   for (size_t j = 0; j < header.size(); ++j) col.emplace(header[j], j);
-  // The stable history.csv columns of DESIGN.md §4 that the study uses;
+  // The stable history.csv columns (doc/user-guide.md) that the study uses;
   // 'bisections' is an extra column and optional.
   const std::vector<std::string> required = {"step", "load_factor", "strain_energy", "newton_iterations",
                                              "dual_iterations", "contact_exchanges", "wall_seconds"};
