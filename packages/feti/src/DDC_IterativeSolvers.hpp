@@ -1,5 +1,5 @@
 // Monolithic iterative alternatives behind the local-solver factory
-// (DESIGN.md §1 "Monolithic strategy", §7 performance yardsticks):
+// (doc/user-guide.md "Solution method"; measured in doc/performance.md):
 //
 //   "Belos-MueLu"  : Belos CG, preconditioned by one MueLu smoothed-
 //                    aggregation V-cycle (SPD matrices: linear elasticity,
