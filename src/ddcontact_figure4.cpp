@@ -1,5 +1,5 @@
 // ddcontact-figure4: the strain-energy error study of Fang & Izzuddin (2022),
-// Figure 4, from ddcontact history.csv files (DESIGN.md §5, doc/figure4.md).
+// Figure 4, from ddcontact history.csv files (doc/figure4.md).
 //
 //   ddcontact-figure4 --reference REF/history.csv --run LABEL=DIR/history.csv ...
 //                     [--csv figure4.csv] [--check] [--check-floor F]
@@ -41,7 +41,7 @@ const char* kUsage =
     "                         [--decomposed LABEL]... [--monolithic20 LABEL]\n"
     "\n"
     "Strain-energy error of ddcontact runs against a reference run (Fang & Izzuddin 2022,\n"
-    "Figure 4; DESIGN.md section 5; doc/figure4.md).\n"
+    "Figure 4; doc/figure4.md).\n"
     "\n"
     "  --reference FILE      history.csv of the reference (the 100-step monolithic run); it must\n"
     "                        have a row at every load factor the runs stop at (tolerance 1e-9)\n"
@@ -74,7 +74,7 @@ const char* kUsage =
 
 const double kMatchTol = 1e-9;        // load factor lookup in the reference
 const double kNominalTol = 1e-12;     // nominal step end: load_factor = s * delta
-const double kReportThreshold = 1e-8; // report e where U_ref > 1e-8 max U_ref (DESIGN.md §5)
+const double kReportThreshold = 1e-8; // report e where U_ref > 1e-8 max U_ref (doc/figure4.md)
 
 struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -156,7 +156,7 @@ History readHistory(const std::string& label, const std::string& file) {
   if (header.empty()) FIG4_INPUT_ERROR(file << ": empty file (expected a history.csv header)");
   std::map<std::string, size_t> col;
   for (size_t j = 0; j < header.size(); ++j) col.emplace(header[j], j);
-  // The stable history.csv columns of DESIGN.md §4 that the study uses;
+  // The stable history.csv columns (doc/user-guide.md) that the study uses;
   // 'bisections' is an extra column and optional.
   const std::vector<std::string> required = {"step", "load_factor", "strain_energy", "newton_iterations",
                                              "dual_iterations", "contact_exchanges", "wall_seconds"};

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Fang & Izzuddin (2022), Figure 4: strain-energy error of the two-half-rings
-# benchmark (DESIGN.md section 5, doc/figure4.md). One command:
+# benchmark (doc/figure4.md). One command:
 #
 #   bash examples/figure4/run_figure4.sh BUILD_OR_INSTALL_DIR [OUT_DIR]
 #

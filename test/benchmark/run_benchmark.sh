@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Performance benchmark (DESIGN.md §7): not part of ctest. Prints two
+# Performance benchmark (doc/performance.md): not part of ctest. Prints two
 # markdown tables:
 #  1. examples/elastic_block.xml at ~50k, 200k, 800k DOFs on RANKS ranks with
 #     every strategy: median over REPS runs of set-up (factorisation /

@@ -1,4 +1,5 @@
-// history.csv: one row per converged load step (DESIGN.md §4).
+// history.csv: one row per converged load step (doc/user-guide.md, "The
+// output directory").
 #pragma once
 
 #include <memory>
@@ -31,7 +32,7 @@ class HistoryWriter {
   /// Name of the history file inside the output directory.
   static constexpr const char* defaultFileName() { return "history.csv"; }
 
-  /// The DESIGN.md §4 columns, exactly and in this order:
+  /// The stable columns (doc/user-guide.md), exactly and in this order:
   /// step,load_factor,strain_energy,newton_iterations,dual_iterations,
   /// active_contacts,contact_force_x,contact_force_y,contact_exchanges,wall_seconds.
   /// Callers may append extra columns.

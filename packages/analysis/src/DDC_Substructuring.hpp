@@ -14,7 +14,7 @@ namespace ddc {
 
 class Model;
 
-/// Primal node selection (DESIGN.md §1):
+/// Primal node selection (doc/feti-dp.md, "Primal nodes"):
 ///  1. interface nodes shared by ≥ 3 subdomains (cross points);
 ///  2. interface nodes on the mesh boundary (the ends of a subdomain–
 ///     subdomain interface that reaches the boundary);

@@ -1,5 +1,5 @@
 // Parallel VTK XML output: one .vtu per piece (subdomain), one .pvtu per step,
-// one .pvd time series (DESIGN.md §4, "vtk/").
+// one .pvd time series (doc/user-guide.md, "The output directory", vtk/).
 #pragma once
 
 #include <string>

@@ -1,4 +1,5 @@
-// Contact verification (DESIGN.md §6 rungs 2 and 5, Fang & Izzuddin 2022):
+// Contact verification (doc/verification.md rungs 2 and 5, doc/contact.md;
+// Fang & Izzuddin 2022):
 //   1. contact patch test: two flat blocks with non-matching meshes, a
 //      uniform pressure on the upper block; the contact pressure on the
 //      slave nodes is uniform and equals the applied pressure, for both

@@ -1,6 +1,6 @@
-// Embedding API (DESIGN.md, Tribol-style lifecycle): a host code assembles
-// the parameters in memory, registers its own element types in an
-// ElementFactory, runs the analysis and reads the results. Also the two
+// Embedding API (doc/user-guide.md, "Embedding in a host code"): a host
+// code assembles the parameters in memory, registers its own element types
+// in an ElementFactory, runs the analysis and reads the results. Also the two
 // input errors a host meets first: an unknown element type and a misspelt
 // parameter. Runs on 1 and 2 ranks; input errors are raised on every rank.
 #include <gtest/gtest.h>

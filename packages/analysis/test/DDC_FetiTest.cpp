@@ -1,5 +1,5 @@
-// FETI-DP acceptance tests at the analysis level (DESIGN.md §1 "Dual-interface
-// solver: FETI-DP", §6 rung 3), on meshes, partitions and corner selection
+// FETI-DP acceptance tests at the analysis level (doc/feti-dp.md; rung 3 of
+// doc/verification.md), on meshes, partitions and corner selection
 // made by the analysis (the algebra alone is tested in
 // packages/feti/test/DDC_FetiDpTest.cpp):
 //   a. linear elasticity: FETI-DP = monolithic direct (MUMPS) to 1e-8, for

@@ -1,4 +1,5 @@
-// Output contract (DESIGN.md §4): staged output directory, history.csv, VTK
+// Output contract (doc/user-guide.md, "The output directory"): staged output
+// directory, history.csv, VTK
 // XML time series. Runs on 1 and 2 ranks; every check that involves an error
 // expects the same exception on every rank (and no hang).
 #include <gtest/gtest.h>

@@ -1,4 +1,5 @@
-// Verification ladder (DESIGN.md §6), rungs that need the whole analysis:
+// Verification checks that need the whole analysis (doc/verification.md;
+// item 1 is rung 2 of its ladder, the others are checks beside it):
 //   1. patch tests on distorted meshes (affine boundary data -> exact affine
 //      solution, uniform closed-form stress), Quad4 / Quad9 x 3 materials;
 //   2. a 90 degree rigid rotation stores no energy and no stress (objectivity);

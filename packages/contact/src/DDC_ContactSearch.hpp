@@ -1,6 +1,6 @@
 // Contact search and tracking for node-to-segment contact in 2-D: which
 // master segment each slave node is paired with, its closest-point projection
-// ξ, outward normal n and normal gap g_N (DESIGN.md §1). Straight 2-node
+// ξ, outward normal n and normal gap g_N (doc/contact.md). Straight 2-node
 // master segments (sides of Quad4 bodies) only.
 //
 // Geometry rules (one place, used by the global search and the tracking alike,

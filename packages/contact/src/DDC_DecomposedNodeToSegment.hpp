@@ -1,6 +1,6 @@
 // The decomposed node-to-segment element of Fang & Izzuddin (2022): the
 // slave and master counterparts, which may live in different subdomains and
-// share only the contact Lagrange multiplier λ (DESIGN.md §1).
+// share only the contact Lagrange multiplier λ (doc/contact.md).
 //
 // With ξ^p and n^p frozen on the last converged configuration (paper eq. 1)
 // the gap is linear in the displacements:

@@ -1,5 +1,5 @@
 // The conventional nonlinear node-to-segment (NTS) contact element with a
-// Lagrange multiplier — the monolithic reference of DESIGN.md §1 — and the
+// Lagrange multiplier — the monolithic reference of doc/contact.md — and the
 // registration of every contact element type in the element factory.
 //
 // Geometry (2-D, straight 2-node master segment):

@@ -3,7 +3,7 @@
 //
 // Partitions are computed identically on every rank (METIS is deterministic
 // for a fixed input and options), so no communication is needed; the mesh
-// is replicated (DESIGN.md §2).
+// is replicated (doc/architecture.md).
 #pragma once
 
 #include <string>

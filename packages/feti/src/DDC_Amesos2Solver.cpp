@@ -237,7 +237,7 @@ std::vector<std::string> Amesos2Solver::availableSolvers() {
     // Canonical spellings of the solvers Amesos2 13.2 knows (Amesos2_Factory.hpp).
     // Tacho is left out on purpose: Amesos2::query reports it, but it
     // segfaults in numericFactorization in Debian's Trilinos 13.2
-    // (DESIGN.md §2), and a crash is no way to tell a user about it.
+    // (doc/trilinos-notes.md), and a crash is no way to tell a user about it.
     const std::vector<std::string> candidates{"KLU2",      "Basker", "ShyLUBasker", "SuperLU",  "SuperLU_MT",
                                               "SuperLU_Dist", "Umfpack", "Pardiso_MKL", "LAPACK",
                                               "MUMPS",     "STRUMPACK", "Cholmod",  "cuSOLVER"};

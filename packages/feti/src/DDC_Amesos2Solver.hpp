@@ -1,7 +1,7 @@
 // "Amesos2" back end of the local-solver factory (KLU2 by default).
 //
-// Pitfall of this Trilinos build (DESIGN.md §2): Amesos2/KLU2 returns a
-// wrong solution for a matrix distributed over several ranks, but is correct
+// Pitfall of this Trilinos build (doc/trilinos-notes.md): Amesos2/KLU2
+// returns a wrong solution for a matrix distributed over several ranks, but is correct
 // on MPI_COMM_SELF. So a matrix whose communicator has more than one rank is
 // gathered to rank 0 into a CrsMatrix on MPI_COMM_SELF and factorised there;
 // b is gathered and x scattered in solve(). A matrix on one rank (FETI-DP

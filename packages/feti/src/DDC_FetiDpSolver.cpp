@@ -1,5 +1,5 @@
-// FETI-DP dual-interface solver (DESIGN.md §1 "Dual-interface solver:
-// FETI-DP", §2 design card): see DDC_FetiDpSolver.hpp for the method.
+// FETI-DP dual-interface solver (doc/feti-dp.md): see DDC_FetiDpSolver.hpp
+// for the method.
 //
 // Data layout on each rank:
 //  - per subdomain (Sub): the split of K^s into remainder (r) / primal (Pi)
@@ -1157,8 +1157,9 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
                 "Direct solver {Type, ...} for the subdomain matrices K_rr and K_II (on MPI_COMM_SELF).")
         .setParameters(*DirectSolverFactory::getValidParameters());
     pl->sublist("Coarse Solver", false,
-                "Direct solver {Type, ...} for the coarse matrix S_PiPi, distributed over all ranks (use MUMPS: "
-                "Amesos2/KLU2 is wrong on distributed matrices in Debian's Trilinos, DESIGN.md §2).")
+                "Direct solver {Type, ...} for the coarse matrix S_PiPi, distributed over all ranks (MUMPS "
+                "factorises it in parallel; Amesos2 gathers it to rank 0, because KLU2 is wrong on distributed "
+                "matrices in Debian's Trilinos 13.2: doc/trilinos-notes.md).")
         .setParameters(*DirectSolverFactory::getValidParameters());
     return RCP<const Teuchos::ParameterList>(pl);
   }();

@@ -1,12 +1,13 @@
-// FETI-DP dual-interface solver: the algebra only (DESIGN.md §1, §2).
+// FETI-DP dual-interface solver: the algebra only (doc/feti-dp.md; Farhat,
+// Lesoinne, LeTallec, Pierson & Rixen 2001).
 //
-// It knows no mesh and no contact (DESIGN.md §3): the caller hands it, per
-// subdomain, the global ids of the subdomain's free DOFs, which of them are
+// It knows no mesh and no contact (doc/architecture.md): the caller hands
+// it, per subdomain, the global ids of the subdomain's free DOFs, which of them are
 // primal (assembled globally into the coarse problem) and the subdomain
 // stiffness K^s on MPI_COMM_SELF. From that it builds the interface
 // compatibility constraints B, the partially assembled operator
 //
-//     F = B K~^{-1} B^T ,   d = B K~^{-1} f~            (DESIGN.md §1)
+//     F = B K~^{-1} B^T ,   d = B K~^{-1} f~            (doc/feti-dp.md)
 //
 // (K~ = the stiffness assembled only at primal DOFs) and solves F lambda = d
 // with Belos, preconditioned by the Dirichlet or lumped preconditioner.
@@ -70,7 +71,7 @@ struct ConstraintEntry {
 /// FETI-DP solver for K u = b, K = sum_s R_s^T K^s R_s (the globally
 /// assembled stiffness of the subdomains given to setTopology()).
 ///
-/// Unknowns and constraints (DESIGN.md §1):
+/// Unknowns and constraints (doc/feti-dp.md):
 ///  - every subdomain keeps its own copy of its DOFs; the primal DOFs are
 ///    assembled globally (coarse space);
 ///  - one Lagrange multiplier (LM) per pair of subdomains sharing a
@@ -86,7 +87,7 @@ struct ConstraintEntry {
 ///    to zero: F, d and the preconditioner are masked, F -> P F P,
 ///    d -> P (B K~^{-1} f~ - c), M^{-1} -> P M^{-1} P. This class does not
 ///    decide which rows are active (an inequality is the caller's active
-///    set), nor what the rows mean (DESIGN.md §3). With extra rows the
+///    set), nor what the rows mean (doc/architecture.md). With extra rows the
 ///    problem is the saddle point K u + B_c^T mu = b, B_c u = c (active
 ///    rows; mu = 0 on the others), mu from constraintMultipliers().
 ///
@@ -102,7 +103,8 @@ struct ConstraintEntry {
 /// subdomain) is raised on every rank with the same message.
 ///
 /// Floating subdomains are not treated with a kernel: the caller must make
-/// every K_rr^s nonsingular by choosing enough primal DOFs (DESIGN.md §1).
+/// every K_rr^s nonsingular by choosing enough primal DOFs (doc/feti-dp.md,
+/// "Primal nodes"; the analysis package does it in selectPrimalNodes()).
 class FetiDpSolver {
  public:
   /// Statistics of one solve(). Times in seconds, maximum over the ranks.

@@ -2,8 +2,8 @@
 // overlapping Schwarz preconditioner with a GDSW coarse space (see
 // DDC_IterativeSolvers.hpp for the contract).
 //
-// Pitfalls (DESIGN.md §2): FROSch headers compile only after
-// ShyLU_DDFROSch_config.h and FROSch_Tools_def.hpp, in this order, and
+// Pitfalls of Debian's Trilinos 13.2 (doc/trilinos-notes.md): FROSch headers
+// compile only after ShyLU_DDFROSch_config.h and FROSch_Tools_def.hpp, in this order, and
 // FROSch_Tools_def.hpp itself needs Xpetra_MapFactory.hpp first (it uses
 // Xpetra::MapFactory without including it).
 // With HAVE_SHYLU_DDFROSCH_ZOLTAN2, FROSch_Tools_decl.hpp and
@@ -137,7 +137,7 @@ Teuchos::ParameterList defaultFroschList() {
     d.set("Type", std::string("linear"), "gather the coarse matrix ...");
     d.set("NumProcs", 1,
           "... to this many ranks (1: KLU2 on a one-rank communicator, which is correct; "
-          "KLU2 on a distributed matrix is not in this Trilinos, DESIGN.md §2)");
+          "KLU2 on a distributed matrix is wrong in this Trilinos, doc/trilinos-notes.md)");
     klu(c.sublist("CoarseSolver", false, "coarse solver (on the ranks of 'Distribution')"));
   }
   {

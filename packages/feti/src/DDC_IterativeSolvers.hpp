@@ -1,5 +1,5 @@
 // Monolithic iterative alternatives behind the local-solver factory
-// (DESIGN.md §1 "Monolithic strategy", §7 performance yardsticks):
+// (doc/user-guide.md "Solution method"; measured in doc/performance.md):
 //
 //   "Belos-MueLu"  : Belos CG, preconditioned by one MueLu smoothed-
 //                    aggregation V-cycle (SPD matrices: linear elasticity,
@@ -139,7 +139,7 @@ class IterativeSolver : public DirectSolver {
 /// the node coordinates; a level of fewer than "repartition: min rows per
 /// proc" rows goes to one rank, and "repartition: use subcommunicators" gives
 /// it a one-rank communicator), because KLU2 on a matrix distributed over
-/// several ranks is wrong in this Trilinos (DESIGN.md §2; measured: with
+/// several ranks is wrong in this Trilinos (doc/trilinos-notes.md; measured: with
 /// "repartition: enable" = false CG breaks down at once on 2 ranks).
 /// Without coordinates ("Null Space" = "Translations" and no
 /// setCoordinates()), repartitioning is impossible: unless the user's list

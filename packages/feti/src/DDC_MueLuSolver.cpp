@@ -47,7 +47,7 @@ Teuchos::ParameterList defaultMueLuList() {
   p.set("coarse: max size", 1000, "stop coarsening below this many rows");
   p.set("coarse: type", std::string("KLU2"),
         "exact coarse solve; correct in parallel only because repartitioning moves the coarse level to one "
-        "rank (KLU2 on a distributed matrix is wrong in this Trilinos, DESIGN.md §2)");
+        "rank (KLU2 on a distributed matrix is wrong in this Trilinos, doc/trilinos-notes.md)");
   p.set("repartition: enable", true,
         "rebalance levels with too few rows per rank; with 'repartition: use subcommunicators' a level of "
         "fewer than 'repartition: min rows per proc' rows ends up on a one-rank communicator");
@@ -154,7 +154,7 @@ Teuchos::RCP<Operator> MueLuSolver::buildPreconditioner(bool first, const Teucho
         // Repartitioning needs coordinates (geometric partitioner, and MueLu
         // transfers them level by level). Without them: no repartitioning,
         // and, since KLU2 on a distributed coarse matrix is wrong here
-        // (DESIGN.md §2), a Chebyshev polynomial as coarse solver (symmetric,
+        // (doc/trilinos-notes.md), a Chebyshev polynomial as coarse solver (symmetric,
         // so CG still applies), unless the user chose one.
         list.set("repartition: enable", false);
         if (!m.userSetCoarse) {

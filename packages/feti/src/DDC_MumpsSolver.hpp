@@ -1,6 +1,6 @@
 // "MUMPS" back end of the local-solver factory: MUMPS 5 called through its C
 // API (dmumps_c), because Debian's Amesos2 is built without MUMPS
-// (DESIGN.md §2).
+// (doc/trilinos-notes.md).
 //
 // The matrix is handed to MUMPS in distributed assembled form (ICNTL(18)=3:
 // every rank passes the rows it owns), the right-hand side is centralised

@@ -2,7 +2,7 @@
 // symmetric indefinite saddle-point matrix [K B^T; B 0], distributed over
 // the world communicator and on MPI_COMM_SELF, checked by the residual
 // ||b - A x|| / ||b|| computed with Tpetra's apply (never against the solver
-// itself: DESIGN.md §2 records a wrong KLU2 solution on 2 ranks). Also:
+// itself: doc/trilinos-notes.md records a wrong KLU2 solution on 2 ranks). Also:
 // refactorisation with the same pattern (symbolic reuse), singular matrices,
 // several right-hand sides, coexisting instances, factory errors.
 #include <gtest/gtest.h>

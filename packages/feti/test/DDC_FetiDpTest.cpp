@@ -1,4 +1,4 @@
-// FETI-DP solver (DESIGN.md §1, verification ladder rung 3, §6): synthetic
+// FETI-DP solver (doc/feti-dp.md; rung 3 of doc/verification.md): synthetic
 // structured-grid problems (scalar Laplacian and plane-stress elasticity
 // with bilinear quads), split into Sx x Sy subdomains with the left edge
 // fixed (eliminated), primal DOFs at the cross points and at the ends of
@@ -287,7 +287,7 @@ RCP<Vector> directSolve(const Problem& pb, const Vector& b) {
   solver->numeric();
   auto u = rcp(new Vector(pb.ownedMap()));
   solver->solve(b, *u);
-  // check the reference by its residual (DESIGN.md §2: check every direct solve)
+  // check the reference by its residual (doc/trilinos-notes.md: check every direct solve)
   Vector r(pb.ownedMap());
   K->apply(*u, r);
   r.update(1.0, b, -1.0);

@@ -5,7 +5,8 @@
 // definite), distributed over the world communicator in node-major DOF
 // numbering. Checked:
 //  - residual ||b - A x|| / ||b|| computed with Tpetra's apply (never the
-//    solver's own estimate: DESIGN.md §2 records wrong parallel coarse solves),
+//    solver's own estimate: doc/trilinos-notes.md records wrong parallel
+//    coarse solves),
 //  - agreement with MUMPS,
 //  - iteration-count bounds (printed with the timings for the record),
 //  - rigid-body modes lie in the kernel of the unconstrained stiffness,
