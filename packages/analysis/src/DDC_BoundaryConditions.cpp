@@ -1,5 +1,6 @@
 #include "DDC_BoundaryConditions.hpp"
 
+#include <cctype>
 #include <cmath>
 
 #include "DDC_Error.hpp"
@@ -8,48 +9,69 @@
 namespace ddc {
 
 double DisplacementCondition::prescribed(int c, const std::array<double, 3>& X, double lambda) const {
-  const double dx = X[0] - center[0], dy = X[1] - center[1];
-  double u = lambda * (value[c] + gradient[c][0] * dx + gradient[c][1] * dy);
+  const double d[3] = {X[0] - center[0], X[1] - center[1], X[2] - center[2]};
+  double u = lambda * (value[c] + gradient[c][0] * d[0] + gradient[c][1] * d[1] + gradient[c][2] * d[2]);
   if (angleRadians != 0.0) {
-    const double a = lambda * angleRadians;
-    const double rx = std::cos(a) * dx - std::sin(a) * dy;
-    const double ry = std::sin(a) * dx + std::cos(a) * dy;
-    u += (c == 0) ? rx - dx : ry - dy;
+    // Rodrigues: R d = cos(a) d + sin(a) (k x d) + (1 - cos(a)) (k . d) k.
+    const double a = lambda * angleRadians, ca = std::cos(a), sa = std::sin(a);
+    const double* k = axis;
+    const double kxd[3] = {k[1] * d[2] - k[2] * d[1], k[2] * d[0] - k[0] * d[2], k[0] * d[1] - k[1] * d[0]};
+    const double kd = k[0] * d[0] + k[1] * d[1] + k[2] * d[2];
+    u += ca * d[c] + sa * kxd[c] + (1.0 - ca) * kd * k[c] - d[c];
   }
   return u;
 }
+
+namespace {
+const char* const kAxes[3] = {"X", "Y", "Z"};
+}  // namespace
 
 Teuchos::RCP<const Teuchos::ParameterList> BoundaryConditions::getValidParameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("<Condition Name>"));
   pl->set("Type", "Displacement",
           "Displacement: prescribed displacement on a node set. Traction: dead force per unit "
-          "reference length on a side set. Both are scaled by the load factor.",
+          "reference length (2-D) or area (3-D) on a side set. Both are scaled by the load factor.",
           enumValidator({"Displacement", "Traction"}, "Type"));
   pl->set("Set", "", "Qualified set name 'Body/set', e.g. 'Block/left' (a node set for "
                      "Displacement, a side set for Traction).");
-  pl->set("Components", "XY", "Displacement: which components are prescribed.",
-          enumValidator({"X", "Y", "XY"}, "Components"));
+  pl->set("Components", "All",
+          "Displacement: which components are prescribed; All = X and Y in 2-D, X, Y and Z in 3-D. "
+          "Components with Z need a 3-D model.",
+          enumValidator({"All", "X", "Y", "Z", "XY", "XZ", "YZ", "XYZ"}, "Components"));
   // Every value must be finite (the validators): a NaN or inf would reach the
   // solver as a non-finite residual and end the run with bisections.
-  pl->set("Value X", 0.0, "Displacement: x displacement at load factor 1 (scaled by the load factor).",
-          finiteNumber());
-  pl->set("Value Y", 0.0, "Displacement: y displacement at load factor 1 (scaled by the load factor).",
-          finiteNumber());
-  for (const char* g : {"Gradient XX", "Gradient XY", "Gradient YX", "Gradient YY"})
-    pl->set(g, 0.0,
-            "Displacement: component of the displacement gradient H at load factor 1 (Gradient XY = "
-            "du_x/dY); adds H (X - centre) to the values, for affine fields.",
+  for (const char* a : kAxes)
+    pl->set(std::string("Value ") + a, 0.0,
+            std::string("Displacement: ") + char(std::tolower(a[0])) +
+                " displacement at load factor 1 (scaled by the load factor)" + (a[0] == 'Z' ? "; 3-D only." : "."),
             finiteNumber());
+  for (const char* r : kAxes)
+    for (const char* c : kAxes)
+      pl->set(std::string("Gradient ") + r + c, 0.0,
+              "Displacement: component of the displacement gradient H at load factor 1 (Gradient XY = "
+              "du_x/dY); adds H (X - centre) to the values, for affine fields. Entries with Z: 3-D only.",
+              finiteNumber());
   pl->set("Rotation Angle", 0.0,
-          "Displacement: rigid rotation (degrees, counter-clockwise) about the centre at load factor 1, "
-          "added to the values; the angle grows linearly with the load factor. Needs Components = XY.",
+          "Displacement: rigid rotation (degrees, counter-clockwise about the rotation axis) about the centre at "
+          "load factor 1, added to the values; the angle grows linearly with the load factor. Needs every "
+          "component prescribed (Components = All).",
           finiteNumber());
-  pl->set("Center X", 0.0, "Displacement: x of the centre of the rotation and of the gradient field.",
-          finiteNumber());
-  pl->set("Center Y", 0.0, "Displacement: y of the centre of the rotation and of the gradient field.",
-          finiteNumber());
-  pl->set("Traction X", 0.0, "Traction: x force per unit reference length at load factor 1.", finiteNumber());
-  pl->set("Traction Y", 0.0, "Traction: y force per unit reference length at load factor 1.", finiteNumber());
+  for (const char* a : kAxes)
+    pl->set(std::string("Rotation Axis ") + a, a[0] == 'Z' ? 1.0 : 0.0,
+            "Displacement: component of the rotation axis (any length > 0; normalised). 2-D models rotate "
+            "about z only (the default).",
+            finiteNumber());
+  for (const char* a : kAxes)
+    pl->set(std::string("Center ") + a, 0.0,
+            std::string("Displacement: ") + char(std::tolower(a[0])) +
+                " of the centre of the rotation and of the gradient field" + (a[0] == 'Z' ? "; 3-D only." : "."),
+            finiteNumber());
+  for (const char* a : kAxes)
+    pl->set(std::string("Traction ") + a, 0.0,
+            std::string("Traction: ") + char(std::tolower(a[0])) +
+                " force per unit reference length (2-D) or area (3-D) at load factor 1" +
+                (a[0] == 'Z' ? "; 3-D only." : "."),
+            finiteNumber());
   return pl;
 }
 
@@ -67,13 +89,20 @@ BoundaryConditions BoundaryConditions::fromParameters(Teuchos::ParameterList& li
     const std::string set = p.get<std::string>("Set");
     DDC_INPUT_REQUIRE(!set.empty(), "parameter '" << where << "/Set' is required (a set name 'Body/set')");
     const bool isDisp = type == "Displacement";
-    auto forbid = [&](const char* key) {
-      DDC_INPUT_REQUIRE(!p.isParameter(key) || p.get<double>(key) == valid->get<double>(key),
-                        "parameter '" << where << "/" << key << "' does not apply to Type = " << type);
+    auto isSet = [&](const std::string& key) {
+      return p.isParameter(key) && p.get<double>(key) != valid->get<double>(key);
+    };
+    auto forbid = [&](const std::string& key) {
+      DDC_INPUT_REQUIRE(!isSet(key), "parameter '" << where << "/" << key << "' does not apply to Type = " << type);
+    };
+    // Z parameters need a 3-D model; a 2-D model also rotates about z only.
+    const int dim = mesh.dim();
+    auto forbid2d = [&](const std::string& key) {
+      DDC_INPUT_REQUIRE(dim == 3 || !isSet(key), "parameter '" << where << "/" << key << "' is set but the model is "
+                                                               << dim << "-D; Z applies to 3-D models only");
     };
     if (isDisp) {
-      forbid("Traction X");
-      forbid("Traction Y");
+      for (const char* a : kAxes) forbid(std::string("Traction ") + a);
       try {
         mesh.nodeSet(set);
       } catch (const InputError& e) {
@@ -83,34 +112,53 @@ BoundaryConditions BoundaryConditions::fromParameters(Teuchos::ParameterList& li
       d.name = name;
       d.setName = set;
       const std::string comps = p.get<std::string>("Components");
-      d.fix[0] = comps.find('X') != std::string::npos;
-      d.fix[1] = comps.find('Y') != std::string::npos;
-      d.value[0] = p.get<double>("Value X");
-      d.value[1] = p.get<double>("Value Y");
+      DDC_INPUT_REQUIRE(dim == 3 || comps.find('Z') == std::string::npos,
+                        "parameter '" << where << "/Components' = " << comps << " prescribes Z but the model is "
+                                      << dim << "-D; Z applies to 3-D models only");
+      for (const char* key : {"Value Z", "Gradient XZ", "Gradient YZ", "Gradient ZX", "Gradient ZY", "Gradient ZZ",
+                              "Center Z", "Rotation Axis X", "Rotation Axis Y"})
+        forbid2d(key);
+      DDC_INPUT_REQUIRE(dim == 3 || p.get<double>("Rotation Axis Z") > 0.0,
+                        "parameter '" << where << "/Rotation Axis Z' must be > 0 in a 2-D model (rotation about z)");
+      for (int c = 0; c < 3; ++c) {
+        d.fix[c] = c < dim && (comps == "All" || comps.find(kAxes[c][0]) != std::string::npos);
+        d.value[c] = p.get<double>(std::string("Value ") + kAxes[c]);
+        d.center[c] = p.get<double>(std::string("Center ") + kAxes[c]);
+        for (int k = 0; k < 3; ++k) d.gradient[c][k] = p.get<double>(std::string("Gradient ") + kAxes[c] + kAxes[k]);
+      }
       d.angleRadians = p.get<double>("Rotation Angle") * M_PI / 180.0;
-      d.center[0] = p.get<double>("Center X");
-      d.center[1] = p.get<double>("Center Y");
-      d.gradient[0][0] = p.get<double>("Gradient XX");
-      d.gradient[0][1] = p.get<double>("Gradient XY");
-      d.gradient[1][0] = p.get<double>("Gradient YX");
-      d.gradient[1][1] = p.get<double>("Gradient YY");
-      DDC_INPUT_REQUIRE(d.fix[0] || (d.gradient[0][0] == 0.0 && d.gradient[0][1] == 0.0),
-                        "'" << where << "': Gradient XX/XY set but Components = " << comps << " does not prescribe X");
-      DDC_INPUT_REQUIRE(d.fix[1] || (d.gradient[1][0] == 0.0 && d.gradient[1][1] == 0.0),
-                        "'" << where << "': Gradient YX/YY set but Components = " << comps << " does not prescribe Y");
-      DDC_INPUT_REQUIRE(d.angleRadians == 0.0 || (d.fix[0] && d.fix[1]),
-                        "'" << where << "': a Rotation Angle needs Components = XY");
-      DDC_INPUT_REQUIRE(d.fix[0] || d.value[0] == 0.0,
-                        "'" << where << "/Value X' is set but Components = " << comps << " does not prescribe X");
-      DDC_INPUT_REQUIRE(d.fix[1] || d.value[1] == 0.0,
-                        "'" << where << "/Value Y' is set but Components = " << comps << " does not prescribe Y");
+      const double ax[3] = {p.get<double>("Rotation Axis X"), p.get<double>("Rotation Axis Y"),
+                            p.get<double>("Rotation Axis Z")};
+      const double axisLength = std::sqrt(ax[0] * ax[0] + ax[1] * ax[1] + ax[2] * ax[2]);
+      DDC_INPUT_REQUIRE(axisLength > 0.0 && std::isfinite(axisLength),
+                        "'" << where << "': the rotation axis (Rotation Axis X/Y/Z) must have a finite length > 0");
+      for (int c = 0; c < 3; ++c) d.axis[c] = dim == 2 ? (c == 2 ? 1.0 : 0.0) : ax[c] / axisLength;
+      for (int c = 0; c < dim; ++c) {
+        const std::string a = kAxes[c];
+        DDC_INPUT_REQUIRE(d.fix[c] || (d.gradient[c][0] == 0.0 && d.gradient[c][1] == 0.0 && d.gradient[c][2] == 0.0),
+                          "'" << where << "': Gradient " << a << "X/" << a << "Y" << (dim == 3 ? "/" + a + "Z" : "")
+                              << " set but Components = " << comps << " does not prescribe " << a);
+        DDC_INPUT_REQUIRE(d.fix[c] || d.value[c] == 0.0,
+                          "'" << where << "/Value " << a << "' is set but Components = " << comps
+                              << " does not prescribe " << a);
+      }
+      bool all = true;
+      for (int c = 0; c < dim; ++c) all = all && d.fix[c];
+      DDC_INPUT_REQUIRE(d.angleRadians == 0.0 || all,
+                        "'" << where << "': a Rotation Angle needs every component prescribed (Components = All)");
       bcs.displacements.push_back(d);
     } else {
-      for (const char* key : {"Value X", "Value Y", "Rotation Angle", "Center X", "Center Y", "Gradient XX",
-                              "Gradient XY", "Gradient YX", "Gradient YY"})
-        forbid(key);
-      DDC_INPUT_REQUIRE(!p.isParameter("Components") || p.get<std::string>("Components") == "XY",
+      for (const char* a : kAxes) {
+        forbid(std::string("Value ") + a);
+        forbid(std::string("Center ") + a);
+        for (const char* b : kAxes) forbid(std::string("Gradient ") + a + b);
+      }
+      for (const char* key : {"Rotation Angle", "Rotation Axis X", "Rotation Axis Y", "Rotation Axis Z"}) forbid(key);
+      // "XY" was the default in 2-D before "All"; decks that spell it out keep working.
+      const std::string comps = p.isParameter("Components") ? p.get<std::string>("Components") : "All";
+      DDC_INPUT_REQUIRE(comps == "All" || (dim == 2 && comps == "XY"),
                         "parameter '" << where << "/Components' does not apply to Type = Traction");
+      forbid2d("Traction Z");
       try {
         mesh.sideSet(set);
       } catch (const InputError& e) {
@@ -119,8 +167,7 @@ BoundaryConditions BoundaryConditions::fromParameters(Teuchos::ParameterList& li
       TractionCondition t;
       t.name = name;
       t.setName = set;
-      t.traction[0] = p.get<double>("Traction X");
-      t.traction[1] = p.get<double>("Traction Y");
+      for (int c = 0; c < 3; ++c) t.traction[c] = p.get<double>(std::string("Traction ") + kAxes[c]);
       bcs.tractions.push_back(t);
     }
   }

@@ -12,27 +12,31 @@
 namespace ddc {
 
 /// A prescribed displacement on a node set:
-///   u(X, λ) = λ·(v + H (X − c)) + (R(λ·θ) − I)(X − c)
-/// on the components selected (X, Y or both): v the values, H the
-/// displacement gradient (affine fields: patch tests, homogeneous
-/// deformations), θ a rigid rotation about the centre c.
+///   u(X, λ) = λ·(v + H (X − c)) + (R(λ·θ, a) − I)(X − c)
+/// on the components selected: v the values, H the displacement gradient
+/// (affine fields: patch tests, homogeneous deformations), R(λ·θ, a) a
+/// rigid rotation by the angle λ·θ about the axis a through the centre c
+/// (Rodrigues' formula; in 2-D a = z). Arrays hold x, y, z; in 2-D the z
+/// entries are unused and stay 0.
 struct DisplacementCondition {
   std::string name;     ///< sublist name, for messages
   std::string setName;  ///< qualified node set, "Body/set"
-  bool fix[2] = {true, true};
-  double value[2] = {0.0, 0.0};
-  double gradient[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
+  bool fix[3] = {true, true, false};
+  double value[3] = {0.0, 0.0, 0.0};
+  double gradient[3][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
   double angleRadians = 0.0;
-  double center[2] = {0.0, 0.0};
+  double axis[3] = {0.0, 0.0, 1.0};  ///< unit rotation axis
+  double center[3] = {0.0, 0.0, 0.0};
   /// Prescribed value of component `c` at reference position X and load factor λ.
   double prescribed(int c, const std::array<double, 3>& X, double lambda) const;
 };
 
-/// A dead traction (force per unit reference length) on a side set, scaled by λ.
+/// A dead traction (force per unit reference length in 2-D, per unit
+/// reference area in 3-D) on a side set, scaled by λ.
 struct TractionCondition {
   std::string name;
   std::string setName;  ///< qualified side set
-  double traction[2] = {0.0, 0.0};
+  double traction[3] = {0.0, 0.0, 0.0};
 };
 
 /// All boundary conditions of a model, parsed from "Boundary Conditions".

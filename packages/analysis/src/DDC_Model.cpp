@@ -30,6 +30,11 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
       bcs_(std::move(bcs)),
       contact_(std::move(contact)) {
   DDC_ASSERT(static_cast<int>(elements_.size()) == mesh_->numBodies(), "one element evaluator per body");
+  // The mesh, elements and boundary conditions know 3-D; the assembly, the
+  // solvers and the output do not yet.
+  DDC_INPUT_REQUIRE(mesh_->dim() == 2, "the mesh is " << mesh_->dim() << "-D (body '" << mesh_->body(0).name
+                                                      << "' has " << cellTypeName(mesh_->body(0).cellType)
+                                                      << " cells); this version analyses 2-D meshes only");
   subdomainRank_ = subdomainOwnerRank(partition_.numSubdomains, comm_->getSize());
   for (int e = 0; e < mesh_->numElements(); ++e)
     if (subdomainRank_[partition_.elementSubdomain[e]] == comm_->getRank()) localElements_.push_back(e);

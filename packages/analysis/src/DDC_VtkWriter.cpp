@@ -14,6 +14,7 @@
 
 #include "DDC_Error.hpp"
 #include "DDC_OutputDirectory.hpp"
+#include "DDC_ReferenceCell.hpp"
 #include "DDC_ResultFile.hpp"
 
 namespace fs = std::filesystem;
@@ -22,19 +23,26 @@ namespace ddc {
 
 namespace {
 
-/// Number of nodes of the supported VTK cell types, -1 if unsupported.
+/// Number of nodes of the supported VTK cell types, -1 if unsupported: a
+/// vertex and the VTK types of DDContact's reference cells.
 int nodesPerCell(unsigned char type) {
-  switch (type) {
-    case 1: return 1;   // VTK_VERTEX
-    case 3: return 2;   // VTK_LINE
-    case 5: return 3;   // VTK_TRIANGLE
-    case 9: return 4;   // VTK_QUAD
-    case 21: return 3;  // VTK_QUADRATIC_EDGE
-    case 22: return 6;  // VTK_QUADRATIC_TRIANGLE
-    case 23: return 8;  // VTK_QUADRATIC_QUAD
-    case 28: return 9;  // VTK_BIQUADRATIC_QUAD
-    default: return -1;
+  if (type == 1) return 1;  // VTK_VERTEX
+  for (int t = 0; t <= static_cast<int>(CellType::Quad8); ++t) {
+    const ReferenceCell& c = referenceCell(static_cast<CellType>(t));
+    if (c.vtkType == type) return c.numNodes;
   }
+  return -1;
+}
+
+/// The supported VTK cell types, for messages.
+std::string supportedCellTypes() {
+  std::vector<int> types{1};
+  for (int t = 0; t <= static_cast<int>(CellType::Quad8); ++t)
+    types.push_back(referenceCell(static_cast<CellType>(t)).vtkType);
+  std::sort(types.begin(), types.end());
+  std::ostringstream os;
+  for (std::size_t i = 0; i < types.size(); ++i) os << (i ? ", " : "") << types[i];
+  return os.str();
 }
 
 /// Components as written: 2-D vectors are padded to 3.
@@ -105,7 +113,7 @@ std::string validatePiece(const VtkPiece& p) {
     const int n = nodesPerCell(p.types[c]);
     if (n < 0) {
       os << "cell " << c << ": unsupported VTK cell type " << static_cast<int>(p.types[c])
-         << " (supported: 1, 3, 5, 9, 21, 22, 23, 28)";
+         << " (supported: " << supportedCellTypes() << ")";
       return os.str();
     }
     const long end = p.offsets[c];
