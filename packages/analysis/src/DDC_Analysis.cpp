@@ -648,7 +648,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
     DDC_INPUT_REQUIRE(!dir->committed(), "output directory '" << dir->finalPath()
                                                               << "' was committed already: one run per OutputDirectory");
     auto columns = HistoryWriter::standardColumns();
-    columns.insert(columns.end(), {"external_work", "contact_bytes", "bisections"});
+    columns.insert(columns.end(), {"external_work", "contact_bytes", "bisections", "contact_force_z"});
     hist = std::make_unique<HistoryWriter>(comm_, dir->path() + "/history.csv", columns);
     // The validated parameters, defaults included; written with every step
     // checked (a full disk must not leave an empty file behind).
@@ -739,7 +739,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
         hist->appendRow({double(n), lambda, rec.strainEnergy, double(rec.newtonIterations), double(rec.dualIterations),
                          double(rec.activeContacts), rec.contactForce[0], rec.contactForce[1],
                          double(rec.contactExchanges), rec.wallSeconds, rec.externalWork, double(rec.contactBytes),
-                         double(rec.bisections)});
+                         double(rec.bisections), rec.contactForce[2]});
       char buf[300];
       std::snprintf(buf, sizeof buf,
                     "step %3d/%d  load %.6g  Newton %2d  |r| %.3e -> %.3e  energy %.6e  %.2f s", n, nsteps, lambda,

@@ -37,7 +37,7 @@ struct StepRecord {
   std::vector<double> residualHistory;  ///< ||r|| per Newton iteration
   double externalWork = 0.0;  ///< work of reactions and tractions, trapezoidal in λ, since λ = 0
   int activeContacts = 0;
-  double contactForce[2] = {0.0, 0.0};  ///< resultant on the slave bodies (Σ −λ n)
+  double contactForce[3] = {0.0, 0.0, 0.0};  ///< resultant on the slave bodies (Σ −λ n); z = 0 in 2-D
   long contactExchanges = 0;  ///< contact-geometry exchanges in this (sub)step (Model::exchanges())
   long contactBytes = 0;      ///< bytes those exchanges moved between ranks
   std::string failure;        ///< why the last attempt failed (empty when converged)

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <fstream>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -196,6 +197,22 @@ TEST(Embedding, HostElementIsUsedAndMatchesBuiltin) {
   ddc::printParameterDoc(*ddc::Analysis::getValidParameters(hostFactory(calls)), doc);
   EXPECT_TRUE(contains(doc.str(), "Host Quad4"));
   EXPECT_TRUE(contains(doc.str(), "Stiffness Scale"));
+}
+
+// history.csv of a run: the ten stable columns first, unchanged, then the
+// extra columns with contact_force_z last (doc/user-guide.md, "The output
+// directory").
+TEST(Embedding, HistoryColumnsOfARun) {
+  const std::string dir = "embedding_history_columns_np" + std::to_string(worldComm()->getSize());
+  PL deck = hostDeck("Quad4");
+  ddc::Analysis a(worldComm(), deck);
+  a.run(dir);
+  std::ifstream in(dir + "/history.csv");
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header,
+            "step,load_factor,strain_energy,newton_iterations,dual_iterations,active_contacts,contact_force_x,"
+            "contact_force_y,contact_exchanges,wall_seconds,external_work,contact_bytes,bisections,contact_force_z");
 }
 
 TEST(Embedding, HostElementParameterReachesTheElement) {
