@@ -414,6 +414,14 @@ std::vector<Point> sectorPoints(const Grid& g, const SectorGeometry& s, double z
 const char* const kAxisName[3] = {"X", "Y", "Z"};
 const char* const kAxisLower[3] = {"x", "y", "z"};
 
+/// "Refinement" of a generator with element counts in `dim` directions.
+void setRefinementParameter(Teuchos::ParameterList& pl, int dim) {
+  pl.set("Refinement", 1,
+         std::string("multiplies ") + (dim == 2 ? "both" : "all three") +
+             " element counts; refine a benchmark from the command line with --set",
+         atLeast(1));
+}
+
 /// Origin, Length and Elements of every axis of a Rectangle (2) or Box (3),
 /// then Refinement and Distortion.
 Teuchos::RCP<Teuchos::ParameterList> boxParameters(const std::string& name, int dim, double maxDistortion) {
@@ -428,10 +436,7 @@ Teuchos::RCP<Teuchos::ParameterList> boxParameters(const std::string& name, int 
   for (int d = 0; d < dim; ++d)
     pl->set(std::string("Elements ") + kAxisName[d], 4,
             std::string("number of elements along ") + kAxisLower[d] + ", before refinement", greaterThan(0));
-  pl->set("Refinement", 1,
-          std::string("multiplies ") + (dim == 2 ? "both" : "all three") +
-              " element counts; refine a benchmark from the command line with --set",
-          atLeast(1));
+  setRefinementParameter(*pl, dim);
   pl->set("Distortion", 0.0,
           "random but reproducible (fixed seed) displacement of the interior element vertices, as "
           "a fraction of the element size (larger values than the maximum can invert elements); for "
@@ -536,8 +541,7 @@ Teuchos::RCP<const Teuchos::ParameterList> AnnularSectorGenerator::getValidParam
   if (valid.is_null()) {
     auto pl = Teuchos::rcp(new Teuchos::ParameterList("Annular Sector"));
     setSectorParameters(*pl);
-    pl->set("Refinement", 1,
-            "multiplies both element counts; refine a benchmark from the command line with --set", atLeast(1));
+    setRefinementParameter(*pl, 2);
     valid = pl;
   }
   return valid;
@@ -565,9 +569,7 @@ Teuchos::RCP<const Teuchos::ParameterList> CylindricalShellSectorGenerator::getV
     pl->set("Origin Z", 0.0, "z of the 'back' face", finiteNumber());
     pl->set("Axial Length", 1.0, "extent along the axis (z) from Origin Z", greaterThan(0.0));
     pl->set("Axial Elements", 1, "number of elements along the axis, before refinement", greaterThan(0));
-    pl->set("Refinement", 1,
-            "multiplies all three element counts; refine a benchmark from the command line with --set",
-            atLeast(1));
+    setRefinementParameter(*pl, 3);
     valid = pl;
   }
   return valid;

@@ -207,6 +207,19 @@ inline double hex27Volume(const Mesh& mesh, int e) {
   return v;
 }
 
+/// Total area (2-D: elementArea) or corner-map volume (3-D: cornerVolume)
+/// of the mesh, and the smallest sampled det J in *minDet.
+inline double meshMeasure(const Mesh& mesh, double* minDet) {
+  double sum = 0, mn = 1e300;
+  for (int e = 0; e < mesh.numElements(); ++e) {
+    double d;
+    sum += mesh.dim() == 3 ? cornerVolume(mesh, e, &d) : elementArea(mesh, e, &d);
+    mn = std::min(mn, d);
+  }
+  *minDet = mn;
+  return sum;
+}
+
 /// Area-weighted normal of a face's corner polygon (|n| = its area for a
 /// flat face): (x2 - x0) x (x3 - x1) / 2 for quadrilaterals, (x1 - x0) x
 /// (x2 - x0) / 2 for triangles. Outward if the face is oriented as the

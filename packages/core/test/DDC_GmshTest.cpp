@@ -267,17 +267,6 @@ void expectOutwardFaces(const Mesh& m, int body, const std::string& set) {
         << set;
 }
 
-double meshVolume(const Mesh& m, double* minDet) {
-  double v = 0, mn = 1e300;
-  for (int e = 0; e < m.numElements(); ++e) {
-    double d;
-    v += ddc::test::cornerVolume(m, e, &d);
-    mn = std::min(mn, d);
-  }
-  *minDet = mn;
-  return v;
-}
-
 /// Gmsh element type of a cell type (as the reader's header lists them).
 int gmshType(CellType t) {
   switch (t) {
@@ -352,7 +341,7 @@ TEST(Gmsh3D, ReadsHex8BlockWithFaceSetsEdgesAndPoints) {
   EXPECT_EQ(m.numNodes(), 12);
   EXPECT_EQ(m.numElements(), 2);
   double minDet;
-  EXPECT_NEAR(meshVolume(m, &minDet), 2.0, ddc::test::kRoundoff);
+  EXPECT_NEAR(ddc::test::meshMeasure(m, &minDet), 2.0, ddc::test::kRoundoff);
   EXPECT_GT(minDet, 0.0);
   EXPECT_EQ(m.coord(11), (Vec3{2.0, 1.0, 1.0}));
   ASSERT_EQ(m.sideSet("Block/left").size(), 1u);
@@ -379,7 +368,7 @@ TEST(Gmsh3D, ReadsHex20AndTetrahedraWithTheirFaces) {
     EXPECT_EQ(m.numNodes(), 20);
     double minDet;
     // The sheared unit cube keeps volume 1.
-    EXPECT_NEAR(meshVolume(m, &minDet), 1.0, ddc::test::kRoundoff);
+    EXPECT_NEAR(ddc::test::meshMeasure(m, &minDet), 1.0, ddc::test::kRoundoff);
     const auto& top = m.sideSet("Cube/top");
     ASSERT_EQ(top.size(), 1u);
     EXPECT_EQ(top[0].numNodes, 8);
@@ -398,7 +387,7 @@ TEST(Gmsh3D, ReadsHex20AndTetrahedraWithTheirFaces) {
     EXPECT_NO_THROW(m.check());
     EXPECT_EQ(m.numElements(), 2);
     double minDet;
-    EXPECT_NEAR(meshVolume(m, &minDet), 1.0 / 6 + 2.0 / 6, ddc::test::kRoundoff);
+    EXPECT_NEAR(ddc::test::meshMeasure(m, &minDet), 1.0 / 6 + 2.0 / 6, ddc::test::kRoundoff);
     ASSERT_EQ(m.sideSet("P/base").size(), 1u);
     // "base" is z = 0, written with normal +z in the file: outward is -z.
     EXPECT_EQ(ddc::test::faceNormal(m, m.sideSet("P/base")[0]), (Vec3{0.0, 0.0, -0.5}));

@@ -37,16 +37,7 @@ Teuchos::ParameterList rectParams(double x0, double y0, double lx, double ly, in
   return p;
 }
 
-double totalArea(const Mesh& m, double* minDet) {
-  double a = 0, mn = 1e300;
-  for (int e = 0; e < m.numElements(); ++e) {
-    double d;
-    a += ddc::test::elementArea(m, e, &d);
-    mn = std::min(mn, d);
-  }
-  *minDet = mn;
-  return a;
-}
+double totalArea(const Mesh& m, double* minDet) { return ddc::test::meshMeasure(m, minDet); }
 
 /// Every segment of a side set: outward (a point a little outside along the
 /// normal is not in the region, one a little inside is), and consecutive
@@ -271,8 +262,9 @@ struct Sector {
   }
 };
 
-Mesh makeSector(CellType t, const Sector& s, int nr, int nc, int refinement = 1) {
-  Mesh m;
+/// The Annular Sector parameters of `s` (also the in-plane ones of the
+/// Cylindrical Shell Sector).
+Teuchos::ParameterList sectorParams(const Sector& s, int nr, int nc, int refinement) {
   Teuchos::ParameterList p;
   p.set("Center X", s.cx);
   p.set("Center Y", s.cy);
@@ -283,6 +275,12 @@ Mesh makeSector(CellType t, const Sector& s, int nr, int nc, int refinement = 1)
   p.set("Radial Elements", nr);
   p.set("Circumferential Elements", nc);
   p.set("Refinement", refinement);
+  return p;
+}
+
+Mesh makeSector(CellType t, const Sector& s, int nr, int nc, int refinement = 1) {
+  Mesh m;
+  Teuchos::ParameterList p = sectorParams(s, nr, nc, refinement);
   ddc::generateAnnularSector(m, "Ring", t, p, "Mesh/Bodies/Ring/Annular Sector");
   return m;
 }
@@ -439,17 +437,7 @@ Teuchos::ParameterList boxParams(const Vec3& x0, const Vec3& l, const std::array
   return p;
 }
 
-/// Total corner-map volume and the smallest sampled det J of the mesh.
-double totalVolume(const Mesh& m, double* minDet) {
-  double v = 0, mn = 1e300;
-  for (int e = 0; e < m.numElements(); ++e) {
-    double d;
-    v += ddc::test::cornerVolume(m, e, &d);
-    mn = std::min(mn, d);
-  }
-  *minDet = mn;
-  return v;
-}
+double totalVolume(const Mesh& m, double* minDet) { return ddc::test::meshMeasure(m, minDet); }
 
 /// Node count of a box of n cells for each cell type (header of
 /// DDC_MeshGenerators.hpp).
@@ -706,19 +694,10 @@ struct ShellSector : Sector {
 
 Mesh makeShell(CellType t, const ShellSector& s, int nr, int nc, int nz, int refinement = 1) {
   Mesh m;
-  Teuchos::ParameterList p;
-  p.set("Center X", s.cx);
-  p.set("Center Y", s.cy);
-  p.set("Inner Radius", s.ri);
-  p.set("Outer Radius", s.ro);
-  p.set("Start Angle", s.start);
-  p.set("End Angle", s.end);
+  Teuchos::ParameterList p = sectorParams(s, nr, nc, refinement);
   p.set("Origin Z", s.z0);
   p.set("Axial Length", s.length);
-  p.set("Radial Elements", nr);
-  p.set("Circumferential Elements", nc);
   p.set("Axial Elements", nz);
-  p.set("Refinement", refinement);
   ddc::generateCylindricalShellSector(m, "Ring", t, p, "Mesh/Bodies/Ring/Cylindrical Shell Sector");
   return m;
 }
