@@ -577,6 +577,10 @@ TEST(BoxGenerator, EveryCellTypeIsConformingStraightAndOutward) {
     for (const Segment& s : m.sideSet("B/back")) EXPECT_EQ(s.numNodes, numCellNodes(ddc::referenceCell(t).facets[0].type));
     expectConforming(m, kBoxSides);
     expectStraightNodes(m);
+    // Nodes on shared edges and faces are shared: no two nodes coincide.
+    std::set<Vec3> distinct;
+    for (int n = 0; n < m.numNodes(); ++n) distinct.insert(m.coord(n));
+    EXPECT_EQ(distinct.size(), static_cast<size_t>(m.numNodes())) << ddc::cellTypeName(t);
     auto inside = [](const Vec3& x) { return x[0] > 0 && x[0] < 1.5 && x[1] > 0 && x[1] < 1 && x[2] > 0 && x[2] < 2; };
     for (const auto& s : kBoxSides) expectOutwardFaces(m, s, inside);
     // Every node of a face set lies on its plane (quadratic nodes too).
