@@ -147,7 +147,8 @@ const GmshType* gmshType(int type) {
   return nullptr;
 }
 
-/// "8-node hexahedra (type 5)", or "type 42 (unknown to DDContact)".
+/// "8-node hexahedra (type 5)", or "elements of type 42 (unknown to
+/// DDContact)".
 std::string gmshTypeText(int type) {
   const GmshType* t = gmshType(type);
   return t ? std::string(t->name) + " (type " + std::to_string(type) + ")"
