@@ -33,11 +33,14 @@ namespace {
 
 using PL = Teuchos::ParameterList;
 
-const std::vector<std::string> kGenerators = {"Rectangle", "Annular Sector", "Gmsh"};
+const std::vector<std::string> kGenerators = {"Rectangle", "Annular Sector", "Box", "Cylindrical Shell Sector",
+                                              "Gmsh"};
 
 Teuchos::RCP<const PL> generatorValidParameters(const std::string& g) {
   if (g == "Rectangle") return RectangleGenerator::getValidParameters();
   if (g == "Annular Sector") return AnnularSectorGenerator::getValidParameters();
+  if (g == "Box") return BoxGenerator::getValidParameters();
+  if (g == "Cylindrical Shell Sector") return CylindricalShellSectorGenerator::getValidParameters();
   return GmshReader::getValidParameters();
 }
 
@@ -199,6 +202,10 @@ std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const Elemen
       generateRectangle(*mesh, name, cell, gp, path + "/Rectangle");
     else if (gen == "Annular Sector")
       generateAnnularSector(*mesh, name, cell, gp, path + "/Annular Sector");
+    else if (gen == "Box")
+      generateBox(*mesh, name, cell, gp, path + "/Box");
+    else if (gen == "Cylindrical Shell Sector")
+      generateCylindricalShellSector(*mesh, name, cell, gp, path + "/Cylindrical Shell Sector");
     else
       readGmshBody(*mesh, name, cell, gp, path + "/Gmsh", baseDirectory);
   }

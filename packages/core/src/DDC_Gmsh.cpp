@@ -124,15 +124,74 @@ class MshLines {
   int line_ = 0;
 };
 
-/// Number of nodes of the Gmsh element types we accept in a physical group.
+/// A Gmsh element type: its number of nodes, dimension and a name for
+/// messages (gmsh.info, "MSH file format", element types).
+struct GmshType {
+  int type, numNodes, dim;
+  const char* name;  ///< plural, as in "has 8-node hexahedra (type 5)"
+};
+
+/// The element types the reader knows by name; nullptr for others.
+const GmshType* gmshType(int type) {
+  static const GmshType table[] = {
+      {1, 2, 1, "2-node lines"},          {2, 3, 2, "3-node triangles"},     {3, 4, 2, "4-node quadrangles"},
+      {4, 4, 3, "4-node tetrahedra"},     {5, 8, 3, "8-node hexahedra"},     {6, 6, 3, "6-node prisms"},
+      {7, 5, 3, "5-node pyramids"},       {8, 3, 1, "3-node lines"},         {9, 6, 2, "6-node triangles"},
+      {10, 9, 2, "9-node quadrangles"},   {11, 10, 3, "10-node tetrahedra"}, {12, 27, 3, "27-node hexahedra"},
+      {13, 18, 3, "18-node prisms"},      {14, 14, 3, "14-node pyramids"},   {15, 1, 0, "points"},
+      {16, 8, 2, "8-node quadrangles"},   {17, 20, 3, "20-node hexahedra"},  {18, 15, 3, "15-node prisms"},
+      {19, 13, 3, "13-node pyramids"},    {26, 4, 1, "4-node lines"},        {29, 20, 3, "20-node tetrahedra"},
+      {92, 64, 3, "64-node hexahedra"},   {93, 125, 3, "125-node hexahedra"}};
+  for (const auto& t : table)
+    if (t.type == type) return &t;
+  return nullptr;
+}
+
+/// "8-node hexahedra (type 5)", or "elements of type 42 (unknown to
+/// DDContact)".
+std::string gmshTypeText(int type) {
+  const GmshType* t = gmshType(type);
+  return t ? std::string(t->name) + " (type " + std::to_string(type) + ")"
+           : "elements of type " + std::to_string(type) + " (unknown to DDContact)";
+}
+
+/// The Gmsh type of a DDContact cell type (Gmsh and DDContact share the
+/// node order, DDC_ReferenceCell.hpp).
+int gmshTypeOf(CellType t) {
+  switch (t) {
+    case CellType::Line2: return 1;
+    case CellType::Tri3: return 2;
+    case CellType::Quad4: return 3;
+    case CellType::Tet4: return 4;
+    case CellType::Hex8: return 5;
+    case CellType::Line3: return 8;
+    case CellType::Tri6: return 9;
+    case CellType::Quad9: return 10;
+    case CellType::Tet10: return 11;
+    case CellType::Hex27: return 12;
+    case CellType::Quad8: return 16;
+    case CellType::Hex20: return 17;
+  }
+  return -1;
+}
+
+/// Number of nodes of the Gmsh element types whose connectivity the reader
+/// keeps: the cells and facets of DDContact's cell types, and points.
 int gmshNumNodes(int type) {
-  switch (type) {
-    case 1: return 2;    // 2-node line
-    case 3: return 4;    // 4-node quadrangle
-    case 8: return 3;    // 3-node line
-    case 10: return 9;   // 9-node quadrangle
-    case 15: return 1;   // point
-    default: return -1;  // not needed (rejected or skipped)
+  for (CellType t : {CellType::Line2, CellType::Line3, CellType::Tri3, CellType::Tri6, CellType::Quad4, CellType::Quad8,
+                     CellType::Quad9, CellType::Hex8, CellType::Hex20, CellType::Hex27, CellType::Tet4, CellType::Tet10})
+    if (gmshTypeOf(t) == type) return numCellNodes(t);
+  return type == 15 ? 1 : -1;  // points; -1: not needed (rejected or skipped)
+}
+
+/// How to make Gmsh write elements of cell type t.
+const char* gmshOptionsFor(CellType t) {
+  switch (t) {
+    case CellType::Hex20: return "Mesh.ElementOrder=2, Mesh.SecondOrderIncomplete=1";
+    case CellType::Hex27:
+    case CellType::Quad9: return "Mesh.ElementOrder=2, Mesh.SecondOrderIncomplete=0";
+    case CellType::Tet10: return "Mesh.ElementOrder=2";
+    default: return "Mesh.ElementOrder=1";
   }
 }
 
@@ -146,9 +205,15 @@ using EntityKey = std::pair<int, int>;  // (dimension, entity tag)
 
 struct ElementBlock {
   int dim = 0, entity = 0, type = 0;
+  int line = 0;                  // line of the block header
   std::vector<long long> tags;   // element tags
+  std::vector<int> lines;        // line of each element
   std::vector<long long> nodes;  // node tags, numNodes per element
   int numNodes = 0;
+  // The first element with a wrong node count in a block whose check is
+  // left to the body that reads it (parseElements), if any.
+  std::string countError;
+  int countErrorLine = 0;
 };
 
 struct MshData {
@@ -158,7 +223,7 @@ struct MshData {
   bool hasNodes = false, hasElements = false;
   std::unordered_map<long long, std::array<double, 3>> nodes;  // tag -> x, y, z
   std::map<int, std::vector<long long>> pointNodes;           // point entity -> node tags
-  std::vector<ElementBlock> blocks;                            // 0-D, 1-D, 2-D blocks
+  std::vector<ElementBlock> blocks;                            // 0-D to 3-D blocks
 };
 
 void parseMeshFormat(MshLines& in) {
@@ -252,19 +317,28 @@ void parseElements(MshLines& in, MshData& d) {
     blk.entity = static_cast<int>(in.toInt(t[1], "(entity tag)"));
     blk.type = static_cast<int>(in.toInt(t[2], "(element type)"));
     const int n = in.toCount(t[3], "number of elements in block");
-    if (blk.dim == 3)
-      in.fail("3-D elements (type " + std::to_string(blk.type) + ", volume " + std::to_string(blk.entity) +
-              ") are not supported; DDContact reads 2-D meshes in the xy-plane");
+    blk.line = in.lineNumber();
     blk.numNodes = gmshNumNodes(blk.type);
     // Element types we cannot use are kept without their connectivity: the
     // caller decides (from the body's selection) whether they are an error.
     for (int k = 0; k < n; ++k) {
       const auto e = in.tokens("Elements", 1, "an element 'tag nodeTags...'");
       if (blk.numNodes < 0) continue;
-      if (e.size() != static_cast<size_t>(blk.numNodes) + 1)
-        in.fail("element " + e[0] + " of type " + std::to_string(blk.type) + " must list " +
-                std::to_string(blk.numNodes) + " node tags, found " + std::to_string(e.size() - 1));
+      if (e.size() != static_cast<size_t>(blk.numNodes) + 1) {
+        const std::string msg = "element " + e[0] + " of type " + std::to_string(blk.type) + " must list " +
+                                std::to_string(blk.numNodes) + " node tags, found " + std::to_string(e.size() - 1);
+        // The types a 2-D body reads are checked here; the others (3-D cells,
+        // triangles, 8-node quadrangles) when a body reads them, after it
+        // has rejected them if it cannot use them at all.
+        if (blk.type == 1 || blk.type == 3 || blk.type == 8 || blk.type == 10 || blk.type == 15) in.fail(msg);
+        if (blk.countError.empty()) {
+          blk.countError = msg;
+          blk.countErrorLine = in.lineNumber();
+        }
+        continue;
+      }
       blk.tags.push_back(in.toInt(e[0], "(element tag)"));
+      blk.lines.push_back(in.lineNumber());
       for (int i = 1; i <= blk.numNodes; ++i) blk.nodes.push_back(in.toInt(e[i], "(node tag)"));
     }
     if (blk.numNodes < 0) blk.tags.assign(n, 0);  // remember the count only
@@ -335,7 +409,7 @@ std::string listNames(const std::set<std::string>& names) {
 }
 
 /// Twice the signed area of the corner polygon of a 2-D element.
-double twiceArea(const std::vector<std::array<double, 2>>& xy, CellType type, const int* n) {
+double twiceArea(const std::vector<std::array<double, 3>>& xy, CellType type, const int* n) {
   double a = 0.0;
   for (const auto& side : referenceCell(type).facets) {
     const auto& p = xy[n[side.nodes[0]]];
@@ -343,6 +417,20 @@ double twiceArea(const std::vector<std::array<double, 2>>& xy, CellType type, co
     a += p[0] * q[1] - q[0] * p[1];
   }
   return a;
+}
+
+const char* const kEntityWord[4] = {"point", "curve", "surface", "volume"};
+
+/// The DDContact element cell types of dimension dim, for messages.
+std::string supportedVolumeTypes() {
+  std::ostringstream os;
+  bool first = true;
+  for (CellType t : elementCellTypes())
+    if (cellDimension(t) == 3) {
+      os << (first ? "" : ", ") << gmshTypeText(gmshTypeOf(t)) << " for " << cellTypeName(t);
+      first = false;
+    }
+  return os.str();
 }
 
 }  // namespace
@@ -355,7 +443,10 @@ Teuchos::RCP<const Teuchos::ParameterList> GmshReader::getValidParameters() {
             "Gmsh MSH 4.1 ASCII file (required); a relative path is resolved against the directory "
             "of the input deck");
     pl->set("Physical Surface", std::string(""),
-            "name of the physical surface whose 2-D elements form this body; empty: every 2-D "
+            "2-D bodies: name of the physical surface whose 2-D elements form this body; empty: every 2-D "
+            "element of the file");
+    pl->set("Physical Volume", std::string(""),
+            "3-D bodies: name of the physical volume whose 3-D elements form this body; empty: every 3-D "
             "element of the file");
     valid = pl;
   }
@@ -369,11 +460,21 @@ int readGmshBody(Mesh& mesh, const std::string& bodyName, CellType type, Teuchos
   DDC_INPUT_REQUIRE(!file.empty(), "parameter '" << joinPath(path, "File")
                                                  << "' is required: the Gmsh .msh file of body '" << bodyName
                                                  << "'");
+  // The selecting group has the body's dimension; the other parameter is a
+  // mistake (a 3-D body's physical surfaces are its side sets).
+  const bool solid = cellDimension(type) == 3;
+  const std::string used = solid ? "Physical Volume" : "Physical Surface";
+  const std::string other = solid ? "Physical Surface" : "Physical Volume";
+  DDC_INPUT_REQUIRE(params.get<std::string>(other).empty(),
+                    "parameter '" << joinPath(path, other) << "' does not apply to body '" << bodyName
+                                  << "': its element type " << cellTypeName(type) << " is "
+                                  << cellDimension(type) << "-D, so '" << used << "' selects its elements"
+                                  << (solid ? " (its physical surfaces become side sets)" : ""));
   std::string resolved = file;
   if (file[0] != '/' && !baseDirectory.empty())
     resolved = baseDirectory + (baseDirectory.back() == '/' ? "" : "/") + file;
   try {
-    return readGmshFile(mesh, bodyName, type, resolved, params.get<std::string>("Physical Surface"));
+    return readGmshFile(mesh, bodyName, type, resolved, params.get<std::string>(used));
   } catch (const InputError& e) {
     // Lead with the parameter path so the user finds the deck entry.
     DDC_THROW(InputError, "'" << joinPath(path, "File") << "' (body '" << bodyName << "'): " << e.what());
@@ -381,111 +482,168 @@ int readGmshBody(Mesh& mesh, const std::string& bodyName, CellType type, Teuchos
 }
 
 int readGmshFile(Mesh& mesh, const std::string& bodyName, CellType type, const std::string& fileName,
-                 const std::string& physicalSurface) {
+                 const std::string& physicalGroup) {
   const MshData d = parseMsh(fileName);
   auto fail = [&](const std::string& msg) -> void { DDC_THROW(InputError, "Gmsh file '" << fileName << "': " << msg); };
+  auto failAt = [&](int line, const std::string& msg) -> void {
+    DDC_THROW(InputError, "Gmsh file '" << fileName << "', line " << line << ": " << msg);
+  };
+  const ReferenceCell& ref = referenceCell(type);
+  const int dim = ref.dim;
+  const bool solid = dim == 3;
   const bool quad9 = type == CellType::Quad9;
-  const int wantQuad = quad9 ? 10 : 3;
-  const int wantLine = quad9 ? 8 : 1;
-  const int nen = numCellNodes(type);
+  const int wantElement = gmshTypeOf(type);
+  const CellType facetType = ref.facets[0].type;
+  const int wantFacet = gmshTypeOf(facetType);
+  const int nen = ref.numNodes;
+  const std::string groupWord = std::string("physical ") + kEntityWord[dim];          // selects the body
+  const std::string facetGroupWord = std::string("physical ") + kEntityWord[dim - 1];  // side sets
+  const std::string facetWord = solid ? "face element " : "line element ";
+  const std::string dimWord = std::to_string(dim) + "-D";
 
-  // ---- 1. the physical surface selecting the body's elements
+  // ---- 1. the physical surface (2-D) / volume (3-D) selecting the body's elements
   int selectedTag = -1;
-  if (!physicalSurface.empty()) {
-    std::set<std::string> surfaces;
+  if (!physicalGroup.empty()) {
+    std::set<std::string> groups;
     for (const auto& kv : d.physicalNames)
-      if (kv.first.first == 2) {
-        surfaces.insert(kv.second);
-        if (kv.second == physicalSurface) selectedTag = kv.first.second;
+      if (kv.first.first == dim) {
+        groups.insert(kv.second);
+        if (kv.second == physicalGroup) selectedTag = kv.first.second;
       }
-    if (selectedTag < 0)
-      fail("no physical surface named '" + physicalSurface + "'; physical surfaces are " + listNames(surfaces));
-    if (!d.hasEntities) fail("a $Entities section is needed to select physical surface '" + physicalSurface + "'");
+    if (selectedTag < 0) {
+      std::string hint;
+      for (const auto& kv : d.physicalNames)
+        if (kv.second == physicalGroup && kv.first.first != dim)
+          hint = " ('" + physicalGroup + "' is a physical " + kEntityWord[kv.first.first] + ")";
+      fail("no " + groupWord + " named '" + physicalGroup + "'; " + groupWord + "s are " + listNames(groups) + hint);
+    }
+    if (!d.hasEntities) fail("a $Entities section is needed to select " + groupWord + " '" + physicalGroup + "'");
   }
   auto selected = [&](const ElementBlock& b) {
-    if (b.dim != 2) return false;
+    if (b.dim != dim) return false;
     if (selectedTag < 0) return true;
-    const auto& ph = physicalsOf(d, 2, b.entity);
+    const auto& ph = physicalsOf(d, dim, b.entity);
     return std::find(ph.begin(), ph.end(), selectedTag) != ph.end();
   };
 
-  // ---- 2. the 2-D elements, type-checked
-  std::vector<const ElementBlock*> surfaceBlocks;
+  // ---- 2. the body's elements, type-checked
+  std::vector<const ElementBlock*> bodyBlocks;
   for (const auto& b : d.blocks) {
-    if (!selected(b)) continue;
-    if (b.type != wantQuad) {
-      std::ostringstream os;
-      os << "surface " << b.entity << " has elements of type " << b.type;
-      if (isTriangle(b.type))
-        os << ": triangles are not supported; mesh with quadrangles (Mesh.RecombineAll=1)";
-      else if (b.type == 16)
-        os << " (8-node quadrangles): not supported; use complete 9-node quadrangles "
-              "(Mesh.SecondOrderIncomplete=0) with element type Quad9";
-      else if (b.type == 3 || b.type == 10)
-        os << " (" << (b.type == 3 ? "4" : "9") << "-node quadrangles) but body '" << bodyName
-           << "' has element type " << cellTypeName(type) << "; expected "
-           << (quad9 ? "9-node quadrangles (type 10; Mesh.ElementOrder=2, Mesh.SecondOrderIncomplete=0)"
-                     : "4-node quadrangles (type 3; Mesh.ElementOrder=1)");
-      else
-        os << ": not supported; expected " << (quad9 ? "9" : "4") << "-node quadrangles (type " << wantQuad << ")";
-      fail(os.str());
+    if (b.dim == 3 && !solid)
+      failAt(b.line, "3-D elements (type " + std::to_string(b.type) + ", volume " + std::to_string(b.entity) +
+                         ") are not supported in body '" + bodyName + "' of 2-D element type " +
+                         cellTypeName(type) + "; a 3-D mesh needs a 3-D element type (Hex8, Hex20, Hex27, Tet4, "
+                         "Tet10)");
+    if (selected(b)) bodyBlocks.push_back(&b);
+  }
+  if (solid)
+    for (const auto* b : bodyBlocks)
+      if (b->type != bodyBlocks.front()->type)
+        failAt(b->line, "mixed element types in one body: volume " + std::to_string(bodyBlocks.front()->entity) +
+                            " (line " + std::to_string(bodyBlocks.front()->line) + ") has " +
+                            gmshTypeText(bodyBlocks.front()->type) + ", volume " + std::to_string(b->entity) +
+                            " has " + gmshTypeText(b->type) + "; body '" + bodyName +
+                            "' has one element type: give each element type its own physical volume and body");
+  for (const auto* bp : bodyBlocks) {
+    const ElementBlock& b = *bp;
+    if (b.type == wantElement) {
+      if (!b.countError.empty()) failAt(b.countErrorLine, b.countError);
+      continue;
     }
-    surfaceBlocks.push_back(&b);
+    std::ostringstream os;
+    if (solid) {
+      os << "volume " << b.entity << " has " << gmshTypeText(b.type);
+      const GmshType* t = gmshType(b.type);
+      if (gmshNumNodes(b.type) > 0 && t->dim == 3)
+        os << " but body '" << bodyName << "' has element type " << cellTypeName(type) << "; expected "
+           << gmshTypeText(wantElement) << " (" << gmshOptionsFor(type) << ")";
+      else
+        os << ", which DDContact does not support; a 3-D body reads " << supportedVolumeTypes();
+      failAt(b.line, os.str());
+    }
+    os << "surface " << b.entity << " has elements of type " << b.type;
+    if (isTriangle(b.type))
+      os << ": triangles are not supported; mesh with quadrangles (Mesh.RecombineAll=1)";
+    else if (b.type == 16)
+      os << " (8-node quadrangles): not supported; use complete 9-node quadrangles "
+            "(Mesh.SecondOrderIncomplete=0) with element type Quad9";
+    else if (b.type == 3 || b.type == 10)
+      os << " (" << (b.type == 3 ? "4" : "9") << "-node quadrangles) but body '" << bodyName
+         << "' has element type " << cellTypeName(type) << "; expected "
+         << (quad9 ? "9-node quadrangles (type 10; Mesh.ElementOrder=2, Mesh.SecondOrderIncomplete=0)"
+                   : "4-node quadrangles (type 3; Mesh.ElementOrder=1)");
+    else
+      os << ": not supported; expected " << (quad9 ? "9" : "4") << "-node quadrangles (type " << wantElement << ")";
+    fail(os.str());
   }
   size_t numElems = 0;
-  for (const auto* b : surfaceBlocks) numElems += b->tags.size();
+  for (const auto* b : bodyBlocks) numElems += b->tags.size();
   if (numElems == 0) {
-    if (!physicalSurface.empty()) fail("physical surface '" + physicalSurface + "' has no 2-D elements");
+    if (!physicalGroup.empty()) fail(groupWord + " '" + physicalGroup + "' has no " + dimWord + " elements");
+    if (solid)
+      fail("no 3-D elements found (expected " + gmshTypeText(wantElement) + "). Note: once physical groups "
+           "exist, Gmsh saves only their elements: define a Physical Volume for the body or set Mesh.SaveAll=1");
     fail("no 2-D elements found (expected quadrangles). Note: once physical groups exist, Gmsh saves only "
          "their elements: define a Physical Surface for the body or set Mesh.SaveAll=1");
   }
 
   // ---- 3. compact node numbering: used nodes in increasing tag order
   std::vector<long long> used;
-  for (const auto* b : surfaceBlocks) used.insert(used.end(), b->nodes.begin(), b->nodes.end());
+  for (const auto* b : bodyBlocks) used.insert(used.end(), b->nodes.begin(), b->nodes.end());
   std::sort(used.begin(), used.end());
   used.erase(std::unique(used.begin(), used.end()), used.end());
   std::unordered_map<long long, int> local;
   local.reserve(used.size());
-  std::vector<std::array<double, 2>> xy(used.size());
+  std::vector<std::array<double, 3>> xyz(used.size());
   for (size_t k = 0; k < used.size(); ++k) {
     auto it = d.nodes.find(used[k]);
     if (it == d.nodes.end()) fail("an element references node tag " + std::to_string(used[k]) + ", which is not in $Nodes");
     const auto& p = it->second;
     const double scale = std::max({1.0, std::abs(p[0]), std::abs(p[1])});
-    if (std::abs(p[2]) > 1e-10 * scale) {
+    if (!solid && std::abs(p[2]) > 1e-10 * scale) {
       std::ostringstream os;
       os << "node " << used[k] << " has z = " << p[2]
          << "; only planar meshes in the plane z = 0 are supported";
       fail(os.str());
     }
     local[used[k]] = static_cast<int>(k);
-    xy[k] = {p[0], p[1]};
+    xyz[k] = {p[0], p[1], solid ? p[2] : 0.0};
   }
 
-  // ---- 4. connectivity (local node indices), counter-clockwise
+  // ---- 4. connectivity (local node indices): 2-D counter-clockwise, 3-D valid
   std::vector<int> conn;
   std::vector<int> elemEntity;
   conn.reserve(numElems * nen);
-  for (const auto* b : surfaceBlocks) {
+  for (const auto* b : bodyBlocks) {
     for (size_t e = 0; e < b->tags.size(); ++e) {
-      int n[9];
+      int n[27];
       for (int i = 0; i < nen; ++i) n[i] = local.at(b->nodes[e * nen + i]);
-      const double a2 = twiceArea(xy, type, n);
-      double h2 = 0.0;  // squared longest corner-to-corner distance, for scale
-      for (int i = 0; i < 4; ++i)
-        for (int j = i + 1; j < 4; ++j)
-          h2 = std::max(h2, std::pow(xy[n[i]][0] - xy[n[j]][0], 2) + std::pow(xy[n[i]][1] - xy[n[j]][1], 2));
-      if (!(std::abs(a2) > 1e-12 * h2))
-        fail("element " + std::to_string(b->tags[e]) + " has zero area (degenerate quadrangle)");
-      if (a2 < 0) {
-        // Clockwise (surface normal -z): reverse to 0 3 2 1; the mid-side
-        // nodes follow their sides: (0-3)=7, (3-2)=6, (2-1)=5, (1-0)=4.
-        static const int perm4[4] = {0, 3, 2, 1};
-        static const int perm9[9] = {0, 3, 2, 1, 7, 6, 5, 4, 8};
-        int m[9];
-        for (int i = 0; i < nen; ++i) m[i] = n[quad9 ? perm9[i] : perm4[i]];
-        std::copy(m, m + nen, n);
+      if (solid) {
+        // Gmsh writes positively oriented volume elements; anything else was
+        // edited or written by another tool, and is not guessed at.
+        std::array<std::array<double, 3>, 8> corners;
+        for (int i = 0; i < ref.numCorners; ++i) corners[i] = xyz[n[i]];
+        const CornerJacobian j = cornerJacobian(type, corners.data());
+        if (j.verdict != CornerJacobian::Verdict::Valid)
+          failAt(b->lines[e], "element " + std::to_string(b->tags[e]) + " (volume " + std::to_string(b->entity) +
+                                  ") of body '" + bodyName + "' is " + describeCornerJacobian(type, j));
+      } else {
+        const double a2 = twiceArea(xyz, type, n);
+        double h2 = 0.0;  // squared longest corner-to-corner distance, for scale
+        for (int i = 0; i < 4; ++i)
+          for (int j = i + 1; j < 4; ++j)
+            h2 = std::max(h2, std::pow(xyz[n[i]][0] - xyz[n[j]][0], 2) + std::pow(xyz[n[i]][1] - xyz[n[j]][1], 2));
+        if (!(std::abs(a2) > 1e-12 * h2))
+          fail("element " + std::to_string(b->tags[e]) + " has zero area (degenerate quadrangle)");
+        if (a2 < 0) {
+          // Clockwise (surface normal -z): reverse to 0 3 2 1; the mid-side
+          // nodes follow their sides: (0-3)=7, (3-2)=6, (2-1)=5, (1-0)=4.
+          static const int perm4[4] = {0, 3, 2, 1};
+          static const int perm9[9] = {0, 3, 2, 1, 7, 6, 5, 4, 8};
+          int m[9];
+          for (int i = 0; i < nen; ++i) m[i] = n[quad9 ? perm9[i] : perm4[i]];
+          std::copy(m, m + nen, n);
+        }
       }
       conn.insert(conn.end(), n, n + nen);
       elemEntity.push_back(b->entity);
@@ -493,65 +651,93 @@ int readGmshFile(Mesh& mesh, const std::string& bodyName, CellType type, const s
   }
   const int ne = static_cast<int>(elemEntity.size());
 
-  // ---- 5. element sides: corner pair -> (element, local side)
-  std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> sides;
+  // ---- 5. element facets: sorted corners -> (element, local facet)
+  const int facetCorners = referenceCell(facetType).numCorners;
+  std::map<std::vector<int>, std::vector<std::pair<int, int>>> facets;
   for (int e = 0; e < ne; ++e) {
     const int* n = &conn[static_cast<size_t>(e) * nen];
-    const auto& facets = referenceCell(type).facets;
-    for (int s = 0; s < static_cast<int>(facets.size()); ++s) {
-      const int p = n[facets[s].nodes[0]], q = n[facets[s].nodes[1]];
-      sides[{std::min(p, q), std::max(p, q)}].push_back({e, s});
+    for (int f = 0; f < static_cast<int>(ref.facets.size()); ++f) {
+      std::vector<int> key(facetCorners);
+      for (int i = 0; i < facetCorners; ++i) key[i] = n[ref.facets[f].nodes[i]];
+      std::sort(key.begin(), key.end());
+      facets[key].push_back({e, f});
     }
   }
 
-  // ---- 6. physical curves -> side sets (element, local side)
-  std::map<std::string, std::vector<std::pair<int, int>>> curveSets;
+  // ---- 6. physical curves (2-D) / surfaces (3-D) -> side sets (element, local facet)
+  std::map<std::string, std::vector<std::pair<int, int>>> facetSets;
   std::map<std::string, std::set<std::pair<int, int>>> seen;
   for (const auto& b : d.blocks) {
-    if (b.dim != 1) continue;
-    const auto& phys = physicalsOf(d, 1, b.entity);
+    if (b.dim != dim - 1) continue;
+    const auto& phys = physicalsOf(d, dim - 1, b.entity);
     if (phys.empty()) continue;
-    const std::string firstName = physicalName(d, 1, phys[0]);
-    if (b.type != wantLine) {
+    const std::string firstName = physicalName(d, dim - 1, phys[0]);
+    if (b.type != wantFacet) {
       std::ostringstream os;
-      os << "physical curve '" << firstName << "' (curve " << b.entity << ") has elements of type " << b.type
-         << "; body '" << bodyName << "' (" << cellTypeName(type) << ") expects "
-         << (quad9 ? "3-node lines (type 8)" : "2-node lines (type 1)");
-      fail(os.str());
+      os << facetGroupWord << " '" << firstName << "' (" << kEntityWord[dim - 1] << " " << b.entity
+         << ") has elements of type " << b.type;
+      if (!solid) {
+        os << "; body '" << bodyName << "' (" << cellTypeName(type) << ") expects "
+           << (quad9 ? "3-node lines (type 8)" : "2-node lines (type 1)");
+        fail(os.str());
+      }
+      const GmshType* t = gmshType(b.type);
+      if (t && t->dim != 2)
+        os << " (" << t->name << ", " << t->dim << "-D): a side set of a 3-D body is made of 2-D faces";
+      else
+        os << " (" << (t ? t->name : "unknown to DDContact") << ") but the faces of body '" << bodyName << "' ("
+           << cellTypeName(type) << ") are " << cellTypeName(facetType);
+      os << "; expected " << gmshTypeText(wantFacet);
+      failAt(b.line, os.str());
     }
-    const int nl = b.numNodes;
+    if (!b.countError.empty()) failAt(b.countErrorLine, b.countError);
+    const int nf = b.numNodes;
     for (size_t l = 0; l < b.tags.size(); ++l) {
-      int n[3];
+      std::vector<int> n(nf);
       bool inBody = true;
-      for (int i = 0; i < nl; ++i) {
-        auto it = local.find(b.nodes[l * nl + i]);
+      for (int i = 0; i < nf; ++i) {
+        auto it = local.find(b.nodes[l * nf + i]);
         inBody = inBody && it != local.end();
         n[i] = inBody ? it->second : -1;
       }
+      const std::string what = facetWord + std::to_string(b.tags[l]) + " of " + facetGroupWord + " '" + firstName + "'";
+      auto failHere = [&](const std::string& msg) { solid ? failAt(b.lines[l], msg) : fail(msg); };
       if (!inBody) {
-        if (selectedTag >= 0) continue;  // a line of another body
-        fail("line element " + std::to_string(b.tags[l]) + " of physical curve '" + firstName +
-             "' has a node that belongs to no 2-D element");
+        if (selectedTag >= 0) continue;  // a facet of another body
+        failHere(what + " has a node that belongs to no " + dimWord + " element");
       }
-      auto it = sides.find({std::min(n[0], n[1]), std::max(n[0], n[1])});
-      if (it == sides.end())
-        fail("line element " + std::to_string(b.tags[l]) + " of physical curve '" + firstName +
-             "' is not on the boundary of any element (its end nodes are not the corners of an element side)");
+      std::vector<int> key(n.begin(), n.begin() + facetCorners);
+      std::sort(key.begin(), key.end());
+      auto it = facets.find(key);
+      if (it == facets.end())
+        failHere(what + (solid ? " is not on the boundary of any element (its corners are not the corners of an "
+                                 "element face)"
+                               : " is not on the boundary of any element (its end nodes are not the corners of an "
+                                 "element side)"));
       if (it->second.size() != 1)
-        fail("line element " + std::to_string(b.tags[l]) + " of physical curve '" + firstName +
-             "' lies inside the body (on a side shared by two elements); side sets must lie on the boundary");
+        failHere(what + (solid ? " lies inside the body (on a face shared by two elements)"
+                               : " lies inside the body (on a side shared by two elements)") +
+                 "; side sets must lie on the boundary");
       const auto es = it->second[0];
-      if (quad9 && conn[static_cast<size_t>(es.first) * nen + referenceCell(type).facets[es.second].nodes[2]] != n[2])
-        fail("the middle node of line element " + std::to_string(b.tags[l]) + " of physical curve '" + firstName +
-             "' is not the mid-side node of the element side it lies on");
+      // Higher-order nodes: the same as the element facet's (as a set: the
+      // facet's orientation comes from the element, not from the file).
+      const auto& fn = ref.facets[es.second].nodes;
+      std::vector<int> mine(n.begin() + facetCorners, n.end()), theirs;
+      for (size_t i = facetCorners; i < fn.size(); ++i)
+        theirs.push_back(conn[static_cast<size_t>(es.first) * nen + fn[i]]);
+      std::sort(mine.begin(), mine.end());
+      std::sort(theirs.begin(), theirs.end());
+      if (mine != theirs)
+        failHere(solid ? "the mid-edge / centre nodes of " + what + " are not those of the element face it lies on"
+                       : "the middle node of " + what + " is not the mid-side node of the element side it lies on");
       for (int pt : phys) {
-        const std::string name = physicalName(d, 1, pt);
-        if (seen[name].insert(es).second) curveSets[name].push_back(es);
+        const std::string name = physicalName(d, dim - 1, pt);
+        if (seen[name].insert(es).second) facetSets[name].push_back(es);
       }
     }
   }
 
-  // ---- 7. physical points and surfaces -> node sets
+  // ---- 7. physical points, curves (3-D) and surfaces / volumes -> node sets
   std::map<std::string, std::vector<int>> nodeSets;
   std::map<int, std::vector<long long>> pointNodes = d.pointNodes;
   for (const auto& b : d.blocks)
@@ -564,15 +750,43 @@ int readGmshFile(Mesh& mesh, const std::string& bodyName, CellType type, const s
         const std::string name = physicalName(d, 0, pt);
         if (it == local.end()) {
           if (selectedTag >= 0) continue;
-          fail("physical point '" + name + "' (node " + std::to_string(tag) + ") belongs to no 2-D element");
+          fail("physical point '" + name + "' (node " + std::to_string(tag) + ") belongs to no " + dimWord + " element");
         }
         nodeSets[name].push_back(it->second);
       }
     }
   }
+  if (solid) {
+    // Physical curves of a 3-D body: edges, e.g. for a line support.
+    for (const auto& b : d.blocks) {
+      if (b.dim != 1) continue;
+      const auto& phys = physicalsOf(d, 1, b.entity);
+      if (phys.empty()) continue;
+      const std::string firstName = physicalName(d, 1, phys[0]);
+      if (b.type != 1 && b.type != 8)
+        failAt(b.line, "physical curve '" + firstName + "' (curve " + std::to_string(b.entity) + ") has " +
+                           gmshTypeText(b.type) + "; expected 2-node lines (type 1) or 3-node lines (type 8)");
+      for (size_t l = 0; l < b.tags.size(); ++l) {
+        std::vector<int> n;
+        for (int i = 0; i < b.numNodes; ++i) {
+          auto it = local.find(b.nodes[l * b.numNodes + i]);
+          if (it != local.end()) n.push_back(it->second);
+        }
+        if (static_cast<int>(n.size()) != b.numNodes) {
+          if (selectedTag >= 0) continue;  // a line of another body
+          failAt(b.lines[l], "line element " + std::to_string(b.tags[l]) + " of physical curve '" + firstName +
+                                 "' has a node that belongs to no 3-D element");
+        }
+        for (int pt : phys) {
+          auto& s = nodeSets[physicalName(d, 1, pt)];
+          s.insert(s.end(), n.begin(), n.end());
+        }
+      }
+    }
+  }
   for (int e = 0; e < ne; ++e)
-    for (int pt : physicalsOf(d, 2, elemEntity[e])) {
-      auto& s = nodeSets[physicalName(d, 2, pt)];
+    for (int pt : physicalsOf(d, dim, elemEntity[e])) {
+      auto& s = nodeSets[physicalName(d, dim, pt)];
       s.insert(s.end(), &conn[static_cast<size_t>(e) * nen], &conn[static_cast<size_t>(e) * nen] + nen);
     }
 
@@ -580,13 +794,13 @@ int readGmshFile(Mesh& mesh, const std::string& bodyName, CellType type, const s
   const int body = mesh.beginBody(bodyName, type);
   const int firstNode = mesh.numNodes();
   const int firstElement = mesh.numElements();
-  for (const auto& p : xy) mesh.addNode(p[0], p[1]);
+  for (const auto& p : xyz) mesh.addNode(p[0], p[1], p[2]);
   for (int e = 0; e < ne; ++e) {
-    int n[9];
+    int n[27];
     for (int i = 0; i < nen; ++i) n[i] = firstNode + conn[static_cast<size_t>(e) * nen + i];
     mesh.addElement(n);
   }
-  for (const auto& kv : curveSets) {
+  for (const auto& kv : facetSets) {
     std::vector<Segment> segs;
     for (const auto& es : kv.second) segs.push_back(mesh.makeSegment(firstElement + es.first, es.second));
     mesh.addSideSet(body, kv.first, std::move(segs));

@@ -152,6 +152,16 @@ void Mesh::check() const {
                                            << en[i] << " outside the body");
         used[en[i]] = 1;
       }
+      if (dim_ == 3) {
+        std::array<std::array<double, 3>, 8> corners;
+        for (int i = 0; i < referenceCell(body.cellType).numCorners; ++i) corners[i] = coords_[en[i]];
+        const CornerJacobian j = cornerJacobian(body.cellType, corners.data());
+        DDC_INPUT_REQUIRE(j.verdict == CornerJacobian::Verdict::Valid,
+                          "mesh: element " << e << " of body '" << body.name << "' (" << cellTypeName(body.cellType)
+                                           << ", first node " << en[0] << " at (" << coords_[en[0]][0] << ", "
+                                           << coords_[en[0]][1] << ", " << coords_[en[0]][2] << ")) is "
+                                           << describeCornerJacobian(body.cellType, j));
+      }
     }
   }
   for (int n = 0; n < numNodes(); ++n)

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <sstream>
 #include <vector>
 
 #include "DDC_Error.hpp"
@@ -15,47 +16,132 @@ namespace ddc {
 
 namespace {
 
+using Point = std::array<double, 3>;
+using Index = std::array<int, 3>;
+
 constexpr double kPi = 3.14159265358979323846;
-/// Largest accepted "Distortion" (see the proof sketch in the header).
+/// Largest accepted "Distortion" of a Rectangle (see the proof sketch in the
+/// header).
 constexpr double kMaxDistortion = 0.3;
+/// Largest accepted "Distortion" of a Box: below 1/(2 sqrt 3) = 0.2887 (see
+/// the header).
+constexpr double kMaxDistortion3D = 0.25;
 /// Fixed seed of the distortion generator: same mesh on every rank and run.
 constexpr std::uint32_t kDistortionSeed = 20220804u;
 
-/// A structured grid of na x nb cells. For Quad9 the node grid is the
-/// "fine" grid with m = 2 nodes per cell and direction, for Quad4 m = 1; in
-/// both cases every point of the (m na + 1) x (m nb + 1) node grid is a node.
+/// A structured grid of n[0] x n[1] (x n[2] in 3-D) cells in index space.
+/// Quadratic cell types use the "fine" grid with m = 2 points per cell and
+/// direction (corners at even indices), linear ones m = 1. Grid points are
+/// numbered with index 0 fastest, then 1, then 2.
 struct Grid {
-  int na = 0, nb = 0, m = 1;
-  int firstNode = 0;
-  int numA() const { return m * na + 1; }
-  int numB() const { return m * nb + 1; }
-  int node(int a, int b) const { return firstNode + b * numA() + a; }
+  int dim = 2;
+  Index n{{1, 1, 1}};
+  int m = 1;
+  int points(int d) const { return d < dim ? m * n[d] + 1 : 1; }
+  std::size_t numPoints() const {
+    return static_cast<std::size_t>(points(0)) * static_cast<std::size_t>(points(1)) *
+           static_cast<std::size_t>(points(2));
+  }
+  std::size_t index(const Index& p) const {
+    return (static_cast<std::size_t>(p[2]) * points(1) + p[1]) * points(0) + p[0];
+  }
+  /// Calls f(point) for every grid point whose indices are multiples of
+  /// `step`, in numbering order.
+  template <class F>
+  void forEachPoint(int step, F f) const {
+    for (int c = 0; c < points(2); c += step)
+      for (int b = 0; b < points(1); b += step)
+        for (int a = 0; a < points(0); a += step) f(Index{{a, b, c}});
+  }
 };
 
-/// Fine-grid coordinates (a, b) of the four corners of cell (i, j), counter-
-/// clockwise if the map (a, b) -> (x, y) preserves orientation; `flip`
-/// reverses the order for an orientation-reversing map.
-std::array<std::array<int, 2>, 4> cellCorners(const Grid& g, int i, int j, bool flip) {
-  const int a0 = g.m * i, a1 = g.m * (i + 1), b0 = g.m * j, b1 = g.m * (j + 1);
-  if (!flip) return {{{a0, b0}, {a1, b0}, {a1, b1}, {a0, b1}}};
-  return {{{a0, b0}, {a0, b1}, {a1, b1}, {a1, b0}}};
+/// Grid points per cell and direction: 2 if the cell type has nodes besides
+/// its corners (Quad9, Hex20, Hex27, Tet10), else 1.
+int pointsPerCell(CellType t) { return numCellNodes(t) == referenceCell(t).numCorners ? 1 : 2; }
+
+/// The corners of every cell of `g` as grid points, in the corner order of
+/// cell type `t`, cells in grid order. A quadrilateral or hexahedron fills one
+/// grid cell; tetrahedra split each grid cell into the six tetrahedra of the
+/// Kuhn (Freudenthal) triangulation, one per path 000 -> 111 along the edges
+/// of the cube, i.e. one per ordering of the three axes. All of them share
+/// the main diagonal and every face of the cube is cut along the diagonal
+/// from its lowest to its highest corner, so the face splits of two
+/// neighbouring cells agree: the mesh is conforming (Freudenthal 1942; Bey,
+/// "Simplicial grid refinement", BIT 2000).
+///
+/// The cells are positively oriented in index space, or negatively if
+/// `reversed` (for a map from indices to coordinates that reverses
+/// orientation, so that the cells are positive in space): quadrilaterals and
+/// hexahedra then swap the roles of index directions 0 and 1, tetrahedra swap
+/// two corners.
+std::vector<std::vector<Index>> gridCells(const Grid& g, CellType t, bool reversed) {
+  const ReferenceCell& ref = referenceCell(t);
+  DDC_ASSERT(ref.dim == g.dim && (!ref.simplex || g.dim == 3), "grid of dimension " << g.dim << " for " << ref.name);
+  std::vector<std::vector<Index>> cells;
+  static const std::array<Index, 6> orders = {{{{0, 1, 2}}, {{0, 2, 1}}, {{1, 0, 2}}, {{1, 2, 0}}, {{2, 0, 1}}, {{2, 1, 0}}}};
+  static const std::array<int, 6> orderSign = {{1, -1, -1, 1, 1, -1}};
+  for (int k = 0; k < (g.dim == 3 ? g.n[2] : 1); ++k)
+    for (int j = 0; j < g.n[1]; ++j)
+      for (int i = 0; i < g.n[0]; ++i) {
+        const Index base{{g.m * i, g.m * j, g.m * k}};
+        if (!ref.simplex) {
+          std::vector<Index> corners;
+          for (int c = 0; c < ref.numCorners; ++c) {
+            Index p = base;
+            for (int d = 0; d < g.dim; ++d) {
+              const int axis = reversed && d < 2 ? 1 - d : d;
+              p[axis] += ref.nodes[c][d] > 0 ? g.m : 0;
+            }
+            corners.push_back(p);
+          }
+          cells.push_back(corners);
+          continue;
+        }
+        for (int o = 0; o < 6; ++o) {
+          // det[w1 - w0, w2 - w0, w3 - w0] = det[e_o0, e_o1, e_o2] = orderSign.
+          std::vector<Index> w(4, base);
+          for (int s = 1; s <= 3; ++s) {
+            w[s] = w[s - 1];
+            w[s][orders[o][s - 1]] += g.m;
+          }
+          if ((orderSign[o] > 0) == reversed) std::swap(w[1], w[2]);
+          cells.push_back(w);
+        }
+      }
+  return cells;
 }
 
-/// Which straight boundary line of the grid a fine-grid point lies on.
-enum GridSide { kSideB0 = 0, kSideAMax = 1, kSideBMax = 2, kSideA0 = 3 };
-
-bool onGridSide(const Grid& g, const std::array<int, 2>& p, int side) {
-  switch (side) {
-    case kSideB0: return p[1] == 0;
-    case kSideAMax: return p[0] == g.numA() - 1;
-    case kSideBMax: return p[1] == g.numB() - 1;
-    default: return p[0] == 0;
+/// The grid point of every node of a cell from its corners: the node's
+/// reference coordinates mapped by the corner map (multilinear for
+/// quadrilaterals / hexahedra, affine for simplices). With m = 2 every node
+/// of Quad9, Hex20, Hex27 and Tet10 lands on a grid point.
+std::vector<Index> cellNodePoints(CellType t, const std::vector<Index>& corners) {
+  const ReferenceCell& ref = referenceCell(t);
+  std::vector<Index> points;
+  for (const Point& xi : ref.nodes) {
+    Point p{0, 0, 0};
+    for (int c = 0; c < ref.numCorners; ++c) {
+      double w = 1.0;
+      if (ref.simplex) {
+        w = c == 0 ? 1.0 - xi[0] - xi[1] - xi[2] : xi[c - 1];
+      } else {
+        for (int d = 0; d < ref.dim; ++d) w *= 0.5 * (1.0 + xi[d] * ref.nodes[c][d]);
+      }
+      for (int d = 0; d < 3; ++d) p[d] += w * corners[c][d];
+    }
+    Index q;
+    for (int d = 0; d < 3; ++d) {
+      q[d] = static_cast<int>(std::lround(p[d]));
+      DDC_ASSERT(std::abs(p[d] - q[d]) < 1e-9, ref.name << " node off the grid");
+    }
+    points.push_back(q);
   }
+  return points;
 }
 
 /// Order segments so that each one ends where the next begins (a walk along
 /// the boundary in the counter-clockwise sense of the body, as the segments
-/// themselves are oriented that way).
+/// themselves are oriented that way). 2-D only.
 std::vector<Segment> chainSegments(std::vector<Segment> segs) {
   if (segs.size() < 2) return segs;
   std::vector<Segment> out;
@@ -87,43 +173,143 @@ std::vector<Segment> chainSegments(std::vector<Segment> segs) {
   return out;
 }
 
-/// Add the nodes (coordinates `xy`, indexed like g.node() - firstNode) and the
-/// elements of a structured grid to the current body of `mesh`, and define
-/// side sets `sideNames[GridSide]` plus node set "all".
-void addStructuredBody(Mesh& mesh, int body, const Grid& g, CellType type, bool flip,
-                       const std::vector<std::array<double, 2>>& xy,
-                       const std::array<std::string, 4>& sideNames) {
-  for (const auto& p : xy) mesh.addNode(p[0], p[1]);
+/// Add the nodes and elements of a structured grid to body `body` (the
+/// current body of `mesh`) and define its side sets and node set "all".
+/// \param x coordinates of every grid point, indexed by g.index(); only the
+///        points that are nodes of some cell become nodes (Hex20 leaves out
+///        face and cell centres), numbered in grid order.
+/// \param sideNames name of the side set on the grid side index d = 0 (at
+///        2d) and index d = max (at 2d + 1), for d < g.dim. 2-D side sets
+///        are chained (chainSegments), 3-D ones list faces in element order.
+/// \return the node number of every grid point (-1 if it is no node).
+std::vector<int> addStructuredBody(Mesh& mesh, int body, const Grid& g, CellType type, bool reversed,
+                                   const std::vector<Point>& x, const std::vector<std::string>& sideNames) {
+  DDC_ASSERT(static_cast<int>(sideNames.size()) == 2 * g.dim, "one side name per grid side");
   const ReferenceCell& ref = referenceCell(type);
-  std::vector<Segment> sides[4];
-  for (int j = 0; j < g.nb; ++j) {
-    for (int i = 0; i < g.na; ++i) {
-      const auto c = cellCorners(g, i, j, flip);
-      int nodes[9];
-      for (int k = 0; k < 4; ++k) nodes[k] = g.node(c[k][0], c[k][1]);
-      for (const auto& edge : ref.edges)
-        if (edge.middle >= 0) {
-          const auto& p = c[edge.start];
-          const auto& q = c[edge.end];
-          nodes[edge.middle] = g.node((p[0] + q[0]) / 2, (p[1] + q[1]) / 2);
-        }
-      if (type == CellType::Quad9) nodes[8] = g.node(g.m * i + 1, g.m * j + 1);
-      const int e = mesh.addElement(nodes);
-      for (int s = 0; s < static_cast<int>(ref.facets.size()); ++s)
-        for (int side = 0; side < 4; ++side)
-          if (onGridSide(g, c[ref.facets[s].nodes[0]], side) && onGridSide(g, c[ref.facets[s].nodes[1]], side))
-            sides[side].push_back(mesh.makeSegment(e, s));
+  const auto cells = gridCells(g, type, reversed);
+  std::vector<std::vector<Index>> cellPoints;
+  cellPoints.reserve(cells.size());
+  std::vector<int> node(g.numPoints(), -1);
+  for (const auto& c : cells) {
+    cellPoints.push_back(cellNodePoints(type, c));
+    for (const Index& p : cellPoints.back()) node[g.index(p)] = 0;
+  }
+  std::vector<int> all;
+  for (std::size_t k = 0; k < node.size(); ++k)
+    if (node[k] == 0) {
+      node[k] = g.dim == 3 ? mesh.addNode(x[k][0], x[k][1], x[k][2]) : mesh.addNode(x[k][0], x[k][1]);
+      all.push_back(node[k]);
+    }
+  std::vector<std::vector<Segment>> sides(sideNames.size());
+  std::vector<int> nodes(ref.numNodes);
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    for (int i = 0; i < ref.numNodes; ++i) nodes[i] = node[g.index(cellPoints[c][i])];
+    const int e = mesh.addElement(nodes.data());
+    for (int f = 0; f < static_cast<int>(ref.facets.size()); ++f) {
+      const ReferenceFacet& facet = ref.facets[f];
+      for (std::size_t side = 0; side < sides.size(); ++side) {
+        const int d = static_cast<int>(side / 2);
+        const int at = side % 2 == 0 ? 0 : g.points(d) - 1;
+        bool on = true;
+        for (int k = 0; k < referenceCell(facet.type).numCorners; ++k)
+          on = on && cells[c][facet.nodes[k]][d] == at;
+        if (on) sides[side].push_back(mesh.makeSegment(e, f));
+      }
     }
   }
-  for (int side = 0; side < 4; ++side) mesh.addSideSet(body, sideNames[side], chainSegments(sides[side]));
-  std::vector<int> all(xy.size());
-  for (size_t k = 0; k < all.size(); ++k) all[k] = g.firstNode + static_cast<int>(k);
+  for (std::size_t side = 0; side < sides.size(); ++side)
+    mesh.addSideSet(body, sideNames[side], g.dim == 2 ? chainSegments(std::move(sides[side])) : std::move(sides[side]));
   mesh.addNodeSet(body, "all", std::move(all));
+  return node;
 }
 
 /// Uniform double in [0, 1) from the raw 32-bit Mersenne twister output
 /// (std::uniform_real_distribution is implementation-defined, this is not).
 double uniform01(std::mt19937& gen) { return static_cast<double>(gen()) / 4294967296.0; }
+
+/// Coordinate of grid point p (of np points) on an axis from `origin` over
+/// `length`: affine, and exactly origin + length at the last point.
+double axisCoordinate(double origin, double length, int p, int np) {
+  return p == np - 1 ? origin + length : origin + length * (static_cast<double>(p) / (np - 1));
+}
+
+/// Coordinates of every grid point of the box [origin, origin + length]
+/// (g.dim axes; z = 0 in 2-D).
+///
+/// Element vertices (indices multiples of g.m) are affine in the index;
+/// interior ones are moved by a random vector, uniform in the disc (2-D) or
+/// ball (3-D) of radius distortion * (smallest element size), drawn in grid
+/// order from a fixed-seed Mersenne twister: the same vertices move the same
+/// way for linear and quadratic cells.
+///
+/// The other grid points lie on the straight geometry of their cell: for
+/// quadrilaterals / hexahedra at the average of the 2^k vertices around a
+/// point with k odd indices (so the quadratic cell equals the bilinear /
+/// trilinear map of its corners); for tetrahedra at the midpoint of the
+/// tetrahedron edge through it, which runs from the vertex below to the
+/// vertex above in every odd index (gridCells: Kuhn edges are monotone).
+std::vector<Point> boxPoints(const Grid& g, const Point& origin, const Point& length, double distortion,
+                             bool simplexCells) {
+  std::vector<Point> x(g.numPoints(), Point{0, 0, 0});
+  double hmin = std::numeric_limits<double>::max();
+  for (int d = 0; d < g.dim; ++d) hmin = std::min(hmin, length[d] / g.n[d]);
+  const double radius = distortion * hmin;
+  std::mt19937 gen(kDistortionSeed);
+  g.forEachPoint(g.m, [&](const Index& p) {
+    Point& q = x[g.index(p)];
+    bool interior = true;
+    for (int d = 0; d < g.dim; ++d) {
+      q[d] = axisCoordinate(origin[d], length[d], p[d], g.points(d));
+      interior = interior && p[d] > 0 && p[d] < g.points(d) - 1;
+    }
+    if (!interior || radius <= 0.0) return;
+    if (g.dim == 2) {
+      // Uniform in the disc.
+      const double r = radius * std::sqrt(uniform01(gen));
+      const double phi = 2.0 * kPi * uniform01(gen);
+      q[0] += r * std::cos(phi);
+      q[1] += r * std::sin(phi);
+    } else {
+      // Uniform in the ball: radius ~ cbrt(u), direction uniform on the sphere.
+      const double r = radius * std::cbrt(uniform01(gen));
+      const double cosTheta = 2.0 * uniform01(gen) - 1.0;
+      const double phi = 2.0 * kPi * uniform01(gen);
+      const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
+      q[0] += r * sinTheta * std::cos(phi);
+      q[1] += r * sinTheta * std::sin(phi);
+      q[2] += r * cosTheta;
+    }
+  });
+  if (g.m == 1) return x;
+  g.forEachPoint(1, [&](const Index& p) {
+    std::vector<int> odd;
+    for (int d = 0; d < g.dim; ++d)
+      if (p[d] % 2 == 1) odd.push_back(d);
+    if (odd.empty()) return;
+    Point& q = x[g.index(p)];
+    const int k = static_cast<int>(odd.size());
+    if (simplexCells) {
+      Index lo = p, hi = p;
+      for (int d : odd) {
+        --lo[d];
+        ++hi[d];
+      }
+      for (int i = 0; i < 3; ++i) q[i] = 0.5 * (x[g.index(lo)][i] + x[g.index(hi)][i]);
+      return;
+    }
+    // Sum the 2^k vertices in Gray-code order (00, 10, 11, 01 in 2-D: the
+    // order of the corners around a face), then scale.
+    Point sum{0, 0, 0};
+    for (int i = 0; i < (1 << k); ++i) {
+      const int gray = i ^ (i >> 1);
+      Index v = p;
+      for (int j = 0; j < k; ++j) v[odd[j]] += (gray >> j) & 1 ? 1 : -1;
+      for (int c = 0; c < 3; ++c) sum[c] += x[g.index(v)][c];
+    }
+    for (int c = 0; c < 3; ++c) q[c] = sum[c] / static_cast<double>(1 << k);
+  });
+  return x;
+}
 
 /// cos and sin of an angle in degrees, exact at multiples of 90 degrees so
 /// that e.g. the end faces of a half-ring lie exactly on y = 0.
@@ -139,112 +325,212 @@ std::array<double, 2> cosSinDegrees(double deg) {
   return {std::cos(rad), std::sin(rad)};
 }
 
-/// Element count times refinement, checked so that the node grid fits an int
-/// (the count itself is > 0 by its validator).
+/// Element count times refinement, checked so that one direction of the
+/// node grid fits an int (the count itself is > 0 by its validator).
 int refinedCount(Teuchos::ParameterList& params, const std::string& name, int refinement,
                  const std::string& path) {
   const int n = params.get<int>(name);
   const long long r = static_cast<long long>(n) * refinement;
   DDC_INPUT_REQUIRE(2 * r + 1 < 46000, "parameter '" << joinPath(path, name) << "' times 'Refinement' ("
-                                                     << r << ") is too large for a 2-D structured mesh");
+                                                     << r << ") is too large for a structured mesh");
   return static_cast<int>(r);
 }
 
-int getRefinement(Teuchos::ParameterList& params) { return params.get<int>("Refinement"); }
+/// A grid of the given cell counts for cell type `type`, which must be of
+/// dimension `counts.size()`; the grid's nodes must fit an int.
+Grid makeGrid(CellType type, const std::vector<int>& counts, const std::string& generator, const std::string& path) {
+  const int dim = static_cast<int>(counts.size());
+  std::ostringstream types;
+  for (CellType t : elementCellTypes())
+    if (cellDimension(t) == dim) types << (types.tellp() > 0 ? ", " : "") << cellTypeName(t);
+  DDC_INPUT_REQUIRE(cellDimension(type) == dim, "'" << path << "': the " << generator << " generator makes a " << dim
+                                                    << "-D body, but its element type " << cellTypeName(type)
+                                                    << " is " << cellDimension(type) << "-D; use one of "
+                                                    << types.str());
+  Grid g;
+  g.dim = dim;
+  for (int d = 0; d < dim; ++d) g.n[d] = counts[d];
+  g.m = pointsPerCell(type);
+  DDC_INPUT_REQUIRE(g.numPoints() < static_cast<std::size_t>(std::numeric_limits<int>::max()),
+                    "'" << path << "': the mesh (after 'Refinement') would have " << g.numPoints()
+                        << " grid points, more than a node number can hold");
+  return g;
+}
+
+/// Annular-sector geometry read from (and checked against) a parameter
+/// list holding the AnnularSectorGenerator parameters.
+struct SectorGeometry {
+  double cx = 0, cy = 0, ri = 0, ro = 0, start = 0, end = 0;
+  int refinement = 1, nr = 0, nc = 0;
+};
+
+SectorGeometry readSector(Teuchos::ParameterList& params, const std::string& path) {
+  SectorGeometry s;
+  s.cx = params.get<double>("Center X");
+  s.cy = params.get<double>("Center Y");
+  s.ri = params.get<double>("Inner Radius");
+  s.ro = params.get<double>("Outer Radius");
+  s.start = params.get<double>("Start Angle");
+  s.end = params.get<double>("End Angle");
+  // Each value is in range by its validator; these are the relations between them.
+  DDC_INPUT_REQUIRE(s.ro > s.ri, "parameter '" << joinPath(path, "Outer Radius")
+                                               << "' must be greater than 'Inner Radius' (" << s.ri << "), got "
+                                               << s.ro);
+  const double sweep = s.end - s.start;
+  DDC_INPUT_REQUIRE(sweep != 0.0 && std::abs(sweep) < 360.0,
+                    "parameters '" << joinPath(path, "Start Angle") << "' (" << s.start << ") and 'End Angle' ("
+                                   << s.end << ") must differ by more than 0 and less than 360 degrees (a "
+                                   << "closed ring is not supported; use two sectors)");
+  s.refinement = params.get<int>("Refinement");
+  s.nr = refinedCount(params, "Radial Elements", s.refinement, path);
+  s.nc = refinedCount(params, "Circumferential Elements", s.refinement, path);
+  return s;
+}
+
+/// Coordinates of the grid points of an annular sector (index 0 radial,
+/// inner -> outer; index 1 angular, Start -> End; index 2, in 3-D, axial from
+/// z0 over `length`). Every point is mapped from (r, theta) directly, so
+/// quadratic nodes lie on their circles; the 2-D and the 3-D sector compute
+/// x and y by this one function and agree to the last bit.
+std::vector<Point> sectorPoints(const Grid& g, const SectorGeometry& s, double z0 = 0.0, double length = 0.0) {
+  std::vector<Point> x(g.numPoints());
+  const int na = g.points(0), nb = g.points(1);
+  for (int b = 0; b < nb; ++b) {
+    // (1-t) s + t e is exact at both ends (t = 0, 1).
+    const double t = static_cast<double>(b) / (nb - 1);
+    const auto cs = cosSinDegrees((1.0 - t) * s.start + t * s.end);
+    for (int a = 0; a < na; ++a) {
+      const double u = static_cast<double>(a) / (na - 1);
+      const double r = (1.0 - u) * s.ri + u * s.ro;
+      for (int c = 0; c < g.points(2); ++c) {
+        const double z = g.dim == 3 ? axisCoordinate(z0, length, c, g.points(2)) : 0.0;
+        x[g.index({{a, b, c}})] = {s.cx + r * cs[0], s.cy + r * cs[1], z};
+      }
+    }
+  }
+  return x;
+}
+
+const char* const kAxisName[3] = {"X", "Y", "Z"};
+const char* const kAxisLower[3] = {"x", "y", "z"};
+
+/// "Refinement" of a generator with element counts in `dim` directions.
+void setRefinementParameter(Teuchos::ParameterList& pl, int dim) {
+  pl.set("Refinement", 1,
+         std::string("multiplies ") + (dim == 2 ? "both" : "all three") +
+             " element counts; refine a benchmark from the command line with --set",
+         atLeast(1));
+}
+
+/// Origin, Length and Elements of every axis of a Rectangle (2) or Box (3),
+/// then Refinement and Distortion.
+Teuchos::RCP<Teuchos::ParameterList> boxParameters(const std::string& name, int dim, double maxDistortion) {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList(name));
+  const std::string corner = dim == 2 ? "lower-left corner" : "corner with the smallest coordinates";
+  for (int d = 0; d < dim; ++d)
+    pl->set(std::string("Origin ") + kAxisName[d], 0.0, std::string(kAxisLower[d]) + " of the " + corner,
+            finiteNumber());
+  for (int d = 0; d < dim; ++d)
+    pl->set(std::string("Length ") + kAxisName[d], 1.0, std::string("extent along ") + kAxisLower[d],
+            greaterThan(0.0));
+  for (int d = 0; d < dim; ++d)
+    pl->set(std::string("Elements ") + kAxisName[d], 4,
+            std::string("number of elements along ") + kAxisLower[d] + ", before refinement", greaterThan(0));
+  setRefinementParameter(*pl, dim);
+  pl->set("Distortion", 0.0,
+          "random but reproducible (fixed seed) displacement of the interior element vertices, as "
+          "a fraction of the element size (larger values than the maximum can invert elements); for "
+          "patch tests on distorted meshes",
+          between(0.0, maxDistortion));
+  return pl;
+}
+
+/// The box of a Rectangle or Box parameter list: grid, origin, lengths.
+struct BoxGeometry {
+  Grid grid;
+  Point origin{0, 0, 0}, length{0, 0, 0};
+  double distortion = 0.0;
+};
+
+BoxGeometry readBox(Teuchos::ParameterList& params, CellType type, int dim, const std::string& generator,
+                    const std::string& path) {
+  BoxGeometry b;
+  const int refinement = params.get<int>("Refinement");
+  std::vector<int> counts;
+  for (int d = 0; d < dim; ++d) {
+    b.origin[d] = params.get<double>(std::string("Origin ") + kAxisName[d]);
+    b.length[d] = params.get<double>(std::string("Length ") + kAxisName[d]);
+    counts.push_back(refinedCount(params, std::string("Elements ") + kAxisName[d], refinement, path));
+  }
+  b.distortion = params.get<double>("Distortion");
+  b.grid = makeGrid(type, counts, generator, path);
+  return b;
+}
+
+/// Annular Sector parameters (shared by the Cylindrical Shell Sector).
+void setSectorParameters(Teuchos::ParameterList& pl) {
+  pl.set("Center X", 0.0, "x of the centre of the circles", finiteNumber());
+  pl.set("Center Y", 0.0, "y of the centre of the circles", finiteNumber());
+  pl.set("Inner Radius", 1.5, "inner radius", greaterThan(0.0));
+  pl.set("Outer Radius", 2.0, "outer radius (> Inner Radius)", greaterThan(0.0));
+  pl.set("Start Angle", 0.0,
+         "angle of the 'start' radial edge in degrees, counter-clockwise from the +x axis", finiteNumber());
+  pl.set("End Angle", 180.0,
+         "angle of the 'end' radial edge in degrees; may be smaller than Start Angle (the sector "
+         "is then swept clockwise); End Angle - Start Angle must be nonzero and less than 360 in "
+         "magnitude",
+         finiteNumber());
+  pl.set("Radial Elements", 4, "number of elements through the thickness, before refinement", greaterThan(0));
+  pl.set("Circumferential Elements", 64, "number of elements along the arc, before refinement", greaterThan(0));
+}
 
 }  // namespace
 
 // ---------------------------------------------------------------- Rectangle
 
 Teuchos::RCP<const Teuchos::ParameterList> RectangleGenerator::getValidParameters() {
-  static Teuchos::RCP<const Teuchos::ParameterList> valid;
-  if (valid.is_null()) {
-    auto pl = Teuchos::rcp(new Teuchos::ParameterList("Rectangle"));
-    pl->set("Origin X", 0.0, "x of the lower-left corner", finiteNumber());
-    pl->set("Origin Y", 0.0, "y of the lower-left corner", finiteNumber());
-    pl->set("Length X", 1.0, "width", greaterThan(0.0));
-    pl->set("Length Y", 1.0, "height", greaterThan(0.0));
-    pl->set("Elements X", 4, "number of elements along x, before refinement", greaterThan(0));
-    pl->set("Elements Y", 4, "number of elements along y, before refinement", greaterThan(0));
-    pl->set("Refinement", 1,
-            "multiplies both element counts; refine a benchmark from the command line with --set", atLeast(1));
-    pl->set("Distortion", 0.0,
-            "random but reproducible (fixed seed) displacement of the interior element vertices, as "
-            "a fraction of the element size (larger values than the maximum can invert elements); for "
-            "patch tests on distorted meshes",
-            between(0.0, kMaxDistortion));
-    valid = pl;
-  }
+  static const Teuchos::RCP<const Teuchos::ParameterList> valid = boxParameters("Rectangle", 2, kMaxDistortion);
   return valid;
 }
 
 int generateRectangle(Mesh& mesh, const std::string& bodyName, CellType type,
                       Teuchos::ParameterList& params, const std::string& path) {
   validateLevel(params, *RectangleGenerator::getValidParameters(), path);
-  const double x0 = params.get<double>("Origin X");
-  const double y0 = params.get<double>("Origin Y");
-  const double lx = params.get<double>("Length X");
-  const double ly = params.get<double>("Length Y");
-  const int refinement = getRefinement(params);
-  const int nx = refinedCount(params, "Elements X", refinement, path);
-  const int ny = refinedCount(params, "Elements Y", refinement, path);
-  const double distortion = params.get<double>("Distortion");
-
+  const BoxGeometry box = readBox(params, type, 2, "Rectangle", path);
+  const Grid& g = box.grid;
   const int body = mesh.beginBody(bodyName, type);
-  Grid g;
-  g.na = nx;
-  g.nb = ny;
-  g.m = numCellNodes(type) == 9 ? 2 : 1;
-  g.firstNode = mesh.numNodes();
-  const int na = g.numA(), nb = g.numB();
-  std::vector<std::array<double, 2>> xy(static_cast<size_t>(na) * nb);
-  auto at = [&](int a, int b) -> std::array<double, 2>& { return xy[static_cast<size_t>(b) * na + a]; };
+  const auto x = boxPoints(g, box.origin, box.length, box.distortion, /*simplexCells=*/false);
+  const auto node = addStructuredBody(mesh, body, g, type, /*reversed=*/false, x, {"left", "right", "bottom", "top"});
+  const int na = g.points(0), nb = g.points(1);
+  mesh.addNodeSet(body, "bottom left", {node[g.index({{0, 0, 0}})]});
+  mesh.addNodeSet(body, "bottom right", {node[g.index({{na - 1, 0, 0}})]});
+  mesh.addNodeSet(body, "top left", {node[g.index({{0, nb - 1, 0}})]});
+  mesh.addNodeSet(body, "top right", {node[g.index({{na - 1, nb - 1, 0}})]});
+  return body;
+}
 
-  // Vertices of the element grid (a, b multiples of m), distorted inside.
-  const double hx = lx / nx, hy = ly / ny;
-  const double radius = distortion * std::min(hx, hy);
-  std::mt19937 gen(kDistortionSeed);
-  for (int b = 0; b < nb; b += g.m) {
-    for (int a = 0; a < na; a += g.m) {
-      double x = x0 + lx * (static_cast<double>(a) / (na - 1));
-      double y = y0 + ly * (static_cast<double>(b) / (nb - 1));
-      if (a == na - 1) x = x0 + lx;
-      if (b == nb - 1) y = y0 + ly;
-      const bool interior = a > 0 && a < na - 1 && b > 0 && b < nb - 1;
-      if (interior && radius > 0.0) {
-        // Uniform in the disc of radius `radius`.
-        const double r = radius * std::sqrt(uniform01(gen));
-        const double phi = 2.0 * kPi * uniform01(gen);
-        x += r * std::cos(phi);
-        y += r * std::sin(phi);
+// ---------------------------------------------------------------------- Box
+
+Teuchos::RCP<const Teuchos::ParameterList> BoxGenerator::getValidParameters() {
+  static const Teuchos::RCP<const Teuchos::ParameterList> valid = boxParameters("Box", 3, kMaxDistortion3D);
+  return valid;
+}
+
+int generateBox(Mesh& mesh, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
+                const std::string& path) {
+  validateLevel(params, *BoxGenerator::getValidParameters(), path);
+  const BoxGeometry box = readBox(params, type, 3, "Box", path);
+  const Grid& g = box.grid;
+  const int body = mesh.beginBody(bodyName, type);
+  const auto x = boxPoints(g, box.origin, box.length, box.distortion, referenceCell(type).simplex);
+  const auto node =
+      addStructuredBody(mesh, body, g, type, /*reversed=*/false, x, {"left", "right", "bottom", "top", "back", "front"});
+  for (int c = 0; c < 2; ++c)
+    for (int b = 0; b < 2; ++b)
+      for (int a = 0; a < 2; ++a) {
+        const std::string name = std::string(b ? "top" : "bottom") + (a ? " right" : " left") + (c ? " front" : " back");
+        mesh.addNodeSet(body, name, {node[g.index({{a * (g.points(0) - 1), b * (g.points(1) - 1), c * (g.points(2) - 1)}})]});
       }
-      at(a, b) = {x, y};
-    }
-  }
-  // Quad9: mid-side nodes at edge midpoints, centre at the corner average.
-  if (g.m == 2) {
-    for (int b = 0; b < nb; ++b) {
-      for (int a = 0; a < na; ++a) {
-        const bool oddA = a % 2 == 1, oddB = b % 2 == 1;
-        if (oddA && !oddB) {
-          at(a, b) = {0.5 * (at(a - 1, b)[0] + at(a + 1, b)[0]), 0.5 * (at(a - 1, b)[1] + at(a + 1, b)[1])};
-        } else if (!oddA && oddB) {
-          at(a, b) = {0.5 * (at(a, b - 1)[0] + at(a, b + 1)[0]), 0.5 * (at(a, b - 1)[1] + at(a, b + 1)[1])};
-        } else if (oddA && oddB) {
-          const auto& p00 = at(a - 1, b - 1);
-          const auto& p10 = at(a + 1, b - 1);
-          const auto& p11 = at(a + 1, b + 1);
-          const auto& p01 = at(a - 1, b + 1);
-          at(a, b) = {0.25 * (p00[0] + p10[0] + p11[0] + p01[0]), 0.25 * (p00[1] + p10[1] + p11[1] + p01[1])};
-        }
-      }
-    }
-  }
-  addStructuredBody(mesh, body, g, type, /*flip=*/false, xy, {"bottom", "right", "top", "left"});
-  mesh.addNodeSet(body, "bottom left", {g.node(0, 0)});
-  mesh.addNodeSet(body, "bottom right", {g.node(na - 1, 0)});
-  mesh.addNodeSet(body, "top left", {g.node(0, nb - 1)});
-  mesh.addNodeSet(body, "top right", {g.node(na - 1, nb - 1)});
   return body;
 }
 
@@ -254,21 +540,8 @@ Teuchos::RCP<const Teuchos::ParameterList> AnnularSectorGenerator::getValidParam
   static Teuchos::RCP<const Teuchos::ParameterList> valid;
   if (valid.is_null()) {
     auto pl = Teuchos::rcp(new Teuchos::ParameterList("Annular Sector"));
-    pl->set("Center X", 0.0, "x of the centre of the circles", finiteNumber());
-    pl->set("Center Y", 0.0, "y of the centre of the circles", finiteNumber());
-    pl->set("Inner Radius", 1.5, "inner radius", greaterThan(0.0));
-    pl->set("Outer Radius", 2.0, "outer radius (> Inner Radius)", greaterThan(0.0));
-    pl->set("Start Angle", 0.0,
-            "angle of the 'start' radial edge in degrees, counter-clockwise from the +x axis", finiteNumber());
-    pl->set("End Angle", 180.0,
-            "angle of the 'end' radial edge in degrees; may be smaller than Start Angle (the sector "
-            "is then swept clockwise); End Angle - Start Angle must be nonzero and less than 360 in "
-            "magnitude",
-            finiteNumber());
-    pl->set("Radial Elements", 4, "number of elements through the thickness, before refinement", greaterThan(0));
-    pl->set("Circumferential Elements", 64, "number of elements along the arc, before refinement", greaterThan(0));
-    pl->set("Refinement", 1,
-            "multiplies both element counts; refine a benchmark from the command line with --set", atLeast(1));
+    setSectorParameters(*pl);
+    setRefinementParameter(*pl, 2);
     valid = pl;
   }
   return valid;
@@ -277,44 +550,42 @@ Teuchos::RCP<const Teuchos::ParameterList> AnnularSectorGenerator::getValidParam
 int generateAnnularSector(Mesh& mesh, const std::string& bodyName, CellType type,
                           Teuchos::ParameterList& params, const std::string& path) {
   validateLevel(params, *AnnularSectorGenerator::getValidParameters(), path);
-  const double cx = params.get<double>("Center X");
-  const double cy = params.get<double>("Center Y");
-  const double ri = params.get<double>("Inner Radius");
-  const double ro = params.get<double>("Outer Radius");
-  const double start = params.get<double>("Start Angle");
-  const double end = params.get<double>("End Angle");
-  // Each value is in range by its validator; these are the relations between them.
-  DDC_INPUT_REQUIRE(ro > ri, "parameter '" << joinPath(path, "Outer Radius") << "' must be greater than 'Inner Radius' ("
-                                            << ri << "), got " << ro);
-  const double sweep = end - start;
-  DDC_INPUT_REQUIRE(sweep != 0.0 && std::abs(sweep) < 360.0,
-                    "parameters '" << joinPath(path, "Start Angle") << "' (" << start << ") and 'End Angle' ("
-                                   << end << ") must differ by more than 0 and less than 360 degrees (a "
-                                   << "closed ring is not supported; use two sectors)");
-  const int refinement = getRefinement(params);
-  const int nr = refinedCount(params, "Radial Elements", refinement, path);
-  const int nc = refinedCount(params, "Circumferential Elements", refinement, path);
-
+  const SectorGeometry s = readSector(params, path);
+  const Grid g = makeGrid(type, {s.nr, s.nc}, "Annular Sector", path);
   const int body = mesh.beginBody(bodyName, type);
-  Grid g;
-  g.na = nr;  // a: radial index, inner -> outer
-  g.nb = nc;  // b: angle index, Start -> End
-  g.m = numCellNodes(type) == 9 ? 2 : 1;
-  g.firstNode = mesh.numNodes();
-  const int na = g.numA(), nb = g.numB();
-  std::vector<std::array<double, 2>> xy(static_cast<size_t>(na) * nb);
-  for (int b = 0; b < nb; ++b) {
-    // (1-t) s + t e is exact at both ends (t = 0, 1).
-    const double t = static_cast<double>(b) / (nb - 1);
-    const auto cs = cosSinDegrees((1.0 - t) * start + t * end);
-    for (int a = 0; a < na; ++a) {
-      const double u = static_cast<double>(a) / (na - 1);
-      const double r = (1.0 - u) * ri + u * ro;
-      xy[static_cast<size_t>(b) * na + a] = {cx + r * cs[0], cy + r * cs[1]};
-    }
+  // (r, theta) -> (x, y) preserves orientation when theta increases.
+  addStructuredBody(mesh, body, g, type, /*reversed=*/s.end < s.start, sectorPoints(g, s),
+                    {"inner", "outer", "start", "end"});
+  return body;
+}
+
+// ------------------------------------------------- Cylindrical shell sector
+
+Teuchos::RCP<const Teuchos::ParameterList> CylindricalShellSectorGenerator::getValidParameters() {
+  static Teuchos::RCP<const Teuchos::ParameterList> valid;
+  if (valid.is_null()) {
+    auto pl = Teuchos::rcp(new Teuchos::ParameterList("Cylindrical Shell Sector"));
+    setSectorParameters(*pl);
+    pl->set("Origin Z", 0.0, "z of the 'back' face", finiteNumber());
+    pl->set("Axial Length", 1.0, "extent along the axis (z) from Origin Z", greaterThan(0.0));
+    pl->set("Axial Elements", 1, "number of elements along the axis, before refinement", greaterThan(0));
+    setRefinementParameter(*pl, 3);
+    valid = pl;
   }
-  // (r, theta) -> (x, y) preserves orientation when theta increases with b.
-  addStructuredBody(mesh, body, g, type, /*flip=*/sweep < 0, xy, {"start", "outer", "end", "inner"});
+  return valid;
+}
+
+int generateCylindricalShellSector(Mesh& mesh, const std::string& bodyName, CellType type,
+                                   Teuchos::ParameterList& params, const std::string& path) {
+  validateLevel(params, *CylindricalShellSectorGenerator::getValidParameters(), path);
+  const SectorGeometry s = readSector(params, path);
+  const int nz = refinedCount(params, "Axial Elements", s.refinement, path);
+  const Grid g = makeGrid(type, {s.nr, s.nc, nz}, "Cylindrical Shell Sector", path);
+  const int body = mesh.beginBody(bodyName, type);
+  // (r, theta, z) -> (x, y, z) preserves orientation when theta increases.
+  addStructuredBody(mesh, body, g, type, /*reversed=*/s.end < s.start,
+                    sectorPoints(g, s, params.get<double>("Origin Z"), params.get<double>("Axial Length")),
+                    {"inner", "outer", "start", "end", "back", "front"});
   return body;
 }
 

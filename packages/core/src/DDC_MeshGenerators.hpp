@@ -1,19 +1,36 @@
 // Built-in structured mesh generators: each adds one body to a ddc::Mesh.
+// Rectangle and Annular Sector make 2-D bodies; Box and Cylindrical Shell
+// Sector are their 3-D extrusions along z and keep their side names.
 //
-// Both generators validate their parameter sublist against a static,
+// Every generator validates its parameter sublist against a static,
 // documented getValidParameters() (misspelt names are errors, defaults are
-// filled in) and then check value ranges, naming the parameter path.
+// filled in, each number's range is in its validator) and then checks the
+// relations between values, naming the parameter path. A cell type of the
+// wrong dimension (Hex8 for a Rectangle, Quad4 for a Box) is an InputError.
 //
-// Conventions shared by both generators:
-//  - elements are counter-clockwise (positive Jacobian), nodes in Gmsh order
-//    (ddc::CellType);
-//  - each side set lists its segments in the order met when walking the
-//    body's boundary counter-clockwise, and every segment is oriented by
-//    Mesh::makeSegment (body on the left, outward normal (dy, -dx)/|.|);
+// Conventions shared by all generators:
+//  - elements are positively oriented (counter-clockwise in 2-D, positive
+//    Jacobian in 3-D), nodes in Gmsh order (ddc::CellType);
+//  - nodes are numbered on a structured grid of points, index 0 fastest
+//    (x, or the radius), then 1, then 2; quadratic cell types use the grid
+//    with 2 points per element and direction, and Hex20 leaves out the face
+//    and cell centres, which are no nodes of it. Nodes on element edges and
+//    faces are shared by the neighbours (no duplicates);
+//  - 2-D side sets list their segments in the order met when walking the
+//    body's boundary counter-clockwise, 3-D side sets their faces in element
+//    order; every segment is oriented by Mesh::makeSegment (outward normal);
 //  - each side set also defines the node set of the same name
 //    (Mesh::addSideSet); node set "all" holds every node of the body;
-//  - "Refinement" multiplies both element counts, so a benchmark deck can be
+//  - in 3-D, "back" is the face at the smallest z and "front" the one at the
+//    largest (x right, y up, z towards the viewer);
+//  - "Refinement" multiplies every element count, so a benchmark deck can be
 //    refined from the command line: --set ".../Refinement=2".
+//
+// Tetrahedra (Tet4, Tet10) split every grid cell into the six tetrahedra of
+// the Kuhn (Freudenthal) triangulation along the cell's diagonal from its
+// lowest to its highest corner (Bey, BIT 40 (2000) 642-656): every face of
+// the grid is cut along the same diagonal from both sides, so the mesh is
+// conforming, and every tetrahedron has the volume of its cell over 6.
 #pragma once
 
 #include <Teuchos_ParameterList.hpp>
@@ -55,6 +72,45 @@ class RectangleGenerator {
   static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
 };
 
+/// Box [Origin X, Origin X + Length X] x [.. Y ..] x [.. Z ..] meshed with
+/// (Elements X * Refinement) x (Elements Y * Refinement) x (Elements Z *
+/// Refinement) hexahedra (Hex8, Hex20, Hex27) or six times as many
+/// tetrahedra (Tet4, Tet10; see the file comment). The 3-D Rectangle: same
+/// parameter names plus the Z ones.
+///
+/// Node counts: Hex8 and Tet4 (nx+1)(ny+1)(nz+1); Hex27 and Tet10
+/// (2nx+1)(2ny+1)(2nz+1); Hex20 the vertices plus the edge midpoints,
+/// (nx+1)(ny+1)(nz+1) + nx(ny+1)(nz+1) + (nx+1)ny(nz+1) + (nx+1)(ny+1)nz.
+///
+/// Sets (qualified "<body>/<name>"):
+///  - side sets "left" (x = Origin X), "right" (x max), "bottom" (y min),
+///    "top" (y max) -- the Rectangle's names -- and "back" (z min), "front"
+///    (z max); also node sets;
+///  - node sets "all" and the eight corners "bottom left back", "bottom right
+///    back", "top left back", ..., "top right front" (one node each).
+///
+/// "Distortion" d in [0, 0.25] moves every interior vertex of the element
+/// grid by a random vector, uniform in the ball of radius d * min(hx, hy, hz),
+/// from the same fixed-seed generator as the Rectangle.
+/// Why 0.25: at any point of a trilinear cell, column k of the Jacobian is a
+/// convex combination of the cell's four edges along direction k, each the
+/// undistorted edge h_k e_k plus the difference of two vertex moves, at most
+/// 2 d min(h) <= 2 d h_k long. So J = (I + M) diag(h) with every column of M
+/// at most 2d long, |M| <= 2 sqrt(3) d < 1 for d < 1/(2 sqrt 3) = 0.289, and
+/// det J >= (1 - 2 sqrt(3) d)^3 hx hy hz (0.0024 hx hy hz at d = 0.25): every
+/// hexahedron stays valid everywhere, not only at its corners. A Kuhn
+/// tetrahedron's determinant det[w1-w0, w2-w1, w3-w2] has columns h_k e_k
+/// plus two vertex moves in the same way, so the same bound holds for it.
+/// Quadratic nodes are placed on the straight geometry: Hex20/Hex27 nodes on
+/// the trilinear map of the distorted corners (the average of the 2, 4 or 8
+/// surrounding vertices), Tet10 nodes at the midpoints of straight edges;
+/// the isoparametric map then equals the trilinear / affine map of the
+/// corners, and the bound above applies to it.
+class BoxGenerator {
+ public:
+  static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
+};
+
 /// Annular sector (a ring segment; a half-ring is Start Angle 0, End Angle
 /// 180) centred at (Center X, Center Y) between radii Inner Radius < Outer
 /// Radius, meshed with (Radial Elements * Refinement) x (Circumferential
@@ -81,6 +137,34 @@ class AnnularSectorGenerator {
   static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
 };
 
+/// Cylindrical shell sector: the Annular Sector (same parameters) extruded
+/// along z from Origin Z over Axial Length, meshed with (Radial Elements *
+/// Refinement) x (Circumferential Elements * Refinement) x (Axial Elements *
+/// Refinement) hexahedra (Hex8, Hex20, Hex27) or six times as many
+/// tetrahedra (Tet4, Tet10). The 3-D half-ring is the default.
+///
+/// Every node lies on its circle, at the position the Annular Sector gives
+/// the same grid point (the two generators share the code): with one axial
+/// element (Hex8) or two node layers (Hex27) each layer of the 3-D mesh
+/// repeats the 2-D mesh's nodes in the same order. Hex8 cells have straight
+/// chords, so their volume is (Circumferential Elements)(1/2) sin(dtheta)
+/// (Ro^2 - Ri^2) Axial Length with dtheta the angle per element; Hex27 cells
+/// carry the Quad9 arcs and their volume is the Quad9 area times the length.
+/// Tetrahedra of a sector with dtheta < 180 degrees are valid: each is
+/// spanned by an axial step and two consecutive in-plane steps of a convex
+/// quadrilateral.
+///
+/// Nodes are numbered radial index fastest, then angle (Start -> End), then
+/// axial (Origin Z upwards); elements likewise.
+///
+/// Sets: side sets "inner", "outer", "start", "end" (as the Annular
+/// Sector), "back" (z = Origin Z) and "front" (z = Origin Z + Axial Length);
+/// also node sets; node set "all".
+class CylindricalShellSectorGenerator {
+ public:
+  static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
+};
+
 /// Add a rectangle body named `bodyName` to `mesh`.
 /// \param params the generator's sublist; validated (this level) against
 ///        RectangleGenerator::getValidParameters(), defaults filled in.
@@ -101,5 +185,25 @@ int generateRectangle(Mesh& mesh, const std::string& bodyName, CellType type,
 ///         non-positive element counts or refinement.
 int generateAnnularSector(Mesh& mesh, const std::string& bodyName, CellType type,
                           Teuchos::ParameterList& params, const std::string& path);
+
+/// Add a box body named `bodyName` to `mesh`.
+/// \param type Hex8, Hex20, Hex27, Tet4 or Tet10.
+/// \param params validated against BoxGenerator::getValidParameters().
+/// \return the index of the new body.
+/// \throws InputError naming the path for unknown parameters, values out of
+///         range (Distortion outside [0, 0.25]), a 2-D cell type, or a
+///         duplicate body name.
+int generateBox(Mesh& mesh, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
+                const std::string& path);
+
+/// Add a cylindrical-shell-sector body named `bodyName` to `mesh`.
+/// \param type Hex8, Hex20, Hex27, Tet4 or Tet10.
+/// \param params validated against
+///        CylindricalShellSectorGenerator::getValidParameters().
+/// \return the index of the new body.
+/// \throws InputError as generateAnnularSector(), and for a non-positive
+///         Axial Length / Axial Elements or a 2-D cell type.
+int generateCylindricalShellSector(Mesh& mesh, const std::string& bodyName, CellType type,
+                                   Teuchos::ParameterList& params, const std::string& path);
 
 }  // namespace ddc

@@ -1,6 +1,9 @@
 #include "DDC_ReferenceCell.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <numeric>
+#include <sstream>
 
 #include "DDC_Error.hpp"
 
@@ -179,6 +182,118 @@ const std::vector<CellType>& elementCellTypes() {
   static const std::vector<CellType> types = {CellType::Quad4, CellType::Quad9, CellType::Hex8, CellType::Hex20,
                                               CellType::Hex27, CellType::Tet4,  CellType::Tet10};
   return types;
+}
+
+namespace {
+
+/// Determinant of the d x d matrix j (row-major 3 x 3 storage).
+double determinant(const double j[3][3], int d) {
+  if (d == 1) return j[0][0];
+  if (d == 2) return j[0][0] * j[1][1] - j[0][1] * j[1][0];
+  return j[0][0] * (j[1][1] * j[2][2] - j[1][2] * j[2][1]) - j[0][1] * (j[1][0] * j[2][2] - j[1][2] * j[2][0]) +
+         j[0][2] * (j[1][0] * j[2][1] - j[1][1] * j[2][0]);
+}
+
+/// J[i][k] = d x_i / d xi_k of the corner map at reference point `xi`.
+void cornerMapJacobian(const ReferenceCell& c, const std::array<double, 3>* x, const Point& xi, double j[3][3]) {
+  const int d = c.dim;
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) j[i][k] = 0.0;
+  if (c.simplex) {
+    // x = x_0 + sum_k xi_k (x_{k+1} - x_0).
+    for (int i = 0; i < d; ++i)
+      for (int k = 0; k < d; ++k) j[i][k] = x[k + 1][i] - x[0][i];
+    return;
+  }
+  // N_a = prod_m (1 + xi_m xi_a,m) / 2 over the corners a (xi_a,m = +-1).
+  for (int a = 0; a < c.numCorners; ++a) {
+    const Point& ca = c.nodes[a];
+    for (int k = 0; k < d; ++k) {
+      double dn = 0.5 * ca[k];
+      for (int m = 0; m < d; ++m)
+        if (m != k) dn *= 0.5 * (1.0 + xi[m] * ca[m]);
+      for (int i = 0; i < d; ++i) j[i][k] += x[a][i] * dn;
+    }
+  }
+}
+
+}  // namespace
+
+CornerJacobian cornerJacobian(CellType t, const std::array<double, 3>* corners) {
+  const ReferenceCell& c = referenceCell(t);
+  const int d = c.dim;
+  DDC_ASSERT(d >= 2, "cornerJacobian: " << c.name << " is not a 2-D or 3-D cell");
+  double h = 0.0;
+  for (int a = 0; a < c.numCorners; ++a)
+    for (int b = a + 1; b < c.numCorners; ++b) {
+      double s = 0.0;
+      for (int i = 0; i < d; ++i) s += (corners[a][i] - corners[b][i]) * (corners[a][i] - corners[b][i]);
+      h = std::max(h, std::sqrt(s));
+    }
+  CornerJacobian r;
+  r.tolerance = 1e-12 * std::pow(h, d);
+  // Evaluation points: the centre (-1), then the corners of multilinear cells.
+  std::vector<int> where{-1};
+  if (!c.simplex)
+    for (int a = 0; a < c.numCorners; ++a) where.push_back(a);
+  double lowest = 0.0;
+  bool first = true, degenerate = false;
+  int degenerateAt = -1;
+  double degenerateDet = 0.0;
+  for (int w : where) {
+    const Point xi = w < 0 ? Point{0, 0, 0} : c.nodes[w];
+    double j[3][3];
+    cornerMapJacobian(c, corners, xi, j);
+    const double det = determinant(j, d);
+    if (first || det < lowest) {
+      lowest = det;
+      r.where = w;
+    }
+    if (std::abs(det) <= r.tolerance && !degenerate) {
+      degenerate = true;
+      degenerateAt = w;
+      degenerateDet = det;
+    }
+    first = false;
+  }
+  r.det = lowest;
+  if (!(lowest >= -r.tolerance)) {  // also catches NaN coordinates
+    r.verdict = CornerJacobian::Verdict::Inverted;
+  } else if (degenerate || h == 0.0) {
+    r.verdict = CornerJacobian::Verdict::Degenerate;
+    r.where = degenerateAt;
+    r.det = degenerateDet;
+  }
+  return r;
+}
+
+std::string describeCornerJacobian(CellType t, const CornerJacobian& j) {
+  std::ostringstream os;
+  os << (j.verdict == CornerJacobian::Verdict::Inverted ? "inverted" : "degenerate") << " (det J = " << j.det;
+  if (j.where >= 0)
+    os << " at corner " << j.where;
+  else if (!referenceCell(t).simplex)
+    os << " at the centre";
+  os << " of the " << cellTypeName(t) << " corner map";
+  if (j.verdict == CornerJacobian::Verdict::Degenerate)
+    os << ": zero " << (cellDimension(t) == 3 ? "volume" : "area")
+       << " there, e.g. coincident corners or a flat corner";
+  os << "); ";
+  switch (t) {
+    case CellType::Hex8:
+    case CellType::Hex20:
+    case CellType::Hex27:
+      os << "corners 0-3 must run counter-clockwise seen from corners 4-7, 4-7 above 0-3 in the same order "
+            "(Gmsh node order)";
+      break;
+    case CellType::Tet4:
+    case CellType::Tet10:
+      os << "corners 0, 1, 2 must run counter-clockwise seen from corner 3 (Gmsh node order)";
+      break;
+    default:
+      os << "corners must run counter-clockwise (Gmsh node order)";
+  }
+  return os.str();
 }
 
 }  // namespace ddc

@@ -28,6 +28,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <vector>
 
 namespace ddc {
@@ -78,5 +79,44 @@ const char* cellTypeName(CellType t);
 int cellDimension(CellType t);
 /// The element cell types (those a body can be made of), in enum order.
 const std::vector<CellType>& elementCellTypes();
+
+/// Verdict of cornerJacobian() on one cell.
+struct CornerJacobian {
+  enum class Verdict { Valid, Inverted, Degenerate };
+  Verdict verdict = Verdict::Valid;
+  /// The smallest determinant found (the most negative one if inverted).
+  double det = 0.0;
+  /// Where it was found: a corner (local node number), or -1 for the centre
+  /// (and for simplices, whose corner map has one constant Jacobian).
+  int where = -1;
+  /// The threshold below which |det| counts as zero: 1e-12 h^dim, h the
+  /// largest distance between two corners.
+  double tolerance = 0.0;
+};
+
+/// \brief Is the cell's corner geometry valid, inverted or degenerate?
+///
+/// Evaluates the Jacobian determinant of the map from the reference cell
+/// spanned by the corners alone -- affine for triangles and tetrahedra,
+/// bilinear / trilinear for quadrilaterals and hexahedra -- at every corner
+/// and at the centre. For a multilinear cell each column of J at a corner is
+/// a pair of that corner's edges, so a negative value there means the corner
+/// is folded over, and the centre catches a cell turned inside out as a
+/// whole. The verdict is Inverted if some det < -tolerance, else Degenerate
+/// if some det <= tolerance (coincident corners, a flat cell, an edge angle
+/// of 180 degrees), else Valid.
+///
+/// Mid-edge, face and centre nodes of quadratic cells are not looked at: a
+/// cell whose corners pass can still be inverted by a misplaced middle node,
+/// which the elements' own isoparametric Jacobian check has to catch.
+/// \param t an element or facet cell type of dimension dim = cellDimension(t)
+///        equal to the number of coordinates used (2: x, y; 3: x, y, z).
+/// \param corners numCorners coordinates in the cell's node order.
+CornerJacobian cornerJacobian(CellType t, const std::array<double, 3>* corners);
+
+/// What is wrong with a cell that cornerJacobian() did not find Valid, for
+/// messages: "inverted (det J = -0.125 at corner 3 of the corner map; ...)"
+/// followed by the expected corner order of type `t`.
+std::string describeCornerJacobian(CellType t, const CornerJacobian& j);
 
 }  // namespace ddc

@@ -98,3 +98,71 @@ TEST(Mesh, CheckErrors) {
     EXPECT_THAT(inputErrorOf([&] { m.beginBody("", CellType::Quad9); }), HasSubstr("must be non-empty"));
   }
 }
+
+namespace {
+
+/// The unit cube as one Hex8 (Gmsh corner order) in body `name`; `x` may be
+/// changed before the element is added.
+void addCube(Mesh& m, const std::string& name, std::vector<std::array<double, 3>> x = {}) {
+  if (x.empty()) x = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  m.beginBody(name, CellType::Hex8);
+  int n[8];
+  for (int i = 0; i < 8; ++i) n[i] = m.addNode(x[i][0], x[i][1], x[i][2]);
+  m.addElement(n);
+}
+
+void addTet(Mesh& m, const std::string& name, std::vector<std::array<double, 3>> x) {
+  m.beginBody(name, CellType::Tet4);
+  int n[4];
+  for (int i = 0; i < 4; ++i) n[i] = m.addNode(x[i][0], x[i][1], x[i][2]);
+  m.addElement(n);
+}
+
+}  // namespace
+
+TEST(Mesh, CheckRefusesInvertedAndDegenerate3DElements) {
+  {
+    Mesh m;
+    addCube(m, "A");
+    addTet(m, "T", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
+    EXPECT_EQ(m.dim(), 3);
+    EXPECT_NO_THROW(m.check());
+  }
+  {
+    // Bottom and top layers swapped: the cube is inside out.
+    Mesh m;
+    addCube(m, "A");
+    addCube(m, "B", {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}, {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+    const std::string e = inputErrorOf([&] { m.check(); });
+    EXPECT_THAT(e, HasSubstr("element 1 of body 'B' (Hex8, first node 8 at (0, 0, 1)) is inverted (det J = -0.125"));
+    EXPECT_THAT(e, HasSubstr("corners 0-3 must run counter-clockwise seen from corners 4-7"));
+  }
+  {
+    // Corner 6 folded through the opposite face: only some corners invert.
+    Mesh m;
+    addCube(m, "A", {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {-0.5, -0.5, -0.5}, {0, 1, 1}});
+    EXPECT_THAT(inputErrorOf([&] { m.check(); }), HasSubstr("element 0 of body 'A' (Hex8"));
+    EXPECT_THAT(inputErrorOf([&] { m.check(); }), HasSubstr("is inverted"));
+  }
+  {
+    // Corner 6 moved onto corner 5: zero volume at corner 5.
+    Mesh m;
+    addCube(m, "A", {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 1}, {0, 1, 1}});
+    const std::string e = inputErrorOf([&] { m.check(); });
+    EXPECT_THAT(e, HasSubstr("element 0 of body 'A'"));
+    EXPECT_THAT(e, HasSubstr("is degenerate (det J = 0 at corner"));
+    EXPECT_THAT(e, HasSubstr("zero volume there"));
+  }
+  {
+    Mesh m;
+    addTet(m, "T", {{0, 0, 0}, {0, 1, 0}, {1, 0, 0}, {0, 0, 1}});  // corners 1 and 2 swapped
+    const std::string e = inputErrorOf([&] { m.check(); });
+    EXPECT_THAT(e, HasSubstr("element 0 of body 'T' (Tet4, first node 0 at (0, 0, 0)) is inverted (det J = -1 of"));
+    EXPECT_THAT(e, HasSubstr("corners 0, 1, 2 must run counter-clockwise seen from corner 3"));
+  }
+  {
+    Mesh m;
+    addTet(m, "T", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}});  // flat
+    EXPECT_THAT(inputErrorOf([&] { m.check(); }), HasSubstr("element 0 of body 'T' (Tet4, first node 0 at (0, 0, 0)) is degenerate"));
+  }
+}

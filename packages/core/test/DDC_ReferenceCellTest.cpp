@@ -198,3 +198,38 @@ TEST(MeshDimension, FacetsOfAHex20) {
 }
 
 }  // namespace
+
+TEST(CornerJacobian, ReferenceCellsAreValidAndMirrorImagesInverted) {
+  for (CellType t : {CellType::Quad4, CellType::Quad9, CellType::Hex8, CellType::Hex20, CellType::Hex27,
+                     CellType::Tet4, CellType::Tet10, CellType::Tri3, CellType::Quad8}) {
+    const ReferenceCell& c = referenceCell(t);
+    auto j = ddc::cornerJacobian(t, c.nodes.data());
+    EXPECT_EQ(j.verdict, ddc::CornerJacobian::Verdict::Valid) << c.name;
+    // The reference cell maps to itself: J = I.
+    EXPECT_NEAR(j.det, 1.0, kRoundoff) << c.name;
+    // Mirrored in x: inverted everywhere.
+    auto mirrored = c.nodes;
+    for (auto& p : mirrored) p[0] = -p[0];
+    j = ddc::cornerJacobian(t, mirrored.data());
+    EXPECT_EQ(j.verdict, ddc::CornerJacobian::Verdict::Inverted) << c.name;
+    EXPECT_NEAR(j.det, -1.0, kRoundoff) << c.name;
+    EXPECT_THAT(ddc::describeCornerJacobian(t, j), HasSubstr("inverted (det J = -1")) << c.name;
+    // All corners in one point: degenerate.
+    std::vector<std::array<double, 3>> point(c.numCorners, {{1, 2, 3}});
+    j = ddc::cornerJacobian(t, point.data());
+    EXPECT_EQ(j.verdict, ddc::CornerJacobian::Verdict::Degenerate) << c.name;
+  }
+  // A hexahedron whose corner 0 is pushed inside past the plane of its
+  // neighbours 1, 3, 4: inverted at corner 0 only, positive at the centre.
+  auto x = referenceCell(CellType::Hex8).nodes;
+  x[0] = {0.5, 0.5, 0.5};
+  const auto j = ddc::cornerJacobian(CellType::Hex8, x.data());
+  EXPECT_EQ(j.verdict, ddc::CornerJacobian::Verdict::Inverted);
+  EXPECT_EQ(j.where, 0);
+  EXPECT_THAT(ddc::describeCornerJacobian(CellType::Hex8, j), HasSubstr("at corner 0 of the Hex8 corner map"));
+  // Size independence: a cell scaled by 1e-6 is still valid.
+  auto small = referenceCell(CellType::Tet4).nodes;
+  for (auto& p : small)
+    for (double& v : p) v *= 1e-6;
+  EXPECT_EQ(ddc::cornerJacobian(CellType::Tet4, small.data()).verdict, ddc::CornerJacobian::Verdict::Valid);
+}
