@@ -593,6 +593,9 @@ void OutputDirectory::commit() {
       } catch (const fs::filesystem_error&) {
       }
     }
+    // Committed: the directory is free for the next run as soon as commit()
+    // returns on any rank (not only when rank 0 destroys this object).
+    if (failure.kind == Failure::None) releaseLock(lockFd_, lockPath());
   }
   raiseEverywhere(*comm_, failure);
   committed_ = true;

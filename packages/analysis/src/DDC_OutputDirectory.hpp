@@ -46,7 +46,7 @@ struct RunDescription {
 /// commit() (collective): every rank has closed its files; rank 0 writes
 /// the complete manifest (temporary file, fsync, rename), renames D to
 /// D.old, D.partial to D (both within one parent directory, synced) and
-/// removes D.old. At every instant D, D.old and D.partial hold together the
+/// removes D.old, then releases the lock before returning on any rank. At every instant D, D.old and D.partial hold together the
 /// complete old or the complete new result, and the next run finishes or
 /// undoes the interrupted commit without deleting the only complete result.
 ///

@@ -276,6 +276,7 @@ TEST_F(OutputTest, ForeignStagingOrOldDirectoryIsNeverRemoved) {
     }
     comm_->barrier();
     EXPECT_EQ(readFile(other / "keep.txt"), "not ddcontact's\n");
+    comm_->barrier();  // every rank has read it before rank 0 cleans up
     if (rank() == 0) fs::remove_all(other);
     comm_->barrier();
   }
