@@ -17,15 +17,16 @@ class CountingQuad4 : public ddc::Element {
  public:
   explicit CountingQuad4(std::shared_ptr<ddc::Element> inner) : inner_(std::move(inner)) {}
   int numNodes() const override { return inner_->numNodes(); }
-  void compute(const Eigen::MatrixX2d& X, const Eigen::MatrixX2d& u, unsigned what,
+  int dim() const override { return inner_->dim(); }
+  void compute(const ddc::NodalArray& X, const ddc::NodalArray& u, unsigned what,
                ddc::ElementResult& out) const override {
     ++hostCalls;
     inner_->compute(X, u, what, out);
   }
-  void postprocess(const Eigen::MatrixX2d& X, const Eigen::MatrixX2d& u, ddc::ElementPostResult& out) const override {
+  void postprocess(const ddc::NodalArray& X, const ddc::NodalArray& u, ddc::ElementPostResult& out) const override {
     inner_->postprocess(X, u, out);
   }
-  double minReferenceJacobian(const Eigen::MatrixX2d& X) const override { return inner_->minReferenceJacobian(X); }
+  double minReferenceJacobian(const ddc::NodalArray& X) const override { return inner_->minReferenceJacobian(X); }
 
  private:
   std::shared_ptr<ddc::Element> inner_;

@@ -193,9 +193,10 @@ std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const Elemen
     PL& elem = body.sublist("Element");
     DDC_INPUT_REQUIRE(elem.isParameter("Type"), "parameter '" << path << "/Element/Type' is required");
     const auto& entry = factory.entry(elem.get<std::string>("Type"), path + "/Element");
-    DDC_INPUT_REQUIRE(entry.numNodes == 4 || entry.numNodes == 9,
-                      "element type '" << elem.get<std::string>("Type") << "' of '" << path
-                                       << "' has " << entry.numNodes << " nodes; bodies need 4 or 9");
+    DDC_INPUT_REQUIRE(entry.dim == 2 && (entry.numNodes == 4 || entry.numNodes == 9),
+                      "element type '" << elem.get<std::string>("Type") << "' of '" << path << "' is "
+                                       << entry.dim << "-D with " << entry.numNodes
+                                       << " nodes; bodies need 2-D elements with 4 or 9 nodes");
     const CellType cell = entry.numNodes == 4 ? CellType::Quad4 : CellType::Quad9;
     PL& gp = body.sublist(gen);
     if (gen == "Rectangle")

@@ -59,9 +59,9 @@ void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int st
     } catch (const InadmissibleDeformation&) {
       // Output of a converged state never sees this; keep zeros if it does.
     }
-    const double* c = post.cauchy;  // xx, yy, xy, zz
+    const double* c = post.cauchy;  // xx, yy, zz, yz, xz, xy
     auto& st = p.cellData[0].values;
-    st.insert(st.end(), {c[0], c[1], c[3], c[2], 0.0, 0.0});
+    st.insert(st.end(), {c[0], c[1], c[2], c[5], c[3], c[4]});
     p.cellData[1].values.push_back(post.energyDensity);
     p.cellData[2].values.push_back(mesh.elementBody(e));
     p.cellData[3].values.push_back(s);

@@ -40,15 +40,16 @@ class CountingElement : public ddc::Element {
   CountingElement(std::shared_ptr<ddc::Element> inner, std::shared_ptr<std::atomic<long>> calls)
       : inner_(std::move(inner)), calls_(std::move(calls)) {}
   int numNodes() const override { return inner_->numNodes(); }
-  void compute(const Eigen::MatrixX2d& X, const Eigen::MatrixX2d& u, unsigned what,
+  int dim() const override { return inner_->dim(); }
+  void compute(const ddc::NodalArray& X, const ddc::NodalArray& u, unsigned what,
                ddc::ElementResult& out) const override {
     ++*calls_;
     inner_->compute(X, u, what, out);
   }
-  void postprocess(const Eigen::MatrixX2d& X, const Eigen::MatrixX2d& u, ddc::ElementPostResult& out) const override {
+  void postprocess(const ddc::NodalArray& X, const ddc::NodalArray& u, ddc::ElementPostResult& out) const override {
     inner_->postprocess(X, u, out);
   }
-  double minReferenceJacobian(const Eigen::MatrixX2d& X) const override { return inner_->minReferenceJacobian(X); }
+  double minReferenceJacobian(const ddc::NodalArray& X) const override { return inner_->minReferenceJacobian(X); }
 
  private:
   std::shared_ptr<ddc::Element> inner_;
@@ -62,19 +63,20 @@ class ScaledElement : public ddc::Element {
  public:
   ScaledElement(std::shared_ptr<ddc::Element> inner, double scale) : inner_(std::move(inner)), scale_(scale) {}
   int numNodes() const override { return inner_->numNodes(); }
-  void compute(const Eigen::MatrixX2d& X, const Eigen::MatrixX2d& u, unsigned what,
+  int dim() const override { return inner_->dim(); }
+  void compute(const ddc::NodalArray& X, const ddc::NodalArray& u, unsigned what,
                ddc::ElementResult& out) const override {
     inner_->compute(X, u, what, out);
     out.energy *= scale_;
     if (what & ddc::kResidual) out.residual *= scale_;
     if (what & ddc::kTangent) out.tangent *= scale_;
   }
-  void postprocess(const Eigen::MatrixX2d& X, const Eigen::MatrixX2d& u, ddc::ElementPostResult& out) const override {
+  void postprocess(const ddc::NodalArray& X, const ddc::NodalArray& u, ddc::ElementPostResult& out) const override {
     inner_->postprocess(X, u, out);
     for (double& s : out.cauchy) s *= scale_;
     out.energyDensity *= scale_;
   }
-  double minReferenceJacobian(const Eigen::MatrixX2d& X) const override { return inner_->minReferenceJacobian(X); }
+  double minReferenceJacobian(const ddc::NodalArray& X) const override { return inner_->minReferenceJacobian(X); }
 
  private:
   std::shared_ptr<ddc::Element> inner_;

@@ -119,7 +119,8 @@ std::vector<std::array<double, 4>> gatherCauchy(const ddc::Analysis& a) {
     }
     ddc::ElementPostResult post;
     m.elementOf(e).postprocess(X, u, post);
-    for (int k = 0; k < 4; ++k) local[4 * e + k] = post.cauchy[k];
+    const int slot[4] = {0, 1, 5, 2};  // xx, yy, xy, zz in post.cauchy
+    for (int k = 0; k < 4; ++k) local[4 * e + k] = post.cauchy[slot[k]];
   }
   Teuchos::reduceAll(*m.comm(), Teuchos::REDUCE_SUM, 4 * ne, local.data(), global.data());
   std::vector<std::array<double, 4>> out(ne);

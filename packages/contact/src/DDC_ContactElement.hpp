@@ -54,14 +54,15 @@ class ContactElement : public Element {
   /// Normal gap g_N of the pair (the quantity the active set tests).
   virtual double gap(const Eigen::MatrixX2d& X, const Eigen::MatrixX2d& u, const ContactPairState& state) const = 0;
 
+  int dim() const override { return 2; }
   // Continuum-style entry points make no sense without a multiplier and a state.
-  void compute(const Eigen::MatrixX2d&, const Eigen::MatrixX2d&, unsigned, ElementResult&) const override {
+  void compute(const NodalArray&, const NodalArray&, unsigned, ElementResult&) const override {
     throw std::logic_error("ContactElement::compute: use computeContact (a multiplier and a state are needed)");
   }
-  void postprocess(const Eigen::MatrixX2d&, const Eigen::MatrixX2d&, ElementPostResult& out) const override {
+  void postprocess(const NodalArray&, const NodalArray&, ElementPostResult& out) const override {
     out = ElementPostResult();
   }
-  double minReferenceJacobian(const Eigen::MatrixX2d&) const override { return 1.0; }
+  double minReferenceJacobian(const NodalArray&) const override { return 1.0; }
 };
 
 }  // namespace ddc

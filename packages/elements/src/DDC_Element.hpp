@@ -1,8 +1,10 @@
 // Element interface: every element type (continuum, contact, host-defined)
-// returns its strain energy, residual and tangent from nodal data.
+// returns its strain energy, residual and tangent from nodal data, in 2-D or
+// 3-D (dim()).
 #pragma once
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -17,19 +19,34 @@ enum ComputeFlags : unsigned {
   kAll = 7u,
 };
 
+/// Nodal values of one element: numNodes() rows (the element's nodes in its
+/// node order) by dim() columns (x, y[, z] components). A reference, so a
+/// caller's MatrixX2d, MatrixX3d or MatrixXd binds to it without a copy.
+using NodalArray = Eigen::Ref<const Eigen::MatrixXd>;
+
 /// Results of one element evaluation. Sizes: residual n, tangent n x n with
-/// n = numNodes * 2 DOFs ordered node-major (u0x, u0y, u1x, u1y, ...).
+/// n = numNodes * dim DOFs ordered node-major (u0x, u0y, [u0z,] u1x, ...).
 struct ElementResult {
-  double energy = 0.0;        ///< strain energy U_e = ∫ W(F) dV (per unit thickness)
+  double energy = 0.0;        ///< strain energy U_e = ∫ W(F) dV (per unit thickness in 2-D)
   Eigen::VectorXd residual;   ///< internal force f_int = ∂U_e/∂u
   Eigen::MatrixXd tangent;    ///< K = ∂f_int/∂u (symmetric for hyperelasticity)
 };
 
 /// Post-processing values of one element, averaged over its quadrature points.
 struct ElementPostResult {
-  double cauchy[4] = {0, 0, 0, 0};  ///< Cauchy stress σxx, σyy, σxy, σzz (plane strain)
-  double energyDensity = 0.0;       ///< W per unit reference volume (U_e / area_e)
-  double minDetJ = 0.0;             ///< smallest det F over quadrature points
+  /// Cauchy stress in the Voigt order of the materials (DDC_Material.hpp):
+  /// σxx, σyy, σzz, σyz, σxz, σxy. Plane strain: σzz from S33, σyz = σxz = 0.
+  double cauchy[6] = {0, 0, 0, 0, 0, 0};
+  double energyDensity = 0.0;  ///< W per unit reference volume (U_e / V_e; 2-D: U_e / area_e)
+  double minDetJ = 0.0;        ///< smallest det F over quadrature points
+
+  /// Von Mises equivalent stress of `cauchy`,
+  /// sqrt(((σxx-σyy)² + (σyy-σzz)² + (σzz-σxx)²)/2 + 3 (σyz² + σxz² + σxy²)).
+  double vonMises() const {
+    const double* s = cauchy;
+    const double d01 = s[0] - s[1], d12 = s[1] - s[2], d20 = s[2] - s[0];
+    return std::sqrt(0.5 * (d01 * d01 + d12 * d12 + d20 * d20) + 3 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
+  }
 };
 
 /// Thrown by elements when the deformation is not admissible (det F <= 0 or
@@ -46,20 +63,20 @@ class Element {
   virtual ~Element() = default;
   /// Number of nodes this element expects (4 for Quad4, 9 for Quad9, ...).
   virtual int numNodes() const = 0;
+  /// Space dimension of the element's nodal arrays and DOFs (2 or 3).
+  virtual int dim() const = 0;
   /// Evaluate energy / residual / tangent.
-  /// \param X reference coordinates, numNodes() x 2
-  /// \param u nodal displacements, numNodes() x 2
+  /// \param X reference coordinates, numNodes() x dim()
+  /// \param u nodal displacements, numNodes() x dim()
   /// \param what bitwise or of ComputeFlags
   /// \param out resized by the element as needed
   /// \throws InadmissibleDeformation when det F <= 0 at a quadrature point
-  virtual void compute(const Eigen::MatrixX2d& X, const Eigen::MatrixX2d& u, unsigned what,
-                       ElementResult& out) const = 0;
+  virtual void compute(const NodalArray& X, const NodalArray& u, unsigned what, ElementResult& out) const = 0;
   /// Stress and energy density for output.
-  virtual void postprocess(const Eigen::MatrixX2d& X, const Eigen::MatrixX2d& u,
-                           ElementPostResult& out) const = 0;
+  virtual void postprocess(const NodalArray& X, const NodalArray& u, ElementPostResult& out) const = 0;
   /// Smallest det J of the reference map over the quadrature points and
   /// corners (<= 0 means an inverted or degenerate element).
-  virtual double minReferenceJacobian(const Eigen::MatrixX2d& X) const = 0;
+  virtual double minReferenceJacobian(const NodalArray& X) const = 0;
 };
 
 }  // namespace ddc

@@ -58,24 +58,42 @@ void validateSublists(Teuchos::ParameterList& user, const Teuchos::ParameterList
 /// Creator shared by the built-in continuum elements: the factory has
 /// validated the list already, so the material path only matters for a
 /// direct call of the creator.
-template <class Make>
-ElementFactory::Creator continuumCreator(Make make) {
-  return [make](const Teuchos::ParameterList& p) -> std::shared_ptr<Element> {
+ElementFactory::Creator continuumCreator(CellType cell) {
+  return [cell](const Teuchos::ParameterList& p) -> std::shared_ptr<Element> {
     Teuchos::ParameterList m = p.isSublist("Material") ? p.sublist("Material") : Teuchos::ParameterList();
-    return make(createMaterial(m, "Material"));
+    return makeContinuumElement(cell, createMaterial(m, "Material"));
   };
+}
+
+/// One-line description of the built-in continuum element of a cell type.
+const char* continuumDescription(CellType cell) {
+  switch (cell) {
+    case CellType::Quad4:
+      return "Bilinear 4-node quadrilateral, plane strain, total Lagrangian, 2x2 Gauss.";
+    case CellType::Quad9:
+      return "Biquadratic 9-node Lagrange quadrilateral, plane strain, total Lagrangian, 3x3 Gauss.";
+    case CellType::Hex8:
+      return "Trilinear 8-node hexahedron, total Lagrangian, 2x2x2 Gauss.";
+    case CellType::Hex20:
+      return "Serendipity 20-node hexahedron (8-node faces), total Lagrangian, 3x3x3 Gauss.";
+    case CellType::Hex27:
+      return "Triquadratic 27-node Lagrange hexahedron, total Lagrangian, 3x3x3 Gauss.";
+    case CellType::Tet4:
+      return "Linear 4-node tetrahedron, total Lagrangian, 1 point (exact: F is constant).";
+    case CellType::Tet10:
+      return "Quadratic 10-node tetrahedron, total Lagrangian, 4-point degree-2 rule.";
+    default:
+      DDC_THROW(std::logic_error, "no continuum element for cell type " << cellTypeName(cell));
+  }
 }
 
 }  // namespace
 
 ElementFactory ElementFactory::withBuiltins() {
   ElementFactory f;
-  f.add("Quad4", Entry{continuumCreator(&makeQuad4), ContinuumElement::getValidParameters(),
-                       "Bilinear 4-node quadrilateral, plane strain, total Lagrangian, 2x2 Gauss.", 4});
-  f.add("Quad9", Entry{continuumCreator(&makeQuad9), ContinuumElement::getValidParameters(),
-                       "Biquadratic 9-node Lagrange quadrilateral, plane strain, total Lagrangian, "
-                       "3x3 Gauss.",
-                       9});
+  for (CellType cell : elementCellTypes())
+    f.add(cellTypeName(cell), Entry{continuumCreator(cell), ContinuumElement::getValidParameters(),
+                                    continuumDescription(cell), numCellNodes(cell), cellDimension(cell)});
   return f;
 }
 
@@ -133,6 +151,9 @@ std::shared_ptr<Element> ElementFactory::create(Teuchos::ParameterList& params, 
   if (el->numNodes() != e.numNodes)
     DDC_THROW(std::logic_error, "element type '" << type << "' registered with " << e.numNodes
                                                  << " nodes creates elements with " << el->numNodes());
+  if (el->dim() != e.dim)
+    DDC_THROW(std::logic_error, "element type '" << type << "' registered as " << e.dim
+                                                 << "-D creates " << el->dim() << "-D elements");
   return el;
 }
 

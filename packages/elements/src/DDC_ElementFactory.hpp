@@ -30,14 +30,18 @@ class ElementFactory {
     Teuchos::RCP<const Teuchos::ParameterList> validParameters;
     /// One-line description for --print-parameters.
     std::string description;
-    /// Number of nodes (selects the mesh cell type: 4 -> Quad4, 9 -> Quad9).
+    /// Number of nodes; with dim it selects the mesh cell type (4 nodes
+    /// in 2-D: Quad4, in 3-D: Tet4; ...).
     int numNodes = 4;
+    /// Space dimension of the element (Element::dim()).
+    int dim = 2;
   };
 
   /// An empty factory.
   ElementFactory() = default;
-  /// A factory with every built-in element type registered: "Quad4",
-  /// "Quad9" (plane strain, total Lagrangian).
+  /// A factory with every built-in element type registered, one continuum
+  /// element (total Lagrangian) per element cell type: "Quad4", "Quad9"
+  /// (plane strain), "Hex8", "Hex20", "Hex27", "Tet4", "Tet10".
   static ElementFactory withBuiltins();
 
   /// Register (or replace) an element type.

@@ -26,7 +26,7 @@ bool contains(const std::string& s, const std::string& n) { return s.find(n) != 
 
 TEST(ElementFactory, BuiltinsCreateQuads) {
   const auto f = ddc::ElementFactory::withBuiltins();
-  EXPECT_EQ(f.names(), (std::vector<std::string>{"Quad4", "Quad9"}));
+  EXPECT_EQ(f.names(), (std::vector<std::string>{"Hex20", "Hex27", "Hex8", "Quad4", "Quad9", "Tet10", "Tet4"}));
   for (const auto& [name, n] : {std::pair<std::string, int>{"Quad4", 4}, {"Quad9", 9}}) {
     Teuchos::ParameterList p;
     p.set("Type", name);
@@ -51,6 +51,29 @@ TEST(ElementFactory, BuiltinsCreateQuads) {
   ASSERT_TRUE(ce);
   EXPECT_EQ(ce->material().typeName(), "St. Venant-Kirchhoff");
   EXPECT_EQ(ce->material().youngsModulus(), 210.0);
+}
+
+TEST(ElementFactory, BuiltinsCreate3dElements) {
+  const auto f = ddc::ElementFactory::withBuiltins();
+  for (const auto& [name, n] : {std::pair<std::string, int>{"Hex8", 8}, {"Hex20", 20}, {"Hex27", 27}, {"Tet4", 4},
+                                {"Tet10", 10}}) {
+    EXPECT_EQ(f.entry(name).numNodes, n) << name;
+    EXPECT_EQ(f.entry(name).dim, 3) << name;
+    Teuchos::ParameterList p;
+    p.set("Type", name);
+    p.sublist("Material").set("Type", std::string("St. Venant-Kirchhoff"));
+    auto el = f.create(p, kWhere);
+    ASSERT_TRUE(el);
+    EXPECT_EQ(el->numNodes(), n);
+    EXPECT_EQ(el->dim(), 3);
+    EXPECT_EQ(p.sublist("Material").get<double>("Young's Modulus"), 1000.0) << "defaults filled in";
+    auto ce = std::dynamic_pointer_cast<ddc::ContinuumElement>(el);
+    ASSERT_TRUE(ce);
+    EXPECT_EQ(ce->material().typeName(), "St. Venant-Kirchhoff");
+  }
+  // Quad4 and Tet4 have 4 nodes each: the dimension tells them apart.
+  EXPECT_EQ(f.entry("Quad4").dim, 2);
+  EXPECT_EQ(f.entry("Quad9").dim, 2);
 }
 
 TEST(ElementFactory, UnknownTypeListsKnownTypes) {
@@ -129,16 +152,16 @@ class Spring : public ddc::Element {
  public:
   explicit Spring(double k) : k_(k) {}
   int numNodes() const override { return 2; }
-  void compute(const Eigen::MatrixX2d&, const Eigen::MatrixX2d& u, unsigned,
-               ddc::ElementResult& out) const override {
+  int dim() const override { return 2; }
+  void compute(const ddc::NodalArray&, const ddc::NodalArray& u, unsigned, ddc::ElementResult& out) const override {
     const Eigen::Vector2d d = (u.row(1) - u.row(0)).transpose();
     out.energy = 0.5 * k_ * d.squaredNorm();
     out.residual.resize(4);
     out.residual << -k_ * d, k_ * d;
     out.tangent.setZero(4, 4);
   }
-  void postprocess(const Eigen::MatrixX2d&, const Eigen::MatrixX2d&, ddc::ElementPostResult&) const override {}
-  double minReferenceJacobian(const Eigen::MatrixX2d&) const override { return 1.0; }
+  void postprocess(const ddc::NodalArray&, const ddc::NodalArray&, ddc::ElementPostResult&) const override {}
+  double minReferenceJacobian(const ddc::NodalArray&) const override { return 1.0; }
 
  private:
   double k_;
@@ -181,6 +204,19 @@ TEST(ElementFactory, HostRegisteredType) {
   dflt.set("Type", std::string("Spring"));
   f.create(dflt, kWhere);
   EXPECT_EQ(dflt.get<double>("Stiffness"), 1.0);
+}
+
+TEST(ElementFactory, RegisteredDimensionMustMatchTheElement) {
+  // A registration mistake of a host code (a 2-D spring declared 3-D) is a
+  // logic error, not an input error.
+  auto f = ddc::ElementFactory::withBuiltins();
+  ddc::ElementFactory::Entry e{[](const Teuchos::ParameterList&) { return std::make_shared<Spring>(1.0); },
+                               Teuchos::null, "Axial spring (test)", 2};
+  e.dim = 3;
+  f.add("Spring", e);
+  Teuchos::ParameterList p;
+  p.set("Type", std::string("Spring"));
+  EXPECT_THROW(f.create(p, kWhere), std::logic_error);
 }
 
 TEST(ElementFactory, ValidParametersForDocumentation) {
