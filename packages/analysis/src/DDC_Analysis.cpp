@@ -560,9 +560,9 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
     // check the contact state on the multipliers (release in tension,
     // activate on penetration).
     bool pairingChanged = false;
-    std::vector<int> changed;
+    std::vector<int> changed, repaired;
     if (contact) {
-      if (conventional) pairingChanged = model_->updatePairing(*u, false, false);
+      if (conventional) pairingChanged = model_->updatePairing(*u, false, false, &repaired);
       changed = model_->updateActiveSet(*u);
     }
     if (printIt && comm_->getRank() == 0) {
@@ -586,9 +586,15 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
       auto a = activeSet();
       if (std::find(seen.begin(), seen.end(), a) != seen.end()) {
         std::ostringstream os;
-        os << "the contact active set cycles (a set seen before in this increment returned); pairs changing state:";
-        for (size_t i = 0; i < changed.size() && i < 10; ++i) os << "\n      " << model_->describeSlot(changed[i]);
-        if (changed.size() > 10) os << "\n      ... and " << changed.size() - 10 << " more";
+        os << "the contact active set cycles (a set seen before in this increment returned)";
+        auto list = [&](const char* what, const std::vector<int>& slots) {
+          if (slots.empty()) return;
+          os << "; " << what << ":";
+          for (size_t i = 0; i < slots.size() && i < 10; ++i) os << "\n      " << model_->describeSlot(slots[i]);
+          if (slots.size() > 10) os << "\n      ... and " << slots.size() - 10 << " more";
+        };
+        list("pairs changing state", changed);
+        list("slave nodes changing master segment", repaired);
         rec.failure = os.str();
         progress("    " + rec.failure);
         return false;

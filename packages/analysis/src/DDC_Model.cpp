@@ -842,7 +842,7 @@ void Model::distributedSearch(const Vector& u, std::vector<std::vector<ContactCa
   distributedQueries_ += sum[1];
 }
 
-bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
+bool Model::updatePairing(const Vector& u, bool global, bool freeze, std::vector<int>* changedSlots) {
   if (!hasContact()) return false;  // no surface maps exist
   // Decomposed contact pairs at step ends only (global search): the
   // geometry goes only where bounding boxes say it is needed. Conventional
@@ -884,10 +884,15 @@ bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
       // Hysteresis (Newton iterations only): a slave whose projection onto
       // its previous segment lies within kPairingHysteresis of that segment
       // keeps it. Without it a slave sitting on a master node can flip
-      // between the two adjacent segments every iteration and Newton stalls.
+      // between the two adjacent segments every iteration and Newton stalls;
+      // and a slave sitting on the free end of the master surface (two
+      // blocks of one width) flips between paired and "past the end" with
+      // the round-off of its position (a different summation order on two
+      // ranks is enough), which the active-set check reports as cycling.
       constexpr double kPairingHysteresis = 1e-2;  // fraction of the segment length
       // The kept segment must pass the facing rule like any pairing.
-      if (!distributed && !global && s.paired() && m0 >= 0 && (m0 != s.master[0] || m1 != s.master[1])) {
+      if (!distributed && !global && s.paired() && (m0 >= 0 || pastFreeEnd) &&
+          (m0 != s.master[0] || m1 != s.master[1])) {
         const Eigen::Vector2d xs = currentPosition(s.slaveNode, v), x1 = currentPosition(s.master[0], v),
                               x2 = currentPosition(s.master[1], v);
         const Eigen::Vector2d t = x2 - x1;
@@ -905,7 +910,10 @@ bool Model::updatePairing(const Vector& u, bool global, bool freeze) {
           continue;
         }
       }
-      if (m0 != s.master[0] || m1 != s.master[1]) changed = true;
+      if (m0 != s.master[0] || m1 != s.master[1]) {
+        changed = true;
+        if (changedSlots) changedSlots->push_back(pairSlots_[p][i]);
+      }
       s.master[0] = m0;
       s.master[1] = m1;
       s.segment = m0 >= 0 ? c.segment : -1;

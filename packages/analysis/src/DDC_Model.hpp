@@ -135,8 +135,9 @@ class Model {
   /// are taken from this configuration. Collective: surface positions are
   /// gathered to every rank (one exchange, counted in exchanges()).
   /// \return true if any slave changed its master segment (new topology);
-  ///         false without contact (nothing to pair).
-  bool updatePairing(const Vector& u, bool global, bool freeze);
+  ///         false without contact (nothing to pair). The slots that did
+  ///         are appended to `changedSlots` when given.
+  bool updatePairing(const Vector& u, bool global, bool freeze, std::vector<int>* changedSlots = nullptr);
   /// Activate every paired slot (Initial Contact State = In Contact), except
   /// the fully prescribed ones (see fullyPrescribed()).
   void activateAllPaired();

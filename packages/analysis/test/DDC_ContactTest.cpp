@@ -24,6 +24,8 @@
 //      reach it is an input error naming the pair, the node and the depth;
 //   8. duplicated and mirrored pairs are input errors naming both pairs,
 //      compared by nodes and segments, not by side-set names.
+//   9. inside Newton, a slave node on the free end of the master surface
+//      keeps its segment against round-off displacements past the end.
 // Decks are in-memory Teuchos::ParameterLists (the half-rings deck is read
 // from examples/). The measured numbers are printed on rank 0 for
 // doc/verification.md.
@@ -629,6 +631,60 @@ TEST(DecomposedWithoutPairs, ContactCallsOnAModelWithoutPairsDoNothing) {
   EXPECT_TRUE(m.updateActiveSet(*u).empty());
   EXPECT_TRUE(m.multiplierMap().is_null());
   EXPECT_EQ(m.ownedMap()->getGlobalNumElements(), static_cast<size_t>(2 * mesh->numNodes())) << "no multiplier DOF";
+}
+
+TEST(ContactPairing, SlaveOnTheFreeEndOfTheMasterKeepsItsSegmentAgainstRoundOff) {
+  // Two blocks of one width: the slave end node (x = 1) sits on the free end
+  // of the master surface. A displacement of round-off size past that end
+  // must not unpair it inside Newton (it did, on two ranks under load, and
+  // the active-set check reported a cycle with no pair changing state); a
+  // real slide past the end, beyond the hysteresis, must.
+  auto mesh = std::make_shared<ddc::Mesh>();
+  for (const auto& [name, y0, nx] : {std::tuple<const char*, double, int>{"Lower", 0.0, 7}, {"Upper", 0.5, 10}}) {
+    PL rect("Rectangle");
+    rect.set("Origin Y", y0);
+    rect.set("Length Y", 0.5);
+    rect.set("Elements X", nx);
+    rect.set("Elements Y", 2);
+    ddc::generateRectangle(*mesh, name, ddc::CellType::Quad4, rect, "Rectangle");
+  }
+  PL el("Element");
+  el.set("Type", std::string("Quad4"));
+  el.sublist("Material").set("Type", std::string("Neo-Hookean"));
+  std::vector<std::shared_ptr<const ddc::Element>> elements(
+      2, ddc::ElementFactory::withBuiltins().create(el, "Element"));
+  PL contact("Contact");
+  PL& pair = contact.sublist("Pairs").sublist("Interface");
+  pair.set("Slave", std::string("Upper/bottom"));
+  pair.set("Master", std::string("Lower/top"));
+  const auto options = ddc::ContactOptions::fromParameters(contact, *mesh, "Contact");
+  ddc::Model m(worldComm(), mesh, elements, ddc::partitionMetis(*mesh, worldComm()->getSize()),
+               ddc::BoundaryConditions{}, options);
+  auto u = m.createVector();
+  m.updatePairing(*u, /*global=*/true, /*freeze=*/false);
+  int end = -1;
+  for (size_t k = 0; k < m.contactSlots().size(); ++k)
+    if (m.mesh().coord(m.contactSlots()[k].slaveNode)[0] == 1.0) end = static_cast<int>(k);
+  ASSERT_GE(end, 0);
+  const int before0 = m.contactSlots()[end].master[0], before1 = m.contactSlots()[end].master[1];
+  ASSERT_TRUE(m.contactSlots()[end].paired()) << m.describeSlot(end);
+  auto slide = [&](double dx) {
+    u->putScalar(0.0);
+    const ddc::GO dof = m.dof(m.contactSlots()[end].slaveNode, 0);
+    if (u->getMap()->isNodeGlobalElement(dof)) u->replaceGlobalValue(dof, dx);
+    std::vector<int> repaired;
+    const bool changed = m.updatePairing(*u, /*global=*/false, /*freeze=*/false, &repaired);
+    EXPECT_EQ(changed, !repaired.empty());
+    return changed;
+  };
+  constexpr double kRoundOff = 1e-14;  // a position error of a few ulp of the unit width
+  EXPECT_FALSE(slide(kRoundOff)) << m.describeSlot(end);
+  EXPECT_TRUE(m.contactSlots()[end].paired()) << m.describeSlot(end);
+  EXPECT_EQ(m.contactSlots()[end].master[0], before0);
+  EXPECT_EQ(m.contactSlots()[end].master[1], before1);
+  constexpr double kPastTheEnd = 0.05;  // a third of a master segment (1/7)
+  EXPECT_TRUE(slide(kPastTheEnd)) << m.describeSlot(end);
+  EXPECT_FALSE(m.contactSlots()[end].paired()) << m.describeSlot(end);
 }
 
 /// The message of the InputError that constructing an Analysis of `deck`
