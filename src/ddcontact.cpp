@@ -145,7 +145,7 @@ int run(const std::vector<std::string>& args, const Teuchos::RCP<const Teuchos::
   if (comm->getRank() == 0) {
     const auto& m = analysis.model().mesh();
     std::cout << "ddcontact: " << o.input << ": " << m.numBodies() << " bodies, " << m.numElements()
-              << " elements, " << 2 * m.numNodes() << " DOFs, " << analysis.model().partition().numSubdomains
+              << " elements, " << m.dim() * m.numNodes() << " DOFs, " << analysis.model().partition().numSubdomains
               << " subdomains on " << comm->getSize() << " ranks" << std::endl;
   }
   analysis.run(dir);

@@ -193,11 +193,17 @@ std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const Elemen
     PL& elem = body.sublist("Element");
     DDC_INPUT_REQUIRE(elem.isParameter("Type"), "parameter '" << path << "/Element/Type' is required");
     const auto& entry = factory.entry(elem.get<std::string>("Type"), path + "/Element");
-    DDC_INPUT_REQUIRE(entry.dim == 2 && (entry.numNodes == 4 || entry.numNodes == 9),
-                      "element type '" << elem.get<std::string>("Type") << "' of '" << path << "' is "
-                                       << entry.dim << "-D with " << entry.numNodes
-                                       << " nodes; bodies need 2-D elements with 4 or 9 nodes");
-    const CellType cell = entry.numNodes == 4 ? CellType::Quad4 : CellType::Quad9;
+    // The mesh cell type of the element: the one of its dimension and node count.
+    const auto& cells = elementCellTypes();
+    const auto cellIt = std::find_if(cells.begin(), cells.end(), [&](CellType c) {
+      return cellDimension(c) == entry.dim && numCellNodes(c) == entry.numNodes;
+    });
+    DDC_INPUT_REQUIRE(cellIt != cells.end(), "element type '" << elem.get<std::string>("Type") << "' of '" << path
+                                                               << "' is " << entry.dim << "-D with " << entry.numNodes
+                                                               << " nodes, which no mesh cell type has (bodies need "
+                                                                  "Quad4, Quad9, Hex8, Hex20, Hex27, Tet4 or Tet10 "
+                                                                  "cells)");
+    const CellType cell = *cellIt;
     PL& gp = body.sublist(gen);
     if (gen == "Rectangle")
       generateRectangle(*mesh, name, cell, gp, path + "/Rectangle");
@@ -239,14 +245,18 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
   // Reject inverted or degenerate elements before anything runs (every rank
   // holds the mesh, so every rank reaches the same verdict).
   for (int e = 0; e < mesh->numElements(); ++e) {
-    const int nn = mesh->elementNumNodes(e);
-    Eigen::MatrixX2d X(nn, 2);
-    for (int i = 0; i < nn; ++i) X.row(i) << mesh->coord(mesh->elementNodes(e)[i])[0], mesh->coord(mesh->elementNodes(e)[i])[1];
+    const int nn = mesh->elementNumNodes(e), d = mesh->dim();
+    Eigen::MatrixXd X(nn, d);
+    for (int i = 0; i < nn; ++i)
+      for (int c = 0; c < d; ++c) X(i, c) = mesh->coord(mesh->elementNodes(e)[i])[c];
     const double detJ = elements[mesh->elementBody(e)]->minReferenceJacobian(X);
     DDC_INPUT_REQUIRE(detJ > 0.0, "mesh: element " << e << " of body '" << mesh->body(mesh->elementBody(e)).name
-                                                  << "' is inverted or degenerate (min det J = " << detJ
-                                                  << "); its nodes must run counter-clockwise, first node at ("
-                                                  << X(0, 0) << ", " << X(0, 1) << ")");
+                                                  << "' is inverted or degenerate (min det J = " << detJ << "); "
+                                                  << (d == 2 ? "its nodes must run counter-clockwise"
+                                                             : "its nodes must follow the Gmsh order with a "
+                                                               "positive orientation")
+                                                  << ", first node at (" << mesh->coordText(mesh->elementNodes(e)[0])
+                                                  << ")");
   }
 
   auto bcs = BoundaryConditions::fromParameters(params.sublist("Boundary Conditions"), *mesh, "Boundary Conditions");
@@ -266,17 +276,33 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
       if (slaveBody != masterBody) inContact[slaveBody] = inContact[masterBody] = 1;
     }
     std::vector<std::set<int>> fixedNodes(mesh->numBodies());
-    std::vector<std::array<bool, 2>> fixedDir(mesh->numBodies(), {false, false});
+    const int dim = mesh->dim();
+    std::vector<std::array<bool, 3>> fixedDir(mesh->numBodies(), {false, false, false});
     for (const auto& d : bcs.displacements)
       for (int n : mesh->nodeSet(d.setName)) {
         int b = 0;
         while (!(n >= mesh->body(b).firstNode && n < mesh->body(b).firstNode + mesh->body(b).numNodes)) ++b;
         fixedNodes[b].insert(n);
-        for (int c = 0; c < 2; ++c) fixedDir[b][c] = fixedDir[b][c] || d.fix[c];
+        for (int c = 0; c < dim; ++c) fixedDir[b][c] = fixedDir[b][c] || d.fix[c];
       }
     const bool fetiStrategy = params.sublist("Solver").get<std::string>("Strategy") == "FETI-DP";
+    // Two distinct nodes hold a 2-D body's rotation; a 3-D body needs three
+    // not on one line (two leave the rotation about their line free).
+    auto enoughNodes = [&](const std::set<int>& nodes) {
+      if (dim == 2) return nodes.size() >= 2;
+      const Eigen::Vector3d a(mesh->coord(*nodes.begin()).data());
+      double far = 0.0, area = 0.0;
+      Eigen::Vector3d b = a;
+      for (int n : nodes) {
+        const Eigen::Vector3d x(mesh->coord(n).data());
+        if ((x - a).norm() > far) far = (x - a).norm(), b = x;
+      }
+      for (int n : nodes) area = std::max(area, (b - a).cross(Eigen::Vector3d(mesh->coord(n).data()) - a).norm());
+      return nodes.size() >= 3 && area > 1e-12 * far * far;  // relative to the set's extent: not collinear
+    };
     for (int b = 0; b < mesh->numBodies(); ++b) {
-      const bool supported = fixedNodes[b].size() >= 2 && fixedDir[b][0] && fixedDir[b][1];
+      const bool supported =
+          !fixedNodes[b].empty() && enoughNodes(fixedNodes[b]) && fixedDir[b][0] && fixedDir[b][1] && (dim == 2 || fixedDir[b][2]);
       // FETI-DP: contact rows are dual constraints; they cannot remove the
       // rigid modes of K~ (the coarse problem would be singular).
       DDC_INPUT_REQUIRE(supported || !inContact[b] || !fetiStrategy,
@@ -289,8 +315,10 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
       DDC_INPUT_REQUIRE(inContact[b] || supported,
                         "body '" << mesh->body(b).name
                                  << "' is not supported: its prescribed displacements (Boundary Conditions) must "
-                                    "act in both x and y and on at least two nodes to remove its rigid-body "
-                                    "motion, and no contact pair joins it to another body");
+                                 << (dim == 2 ? "act in both x and y and on at least two nodes"
+                                              : "act in x, y and z and on at least three nodes not on one line")
+                                 << " to remove its rigid-body motion, and no contact pair joins it to another "
+                                    "body");
     }
   }
   std::vector<std::shared_ptr<const ContactElement>> contactElements;
@@ -383,7 +411,7 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
           for (int a = 0; a < mesh->elementNumNodes(e); ++a) {
             const int node = mesh->elementNodes(e)[a];
             if (!model_->isContactSurfaceNode(node)) continue;
-            for (int c = 0; c < 2; ++c) {
+            for (int c = 0; c < model_->dim(); ++c) {
               const auto& d = subdomains_[i].dofs;
               const auto it = std::lower_bound(d.begin(), d.end(), model_->dof(node, c));
               if (it != d.end() && *it == model_->dof(node, c)) flags[it - d.begin()] = 1;
@@ -397,14 +425,14 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
     K_ = model_->createMatrix();
     topologyVersion_ = model_->topologyVersion();
     // Nodal coordinates per DOF (near-null space of the iterative back ends).
-    auto coords = Teuchos::rcp(new MultiVector(model_->ownedMap(), 2));
+    const int dim = model_->dim();
+    auto coords = Teuchos::rcp(new MultiVector(model_->ownedMap(), dim));
     const auto& map = *model_->ownedMap();
     for (int n = 0; n < mesh->numNodes(); ++n)
-      for (int c = 0; c < 2; ++c) {
+      for (int c = 0; c < dim; ++c) {
         const LO l = map.getLocalElement(model_->dof(n, c));
         if (l == Teuchos::OrdinalTraits<LO>::invalid()) continue;
-        coords->replaceLocalValue(l, 0, mesh->coord(n)[0]);
-        coords->replaceLocalValue(l, 1, mesh->coord(n)[1]);
+        for (int k = 0; k < dim; ++k) coords->replaceLocalValue(l, k, mesh->coord(n)[k]);
       }
     solver_->setCoordinates(coords);
   }

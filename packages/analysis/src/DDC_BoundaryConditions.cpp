@@ -159,6 +159,14 @@ BoundaryConditions BoundaryConditions::fromParameters(Teuchos::ParameterList& li
       DDC_INPUT_REQUIRE(comps == "All" || (dim == 2 && comps == "XY"),
                         "parameter '" << where << "/Components' does not apply to Type = Traction");
       forbid2d("Traction Z");
+      // A node set of points or edges (a Gmsh physical point or curve of a
+      // 3-D body) has nothing to integrate a traction over.
+      DDC_INPUT_REQUIRE(mesh.hasSideSet(set) || !mesh.hasNodeSet(set),
+                        "boundary condition '" << where << "': 'Set' = '" << set << "' is a set of nodes, not of "
+                                               << (dim == 2 ? "element sides" : "element faces")
+                                               << "; a traction acts on a side set (a generator's named "
+                                                  "face, a Gmsh physical surface of a 3-D body or physical "
+                                                  "curve of a 2-D body)");
       try {
         mesh.sideSet(set);
       } catch (const InputError& e) {

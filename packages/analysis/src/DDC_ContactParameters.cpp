@@ -160,6 +160,11 @@ ContactOptions ContactOptions::fromParameters(Teuchos::ParameterList& list, cons
     auto& p = pairs.sublist(name);
     validateLevel(p, validPair, where);
     ContactPairDefinition d{name, p.get<std::string>("Slave"), p.get<std::string>("Master")};
+    // Node-to-segment contact is 2-D; the 3-D node-to-facet element is not
+    // available yet (doc/contact.md).
+    DDC_INPUT_REQUIRE(mesh.dim() == 2, "contact pair '" << where << "': the mesh is 3-D (body '" << mesh.body(0).name
+                                                        << "' has " << cellTypeName(mesh.body(0).cellType)
+                                                        << " cells); contact is available for 2-D meshes only");
     for (const auto& [key, set] : {std::pair<const char*, std::string>{"Slave", d.slaveSet}, {"Master", d.masterSet}}) {
       DDC_INPUT_REQUIRE(!set.empty(), "parameter '" << where << "/" << key << "' is required (a side set 'Body/set')");
       try {

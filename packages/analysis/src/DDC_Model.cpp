@@ -16,6 +16,7 @@
 #include "DDC_DecomposedNodeToSegment.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_MpiRecords.hpp"
+#include "DDC_ShapeFunctions.hpp"
 #include "DDC_Substructuring.hpp"
 
 namespace ddc {
@@ -30,11 +31,16 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
       bcs_(std::move(bcs)),
       contact_(std::move(contact)) {
   DDC_ASSERT(static_cast<int>(elements_.size()) == mesh_->numBodies(), "one element evaluator per body");
-  // The mesh, elements and boundary conditions know 3-D; the assembly, the
-  // solvers and the output do not yet.
-  DDC_INPUT_REQUIRE(mesh_->dim() == 2, "the mesh is " << mesh_->dim() << "-D (body '" << mesh_->body(0).name
-                                                      << "' has " << cellTypeName(mesh_->body(0).cellType)
-                                                      << " cells); this version analyses 2-D meshes only");
+  for (int b = 0; b < mesh_->numBodies(); ++b)
+    DDC_ASSERT(elements_[b]->dim() == mesh_->dim(), "body '" << mesh_->body(b).name << "': a " << elements_[b]->dim()
+                                                              << "-D element on a " << mesh_->dim() << "-D mesh");
+  // Contact is two-dimensional (node-to-segment); the 3-D node-to-facet
+  // element is not available yet (doc/contact.md).
+  DDC_INPUT_REQUIRE(mesh_->dim() == 2 || !contact_.enabled(),
+                    "contact pair 'Contact/Pairs/" << contact_.pairs[0].name << "': the mesh is 3-D (body '"
+                                                   << mesh_->body(0).name << "' has "
+                                                   << cellTypeName(mesh_->body(0).cellType)
+                                                   << " cells); contact is available for 2-D meshes only");
   subdomainRank_ = subdomainOwnerRank(partition_.numSubdomains, comm_->getSize());
   for (int e = 0; e < mesh_->numElements(); ++e)
     if (subdomainRank_[partition_.elementSubdomain[e]] == comm_->getRank()) localElements_.push_back(e);
@@ -185,7 +191,8 @@ void Model::buildDofNumbering() {
   }
   // Per rank: its nodes' DOFs, then its multipliers; ranks in order.
   std::vector<GO> count(nranks, 0);
-  for (int n = 0; n < mesh.numNodes(); ++n) count[nodeOwner_[n]] += 2;
+  const int d = mesh.dim();
+  for (int n = 0; n < mesh.numNodes(); ++n) count[nodeOwner_[n]] += d;
   for (size_t k = 0; k < slots_.size(); ++k) count[slotOwner(static_cast<int>(k))] += 1;
   std::vector<GO> offset(nranks + 1, 0);
   for (int r = 0; r < nranks; ++r) offset[r + 1] = offset[r] + count[r];
@@ -194,7 +201,7 @@ void Model::buildDofNumbering() {
   nodeDof_.assign(mesh.numNodes(), -1);
   for (int n = 0; n < mesh.numNodes(); ++n) {
     nodeDof_[n] = next[nodeOwner_[n]];
-    next[nodeOwner_[n]] += 2;
+    next[nodeOwner_[n]] += d;
   }
   lmDof_.assign(slots_.size(), -1);
   for (size_t k = 0; k < slots_.size(); ++k) lmDof_[k] = next[slotOwner(static_cast<int>(k))]++;
@@ -208,7 +215,7 @@ void Model::buildConstraints() {
   for (int b = 0; b < static_cast<int>(bcs_.displacements.size()); ++b) {
     const auto& bc = bcs_.displacements[b];
     for (int n : mesh.nodeSet(bc.setName))
-      for (int c = 0; c < 2; ++c) {
+      for (int c = 0; c < mesh.dim(); ++c) {
         if (!bc.fix[c]) continue;
         const GO g = dof(n, c);
         auto& src = constraintSource_[g];
@@ -220,9 +227,9 @@ void Model::buildConstraints() {
             const double a = other.prescribed(c, X, lam), v = bc.prescribed(c, X, lam);
             DDC_INPUT_REQUIRE(std::abs(a - v) <= 1e-12 * (1.0 + std::abs(a) + std::abs(v)),
                               "boundary conditions '" << other.name << "' and '" << bc.name
-                                                      << "' prescribe different " << (c ? "y" : "x")
+                                                      << "' prescribe different " << "xyz"[c]
                                                       << " displacements at node " << n << " ("
-                                                      << X[0] << ", " << X[1] << ")");
+                                                      << mesh.coordText(n) << ")");
           }
           continue;
         }
@@ -233,10 +240,10 @@ void Model::buildConstraints() {
 }
 
 void Model::elementDofs(int e, std::vector<GO>& dofs) const {
-  const int nn = mesh_->elementNumNodes(e);
-  dofs.resize(2 * nn);
+  const int nn = mesh_->elementNumNodes(e), d = mesh_->dim();
+  dofs.resize(d * nn);
   for (int i = 0; i < nn; ++i)
-    for (int c = 0; c < 2; ++c) dofs[2 * i + c] = dof(mesh_->elementNodes(e)[i], c);
+    for (int c = 0; c < d; ++c) dofs[d * i + c] = dof(mesh_->elementNodes(e)[i], c);
 }
 
 void Model::slotDofs(int k, std::vector<GO>& dofs) const {
@@ -409,31 +416,27 @@ void Model::assembleTractions() {
   auto f = fov->getDataNonConst();
   std::vector<char> isLocal(mesh.numElements(), 0);
   for (int e : localElements_) isLocal[e] = 1;
-  // 3-point Gauss rule on [-1, 1]: exact for the quadratic segments' |J| N.
-  const double gp[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)};
-  const double gw[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  // Each side (2-D) or face (3-D) integrated with its facet cell's rule
+  // (facetQuadratureRule()): f_a = sum_q w_q N_a t |dx/dxi|.
+  const int d = mesh.dim();
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN, xf;
   for (const auto& t : bcs_.tractions) {
     for (const Segment& s : mesh.sideSet(t.setName)) {
       if (!isLocal[s.element]) continue;
-      for (int q = 0; q < 3; ++q) {
-        const double xi = gp[q];
-        double N[3], dN[3];
-        if (s.numNodes == 2) {
-          N[0] = 0.5 * (1 - xi), N[1] = 0.5 * (1 + xi);
-          dN[0] = -0.5, dN[1] = 0.5;
-        } else {  // start (ξ=-1), end (ξ=1), middle (ξ=0)
-          N[0] = 0.5 * xi * (xi - 1), N[1] = 0.5 * xi * (xi + 1), N[2] = 1 - xi * xi;
-          dN[0] = xi - 0.5, dN[1] = xi + 0.5, dN[2] = -2 * xi;
-        }
-        double tx = 0, ty = 0;
-        for (int i = 0; i < s.numNodes; ++i) {
-          tx += dN[i] * mesh.coord(s.nodes[i])[0];
-          ty += dN[i] * mesh.coord(s.nodes[i])[1];
-        }
-        const double jac = std::hypot(tx, ty);
+      const CellType facet = referenceCell(mesh.body(mesh.elementBody(s.element)).cellType).facets[s.localSide].type;
+      const QuadratureRule& rule = facetQuadratureRule(facet);
+      xf.resize(s.numNodes, d);
+      for (int i = 0; i < s.numNodes; ++i)
+        for (int c = 0; c < d; ++c) xf(i, c) = mesh.coord(s.nodes[i])[c];
+      for (size_t q = 0; q < rule.points.size(); ++q) {
+        shapeFunctions(facet, rule.points[q], &N, &dN);
+        const Eigen::MatrixXd a = xf.transpose() * dN;  // d x (d-1): the tangents dx/dxi
+        const double jac = d == 2 ? a.col(0).norm()
+                                  : Eigen::Vector3d(a.col(0)).cross(Eigen::Vector3d(a.col(1))).norm();
         for (int i = 0; i < s.numNodes; ++i)
-          for (int c = 0; c < 2; ++c)
-            f[overlapMap_->getLocalElement(dof(s.nodes[i], c))] += N[i] * t.traction[c] * jac * gw[q];
+          for (int c = 0; c < d; ++c)
+            f[overlapMap_->getLocalElement(dof(s.nodes[i], c))] += N[i] * t.traction[c] * jac * rule.weights[q];
       }
     }
   }
@@ -559,25 +562,24 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
   int failedElement = -1;
   std::string failure;
   ElementResult er;
-  Eigen::MatrixX2d X, ue;
+  Eigen::MatrixXd X, ue;
   std::vector<GO> dofs;
   std::vector<LO> cols;  // subdomain scatter buffers, reused across elements
   std::vector<double> vals;
   for (int e : localElements_) {
     const int nn = mesh.elementNumNodes(e);
     const int* en = mesh.elementNodes(e);
-    X.resize(nn, 2);
-    ue.resize(nn, 2);
+    const int d = mesh.dim();
+    X.resize(nn, d);
+    ue.resize(nn, d);
     elementDofs(e, dofs);
     lids.resize(dofs.size());
-    for (int i = 0; i < nn; ++i) {
-      X(i, 0) = mesh.coord(en[i])[0];
-      X(i, 1) = mesh.coord(en[i])[1];
-      for (int c = 0; c < 2; ++c) {
-        lids[2 * i + c] = overlapMap_->getLocalElement(dofs[2 * i + c]);
-        ue(i, c) = ud[lids[2 * i + c]];
+    for (int i = 0; i < nn; ++i)
+      for (int c = 0; c < d; ++c) {
+        X(i, c) = mesh.coord(en[i])[c];
+        lids[d * i + c] = overlapMap_->getLocalElement(dofs[d * i + c]);
+        ue(i, c) = ud[lids[d * i + c]];
       }
-    }
     try {
       elements_[mesh.elementBody(e)]->compute(X, ue, what, er);
     } catch (const InadmissibleDeformation& ex) {
@@ -1275,15 +1277,14 @@ std::string Model::describeNonFinite(const Vector& v) const {
     }
   int node = -1, component = -1;
   for (int n = 0; n < mesh_->numNodes() && node < 0; ++n)
-    for (int c = 0; c < 2; ++c)
+    for (int c = 0; c < mesh_->dim(); ++c)
       if (dof(n, c) == at) node = n, component = c;
   if (node < 0) {
     os << what << " at DOF " << at;
     return os.str();
   }
-  const auto& X = mesh_->coord(node);
-  os << what << (bad == at ? " at " : ", at ") << (component == 0 ? "u_x" : "u_y") << " of node " << node << " ("
-     << X[0] << ", " << X[1] << ")";
+  os << what << (bad == at ? " at " : ", at ") << "u_" << "xyz"[component] << " of node " << node << " ("
+     << mesh_->coordText(node) << ")";
   for (int e = 0; e < mesh_->numElements(); ++e) {
     const int* nodes = mesh_->elementNodes(e);
     if (std::find(nodes, nodes + mesh_->elementNumNodes(e), node) == nodes + mesh_->elementNumNodes(e)) continue;

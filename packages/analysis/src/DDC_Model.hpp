@@ -81,6 +81,8 @@ class Model {
   ~Model();
 
   const Mesh& mesh() const { return *mesh_; }
+  /// Spatial dimension (the mesh's): the number of DOFs of every node.
+  int dim() const { return mesh_->dim(); }
   const Partition& partition() const { return partition_; }
   const Teuchos::RCP<const Teuchos::Comm<int>>& comm() const { return comm_; }
   int subdomainRank(int s) const { return subdomainRank_[s]; }

@@ -18,7 +18,8 @@ void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int st
   const bool contact = model.hasContact();
   std::map<int, VtkPiece> pieces;
   std::map<int, std::map<int, int>> pointIndex;  // subdomain -> (mesh node -> piece point)
-  Eigen::MatrixX2d X, ue;
+  const int dim = mesh.dim();
+  Eigen::MatrixXd X, ue;
   ElementPostResult post;
   for (int e : model.localElements()) {
     const int s = model.partition().elementSubdomain[e];
@@ -28,31 +29,39 @@ void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int st
       p.id = s;
       p.pointData = {{"displacement", 3, {}}};
       if (contact) p.pointData.insert(p.pointData.end(), {{"contact_gap", 1, {}}, {"contact_pressure", 1, {}}});
-      p.cellData = {{"cauchy_stress", 6, {}}, {"strain_energy_density", 1, {}}, {"body", 1, {}}, {"subdomain", 1, {}}};
+      p.cellData = {{"cauchy_stress", 6, {}},
+                    {"strain_energy_density", 1, {}},
+                    {"body", 1, {}},
+                    {"subdomain", 1, {}},
+                    {"von_mises_stress", 1, {}}};
     }
     const int nn = mesh.elementNumNodes(e);
     const int* en = mesh.elementNodes(e);
-    X.resize(nn, 2);
-    ue.resize(nn, 2);
-    for (int i = 0; i < nn; ++i) {
+    X.resize(nn, dim);
+    ue.resize(nn, dim);
+    for (int i = 0; i < nn; ++i)
+      for (int c = 0; c < dim; ++c) {
+        X(i, c) = mesh.coord(en[i])[c];
+        ue(i, c) = ud[ovMap.getLocalElement(model.dof(en[i], c))];
+      }
+    // Points in the piece (each mesh node once), cells in VTK node order.
+    const ReferenceCell& cell = referenceCell(mesh.elementType(e));
+    for (int v = 0; v < nn; ++v) {
+      const int i = cell.vtkOrder[v];
       auto [it, fresh] = index.emplace(en[i], p.numPoints());
       if (fresh) {
-        p.points.insert(p.points.end(), {mesh.coord(en[i])[0], mesh.coord(en[i])[1], 0.0});
+        p.points.insert(p.points.end(), {mesh.coord(en[i])[0], mesh.coord(en[i])[1], mesh.coord(en[i])[2]});
         auto& d = p.pointData[0].values;
-        d.insert(d.end(), {ud[ovMap.getLocalElement(model.dof(en[i], 0))], ud[ovMap.getLocalElement(model.dof(en[i], 1))], 0.0});
+        for (int c = 0; c < 3; ++c) d.push_back(c < dim ? ue(i, c) : 0.0);
         if (contact) {
           p.pointData[1].values.push_back(gap[en[i]]);
           p.pointData[2].values.push_back(pressure[en[i]]);
         }
       }
       p.connectivity.push_back(it->second);
-      X(i, 0) = mesh.coord(en[i])[0];
-      X(i, 1) = mesh.coord(en[i])[1];
-      ue(i, 0) = ud[ovMap.getLocalElement(model.dof(en[i], 0))];
-      ue(i, 1) = ud[ovMap.getLocalElement(model.dof(en[i], 1))];
     }
     p.offsets.push_back(static_cast<int>(p.connectivity.size()));
-    p.types.push_back(mesh.elementType(e) == CellType::Quad4 ? 9 : 28);
+    p.types.push_back(static_cast<unsigned char>(cell.vtkType));
     post = ElementPostResult();
     try {
       model.elementOf(e).postprocess(X, ue, post);
@@ -65,6 +74,7 @@ void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int st
     p.cellData[1].values.push_back(post.energyDensity);
     p.cellData[2].values.push_back(mesh.elementBody(e));
     p.cellData[3].values.push_back(s);
+    p.cellData[4].values.push_back(post.vonMises());
   }
   std::vector<VtkPiece> list;
   for (auto& kv : pieces) list.push_back(std::move(kv.second));

@@ -7,39 +7,104 @@
 #include <set>
 #include <sstream>
 
+#include <Eigen/Dense>
+
 #include "DDC_Error.hpp"
 #include "DDC_Model.hpp"
 
 namespace ddc {
 
+namespace {
+
+/// 3-D anchoring test: do the primal nodes (all three DOFs fixed in the
+/// coarse problem) and the prescribed DOFs among `anchors` remove the six
+/// rigid-body modes? They do iff the modes restricted to those DOFs are
+/// linearly independent: the 6 x 6 Gram matrix of the restricted modes
+/// (translations, and rotations about the anchors' centroid scaled by their
+/// extent, so the test does not depend on units) has full numerical rank.
+bool rigidModesFixed(const Model& model, const std::vector<int>& anchors, const std::vector<char>& primal) {
+  if (anchors.empty()) return false;
+  const Mesh& mesh = model.mesh();
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (int n : anchors) centre += Eigen::Vector3d(mesh.coord(n).data());
+  centre /= static_cast<double>(anchors.size());
+  double extent = 0.0;
+  for (int n : anchors) extent = std::max(extent, (Eigen::Vector3d(mesh.coord(n).data()) - centre).norm());
+  if (extent == 0.0) return false;
+  Eigen::Matrix<double, 6, 6> gram = Eigen::Matrix<double, 6, 6>::Zero();
+  for (int n : anchors) {
+    const Eigen::Vector3d x = (Eigen::Vector3d(mesh.coord(n).data()) - centre) / extent;
+    for (int c = 0; c < 3; ++c) {
+      if (!primal[n] && !model.isConstrained(model.dof(n, c))) continue;
+      // Row c of the modes at this node: u_c of the translations and of
+      // the unit rotations about x, y, z (u = e_k × x).
+      Eigen::Matrix<double, 6, 1> r = Eigen::Matrix<double, 6, 1>::Zero();
+      r[c] = 1.0;
+      for (int k = 0; k < 3; ++k) r[3 + k] = Eigen::Vector3d::Unit(k).cross(x)[c];
+      gram += r * r.transpose();
+    }
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(gram, Eigen::EigenvaluesOnly);
+  constexpr double kRankTolerance = 1e-8;  // relative: far above round-off, far below a real anchoring
+  return eig.eigenvalues()[0] > kRankTolerance * eig.eigenvalues()[5];
+}
+
+}  // namespace
+
 std::vector<char> selectPrimalNodes(const Model& model, std::vector<std::string>* report) {
   const Mesh& mesh = model.mesh();
   const auto& part = model.partition();
   const int numNodes = mesh.numNodes();
-  // Subdomains of each node, and mesh-boundary nodes (on a side of one element).
+  const int dim = mesh.dim();
+  // Subdomains of each node, and mesh-boundary nodes (on a facet of one element).
   std::vector<std::vector<int>> nodeSubs(numNodes);
-  std::map<std::pair<int, int>, int> sideCount;
+  std::map<std::vector<int>, int> facetCount;
   for (int e = 0; e < mesh.numElements(); ++e) {
     const int s = part.elementSubdomain[e];
     for (int i = 0; i < mesh.elementNumNodes(e); ++i) {
       auto& v = nodeSubs[mesh.elementNodes(e)[i]];
       if (std::find(v.begin(), v.end(), s) == v.end()) v.push_back(s);
     }
-    for (int side = 0; side < 4; ++side) {
-      const Segment seg = mesh.makeSegment(e, side);
-      sideCount[{std::min(seg.nodes[0], seg.nodes[1]), std::max(seg.nodes[0], seg.nodes[1])}]++;
-    }
+    for (int f = 0; f < mesh.elementNumFacets(e); ++f) facetCount[mesh.facetKey(e, f)]++;
   }
   std::vector<char> onBoundary(numNodes, 0);
   for (int e = 0; e < mesh.numElements(); ++e)
-    for (int side = 0; side < 4; ++side) {
-      const Segment seg = mesh.makeSegment(e, side);
-      if (sideCount[{std::min(seg.nodes[0], seg.nodes[1]), std::max(seg.nodes[0], seg.nodes[1])}] == 1)
+    for (int f = 0; f < mesh.elementNumFacets(e); ++f)
+      if (facetCount[mesh.facetKey(e, f)] == 1) {
+        const Segment seg = mesh.makeSegment(e, f);
         for (int i = 0; i < seg.numNodes; ++i) onBoundary[seg.nodes[i]] = 1;
-    }
+      }
   std::vector<char> primal(numNodes, 0);
-  for (int n = 0; n < numNodes; ++n)
-    if (nodeSubs[n].size() >= 3 || (nodeSubs[n].size() == 2 && onBoundary[n])) primal[n] = 1;
+  if (dim == 2) {
+    for (int n = 0; n < numNodes; ++n)
+      if (nodeSubs[n].size() >= 3 || (nodeSubs[n].size() == 2 && onBoundary[n])) primal[n] = 1;
+  } else {
+    // 3-D vertices: the ends of the subdomain edges. A node's place is its
+    // set of subdomains, with the mesh boundary counted as one more; a node
+    // whose place has ≥ 3 members lies on an edge, and it is a vertex
+    // unless a node of one of its elements has a strictly larger place (the
+    // edge goes on through it to a vertex there).
+    std::vector<std::vector<int>> place(numNodes);
+    for (int n = 0; n < numNodes; ++n) {
+      place[n] = nodeSubs[n];
+      if (onBoundary[n]) place[n].push_back(-1);
+      std::sort(place[n].begin(), place[n].end());
+    }
+    std::vector<char> candidate(numNodes, 0), dominated(numNodes, 0);
+    for (int n = 0; n < numNodes; ++n) candidate[n] = nodeSubs[n].size() >= 2 && place[n].size() >= 3;
+    for (int e = 0; e < mesh.numElements(); ++e) {
+      const int* en = mesh.elementNodes(e);
+      for (int i = 0; i < mesh.elementNumNodes(e); ++i) {
+        if (!candidate[en[i]]) continue;
+        const auto& a = place[en[i]];
+        for (int j = 0; j < mesh.elementNumNodes(e) && !dominated[en[i]]; ++j) {
+          const auto& b = place[en[j]];
+          if (b.size() > a.size() && std::includes(b.begin(), b.end(), a.begin(), a.end())) dominated[en[i]] = 1;
+        }
+      }
+    }
+    for (int n = 0; n < numNodes; ++n) primal[n] = candidate[n] && !dominated[n];
+  }
 
   // Rule 3: anchor every subdomain.
   std::vector<int> subBody(part.numSubdomains, 0);
@@ -52,14 +117,18 @@ std::vector<char> selectPrimalNodes(const Model& model, std::vector<std::string>
     int primalCount = 0;
     bool fixedDir[2] = {false, false};
     for (int n : subNodes[s]) {
-      const bool cx = model.isConstrained(model.dof(n, 0)), cy = model.isConstrained(model.dof(n, 1));
-      fixedDir[0] = fixedDir[0] || cx;
-      fixedDir[1] = fixedDir[1] || cy;
+      bool constrained = false;
+      for (int c = 0; c < dim; ++c) constrained = constrained || model.isConstrained(model.dof(n, c));
+      if (dim == 2) {
+        fixedDir[0] = fixedDir[0] || model.isConstrained(model.dof(n, 0));
+        fixedDir[1] = fixedDir[1] || model.isConstrained(model.dof(n, 1));
+      }
       if (primal[n]) ++primalCount;
-      if (primal[n] || cx || cy) anchors.push_back(n);
+      if (primal[n] || constrained) anchors.push_back(n);
       if (nodeSubs[n].size() >= 2 && !primal[n]) interface.push_back(n);
     }
     auto anchored = [&] {
+      if (dim == 3) return rigidModesFixed(model, anchors, primal);
       return primalCount >= 2 || (anchors.size() >= 2 && (primalCount >= 1 || (fixedDir[0] && fixedDir[1])));
     };
     int added = 0;
@@ -75,8 +144,9 @@ std::vector<char> selectPrimalNodes(const Model& model, std::vector<std::string>
       // The interface node farthest from the current anchors (or from the
       // first interface node when there are none).
       auto dist2 = [&](int a, int b) {
-        const double dx = mesh.coord(a)[0] - mesh.coord(b)[0], dy = mesh.coord(a)[1] - mesh.coord(b)[1];
-        return dx * dx + dy * dy;
+        double d2 = 0.0;
+        for (int c = 0; c < dim; ++c) d2 += (mesh.coord(a)[c] - mesh.coord(b)[c]) * (mesh.coord(a)[c] - mesh.coord(b)[c]);
+        return d2;
       };
       int best = -1;
       double bestD = -1;
@@ -121,7 +191,7 @@ std::vector<SubdomainSystem> buildSubdomainSystems(const Model& model, const std
     std::set<GO> dofSet;
     for (int e : sys.elements)
       for (int i = 0; i < mesh.elementNumNodes(e); ++i)
-        for (int c = 0; c < 2; ++c) {
+        for (int c = 0; c < mesh.dim(); ++c) {
           const GO g = model.dof(mesh.elementNodes(e)[i], c);
           if (!model.isConstrained(g)) dofSet.insert(g);
         }
@@ -133,7 +203,7 @@ std::vector<SubdomainSystem> buildSubdomainSystems(const Model& model, const std
       std::vector<int> l;
       for (int i = 0; i < mesh.elementNumNodes(e); ++i) {
         const int n = mesh.elementNodes(e)[i];
-        for (int c = 0; c < 2; ++c) {
+        for (int c = 0; c < mesh.dim(); ++c) {
           const GO g = model.dof(n, c);
           const auto it = local.find(g);
           l.push_back(it == local.end() ? -1 : it->second);

@@ -14,16 +14,23 @@ namespace ddc {
 
 class Model;
 
-/// Primal node selection (doc/feti-dp.md, "Primal nodes"):
+/// Primal node selection (doc/feti-dp.md, "Primal nodes"). In 2-D:
 ///  1. interface nodes shared by ≥ 3 subdomains (cross points);
 ///  2. interface nodes on the mesh boundary (the ends of a subdomain–
 ///     subdomain interface that reaches the boundary);
-///  3. every subdomain must be fixed against its rigid modes: it needs two
-///     distinct "anchor" nodes (primal, or carrying a prescribed DOF) and
-///     prescribed DOFs in both directions unless it has two primal nodes;
-///     where rules 1–2 give fewer, interface nodes of the subdomain are made
-///     primal (the one farthest from the existing anchors, then the one
-///     farthest from that).
+/// in 3-D, the vertices: interface nodes whose set of subdomains (the mesh
+/// boundary counted as one more) has ≥ 3 members and is not strictly
+/// contained in that of a node of one of their elements (the ends of the
+/// subdomain edges);
+///  3. every subdomain must be fixed against its rigid modes. 2-D: it needs
+///     two distinct "anchor" nodes (primal, or carrying a prescribed DOF)
+///     and prescribed DOFs in both directions unless it has two primal
+///     nodes. 3-D: the six rigid modes restricted to its primal DOFs and
+///     prescribed DOFs must be independent (at least three primal nodes not
+///     on one line, or prescribed DOFs that do the same). Where the rules
+///     above give fewer, interface nodes of the subdomain are made primal
+///     (the one farthest from the existing anchors, then the one farthest
+///     from those).
 /// \returns per mesh node 1 if primal. `report` receives one line per
 ///          subdomain that needed rule 3.
 /// \throws InputError for a floating subdomain without interface nodes

@@ -85,19 +85,20 @@ inline void setRunOptions(PL& deck, int steps) {
 }
 
 /// The whole displacement field on every rank of the model's communicator,
-/// indexed [2 n + c] by mesh node n (independent of the DOF numbering; each
-/// rank contributes its owned DOFs). Collective.
+/// indexed [d n + c] by mesh node n (d = 2 or 3, the model's dimension;
+/// independent of the DOF numbering; each rank contributes its owned DOFs).
+/// Collective.
 inline std::vector<double> gatherDisplacement(const ddc::Model& m, const ddc::Vector& u) {
   const auto& map = *u.getMap();
   auto d = u.getData();
-  const int n2 = 2 * m.mesh().numNodes();
-  std::vector<double> local(n2, 0.0), global(n2, 0.0);
+  const int dim = m.dim(), size = dim * m.mesh().numNodes();
+  std::vector<double> local(size, 0.0), global(size, 0.0);
   for (int n = 0; n < m.mesh().numNodes(); ++n)
-    for (int c = 0; c < 2; ++c) {
+    for (int c = 0; c < dim; ++c) {
       const auto l = map.getLocalElement(m.dof(n, c));
-      if (l != Teuchos::OrdinalTraits<ddc::LO>::invalid()) local[2 * n + c] = d[l];
+      if (l != Teuchos::OrdinalTraits<ddc::LO>::invalid()) local[dim * n + c] = d[l];
     }
-  Teuchos::reduceAll(*m.comm(), Teuchos::REDUCE_SUM, n2, local.data(), global.data());
+  Teuchos::reduceAll(*m.comm(), Teuchos::REDUCE_SUM, size, local.data(), global.data());
   return global;
 }
 

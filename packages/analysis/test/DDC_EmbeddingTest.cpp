@@ -231,7 +231,7 @@ TEST(Embedding, HostElementParameterReachesTheElement) {
   builtin.run("");
   ASSERT_FALSE(scaled.history().empty());
   EXPECT_LE(relDiff(s * scaled.history().back().strainEnergy, builtin.history().back().strainEnergy), 1e-10)
-      << "energy of a linear solve: round-off times cond(K) (see kEnergyIdentity in DDC_VerificationTest.cpp)";
+      << "energy of a linear solve: round-off times cond(K) (see kEnergyIdentity in DDC_TestTolerances.hpp)";
   auto us = gatherDisplacement(scaled);
   for (double& v : us) v *= s;
   EXPECT_LE(maxRelDiff(us, gatherDisplacement(builtin)), 1e-10);

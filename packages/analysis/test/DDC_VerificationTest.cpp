@@ -77,11 +77,6 @@ constexpr double kRigidStress = 1e-9;
 /// criterion and round-off (and the 1e-14 scalar Newton of the test).
 constexpr double kHomogeneous = 1e-9;
 
-/// Energy identity U = 1/2 f.u for linear elasticity: U = 1/2 u^T K u
-/// exactly, so U - 1/2 f.u = -1/2 u^T r with r the residual of the direct
-/// solve (backward-stable: |r| ~ eps |K| |u|), i.e. about eps * cond(K)
-/// relative at worst (cond(K) ~ 1e5 for these meshes); measured <= 4e-16.
-constexpr double kEnergyIdentity = 1e-10;
 
 // ---------------------------------------------------------------------------
 // Helpers.

@@ -170,4 +170,11 @@ void Mesh::check() const {
                                             << ") belongs to no element");
 }
 
+std::string Mesh::coordText(int n) const {
+  std::ostringstream os;
+  os << coords_[n][0] << ", " << coords_[n][1];
+  if (dim_ == 3) os << ", " << coords_[n][2];
+  return os.str();
+}
+
 }  // namespace ddc

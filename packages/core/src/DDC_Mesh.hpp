@@ -74,6 +74,8 @@ class Mesh {
   /// Coordinates (x, y, z); z = 0 in 2-D.
   const std::array<double, 3>& coord(int n) const { return coords_[n]; }
   std::array<double, 3>& coord(int n) { return coords_[n]; }
+  /// "x, y" (2-D) or "x, y, z" (3-D) of node n, for messages.
+  std::string coordText(int n) const;
   int elementBody(int e) const { return elemBody_[e]; }
   CellType elementType(int e) const { return bodies_[elemBody_[e]].cellType; }
   int elementNumNodes(int e) const { return elemOffset_[e + 1] - elemOffset_[e]; }

@@ -98,18 +98,25 @@ Partition partitionMetis(const Mesh& mesh, int numSubdomains) {
   p.elementSubdomain.assign(ne, 0);
   if (numSubdomains == 1) return p;
 
-  // Corner nodes only, renumbered compactly (Quad9 mid nodes would otherwise
-  // be isolated vertices of METIS's nodal graph).
+  // Corner nodes only, renumbered compactly (mid-edge, face and centre
+  // nodes would otherwise be isolated vertices of METIS's nodal graph).
+  // METIS joins two elements that share `ncommon` corners: a side (2) in
+  // 2-D, a face in 3-D (3 corners of a triangle, 4 of a quadrilateral; the
+  // smallest face of any body, so that every face counts).
   std::vector<idx_t> compact(mesh.numNodes(), -1);
-  std::vector<idx_t> eptr(ne + 1), eind(static_cast<size_t>(4) * ne);
-  idx_t nn = 0;
+  std::vector<idx_t> eptr(ne + 1, 0), eind;
+  idx_t nn = 0, ncommon = mesh.dim() == 2 ? 2 : 4;
+  for (int b = 0; b < mesh.numBodies(); ++b)
+    for (const auto& f : referenceCell(mesh.body(b).cellType).facets)
+      ncommon = std::min<idx_t>(ncommon, referenceCell(f.type).numCorners);
   for (int e = 0; e < ne; ++e) {
     const int* n = mesh.elementNodes(e);
-    for (int k = 0; k < 4; ++k) {
+    const int corners = referenceCell(mesh.elementType(e)).numCorners;
+    for (int k = 0; k < corners; ++k) {
       if (compact[n[k]] < 0) compact[n[k]] = nn++;
-      eind[4 * e + k] = compact[n[k]];
+      eind.push_back(compact[n[k]]);
     }
-    eptr[e + 1] = 4 * (e + 1);
+    eptr[e + 1] = static_cast<idx_t>(eind.size());
   }
 
   idx_t options[METIS_NOPTIONS];
@@ -124,7 +131,7 @@ Partition partitionMetis(const Mesh& mesh, int numSubdomains) {
   const auto nb = edgeNeighbours(mesh);
   options[METIS_OPTION_CONTIG] = isConnected(nb) ? 1 : 0;
 
-  idx_t metisNe = ne, ncommon = 2, nparts = numSubdomains, objval = 0;
+  idx_t metisNe = ne, nparts = numSubdomains, objval = 0;
   std::vector<idx_t> epart(ne), npart(nn);
   const int status = METIS_PartMeshDual(&metisNe, &nn, eptr.data(), eind.data(), nullptr, nullptr, &ncommon,
                                         &nparts, nullptr, options, &objval, epart.data(), npart.data());

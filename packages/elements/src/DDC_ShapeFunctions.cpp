@@ -156,7 +156,49 @@ QuadratureRule tetRule(int points) {
   return r;
 }
 
+/// Triangle rules on the reference triangle (area 1/2): 3 points of degree
+/// 2 (Strang & Fix 1973) and 6 points of degree 4 (Dunavant 1985).
+QuadratureRule triRule(int points) {
+  QuadratureRule r;
+  if (points == 3) {
+    r.points = {{1.0 / 6, 1.0 / 6, 0}, {2.0 / 3, 1.0 / 6, 0}, {1.0 / 6, 2.0 / 3, 0}};
+    r.weights = {1.0 / 6, 1.0 / 6, 1.0 / 6};
+    r.degree = 2;
+    r.name = "3-point degree 2";
+  } else {
+    const double a = 0.445948490915965, wa = 0.223381589678011 / 2;
+    const double b = 0.091576213509771, wb = 0.109951743655322 / 2;
+    r.points = {{a, a, 0}, {1 - 2 * a, a, 0}, {a, 1 - 2 * a, 0}, {b, b, 0}, {1 - 2 * b, b, 0}, {b, 1 - 2 * b, 0}};
+    r.weights = {wa, wa, wa, wb, wb, wb};
+    r.degree = 4;
+    r.name = "6-point degree 4";
+  }
+  return r;
+}
+
 }  // namespace
+
+const QuadratureRule& facetQuadratureRule(CellType facet) {
+  static const QuadratureRule line3 = gaussBox(1, 3), quad2x2 = gaussBox(2, 2), quad3x3 = gaussBox(2, 3),
+                              tri3 = triRule(3), tri6 = triRule(6);
+  switch (facet) {
+    case CellType::Line2:
+    case CellType::Line3:
+      return line3;
+    case CellType::Quad4:
+      return quad2x2;
+    case CellType::Quad8:
+    case CellType::Quad9:
+      return quad3x3;
+    case CellType::Tri3:
+      return tri3;
+    case CellType::Tri6:
+      return tri6;
+    default:
+      throw std::invalid_argument(std::string("facetQuadratureRule: ") + cellTypeName(facet) +
+                                  " is not a facet cell type");
+  }
+}
 
 void shapeFunctions(CellType cell, const std::array<double, 3>& xi, Eigen::VectorXd* N, Eigen::MatrixXd* dN) {
   const ReferenceCell& c = referenceCell(cell);

@@ -55,4 +55,15 @@ struct QuadratureRule {
 /// \throws std::invalid_argument for a facet cell type (Line*, Tri*, Quad8)
 const QuadratureRule& quadratureRule(CellType cell);
 
+/// The quadrature rule for integrals over a facet (tractions on sides and
+/// faces, sum_q w_q |dx/dxi| N_a(xi_q)):
+///   Line2, Line3   3-point Gauss (exact for N |J| of a quadratic side);
+///   Quad4          2x2 Gauss (exact on a flat parallelogram face);
+///   Quad8, Quad9   3x3 Gauss;
+///   Tri3           3 points, degree 2 (Strang & Fix 1973);
+///   Tri6           6 points, degree 4 (Dunavant 1985): exact for N |J| of
+///                  a curved 6-node face up to the square root in |J|.
+/// \throws std::invalid_argument for a volume cell type (Hex*, Tet*).
+const QuadratureRule& facetQuadratureRule(CellType facet);
+
 }  // namespace ddc
