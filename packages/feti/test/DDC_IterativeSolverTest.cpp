@@ -308,7 +308,7 @@ TEST(IterativeSolver, RigidBodyModesSpanKernelOfFreeStiffness) {
   m.nx = 12, m.ny = 7;
   auto map = dofMap(m, worldComm());
   auto K = assemble(m, map, /*clamp=*/false);
-  auto rbm = ddc::IterativeSolver::rigidBodyModes2D(*coordinates(m, map));
+  auto rbm = ddc::IterativeSolver::rigidBodyModes(*coordinates(m, map));
   ASSERT_EQ(rbm->getNumVectors(), 3u);
   MultiVector Kr(map, 3);
   K->apply(*rbm, Kr);
@@ -327,6 +327,8 @@ TEST(IterativeSolver, RigidBodyModesSpanKernelOfFreeStiffness) {
 TEST(IterativeSolver, DirectSolversIgnoreTheHooks) {
   auto s = make("MUMPS");
   s->setCoordinates(problem().coords);
+  s->setDofsPerNode(3);
+  s->setDofsPerNode(7);  // ignored, like everything here
   EXPECT_EQ(s->lastIterations(), 0);
 }
 
@@ -531,6 +533,9 @@ TEST(MueLuSolver, MisspeltMueLuParameterIsAnInputError) {
   Teuchos::ParameterList u;
   u.sublist("MueLu").sublist("user data");
   expectThrowWith<ddc::InputError>([&] { make("Belos-MueLu", u); }, {"Belos-MueLu/MueLu/user data"});
+  Teuchos::ParameterList e;  // the DOFs per node come from setDofsPerNode() / the coordinates
+  e.sublist("MueLu").set("number of equations", 3);
+  expectThrowWith<ddc::InputError>([&] { make("Belos-MueLu", e); }, {"Belos-MueLu/MueLu/number of equations"});
 }
 
 TEST(MueLuSolver, ReuseOptionUpdatesTheHierarchy) {
@@ -582,6 +587,12 @@ TEST(FroschSolver, UnreadFroschParameterIsAnInputError) {
   Teuchos::ParameterList f;
   f.sublist("FROSch").set("Overlap", 2);
   expectThrowWith<ddc::InputError>([&] { make("Belos-FROSch", f); }, {"Belos-FROSch/FROSch/Overlap"});
+  for (const char* fixed : {"Dimension", "DofsPerNode"}) {
+    Teuchos::ParameterList g;
+    g.sublist("FROSch").set(fixed, 3);
+    expectThrowWith<ddc::InputError>([&] { make("Belos-FROSch", g); },
+                                     {std::string("Belos-FROSch/FROSch/") + fixed, "set by the solver"});
+  }
 }
 
 TEST(FroschSolver, ClassicalGdswCoarseOperator) {
