@@ -273,7 +273,7 @@ struct Block {
 /// linear elasticity), 2 x 2 x 2 Gauss rule (exact here). Local node
 /// a = a0 + 2 a1 + 4 a2 sits at the reference corner xi_c = 2 a_c - 1; DOF
 /// order x0 y0 z0 x1 ... Strains in Voigt order xx, yy, zz, xy, yz, zx
-/// (engineering shears), e.g. Hughes, The Finite Element Method (1987), 2.7.
+/// (engineering shears), as in Hughes, The Finite Element Method (1987), ch. 2.
 std::array<std::array<double, 24>, 24> hex8Stiffness(const Block& m) {
   const double E = m.young, nu = m.poisson;
   const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
