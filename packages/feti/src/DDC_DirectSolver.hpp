@@ -47,9 +47,18 @@ class DirectSolver {
   /// Optional hook: nodal coordinates, for back ends that build a near-null
   /// space from them (the iterative "Belos-MueLu" / "Belos-FROSch", see
   /// DDC_IterativeSolvers.hpp); direct solvers ignore it. Call before numeric().
-  /// \param coords 2 columns (x, y) in A's row map layout: row i holds the
-  ///        coordinates of the node that DOF i belongs to.
+  /// \param coords d columns (x, y[, z]) for spatial dimension d = 2 or 3, in
+  ///        A's row map layout: row i holds the coordinates of the node that
+  ///        DOF i belongs to. Their column count sets d (see setDofsPerNode()).
   virtual void setCoordinates(const Teuchos::RCP<const MultiVector>& /*coords*/) {}
+  /// Optional hook: the DOFs per node, i.e. the spatial dimension d = 2 or 3
+  /// of a displacement-only elasticity matrix (node-major, DOFs d k + c of
+  /// node k). The iterative back ends need it for their near-null space and
+  /// DOF layout check when no coordinates are given ("Null Space" =
+  /// "Translations"); with coordinates it must agree with their column count.
+  /// Default 2 (the 2-D analysis). Direct solvers ignore it. Call before
+  /// numeric().
+  virtual void setDofsPerNode(int /*dofsPerNode*/) {}
   /// Iterations of the last solve(): Belos iterations for iterative back
   /// ends, 0 for direct solvers (the "dual_iterations" of history.csv).
   virtual int lastIterations() const { return 0; }

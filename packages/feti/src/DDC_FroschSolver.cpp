@@ -222,7 +222,8 @@ FroschSolver::FroschSolver(const Teuchos::ParameterList& params)
   if (params.isSublist("FROSch")) m.user = params.sublist("FROSch");
   for (const char* fixed : {"Dimension", "DofsPerNode", "Overlap"})
     DDC_INPUT_REQUIRE(!m.user.isParameter(fixed), "parameter '" << kType << "/FROSch/" << fixed << "' is set by the "
-                                                                << "solver (2-D, 2 DOFs per node, '" << kType
+                                                                << "solver (the spatial dimension and DOFs per "
+                                                                << "node, 2 or 3, and '" << kType
                                                                 << "/Overlap'); remove it");
 }
 
@@ -253,8 +254,10 @@ Teuchos::RCP<Operator> FroschSolver::buildPreconditioner(bool first, const Teuch
       Teuchos::RCP<const XMultiVector> xNodes;
       if (!nodeCoords.is_null()) xNodes = Teuchos::rcp(new XTpetraMultiVector(nodeCoords));
       m.prec = Teuchos::rcp(new TwoLevel(K, m.live));
+      // Dimension and DOFs per node are both d: displacement-only elasticity.
+      const int d = dofsPerNode();
       const int ri =
-          m.prec->initialize(2, 2, m.overlap, xNull, xNodes, FROSch::NodeWise, repeatedMap, Teuchos::null, dirichlet);
+          m.prec->initialize(d, d, m.overlap, xNull, xNodes, FROSch::NodeWise, repeatedMap, Teuchos::null, dirichlet);
       if (ri < 0) DDC_THROW(SolverError, name() << ": FROSch initialize() returned " << ri);
       m.op = Teuchos::rcp(new FroschOperator(m.prec, map));
     }

@@ -43,30 +43,53 @@ bool anyRank(const Teuchos::Comm<int>& comm, bool bad) {
   return g != 0;
 }
 
-/// Check the node-major two-DOFs-per-node layout of `map` (file comment of
-/// the header) on every rank; all ranks throw if one fails.
-void requireNodeMajorLayout(const Map& map, const std::string& who) {
+/// "2k, 2k+1" (d = 2), "3k, 3k+1, 3k+2" (d = 3): the global indices of the
+/// DOFs of node k, for messages.
+std::string dofIndexPattern(int d) {
+  std::string out;
+  for (int c = 0; c < d; ++c) out += (c ? ", " : "") + std::to_string(d) + "k" + (c ? "+" + std::to_string(c) : "");
+  return out;
+}
+
+/// Check the node-major layout with `d` DOFs per node of `map` (file comment
+/// of the header) on every rank; all ranks throw if one fails.
+void requireNodeMajorLayout(const Map& map, int d, const std::string& who) {
   const LO n = static_cast<LO>(map.getNodeNumElements());
+  const std::string rank = std::to_string(map.getComm()->getRank());
   std::string why;
-  if (n % 2 != 0) {
-    why =
-        "rank " + std::to_string(map.getComm()->getRank()) + " owns an odd number of rows (" + std::to_string(n) + ")";
+  if (n % d != 0) {
+    why = "rank " + rank + " owns " +
+          (d == 2 ? std::string("an odd number of rows") : "a number of rows not divisible by " + std::to_string(d)) +
+          " (" + std::to_string(n) + ")";
   } else {
-    for (LO p = 0; p < n; p += 2) {
+    for (LO p = 0; p < n && why.empty(); p += d) {
       const GO g = map.getGlobalElement(p);
-      if (g % 2 != 0 || map.getGlobalElement(p + 1) != g + 1) {
-        why = "rows " + std::to_string(p) + ", " + std::to_string(p + 1) + " of rank " +
-              std::to_string(map.getComm()->getRank()) + " have global indices " + std::to_string(g) + ", " +
-              std::to_string(map.getGlobalElement(p + 1)) + " (expected 2k, 2k+1)";
-        break;
+      bool ok = g % d == 0;
+      for (int c = 1; c < d; ++c) ok = ok && map.getGlobalElement(p + c) == g + c;
+      if (ok) continue;
+      std::string rows, found;
+      for (int c = 0; c < d; ++c) {
+        rows += (c ? ", " : "") + std::to_string(p + c);
+        found += (c ? ", " : "") + std::to_string(map.getGlobalElement(p + c));
       }
+      why = "rows " + rows + " of rank " + rank + " have global indices " + found + " (expected " + dofIndexPattern(d) +
+            ")";
     }
   }
   if (anyRank(*map.getComm(), !why.empty()))
-    throw std::invalid_argument(who +
-                                ": the matrix must number its DOFs node-major, two per node (global indices "
-                                "2k, 2k+1 for node k, owned by the same rank)" +
+    throw std::invalid_argument(who + ": the matrix must number its DOFs node-major, " + (d == 2 ? "two" : "three") +
+                                " per node (global indices " + dofIndexPattern(d) +
+                                " for node k, owned by the same rank)" +
                                 (why.empty() ? std::string(" on every rank") : "; " + why));
+}
+
+/// The spatial dimension d of `coords` (its column count).
+/// \throws std::invalid_argument naming `who` and the count unless 2 or 3.
+int coordinateDimension(const MultiVector& coords, const std::string& who) {
+  const size_t d = coords.getNumVectors();
+  if (d != 2 && d != 3)
+    throw std::invalid_argument(who + ": need 2 (x, y) or 3 (x, y, z) coordinate columns, got " + std::to_string(d));
+  return static_cast<int>(d);
 }
 
 }  // namespace
@@ -77,6 +100,8 @@ struct IterativeSolver::Impl {
   std::string belosSolver;  // "CG" or "GMRES"
   bool rigidBodyModes = true;
   Teuchos::RCP<const MultiVector> coords;
+  int dim = 2;                 // DOFs per node = spatial dimension
+  bool dimFromCaller = false;  // setDofsPerNode() was called
   Teuchos::RCP<Operator> prec;
   bool fresh = true;  // symbolic() called since the last successful numeric()
   bool ready = false;
@@ -97,9 +122,10 @@ void IterativeSolver::addCommonParameters(Teuchos::ParameterList& pl, const std:
          "of every iteration (rank 0 prints).",
          between(0, 2));
   pl.set("Null Space", std::string(kRigidBodyModes),
-         "Near-null space the preconditioner's coarse space reproduces. 'Rigid Body Modes': the 3 rigid-body "
-         "modes of 2-D elasticity from the nodal coordinates of setCoordinates() (required before numeric()); "
-         "'Translations': the 2 translations only (no coordinates needed; weaker for elasticity).",
+         "Near-null space the preconditioner's coarse space reproduces. 'Rigid Body Modes': the rigid-body "
+         "modes of elasticity (3 in 2-D, 6 in 3-D) from the nodal coordinates of setCoordinates() (required "
+         "before numeric()); 'Translations': the 2 or 3 translations only (no coordinates needed; weaker for "
+         "elasticity).",
          enumValidator({kRigidBodyModes, kTranslations}, "Null Space"));
 }
 
@@ -117,47 +143,85 @@ IterativeSolver::IterativeSolver(const Teuchos::ParameterList& params, const std
 IterativeSolver::~IterativeSolver() = default;
 
 void IterativeSolver::setCoordinates(const Teuchos::RCP<const MultiVector>& coords) {
-  if (!coords.is_null() && coords->getNumVectors() != 2)
-    throw std::invalid_argument(type_ + " setCoordinates(): need 2 columns (x, y), got " +
-                                std::to_string(coords->getNumVectors()));
-  impl_->coords = coords;
+  Impl& m = *impl_;
+  if (!coords.is_null()) {
+    const int d = coordinateDimension(*coords, type_ + " setCoordinates()");
+    if (m.dimFromCaller && d != m.dim)
+      throw std::invalid_argument(type_ + " setCoordinates(): " + std::to_string(d) +
+                                  " coordinate columns, but setDofsPerNode() said " + std::to_string(m.dim) +
+                                  " DOFs per node; the two must agree (the spatial dimension)");
+    m.dim = d;
+  }
+  m.coords = coords;
 }
+
+void IterativeSolver::setDofsPerNode(int d) {
+  Impl& m = *impl_;
+  if (d != 2 && d != 3)
+    throw std::invalid_argument(type_ + " setDofsPerNode(): " + std::to_string(d) +
+                                " DOFs per node; only 2-D and 3-D elasticity (2 or 3) are supported");
+  if (!m.coords.is_null() && int(m.coords->getNumVectors()) != d)
+    throw std::invalid_argument(type_ + " setDofsPerNode(): " + std::to_string(d) + " DOFs per node, but the " +
+                                "coordinates of setCoordinates() have " + std::to_string(m.coords->getNumVectors()) +
+                                " columns; the two must agree (the spatial dimension)");
+  m.dim = d;
+  m.dimFromCaller = true;
+}
+
+int IterativeSolver::dofsPerNode() const { return impl_->dim; }
 
 int IterativeSolver::lastIterations() const { return impl_->iterations; }
 double IterativeSolver::lastResidual() const { return impl_->residual; }
 int IterativeSolver::numNumeric() const { return impl_->nNumeric; }
 
-Teuchos::RCP<MultiVector> IterativeSolver::translations2D(const Teuchos::RCP<const Map>& map) {
-  requireNodeMajorLayout(*map, "translations2D");
-  auto ns = Teuchos::rcp(new MultiVector(map, 2));
-  auto tx = ns->getDataNonConst(0), ty = ns->getDataNonConst(1);
-  for (LO i = 0; i < LO(map->getNodeNumElements()); ++i) (i % 2 == 0 ? tx : ty)[i] = 1.0;
+Teuchos::RCP<MultiVector> IterativeSolver::translations(const Teuchos::RCP<const Map>& map, int dofsPerNode) {
+  if (dofsPerNode != 2 && dofsPerNode != 3)
+    throw std::invalid_argument("translations: " + std::to_string(dofsPerNode) + " DOFs per node (2 or 3 supported)");
+  const int d = dofsPerNode;
+  requireNodeMajorLayout(*map, d, "translations");
+  auto ns = Teuchos::rcp(new MultiVector(map, d));
+  for (int c = 0; c < d; ++c) {
+    auto t = ns->getDataNonConst(c);
+    for (LO i = c; i < LO(map->getNodeNumElements()); i += d) t[i] = 1.0;
+  }
   return ns;
 }
 
-Teuchos::RCP<MultiVector> IterativeSolver::rigidBodyModes2D(const MultiVector& coords) {
+Teuchos::RCP<MultiVector> IterativeSolver::rigidBodyModes(const MultiVector& coords) {
   const auto map = coords.getMap();
-  requireNodeMajorLayout(*map, "rigidBodyModes2D");
-  if (coords.getNumVectors() != 2)
-    throw std::invalid_argument("rigidBodyModes2D: need 2 coordinate columns, got " +
-                                std::to_string(coords.getNumVectors()));
+  const int d = coordinateDimension(coords, "rigidBodyModes");
+  requireNodeMajorLayout(*map, d, "rigidBodyModes");
   // Centre of the nodes: mean over the x-DOF rows (each node counted once).
   const LO n = static_cast<LO>(map->getNodeNumElements());
-  auto x = coords.getData(0), y = coords.getData(1);
-  double local[3] = {0.0, 0.0, double(n / 2)}, global[3];
-  for (LO i = 0; i < n; i += 2) local[0] += x[i], local[1] += y[i];
-  Teuchos::reduceAll(*map->getComm(), Teuchos::REDUCE_SUM, 3, local, global);
-  const double xc = global[2] > 0 ? global[0] / global[2] : 0.0;
-  const double yc = global[2] > 0 ? global[1] / global[2] : 0.0;
+  std::vector<Teuchos::ArrayRCP<const Scalar>> X(d);
+  for (int c = 0; c < d; ++c) X[c] = coords.getData(c);
+  std::vector<double> local(d + 1, 0.0), global(d + 1);
+  local[d] = double(n / d);
+  for (int c = 0; c < d; ++c)
+    for (LO i = 0; i < n; i += d) local[c] += X[c][i];
+  Teuchos::reduceAll(*map->getComm(), Teuchos::REDUCE_SUM, d + 1, local.data(), global.data());
+  std::vector<double> Xc(d, 0.0);
+  for (int c = 0; c < d; ++c) Xc[c] = global[d] > 0 ? global[c] / global[d] : 0.0;
 
-  auto out = Teuchos::rcp(new MultiVector(map, 3));
-  {
-    auto t0 = out->getDataNonConst(0), t1 = out->getDataNonConst(1), rot = out->getDataNonConst(2);
-    for (LO i = 0; i < n; i += 2) {
-      // u = omega x (X - Xc) for a unit rotation about the z axis.
-      t0[i] = 1.0, t1[i + 1] = 1.0;
-      rot[i] = -(y[i] - yc);
-      rot[i + 1] = x[i] - xc;
+  // Translations, then u = omega x (X - Xc) for unit rotations: about z in
+  // 2-D; about x, y, z in 3-D.
+  const int nRot = d == 2 ? 1 : 3;
+  auto out = Teuchos::rcp(new MultiVector(map, d + nRot));
+  std::vector<Teuchos::ArrayRCP<Scalar>> col(d + nRot);
+  for (int j = 0; j < d + nRot; ++j) col[j] = out->getDataNonConst(j);
+  for (LO i = 0; i < n; i += d) {
+    for (int c = 0; c < d; ++c) col[c][i + c] = 1.0;
+    if (d == 2) {
+      col[2][i] = -(X[1][i] - Xc[1]);
+      col[2][i + 1] = X[0][i] - Xc[0];
+    } else {
+      const double r[3] = {X[0][i] - Xc[0], X[1][i] - Xc[1], X[2][i] - Xc[2]};
+      // omega = e_a: (e_a x r)_b = eps_abc r_c, i.e. component (a+2)%3 gets
+      // r_(a+1)%3 and component (a+1)%3 gets -r_(a+2)%3.
+      for (int a = 0; a < 3; ++a) {
+        col[3 + a][i + (a + 1) % 3] = -r[(a + 2) % 3];
+        col[3 + a][i + (a + 2) % 3] = r[(a + 1) % 3];
+      }
     }
   }
   return out;
@@ -179,7 +243,8 @@ void IterativeSolver::numeric() {
   Impl& m = *impl_;
   if (A_.is_null()) throw std::logic_error(type_ + " numeric(): call symbolic() first");
   const auto map = A_->getRowMap();
-  requireNodeMajorLayout(*map, type_);
+  const int d = m.dim;
+  requireNodeMajorLayout(*map, d, type_);
   m.ready = false;
 
   Teuchos::RCP<MultiVector> nullSpace, nodeCoords;
@@ -194,23 +259,23 @@ void IterativeSolver::numeric() {
       throw std::invalid_argument(type_ +
                                   " numeric(): the coordinates of setCoordinates() are not distributed "
                                   "like the matrix rows (their map differs from the row map)");
-    // One row per owned node k (DOFs 2k, 2k+1), for MueLu / FROSch.
+    // One row per owned node k (DOFs d k .. d k + d-1), for MueLu / FROSch.
     const LO n = static_cast<LO>(map->getNodeNumElements());
-    std::vector<GO> nodes(n / 2);
-    for (LO p = 0; p < n; p += 2) nodes[p / 2] = map->getGlobalElement(p) / 2;
+    std::vector<GO> nodes(n / d);
+    for (LO p = 0; p < n; p += d) nodes[p / d] = map->getGlobalElement(p) / d;
     auto nodeMap = Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
                                         Teuchos::ArrayView<const GO>(nodes), 0, map->getComm()));
-    nodeCoords = Teuchos::rcp(new MultiVector(nodeMap, 2));
-    for (size_t c = 0; c < 2; ++c) {
+    nodeCoords = Teuchos::rcp(new MultiVector(nodeMap, d));
+    for (int c = 0; c < d; ++c) {
       auto src = m.coords->getData(c);
       auto dst = nodeCoords->getDataNonConst(c);
-      for (LO p = 0; p < n; p += 2) dst[p / 2] = src[p];
+      for (LO p = 0; p < n; p += d) dst[p / d] = src[p];
     }
   }
   if (m.rigidBodyModes) {
-    nullSpace = rigidBodyModes2D(*m.coords);
+    nullSpace = rigidBodyModes(*m.coords);
   } else {
-    nullSpace = translations2D(map);
+    nullSpace = translations(map, d);
   }
   m.prec = buildPreconditioner(m.fresh, nullSpace, nodeCoords);
   m.fresh = false;
@@ -299,8 +364,8 @@ void addIterativeSolvers(DirectSolverFactory& factory) {
                  return std::make_unique<MueLuSolver>(p);
                },
                MueLuSolver::getValidParameters(),
-               "iterative: Belos CG + MueLu smoothed-aggregation AMG, for SPD 2-D elasticity matrices; needs "
-               "setCoordinates()"});
+               "iterative: Belos CG + MueLu smoothed-aggregation AMG, for SPD 2-D / 3-D elasticity matrices; "
+               "needs setCoordinates()"});
   factory.add(FroschSolver::kType,
               {[](const Teuchos::ParameterList& p) -> std::unique_ptr<DirectSolver> {
                  return std::make_unique<FroschSolver>(p);

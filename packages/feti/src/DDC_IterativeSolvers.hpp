@@ -13,12 +13,22 @@
 // here: solve() stops at a relative residual ||b - A x|| / ||b|| <=
 // "Convergence Tolerance" and throws SolverError if it does not get there.
 //
-// Near-null space. Both need the rigid-body modes of 2-D elasticity
-// (two translations and the in-plane rotation), built from nodal coordinates
-// handed over with setCoordinates() before numeric(). DOF layout assumed
-// (checked in numeric()): node-major, two DOFs per node with consecutive
-// global indices 2k (x) and 2k+1 (y) owned by the same rank, so every rank
-// owns an even number of rows. Lagrange-multiplier rows (contact) do not fit
+// Spatial dimension d = 2 or 3 (default 2): the column count of the
+// coordinates of setCoordinates(), or setDofsPerNode(d) when there are none;
+// if both are given they must agree.
+//
+// Near-null space. Both need the rigid-body modes of d-D elasticity, built
+// from nodal coordinates handed over with setCoordinates() before numeric():
+// in 2-D the two translations and the in-plane rotation (3 modes), in 3-D
+// three translations and three rotations (6 modes), the rotations
+// u = omega x (X - Xc) about the centroid Xc of the nodes. Smoothed
+// aggregation reproduces them on every level (Vanek, Mandel, Brezina,
+// Computing 56, 1996); the GDSW coarse space of FROSch multiplies them by an
+// interface partition of unity (Dohrmann, Klawonn, Widlund, SINUM 46, 2008;
+// Heinlein, Klawonn, Rheinbach, SISC 38, 2016). DOF layout assumed (checked
+// in numeric()): node-major, d DOFs per node with consecutive global indices
+// d k + c (c = 0 .. d-1 for x, y[, z]) owned by the same rank, so every rank
+// owns a multiple of d rows. Lagrange-multiplier rows (contact) do not fit
 // this layout: these solvers are for problems without contact.
 //
 // Registration: addIterativeSolvers(factory), or
@@ -57,10 +67,20 @@ class IterativeSolver : public DirectSolver {
   IterativeSolver(const IterativeSolver&) = delete;
   IterativeSolver& operator=(const IterativeSolver&) = delete;
 
-  /// \param coords 2 columns (x, y), in A's row map layout (same map): row i
-  ///        holds the coordinates of the node DOF i belongs to (the row of
-  ///        the x-DOF 2k is read). Kept by reference (RCP); read in numeric().
+  /// \param coords d = 2 or 3 columns (x, y[, z]), in A's row map layout
+  ///        (same map): row i holds the coordinates of the node DOF i belongs
+  ///        to (the row of the x-DOF d k is read). Sets the dimension d. Kept
+  ///        by reference (RCP); read in numeric(). Null forgets them (d stays).
+  /// \throws std::invalid_argument naming the count if there are not 2 or 3
+  ///         columns, or if setDofsPerNode() set another dimension.
   void setCoordinates(const Teuchos::RCP<const MultiVector>& coords) override;
+  /// The dimension d = DOFs per node without coordinates (e.g. for "Null
+  /// Space" = "Translations"); 2 unless called.
+  /// \throws std::invalid_argument if d is not 2 or 3, or if coordinates of
+  ///         another column count were set.
+  void setDofsPerNode(int d) override;
+  /// The dimension d in use (2 or 3).
+  int dofsPerNode() const;
   /// \throws std::invalid_argument if A is null, not fill-complete or its
   ///         row/range/domain maps differ.
   void symbolic(const Teuchos::RCP<const CrsMatrix>& A) override;
@@ -89,13 +109,19 @@ class IterativeSolver : public DirectSolver {
   /// Number of numeric() calls that built or updated a preconditioner.
   int numNumeric() const;
 
-  /// The rigid-body modes of 2-D elasticity on `coords`' map: columns
-  /// (1,0), (0,1), (-(y-yc), x-xc) per node, with (xc, yc) the mean of the
-  /// coordinates (centring keeps the three columns well conditioned).
-  /// \pre the DOF layout of the file comment (checked: std::invalid_argument).
-  static Teuchos::RCP<MultiVector> rigidBodyModes2D(const MultiVector& coords);
-  /// The two translations only (what "Null Space" = "Translations" uses).
-  static Teuchos::RCP<MultiVector> translations2D(const Teuchos::RCP<const Map>& map);
+  /// The rigid-body modes of d-D elasticity on `coords`' map, d = the
+  /// column count (2 or 3), with Xc the mean of the node coordinates
+  /// (centring keeps the columns well conditioned):
+  ///  - 2-D, 3 columns: (1,0), (0,1), (-(y-yc), x-xc) per node;
+  ///  - 3-D, 6 columns: the translations e_x, e_y, e_z, then the rotations
+  ///    e_x x r = (0, -rz, ry), e_y x r = (rz, 0, -rx), e_z x r = (-ry, rx, 0)
+  ///    with r = X - Xc.
+  /// \pre the DOF layout of the file comment (checked: std::invalid_argument,
+  ///      also for a column count other than 2 or 3).
+  static Teuchos::RCP<MultiVector> rigidBodyModes(const MultiVector& coords);
+  /// The d translations only (what "Null Space" = "Translations" uses).
+  /// \pre the DOF layout of the file comment for d = `dofsPerNode` (2 or 3).
+  static Teuchos::RCP<MultiVector> translations(const Teuchos::RCP<const Map>& map, int dofsPerNode);
 
  protected:
   /// Parameters every Belos-based type shares (Convergence Tolerance,
@@ -106,8 +132,9 @@ class IterativeSolver : public DirectSolver {
 
   /// Build the preconditioner for A_ (first == true after symbolic()) or
   /// update it for A_'s new values. `nullSpace` is on A_'s row map;
-  /// `nodeCoords` (2 columns, one row per owned node with global index k of
-  /// DOFs 2k, 2k+1) is null when the null space does not need coordinates.
+  /// `nodeCoords` (d = dofsPerNode() columns, one row per owned node with
+  /// global index k of DOFs d k .. d k + d-1) is null when the null space
+  /// does not need coordinates.
   virtual Teuchos::RCP<Operator> buildPreconditioner(bool first, const Teuchos::RCP<MultiVector>& nullSpace,
                                                      const Teuchos::RCP<MultiVector>& nodeCoords) = 0;
   /// Whether the preconditioner goes on the left (CG) or right (GMRES:
@@ -128,7 +155,8 @@ class IterativeSolver : public DirectSolver {
 /// MueLu's own list: our defaults (shown there) overridden entry by entry by
 /// the user's, validated by MueLu (its master list) when the solver is
 /// created. The near-null space goes to MueLu as "user data/Nullspace" (and
-/// node coordinates as "user data/Coordinates"), so never set those.
+/// node coordinates as "user data/Coordinates"), and "number of equations"
+/// is the dimension d (dofsPerNode()), so never set those.
 ///
 /// A user entry for a method ("smoother: type", "coarse: type",
 /// "repartition: partitioner") drops our options sublist for it ("...:
@@ -178,11 +206,13 @@ class MueLuSolver : public IterativeSolver {
 /// the near-null space, extended harmonically; the coarse matrix gathered to
 /// one rank and solved there by KLU2).
 ///
-/// The "FROSch" sublist goes to FROSch over our defaults (shown there),
-/// entry by entry. FROSch reads its list with get(name, default) and never
-/// validates it, so after the first numeric() every parameter the user set
-/// in it that FROSch did not read is reported as an InputError (misspelt,
-/// or not used with the chosen options).
+/// FROSch is told the dimension d and d DOFs per node (dofsPerNode()), the
+/// near-null space and the node coordinates (d columns). The "FROSch"
+/// sublist goes to FROSch over our defaults (shown there), entry by entry.
+/// FROSch reads its list with get(name, default) and never validates it, so
+/// after the first numeric() every parameter the user set in it that FROSch
+/// did not read is reported as an InputError (misspelt, or not used with the
+/// chosen options).
 ///
 /// "CoarseOperator Type" = "GDSWCoarseOperator" selects the classical GDSW
 /// space (its sublist has defaults too). FROSch's "Zoltan2" coarse

@@ -26,13 +26,15 @@ std::string essence(const std::exception& e) {
   return nl == std::string::npos ? m : m.substr(nl + 1);
 }
 
-/// Our MueLu defaults for 2-D elasticity (documented in getValidParameters()).
+/// Our MueLu defaults for elasticity (documented in getValidParameters()).
 Teuchos::ParameterList defaultMueLuList() {
   Teuchos::ParameterList p("MueLu");
   p.set("verbosity", std::string("none"),
         "MueLu output ('none', 'low', 'medium', 'high', 'extreme'); "
         "'low' if Verbosity >= 1 and this is not set");
-  p.set("number of equations", 2, "DOFs per node (2-D elasticity: 2; aggregation works on nodes)");
+  p.set("number of equations", 2,
+        "DOFs per node (aggregation works on nodes): set by the solver to the spatial dimension, 2 or 3 "
+        "(setDofsPerNode() / the coordinates' columns); do not set");
   p.set("multigrid algorithm", std::string("sa"), "smoothed aggregation");
   p.set("max levels", 10, "most levels of the hierarchy");
   p.set("aggregation: type", std::string("uncoupled"), "aggregates do not cross rank boundaries");
@@ -105,6 +107,9 @@ MueLuSolver::MueLuSolver(const Teuchos::ParameterList& params)
     DDC_INPUT_REQUIRE(!user.isSublist("user data") && !user.isParameter("user data"),
                       "parameter '" << kType << "/MueLu/user data' is set by the solver (near-null space, "
                                     << "coordinates); remove it");
+    DDC_INPUT_REQUIRE(!user.isParameter("number of equations"),
+                      "parameter '" << kType << "/MueLu/number of equations' is set by the solver (the DOFs per "
+                                    << "node: 2 in 2-D, 3 in 3-D); remove it");
     // A user who changes a method keeps none of our options for the old
     // one (e.g. "chebyshev: degree" would be rejected by a RELAXATION smoother).
     for (const auto& [method, options] : {std::pair<const char*, const char*>{"smoother: type", "smoother: params"},
@@ -162,6 +167,7 @@ Teuchos::RCP<Operator> MueLuSolver::buildPreconditioner(bool first, const Teucho
           list.sublist("coarse: params").set("chebyshev: degree", 10);
         }
       }
+      list.set("number of equations", dofsPerNode());
       Teuchos::ParameterList& user = list.sublist("user data");
       user.set("Nullspace", nullSpace);
       if (!nodeCoords.is_null()) user.set("Coordinates", nodeCoords);
