@@ -68,6 +68,7 @@ endif()
 file(MAKE_DIRECTORY ${WORK_DIR}/r0 ${WORK_DIR}/r1)
 file(READ ${INPUTS}/negative/gmsh_body.xml.in deck)
 string(REPLACE "@MSH@" "body.msh" deck "${deck}")
+string(REPLACE "@ELEMENT@" "Quad4" deck "${deck}")
 file(WRITE ${WORK_DIR}/r0/deck.xml "${deck}")
 configure_file(${MESHES}/rect2x1.msh ${WORK_DIR}/r0/body.msh COPYONLY)
 launch(mesh_on_rank0_only failure

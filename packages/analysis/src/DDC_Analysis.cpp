@@ -434,6 +434,7 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
         if (l == Teuchos::OrdinalTraits<LO>::invalid()) continue;
         for (int k = 0; k < dim; ++k) coords->replaceLocalValue(l, k, mesh->coord(n)[k]);
       }
+    solver_->setDofsPerNode(dim);
     solver_->setCoordinates(coords);
   }
   params_ = params;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numeric>
 #include <sstream>
+#include <stdexcept>
 
 #include "DDC_BodyLocator.hpp"
 #include "DDC_ContactSearch.hpp"
@@ -48,11 +49,15 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
   // Contact slots: one multiplier per slave node of each pair.
   if (contact_.enabled()) {
     if (contact_.decomposed) {
-      DDC_ASSERT(contactElements.size() == 2, "decomposed contact needs the slave and master counterparts");
+      if (contactElements.size() != 2 || !contactElements[0] || !contactElements[1])
+        throw std::invalid_argument("Model: decomposed contact needs the slave and master counterparts "
+                                    "(\"Decomposed NTS Slave\", \"Decomposed NTS Master\") in contactElements");
       slaveElement_ = contactElements[0];
       masterElement_ = contactElements[1];
     } else {
-      DDC_ASSERT(contactElements.size() == 1, "conventional contact needs the NTS element");
+      if (contactElements.size() != 1 || !contactElements[0])
+        throw std::invalid_argument("Model: conventional contact needs the \"Node-To-Segment\" element in "
+                                    "contactElements");
       ntsElement_ = contactElements[0];
     }
     std::vector<char> isSurface(mesh_->numNodes(), 0);

@@ -52,6 +52,7 @@
 #include "DDC_Error.hpp"
 #include "DDC_MeshGenerators.hpp"
 #include "DDC_Model.hpp"
+#include "DDC_NodeToSegment.hpp"
 #include "DDC_Partition.hpp"
 #include "DDC_TestErrors.hpp"
 #include "DDC_TestTolerances.hpp"
@@ -658,8 +659,14 @@ TEST(ContactPairing, SlaveOnTheFreeEndOfTheMasterKeepsItsSegmentAgainstRoundOff)
   pair.set("Slave", std::string("Upper/bottom"));
   pair.set("Master", std::string("Lower/top"));
   const auto options = ddc::ContactOptions::fromParameters(contact, *mesh, "Contact");
+  auto factory = ddc::ElementFactory::withBuiltins();
+  ddc::registerContactElements(factory);
+  PL nts;
+  nts.set("Type", std::string("Node-To-Segment"));
+  auto ntsElement = std::dynamic_pointer_cast<const ddc::ContactElement>(factory.create(nts, "Contact/Formulation"));
+  ASSERT_NE(ntsElement, nullptr);
   ddc::Model m(worldComm(), mesh, elements, ddc::partitionMetis(*mesh, worldComm()->getSize()),
-               ddc::BoundaryConditions{}, options);
+               ddc::BoundaryConditions{}, options, {ntsElement});
   auto u = m.createVector();
   m.updatePairing(*u, /*global=*/true, /*freeze=*/false);
   int end = -1;
