@@ -1,7 +1,10 @@
 // Shared by the analysis tests: in-memory input decks (rectangle bodies,
-// boundary conditions, quiet run options), the communicators, and the
-// displacement field gathered by mesh node.
+// boundary conditions, quiet run options), the communicators, the
+// displacement field gathered by mesh node, and the checks of a cantilever
+// refinement series.
 #pragma once
+
+#include <gtest/gtest.h>
 
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_DefaultMpiComm.hpp>
@@ -9,10 +12,12 @@
 #include <Tpetra_Core.hpp>
 #include <mpi.h>
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "DDC_Analysis.hpp"
+#include "DDC_TestTolerances.hpp"
 
 namespace ddc::test {
 
@@ -104,6 +109,41 @@ inline std::vector<double> gatherDisplacement(const ddc::Model& m, const ddc::Ve
 
 inline std::vector<double> gatherDisplacement(const ddc::Analysis& a) {
   return gatherDisplacement(a.model(), a.displacement());
+}
+
+/// One run of a cantilever refinement series (checkCantileverSeries()).
+struct CantileverRun {
+  std::string mesh;  ///< e.g. "40 x 4" or "40 x 4 x 4 (19683 DOFs)", for the printed line
+  double tip;        ///< deflection at the loaded end
+  double energy;     ///< strain energy U
+  double fu;         ///< f_ext . u
+};
+
+/// Runs a mesh-refinement series of a linear elastic cantilever and checks
+/// each mesh against the beam reference: the error decreases, the
+/// deflection stays below the reference (a displacement method, and a
+/// clamp, are too stiff), and U = 1/2 f.u (kEnergyIdentity). Prints one
+/// line per mesh on rank 0, prefixed by `label`.
+/// \param run the analysis of element type `element` on mesh number i
+/// \return the relative error of the last (finest) mesh
+template <class Run>
+double checkCantileverSeries(const std::string& label, const std::string& element, int numMeshes,
+                             double reference, Run run) {
+  double previous = 1e300;
+  for (int i = 0; i < numMeshes; ++i) {
+    const CantileverRun r = run(i);
+    const double err = relDiff(r.tip, reference);
+    if (isRoot())
+      std::printf("[%s] %-5s %s  tip deflection = %.8e  reference = %.8e  rel. error = %.3e  "
+                  "(U = %.6e, 1/2 f.u = %.6e)\n",
+                  label.c_str(), element.c_str(), r.mesh.c_str(), r.tip, reference, err, r.energy, 0.5 * r.fu);
+    EXPECT_LT(err, previous) << element << " " << r.mesh << ": error did not decrease";
+    EXPECT_LT(r.tip, reference) << element << " " << r.mesh << ": should be stiffer than the beam";
+    previous = err;
+    // Linear elasticity: the energy identity holds on every mesh.
+    EXPECT_LE(relDiff(r.energy, 0.5 * r.fu), kEnergyIdentity) << element << " " << r.mesh;
+  }
+  return previous;
 }
 
 }  // namespace ddc::test
