@@ -36,6 +36,29 @@ class OutputError : public std::runtime_error {
   explicit OutputError(const std::string& what) : std::runtime_error(what) {}
 };
 
+/// "'a', 'b', 'c'": the names quoted and comma separated, or `none` when there
+/// are none; how error messages list the valid choices.
+template <class Names>
+std::string quotedNames(const Names& names, const char* none = "(none)") {
+  std::ostringstream os;
+  bool first = true;
+  for (const auto& n : names) {
+    os << (first ? "'" : ", '") << n << "'";
+    first = false;
+  }
+  if (first) os << none;
+  return os.str();
+}
+
+/// The last non-empty line of a Trilinos exception's message: Teuchos'
+/// TEUCHOS_TEST_FOR_EXCEPTION puts the file, line and failed test before it.
+inline std::string lastLineOf(const std::exception& e) {
+  std::string m = e.what();
+  while (!m.empty() && (m.back() == '\n' || m.back() == ' ')) m.pop_back();
+  const auto nl = m.rfind('\n');
+  return nl == std::string::npos ? m : m.substr(nl + 1);
+}
+
 }  // namespace ddc
 
 /// Throw ddc::InputError with a streamed message if `cond` is false.

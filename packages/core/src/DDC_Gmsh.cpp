@@ -397,17 +397,6 @@ const std::vector<int>& physicalsOf(const MshData& d, int dim, int entity) {
   return it != d.entityPhysicals.end() ? it->second : none;
 }
 
-std::string listNames(const std::set<std::string>& names) {
-  std::ostringstream os;
-  bool firstName = true;
-  for (const auto& n : names) {
-    os << (firstName ? "'" : ", '") << n << "'";
-    firstName = false;
-  }
-  if (firstName) os << "(none)";
-  return os.str();
-}
-
 /// Twice the signed area of the corner polygon of a 2-D element.
 double twiceArea(const std::vector<std::array<double, 3>>& xy, CellType type, const int* n) {
   double a = 0.0;
@@ -515,7 +504,7 @@ int readGmshFile(Mesh& mesh, const std::string& bodyName, CellType type, const s
       for (const auto& kv : d.physicalNames)
         if (kv.second == physicalGroup && kv.first.first != dim)
           hint = " ('" + physicalGroup + "' is a physical " + kEntityWord[kv.first.first] + ")";
-      fail("no " + groupWord + " named '" + physicalGroup + "'; " + groupWord + "s are " + listNames(groups) + hint);
+      fail("no " + groupWord + " named '" + physicalGroup + "'; " + groupWord + "s are " + quotedNames(groups) + hint);
     }
     if (!d.hasEntities) fail("a $Entities section is needed to select " + groupWord + " '" + physicalGroup + "'");
   }

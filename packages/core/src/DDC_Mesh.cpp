@@ -7,15 +7,6 @@
 
 namespace ddc {
 
-namespace {
-std::string joinNames(const std::vector<std::string>& names) {
-  std::ostringstream os;
-  for (size_t i = 0; i < names.size(); ++i) os << (i ? ", " : "") << "'" << names[i] << "'";
-  if (names.empty()) os << "(none)";
-  return os.str();
-}
-}  // namespace
-
 int Mesh::beginBody(const std::string& name, CellType cellType) {
   for (const auto& b : bodies_)
     DDC_INPUT_REQUIRE(b.name != name, "mesh: two bodies are named '" << name << "'");
@@ -108,14 +99,14 @@ int Mesh::bodyIndex(const std::string& name) const {
     if (bodies_[b].name == name) return b;
   std::vector<std::string> names;
   for (const auto& b : bodies_) names.push_back(b.name);
-  DDC_THROW(InputError, "mesh: no body named '" << name << "'; bodies are " << joinNames(names));
+  DDC_THROW(InputError, "mesh: no body named '" << name << "'; bodies are " << quotedNames(names));
 }
 
 const std::vector<int>& Mesh::nodeSet(const std::string& name) const {
   auto it = nodeSets_.find(name);
   DDC_INPUT_REQUIRE(it != nodeSets_.end(),
                     "mesh: no node set named '" << name << "'; known node sets are "
-                                                 << joinNames(nodeSetNames()));
+                                                 << quotedNames(nodeSetNames()));
   return it->second;
 }
 
@@ -123,7 +114,7 @@ const std::vector<Segment>& Mesh::sideSet(const std::string& name) const {
   auto it = sideSets_.find(name);
   DDC_INPUT_REQUIRE(it != sideSets_.end(),
                     "mesh: no side set named '" << name << "'; known side sets are "
-                                                 << joinNames(sideSetNames()));
+                                                 << quotedNames(sideSetNames()));
   return it->second;
 }
 

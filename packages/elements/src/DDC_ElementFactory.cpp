@@ -12,13 +12,8 @@ namespace ddc {
 
 namespace {
 
-/// "'Quad4', 'Quad9'" for messages and doc strings.
-std::string quotedList(const std::vector<std::string>& names) {
-  std::ostringstream os;
-  for (size_t i = 0; i < names.size(); ++i) os << (i ? ", '" : "'") << names[i] << "'";
-  if (names.empty()) os << "(none registered)";
-  return os.str();
-}
+/// The registered type names for messages and doc strings: "'Quad4', 'Quad9'".
+std::string knownNames(const std::vector<std::string>& names) { return quotedNames(names, "(none registered)"); }
 
 /// Validate the sublists of `user` below one level against `valid`: the
 /// "Material" sublist through createMaterial (so its value checks, E > 0 and
@@ -121,7 +116,7 @@ const ElementFactory::Entry& ElementFactory::entry(const std::string& typeName, 
                     "unknown element type '" << typeName << "'"
                                              << (where.empty() ? std::string()
                                                                : " in parameter '" + joinPath(where, "Type") + "'")
-                                             << "; known element types are " << quotedList(names()));
+                                             << "; known element types are " << knownNames(names()));
   return it->second;
 }
 
@@ -129,7 +124,7 @@ Teuchos::RCP<const Teuchos::ParameterList> ElementFactory::validParametersFor(co
   const Entry& e = entry(typeName);
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("Element"));
   pl->set("Type", typeName,
-          "Element type; one of " + quotedList(names()) + ". '" + typeName + "': " + e.description);
+          "Element type; one of " + knownNames(names()) + ". '" + typeName + "': " + e.description);
   pl->setParameters(*e.validParameters);
   return pl;
 }
@@ -137,10 +132,10 @@ Teuchos::RCP<const Teuchos::ParameterList> ElementFactory::validParametersFor(co
 std::shared_ptr<Element> ElementFactory::create(Teuchos::ParameterList& params, const std::string& where) const {
   const std::string typePath = joinPath(where, "Type");
   DDC_INPUT_REQUIRE(params.isParameter("Type") && !params.isSublist("Type"),
-                    "missing parameter '" << typePath << "'; known element types are " << quotedList(names()));
+                    "missing parameter '" << typePath << "'; known element types are " << knownNames(names()));
   DDC_INPUT_REQUIRE(params.isType<std::string>("Type"),
                     "parameter '" << typePath << "' must be a string; known element types are "
-                                  << quotedList(names()));
+                                  << knownNames(names()));
   const std::string type = params.get<std::string>("Type");
   const Entry& e = entry(type, where);
   const auto valid = validParametersFor(type);

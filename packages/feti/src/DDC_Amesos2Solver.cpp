@@ -18,22 +18,6 @@ namespace {
 
 static_assert(std::is_same<GO, long long>::value, "gather code sends global indices as MPI_LONG_LONG");
 
-std::string joinNames(const std::vector<std::string>& names) {
-  std::ostringstream os;
-  for (size_t i = 0; i < names.size(); ++i) os << (i ? ", " : "") << "'" << names[i] << "'";
-  if (names.empty()) os << "(none)";
-  return os.str();
-}
-
-/// The message of a Teuchos exception without its file/line/"Throw test"
-/// preamble: its last non-empty line.
-std::string essence(const std::exception& e) {
-  std::string m = e.what();
-  while (!m.empty() && (m.back() == '\n' || m.back() == ' ')) m.pop_back();
-  const auto nl = m.rfind('\n');
-  return nl == std::string::npos ? m : m.substr(nl + 1);
-}
-
 std::vector<int> displacements(const std::vector<int>& counts) {
   std::vector<int> d(counts.size(), 0);
   for (size_t r = 1; r < counts.size(); ++r) d[r] = d[r - 1] + counts[r - 1];
@@ -85,7 +69,7 @@ struct Amesos2Solver::Impl {
       try {
         f();
       } catch (const std::exception& e) {
-        msg = essence(e);
+        msg = lastLineOf(e);
         failed = 1;
       }
     }
@@ -274,7 +258,7 @@ Amesos2Solver::Amesos2Solver(const Teuchos::ParameterList& params) : impl_(std::
   DDC_INPUT_REQUIRE(Amesos2::query(impl_->solverName),
                     "parameter 'Amesos2/Solver Name': '" << impl_->solverName
                                                          << "' is not available in this Amesos2 build; available: "
-                                                         << joinNames(availableSolvers()));
+                                                         << quotedNames(availableSolvers()));
 }
 
 Amesos2Solver::~Amesos2Solver() = default;
@@ -309,7 +293,7 @@ void Amesos2Solver::symbolic(const Teuchos::RCP<const CrsMatrix>& A) {
       m.solver = Amesos2::create<CrsMatrix, MultiVector>(m.solverName, A);
       m.solver->symbolicFactorization();
     } catch (const std::exception& e) {
-      DDC_THROW(SolverError, m.label() << " symbolic factorisation failed: " << essence(e));
+      DDC_THROW(SolverError, m.label() << " symbolic factorisation failed: " << lastLineOf(e));
     }
   }
   m.analysed = true;
@@ -330,7 +314,7 @@ void Amesos2Solver::numeric() {
     try {
       m.solver->numericFactorization();
     } catch (const std::exception& e) {
-      DDC_THROW(SolverError, m.label() << " numeric factorisation failed (singular matrix?): " << essence(e));
+      DDC_THROW(SolverError, m.label() << " numeric factorisation failed (singular matrix?): " << lastLineOf(e));
     }
   }
   m.factored = true;
@@ -352,7 +336,7 @@ void Amesos2Solver::solve(const MultiVector& b, MultiVector& x) {
     try {
       m.solver->solve(Teuchos::ptrFromRef(x), Teuchos::ptrFromRef(b));
     } catch (const std::exception& e) {
-      DDC_THROW(SolverError, m.label() << " solve failed: " << essence(e));
+      DDC_THROW(SolverError, m.label() << " solve failed: " << lastLineOf(e));
     }
   }
 }

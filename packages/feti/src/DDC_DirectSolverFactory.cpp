@@ -30,12 +30,8 @@ namespace ddc {
 
 namespace {
 
-std::string quotedList(const std::vector<std::string>& names) {
-  std::ostringstream os;
-  for (size_t i = 0; i < names.size(); ++i) os << (i ? ", " : "") << "'" << names[i] << "'";
-  if (names.empty()) os << "(none registered)";
-  return os.str();
-}
+/// The registered type names for messages and doc strings: "'MUMPS', 'Amesos2'".
+std::string knownNames(const std::vector<std::string>& names) { return quotedNames(names, "(none registered)"); }
 
 }  // namespace
 
@@ -80,7 +76,7 @@ const DirectSolverFactory::Entry& DirectSolverFactory::entry(const std::string& 
   auto it = entries_.find(type);
   DDC_INPUT_REQUIRE(it != entries_.end(), "unknown direct solver '" << type << "' for parameter '"
                                                                     << joinPath(where, "Type")
-                                                                    << "'; known types are " << quotedList(names()));
+                                                                    << "'; known types are " << knownNames(names()));
   return it->second;
 }
 
@@ -113,7 +109,7 @@ std::unique_ptr<DirectSolver> DirectSolverFactory::create(Teuchos::ParameterList
   if (params.isParameter("Type")) {
     DDC_INPUT_REQUIRE(params.isType<std::string>("Type"),
                       "parameter '" << joinPath(where, "Type") << "' must be a string naming a direct solver; known "
-                                    << "types are " << quotedList(names()));
+                                    << "types are " << knownNames(names()));
     type = params.get<std::string>("Type");
   }
   const Entry& chosen = entry(type, where);

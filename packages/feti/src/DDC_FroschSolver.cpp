@@ -40,13 +40,6 @@ using Operator = IterativeSolver::Operator;
 using XMultiVector = Xpetra::MultiVector<Scalar, LO, GO, Node>;
 using XTpetraMultiVector = Xpetra::TpetraMultiVector<Scalar, LO, GO, Node>;
 
-std::string essence(const std::exception& e) {
-  std::string m = e.what();
-  while (!m.empty() && (m.back() == '\n' || m.back() == ' ')) m.pop_back();
-  const auto nl = m.rfind('\n');
-  return nl == std::string::npos ? m : m.substr(nl + 1);
-}
-
 /// While alive, std::cout output is dropped (FROSch prints its setup
 /// tables on rank 0 whatever its "Verbosity" parameters say).
 class MuteStdout {
@@ -266,7 +259,7 @@ Teuchos::RCP<Operator> FroschSolver::buildPreconditioner(bool first, const Teuch
   } catch (const SolverError&) {
     throw;
   } catch (const std::exception& e) {
-    DDC_THROW(SolverError, name() << " setup of the FROSch preconditioner failed: " << essence(e));
+    DDC_THROW(SolverError, name() << " setup of the FROSch preconditioner failed: " << lastLineOf(e));
   }
   if (!m.checkedUnused) {
     // Some entries are read on some ranks only (the coarse solver's on the

@@ -17,15 +17,6 @@ namespace {
 
 using Operator = IterativeSolver::Operator;
 
-/// The last non-empty line of a Teuchos/MueLu exception message (the rest is
-/// file/line preamble).
-std::string essence(const std::exception& e) {
-  std::string m = e.what();
-  while (!m.empty() && (m.back() == '\n' || m.back() == ' ')) m.pop_back();
-  const auto nl = m.rfind('\n');
-  return nl == std::string::npos ? m : m.substr(nl + 1);
-}
-
 /// Our MueLu defaults for elasticity (documented in getValidParameters()).
 Teuchos::ParameterList defaultMueLuList() {
   Teuchos::ParameterList p("MueLu");
@@ -143,7 +134,7 @@ MueLuSolver::MueLuSolver(const Teuchos::ParameterList& params)
     MueLu::ParameterListInterpreter<Scalar, LO, GO, Node> check(copy);
   } catch (const std::exception& e) {
     MueLu::VerboseObject::SetDefaultVerbLevel(verb);
-    DDC_THROW(InputError, "invalid parameter in '" << kType << "/MueLu' (MueLu says: " << essence(e) << ")");
+    DDC_THROW(InputError, "invalid parameter in '" << kType << "/MueLu' (MueLu says: " << lastLineOf(e) << ")");
   }
   MueLu::VerboseObject::SetDefaultVerbLevel(verb);
   m.reuse = m.mueluList.isParameter("reuse: type") && m.mueluList.get<std::string>("reuse: type") != "none";
@@ -185,7 +176,7 @@ Teuchos::RCP<Operator> MueLuSolver::buildPreconditioner(bool first, const Teucho
       m.prec = MueLu::CreateTpetraPreconditioner(Teuchos::RCP<Operator>(A), list);
     }
   } catch (const std::exception& e) {
-    DDC_THROW(SolverError, name() << " setup of the MueLu hierarchy failed: " << essence(e));
+    DDC_THROW(SolverError, name() << " setup of the MueLu hierarchy failed: " << lastLineOf(e));
   }
   return m.prec;
 }
