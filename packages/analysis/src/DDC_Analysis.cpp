@@ -394,6 +394,19 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
     std::vector<std::string> report;
     const auto primal = selectPrimalNodes(*model_, &report);
     for (const auto& line : report) progress("FETI-DP: " + line);
+    {
+      // The size of the coarse problem (doc/feti-dp.md "In 3-D": it grows
+      // with the number of subdomain-edge ends a METIS partition makes).
+      int nodes = 0;
+      long coarseDofs = 0;
+      for (int n = 0; n < mesh->numNodes(); ++n) {
+        if (!primal[n]) continue;
+        ++nodes;
+        for (int c = 0; c < model_->dim(); ++c) coarseDofs += !model_->isConstrained(model_->dof(n, c));
+      }
+      progress("FETI-DP: " + std::to_string(model_->partition().numSubdomains) + " subdomains, " +
+               std::to_string(nodes) + " primal nodes, coarse problem of " + std::to_string(coarseDofs) + " DOFs");
+    }
     subdomains_ = buildSubdomainSystems(*model_, primal);
     sink_.systems = &subdomains_;
     sink_.where.assign(mesh->numElements(), {-1, -1});
