@@ -13,16 +13,11 @@
 #              FETI ("By Body:0 METIS:4 METIS:8": Partition/Method:Number of Subdomains).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-B=${1:-build}
-APP="$B/src/ddcontact"
-[[ -x "$APP" ]] || { echo "half_rings_dd.sh: no ddcontact in '$B/src' (build first)" >&2; exit 2; }
-RANKS=${RANKS:-2}
-REPS=${REPS:-3}
+# shellcheck source=common.sh
+. test/benchmark/common.sh "${1:-build}"
 STEPS=${STEPS:-20}
 read -r -a REFINE <<< "${REFINE:-1 4}"
 read -r -a FETI <<< "${FETI:-By_Body:0 METIS:4 METIS:8}"
-# shellcheck source=common.sh
-. test/benchmark/common.sh
 
 # run_case ARGS... -> "wall/step newton/step dual/newton setup solve dofs" (medians of REPS)
 run_case() {
@@ -34,11 +29,9 @@ run_case() {
          --set "Output/VTK=false" "$@" > "$log" 2>&1; then
       echo "failed"; tail -3 "$log" >&2; return
     fi
-    dofs=$(sed -n 's/.* elements, \([0-9]*\) DOFs.*/\1/p' "$log")
-    local t
-    t=$(grep "^timing" "$log")
-    setup+=("$(sed -n 's/.*linear setup \([0-9.]*\) s.*/\1/p' <<< "$t")")
-    solve+=("$(sed -n 's/.*linear solve \([0-9.]*\) s.*/\1/p' <<< "$t")")
+    local s t
+    read -r dofs s t _ <<< "$(run_stats "$log")"
+    setup+=("$s") solve+=("$t")
     # history.csv: wall_seconds of the last row / rows; Newton and dual sums
     local h="$OUT/o/history.csv"
     wall+=("$(awk -F, 'NR>1 {w=$10; n++} END {printf "%.4f", w/n}' "$h")")

@@ -16,14 +16,10 @@
 # matrix (the second checks convergence); times are summed over both.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-B=${1:-build}
-APP="$B/src/ddcontact"
-RANKS=${RANKS:-2}
-REPS=${REPS:-3}
+# shellcheck source=common.sh
+. test/benchmark/common.sh "${1:-build}"
 read -r -a SIZES <<< "${SIZES:-10 20 40}"
 read -r -a SUBS <<< "${SUBDOMAINS:-16 32 64}"
-# shellcheck source=common.sh
-. test/benchmark/common.sh
 
 # run_case LABEL ARGS... -> prints "setup solve iterations memory dofs" (medians) or "failed"
 run_case() {
@@ -33,13 +29,9 @@ run_case() {
     if ! mpirun -np "$RANKS" "$APP" "$@" --output-dir "$OUT/o" > "$log" 2>&1; then
       echo "failed"; tail -3 "$log" >&2; return
     fi
-    dofs=$(sed -n 's/.* elements, \([0-9]*\) DOFs.*/\1/p' "$log")
-    local t
-    t=$(grep "^timing" "$log")
-    setup+=("$(sed -n 's/.*linear setup \([0-9.]*\) s.*/\1/p' <<< "$t")")
-    solve+=("$(sed -n 's/.*linear solve \([0-9.]*\) s.*/\1/p' <<< "$t")")
-    iters+=("$(sed -n 's/.*(\([0-9]*\) dual\/Krylov.*/\1/p' <<< "$t")")
-    mem+=("$(sed -n 's/.*peak memory per rank \([0-9.]*\) MiB.*/\1/p' <<< "$t")")
+    local s t i m
+    read -r dofs s t i m <<< "$(run_stats "$log")"
+    setup+=("$s") solve+=("$t") iters+=("$i") mem+=("$m")
   done
   echo "$(printf '%s\n' "${setup[@]}" | median) $(printf '%s\n' "${solve[@]}" | median)" \
        "$(printf '%s\n' "${iters[@]}" | median) $(printf '%s\n' "${mem[@]}" | median) $dofs"
@@ -94,7 +86,7 @@ if [ "${TABLE2:-1}" = 1 ]; then
             --set "Solver/FETI-DP/Preconditioner=$pre" --set "Solver/FETI-DP/Belos/Convergence Tolerance=1e-8" \
             > "$log" 2>&1; then
           # the first Newton solve (the second only confirms convergence)
-          row="$row $(sed -n 's/.*iter  0 .*dual\/Krylov \([0-9]*\).*/\1/p' "$log") |"
+          row="$row $(first_solve_iterations "$log") |"
         else
           row="$row failed |"
         fi
