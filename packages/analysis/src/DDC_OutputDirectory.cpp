@@ -30,20 +30,6 @@ namespace fs = std::filesystem;
 
 namespace ddc {
 
-std::string firstErrorOnAnyRank(const Teuchos::Comm<int>& comm, const std::string& localError) {
-  const int size = comm.getSize();
-  const int rank = comm.getRank();
-  const int mine = localError.empty() ? size : rank;
-  int first = size;
-  Teuchos::reduceAll<int, int>(comm, Teuchos::REDUCE_MIN, mine, Teuchos::outArg(first));
-  if (first == size) return std::string();
-  int length = (rank == first) ? static_cast<int>(localError.size()) : 0;
-  Teuchos::broadcast<int, int>(comm, first, Teuchos::outArg(length));
-  std::string message = (rank == first) ? localError : std::string(length, ' ');
-  if (length > 0) Teuchos::broadcast<int, char>(comm, first, length, &message[0]);
-  return message;
-}
-
 namespace {
 
 constexpr const char* kManifestMagic = "ddcontact-result 1";

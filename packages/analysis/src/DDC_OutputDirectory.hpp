@@ -10,6 +10,10 @@
 #include <Teuchos_Comm.hpp>
 #include <Teuchos_RCP.hpp>
 
+// firstErrorOnAnyRank(): every rank gets the message of the lowest rank
+// that had an error, so that all ranks throw together.
+#include "DDC_MpiRecords.hpp"
+
 namespace ddc {
 
 /// What a result manifest records about the run that wrote it.
@@ -117,14 +121,5 @@ class OutputDirectory {
   int lockFd_ = -1;  ///< rank 0: the descriptor holding the lock
   bool committed_ = false;
 };
-
-/// \brief Collective error agreement for output code.
-///
-/// Every rank passes its own error message ("" = no error). Returns "" on
-/// every rank if no rank had an error, otherwise, on every rank, the message
-/// of the lowest rank that had one. Use it after rank-local work (file I/O,
-/// validation) and throw if the result is non-empty, so that all ranks throw
-/// together and none is left waiting in a later collective call.
-std::string firstErrorOnAnyRank(const Teuchos::Comm<int>& comm, const std::string& localError);
 
 }  // namespace ddc

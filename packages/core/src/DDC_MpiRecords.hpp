@@ -1,6 +1,7 @@
 // Small MPI helpers shared by the packages: the raw communicator behind a
 // Teuchos communicator, a variable-size all-to-all of plain records, and
-// raising an error found on some ranks on every rank.
+// agreeing on an error found on some ranks (anyRank, firstErrorOnAnyRank,
+// raiseCollectively).
 #pragma once
 
 #include <mpi.h>
@@ -16,10 +17,13 @@ namespace ddc {
 
 /// The raw MPI communicator behind a Teuchos communicator (MPI_COMM_SELF for
 /// a Teuchos::SerialComm).
-inline MPI_Comm rawComm(const Teuchos::RCP<const Teuchos::Comm<int>>& comm) {
-  auto mpi = Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(comm);
-  if (mpi.is_null()) return MPI_COMM_SELF;
+inline MPI_Comm rawComm(const Teuchos::Comm<int>& comm) {
+  const auto* mpi = dynamic_cast<const Teuchos::MpiComm<int>*>(&comm);
+  if (mpi == nullptr) return MPI_COMM_SELF;
   return *mpi->getRawMpiComm();
+}
+inline MPI_Comm rawComm(const Teuchos::RCP<const Teuchos::Comm<int>>& comm) {
+  return comm.is_null() ? MPI_COMM_SELF : rawComm(*comm);
 }
 
 /// Variable-size all-to-all of trivially copyable records: send[r] goes to
@@ -47,21 +51,39 @@ std::vector<T> exchangeRecords(MPI_Comm comm, const std::vector<std::vector<T>>&
   return recv;
 }
 
-/// If `msg` is non-empty on any rank, throw E on every rank with the message
-/// of the lowest such rank (an error on one rank must reach all ranks,
-/// never hang them: STYLE.md "Errors").
-template <class E>
-void raiseCollectively(MPI_Comm comm, const std::string& msg) {
+/// Logical OR of `bad` over the communicator, so that all ranks agree to
+/// throw. Collective.
+inline bool anyRank(MPI_Comm comm, bool bad) {
+  int mine = bad ? 1 : 0, any = 0;
+  MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, comm);
+  return any != 0;
+}
+
+/// The `localError` of the lowest rank where it is non-empty, on every rank;
+/// "" when it is empty everywhere. Collective: an error found on one rank
+/// must reach all ranks, never leave the others waiting in a collective.
+inline std::string firstErrorOnAnyRank(MPI_Comm comm, const std::string& localError) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  int mine = msg.empty() ? INT_MAX : rank, first = INT_MAX;
+  int mine = localError.empty() ? INT_MAX : rank, first = INT_MAX;
   MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
-  if (first == INT_MAX) return;
-  int len = rank == first ? static_cast<int>(msg.size()) : 0;
+  if (first == INT_MAX) return std::string();
+  int len = rank == first ? static_cast<int>(localError.size()) : 0;
   MPI_Bcast(&len, 1, MPI_INT, first, comm);
-  std::string text = rank == first ? msg : std::string(static_cast<size_t>(len), ' ');
+  std::string text = rank == first ? localError : std::string(static_cast<size_t>(len), ' ');
   MPI_Bcast(&text[0], len, MPI_CHAR, first, comm);
-  throw E(text);
+  return text;
+}
+inline std::string firstErrorOnAnyRank(const Teuchos::Comm<int>& comm, const std::string& localError) {
+  return firstErrorOnAnyRank(rawComm(comm), localError);
+}
+
+/// If `msg` is non-empty on any rank, throw E on every rank with the message
+/// of the lowest such rank (firstErrorOnAnyRank()).
+template <class E>
+void raiseCollectively(MPI_Comm comm, const std::string& msg) {
+  const std::string text = firstErrorOnAnyRank(comm, msg);
+  if (!text.empty()) throw E(text);
 }
 
 }  // namespace ddc

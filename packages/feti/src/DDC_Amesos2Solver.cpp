@@ -82,12 +82,6 @@ struct Amesos2Solver::Impl {
     DDC_THROW(SolverError, label() << " " << phase << " failed (on rank 0 after gathering the matrix): " << msg);
   }
 
-  bool anyRank(bool bad) const {
-    int l = bad ? 1 : 0, g = 0;
-    MPI_Allreduce(&l, &g, 1, MPI_INT, MPI_MAX, comm);
-    return g != 0;
-  }
-
   /// Read A's local rows: build the pattern cache, or refresh the values
   /// and return false if the pattern differs from the cache.
   bool collect(bool build) {
@@ -304,7 +298,7 @@ void Amesos2Solver::numeric() {
   Impl& m = *impl_;
   if (!m.analysed) throw std::logic_error(m.label() + " numeric() called before symbolic()");
   m.factored = false;
-  if (m.anyRank(!m.collect(false)))
+  if (anyRank(m.comm, !m.collect(false)))
     throw std::logic_error(m.label() +
                            " numeric(): the sparsity pattern of the matrix changed since symbolic(); call "
                            "symbolic() again");
@@ -326,7 +320,7 @@ void Amesos2Solver::solve(const MultiVector& b, MultiVector& x) {
   if (!m.factored) throw std::logic_error(m.label() + " solve() called without a successful numeric()");
   const bool bad = x.getNumVectors() != b.getNumVectors() || b.getLocalLength() != static_cast<size_t>(m.nLocal) ||
                    x.getLocalLength() != static_cast<size_t>(m.nLocal);
-  if (m.anyRank(bad))
+  if (anyRank(m.comm, bad))
     throw std::invalid_argument(m.label() + " solve(): b and x must be distributed like the matrix rows and "
                                             "have the same number of columns");
   if (b.getNumVectors() == 0) return;

@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "DDC_Error.hpp"
+#include "DDC_MpiRecords.hpp"
 #include "DDC_Parameters.hpp"
 
 namespace ddc {
@@ -36,12 +37,6 @@ constexpr const char* kTranslations = "Translations";
 /// preconditioner that is not a fixed linear operator (e.g. a wrong parallel
 /// coarse solve) leaves a gap of orders of magnitude.
 constexpr double kExplicitResidualSlack = 10.0;
-
-bool anyRank(const Teuchos::Comm<int>& comm, bool bad) {
-  int l = bad ? 1 : 0, g = 0;
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, l, Teuchos::outArg(g));
-  return g != 0;
-}
 
 /// "2k, 2k+1" (d = 2), "3k, 3k+1, 3k+2" (d = 3): the global indices of the
 /// DOFs of node k, for messages.
@@ -76,7 +71,7 @@ void requireNodeMajorLayout(const Map& map, int d, const std::string& who) {
             ")";
     }
   }
-  if (anyRank(*map.getComm(), !why.empty()))
+  if (anyRank(rawComm(*map.getComm()), !why.empty()))
     throw std::invalid_argument(who + ": the matrix must number its DOFs node-major, " + (d == 2 ? "two" : "three") +
                                 " per node (global indices " + dofIndexPattern(d) +
                                 " for node k, owned by the same rank)" +

@@ -143,13 +143,6 @@ struct MumpsSolver::Impl {
     check(phase);
   }
 
-  /// Logical OR of `bad` over the communicator (so all ranks agree to throw).
-  bool anyRank(bool bad) const {
-    int l = bad ? 1 : 0, g = 0;
-    MPI_Allreduce(&l, &g, 1, MPI_INT, MPI_MAX, comm);
-    return g != 0;
-  }
-
   /// Append the kept entries of local row `lrow` (lower triangle if
   /// symmetric) to irn/jcn/a (build) or compare with the cache and refresh a.
   /// Returns false if the pattern differs from the cache (refresh mode).
@@ -294,7 +287,7 @@ void MumpsSolver::numeric() {
   if (!m.analysed) throw std::logic_error("MUMPS numeric() called before symbolic()");
   m.factored = false;
   const bool changed = !m.collect(false);
-  if (m.anyRank(changed))
+  if (anyRank(m.comm, changed))
     throw std::logic_error(
         "MUMPS numeric(): the sparsity pattern of the matrix changed since symbolic(); call symbolic() again");
   DMUMPS_STRUC_C& id = m.id;
@@ -319,7 +312,7 @@ void MumpsSolver::solve(const MultiVector& b, MultiVector& x) {
   const size_t k = b.getNumVectors();
   const bool bad = x.getNumVectors() != k || b.getLocalLength() != static_cast<size_t>(m.nLocal) ||
                    x.getLocalLength() != static_cast<size_t>(m.nLocal);
-  if (m.anyRank(bad))
+  if (anyRank(m.comm, bad))
     throw std::invalid_argument("MUMPS solve(): b and x must be distributed like the matrix rows and have the "
                                 "same number of columns");
   if (k == 0) return;
