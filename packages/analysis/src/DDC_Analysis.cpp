@@ -3,6 +3,7 @@
 #include <Teuchos_XMLParameterListHelpers.hpp>
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <array>
 #include <set>
 
@@ -122,11 +123,12 @@ Teuchos::RCP<PL> partitionValidParameters() {
   pl->set("Number of Subdomains", 0, "Number of subdomains; 0 means one per MPI rank.", atLeast(0));
   pl->set("Method", "METIS",
           "METIS: METIS_PartMeshDual over all bodies. By Body: each body one subdomain. Box Grid: a regular "
-          "grid of boxes over the mesh's bounding box (Box Grid X x Box Grid Y subdomains, by element "
-          "centroid). Element Map File: one subdomain id per element, read from a file.",
+          "grid of boxes over the mesh's bounding box (Box Grid X x Box Grid Y (x Box Grid Z in 3-D) "
+          "subdomains, by element centroid). Element Map File: one subdomain id per element, read from a file.",
           enumValidator({"METIS", "By Body", "Box Grid", "Element Map File"}, "Method"));
   pl->set("Box Grid X", 2, "Box Grid: number of boxes along x.", greaterThan(0));
   pl->set("Box Grid Y", 2, "Box Grid: number of boxes along y.", greaterThan(0));
+  pl->set("Box Grid Z", 1, "Box Grid: number of boxes along z (3-D meshes only).", greaterThan(0));
   pl->set("Element Map File", "",
           "Element Map File: file with one subdomain id per element (mesh element order, whitespace "
           "separated, '#' comments); relative to the input deck's directory.");
@@ -347,7 +349,8 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
                                                         << count << " subdomains (use 0 or " << count << ")");
   };
   if (method == "Box Grid") {
-    partition = partitionBoxGrid(*mesh, part.get<int>("Box Grid X"), part.get<int>("Box Grid Y"));
+    partition = partitionBoxGrid(*mesh, part.get<int>("Box Grid X"), part.get<int>("Box Grid Y"),
+                                 part.get<int>("Box Grid Z"));
     requireCount(partition.numSubdomains);
   } else if (method == "Element Map File") {
     std::string file = part.get<std::string>("Element Map File");
@@ -394,19 +397,6 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
     std::vector<std::string> report;
     const auto primal = selectPrimalNodes(*model_, &report);
     for (const auto& line : report) progress("FETI-DP: " + line);
-    {
-      // The size of the coarse problem (doc/feti-dp.md "In 3-D": it grows
-      // with the number of subdomain-edge ends a METIS partition makes).
-      int nodes = 0;
-      long coarseDofs = 0;
-      for (int n = 0; n < mesh->numNodes(); ++n) {
-        if (!primal[n]) continue;
-        ++nodes;
-        for (int c = 0; c < model_->dim(); ++c) coarseDofs += !model_->isConstrained(model_->dof(n, c));
-      }
-      progress("FETI-DP: " + std::to_string(model_->partition().numSubdomains) + " subdomains, " +
-               std::to_string(nodes) + " primal nodes, coarse problem of " + std::to_string(coarseDofs) + " DOFs");
-    }
     subdomains_ = buildSubdomainSystems(*model_, primal);
     sink_.systems = &subdomains_;
     sink_.where.assign(mesh->numElements(), {-1, -1});
@@ -414,7 +404,8 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
     for (size_t i = 0; i < subdomains_.size(); ++i) {
       for (size_t j = 0; j < subdomains_[i].elements.size(); ++j)
         sink_.where[subdomains_[i].elements[j]] = {static_cast<int>(i), static_cast<int>(j)};
-      fs.push_back({subdomains_[i].id, subdomains_[i].dofs, subdomains_[i].primal, subdomains_[i].K, {}});
+      fs.push_back({subdomains_[i].id, subdomains_[i].dofs, subdomains_[i].primal, subdomains_[i].K, {}, model_->dim(),
+                    subdomains_[i].component});
       if (model_->hasContact()) {
         // Contact rows may touch the DOFs of contact-surface nodes: the
         // Dirichlet preconditioner treats them as interface DOFs.
@@ -434,6 +425,16 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
     }
     feti_ = std::make_unique<FetiDpSolver>(comm_, params.sublist("Solver").sublist("FETI-DP"), "Solver/FETI-DP");
     feti_->setTopology(std::move(fs), model_->ownedMap());
+    {
+      // The size of the coarse problem (doc/feti-dp.md "In 3-D": it grows
+      // with the number of subdomain-edge ends a METIS partition makes).
+      const long nodes = std::count(primal.begin(), primal.end(), char(1));
+      const GO coarse = GO(feti_->primalMap()->getGlobalNumElements()), averages = feti_->numPrimalAverages();
+      progress("FETI-DP: " + std::to_string(model_->partition().numSubdomains) + " subdomains, " +
+               std::to_string(nodes) + " primal nodes, coarse problem of " + std::to_string(coarse) + " DOFs (" +
+               std::to_string(coarse - averages) + " at primal nodes, " + std::to_string(averages) +
+               " edge/face averages)");
+    }
   } else {
     K_ = model_->createMatrix();
     topologyVersion_ = model_->topologyVersion();

@@ -199,6 +199,7 @@ std::vector<SubdomainSystem> buildSubdomainSystems(const Model& model, const std
     std::map<GO, int> local;
     for (size_t i = 0; i < sys.dofs.size(); ++i) local[sys.dofs[i]] = static_cast<int>(i);
     sys.primal.assign(sys.dofs.size(), 0);
+    sys.component.assign(sys.dofs.size(), 0);
     for (int e : sys.elements) {
       std::vector<int> l;
       for (int i = 0; i < mesh.elementNumNodes(e); ++i) {
@@ -208,6 +209,7 @@ std::vector<SubdomainSystem> buildSubdomainSystems(const Model& model, const std
           const auto it = local.find(g);
           l.push_back(it == local.end() ? -1 : it->second);
           if (it != local.end() && primalNode[n]) sys.primal[it->second] = 1;
+          if (it != local.end()) sys.component[it->second] = c;
         }
       }
       sys.elementLocal.push_back(std::move(l));

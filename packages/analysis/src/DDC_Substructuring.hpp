@@ -46,6 +46,7 @@ struct SubdomainSystem {
   int id = -1;
   std::vector<GO> dofs;
   std::vector<char> primal;
+  std::vector<int> component;  ///< per DOF: displacement component 0..dim-1
   Teuchos::RCP<CrsMatrix> K;
   std::vector<int> elements;
   std::vector<std::vector<int>> elementLocal;

@@ -140,7 +140,7 @@ PL blockDeck(double lx, double ly, int nx, int ny, Support support = Support::Cl
 struct PartitionSpec {
   std::string method = "METIS";
   int subdomains = 0;  ///< METIS count (0: ranks)
-  int bx = 2, by = 2;  ///< Box Grid
+  int bx = 2, by = 2, bz = 1;  ///< Box Grid
   std::string file;    ///< Element Map File
   std::string label() const {
     if (method == "Box Grid") return "BoxGrid" + std::to_string(bx) + "x" + std::to_string(by);
@@ -157,14 +157,16 @@ void setPartition(PL& deck, const PartitionSpec& p) {
   if (p.method == "Box Grid") {
     part.set("Box Grid X", p.bx);
     part.set("Box Grid Y", p.by);
+    if (p.bz != 1) part.set("Box Grid Z", p.bz);
   }
   if (p.method == "Element Map File") part.set("Element Map File", p.file);
 }
 
 /// The Solver/FETI-DP sublist.
 PL fetiParams(double tol, const std::string& prec = "Dirichlet", const std::string& scaling = "Multiplicity",
-              const std::string& krylov = "CG") {
+              const std::string& krylov = "CG", const std::string& primal = "") {
   PL f("FETI-DP");
+  if (!primal.empty()) f.set("Primal Constraints", primal);  // else the default
   f.set("Preconditioner", prec);
   f.set("Scaling", scaling);
   PL& b = f.sublist("Belos");
@@ -172,6 +174,12 @@ PL fetiParams(double tol, const std::string& prec = "Dirichlet", const std::stri
   b.set("Convergence Tolerance", tol);
   b.set("Maximum Iterations", 1000);
   return f;
+}
+
+/// The iteration studies of vertex-only FETI-DP (its bounds were set for
+/// corners; the edge/face study is FetiIterations.PrimalChoices*).
+PL vertexParams(double tol, const std::string& prec = "Dirichlet") {
+  return fetiParams(tol, prec, "Multiplicity", "CG", "Vertices");
 }
 
 void useFeti(PL& deck, const PL& feti) {
@@ -238,7 +246,8 @@ FirstSolve firstSolve(PL deck, const PL& feti, bool direct = true) {
   for (size_t i = 0; i < systems.size(); ++i) {
     for (size_t j = 0; j < systems[i].elements.size(); ++j)
       sink.where[systems[i].elements[j]] = {static_cast<int>(i), static_cast<int>(j)};
-    fs.push_back({systems[i].id, systems[i].dofs, systems[i].primal, systems[i].K});
+    fs.push_back({systems[i].id, systems[i].dofs, systems[i].primal, systems[i].K, {}, model.dim(),
+                  systems[i].component});
   }
   auto u0 = model.createVector();
   auto dp = model.createVector();
@@ -549,7 +558,7 @@ TEST(FetiIterations, BoundedAtFixedHOverh) {
   int it[2] = {0, 0};
   const int ks[2] = {4, 8};
   for (int i = 0; i < 2; ++i) {
-    const auto s = firstSolve(squareDeck(ks[i], kHh), fetiParams(kCountBelos), /*direct=*/false);
+    const auto s = firstSolve(squareDeck(ks[i], kHh), vertexParams(kCountBelos), /*direct=*/false);
     it[i] = s.info.iterations;
     EXPECT_EQ(s.subdomains, ks[i] * ks[i]);
     EXPECT_LE(s.info.relativeResidual, kCountBelos);
@@ -571,7 +580,7 @@ TEST(FetiIterations, BoundedAtFixedHOverh) {
   // cost about as much as the first. The bound that holds per solve holds
   // for the average: dualIterations <= newtonIterations * bound.
   PL deck = squareDeck(4, kHh);
-  useFeti(deck, fetiParams(kCountBelos));
+  useFeti(deck, vertexParams(kCountBelos));
   ddc::Analysis a(worldComm(), deck);
   a.run("");
   ASSERT_EQ(a.history().size(), 1u);
@@ -605,7 +614,7 @@ TEST(FetiIterations, TableOverSubdomainsAndHOverh) {
     double secs[3][3];
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) {
-        const auto s = firstSolve(squareDeck(ks[a], hs[b]), fetiParams(kCountBelos, precs[p]), false);
+        const auto s = firstSolve(squareDeck(ks[a], hs[b]), vertexParams(kCountBelos, precs[p]), false);
         table[p][a][b] = s.info.iterations;
         secs[a][b] = s.seconds;
         EXPECT_LE(s.info.relativeResidual, kCountBelos);
@@ -630,6 +639,102 @@ TEST(FetiIterations, TableOverSubdomainsAndHOverh) {
     }
     EXPECT_LT(double(table[0][2][b] - table[0][1][b]) / table[0][1][b], kMaxGrowth) << "H/h = " << hs[b];
   }
+}
+
+// ---------------------------------------------------------------------------
+// Primal constraints: vertices, edges, faces (doc/feti-dp.md "Primal
+// constraints"). Same first-solve set-up as above; every choice must match
+// MUMPS (FetiLinear.FirstSolveMatchesMumpsWithEveryPrimalChoice), and the
+// edge/face averages must pay in iterations.
+
+const std::vector<std::string> kPrimalChoices = {"Vertices", "Vertices and Edges", "Vertices, Edges and Faces"};
+
+/// Iteration bounds with edge / face averages (Dirichlet, multiplicity, CG to
+/// kCountBelos, first Newton solve): 3-D 27 subdomains at H/h = 8 with
+/// edges and faces. For scale:
+/// PETSc 3.18's FETI-DP (ex71) needs 11 (2-D 8x8, H/h = 64, edges) and 10
+/// (3-D 3x3x3, H/h = 8, edges and faces) with its default constraints.
+constexpr int kMaxFaceIterations3d = 14;
+
+/// Unit cube of (k hH)^3 Hex8, Box Grid k x k x k (subdomains of hH^3
+/// elements), clamped at x = 0, traction on x = 1, linear elastic.
+PL cubeDeck(int k, int hH) {
+  PL deck("DDContact");
+  BoxSpec b;
+  b.elements[0] = b.elements[1] = b.elements[2] = k * hH;
+  addBox(deck, "Cube", b);
+  addDisplacement(deck, "Clamped", "Cube/left", "All");
+  addTraction3(deck, "Load", "Cube/right", {10.0, -1.0, 0.5});
+  quiet(deck, 1);
+  PartitionSpec p;
+  p.method = "Box Grid";
+  p.bx = p.by = p.bz = k;
+  setPartition(deck, p);
+  return deck;
+}
+
+/// Prints the table [choice][k][H/h] (k^dim subdomains) and returns it;
+/// meshes of more than maxElements per direction are skipped (-1).
+std::vector<std::vector<std::vector<int>>> primalTable(const std::string& label, const std::vector<int>& ks,
+                                                       const std::vector<int>& hs, int dim, PL (*deckOf)(int, int),
+                                                       int maxElements) {
+  std::vector<std::vector<std::vector<int>>> t(kPrimalChoices.size(),
+                                               std::vector<std::vector<int>>(ks.size(), std::vector<int>(hs.size())));
+  for (size_t c = 0; c < kPrimalChoices.size(); ++c)
+    for (size_t a = 0; a < ks.size(); ++a)
+      for (size_t b = 0; b < hs.size(); ++b) {
+        t[c][a][b] = -1;
+        if (ks[a] * hs[b] > maxElements) continue;
+        const auto s = firstSolve(deckOf(ks[a], hs[b]),
+                                  fetiParams(kCountBelos, "Dirichlet", "Multiplicity", "CG", kPrimalChoices[c]), false);
+        EXPECT_LE(s.info.relativeResidual, kCountBelos);
+        t[c][a][b] = s.info.iterations;
+        if (isRoot())
+          std::printf("[feti-primal] %s %-26s %3d subdomains H/h = %2d: %3d iterations, coarse %5zu DOFs, %.1f s\n",
+                      label.c_str(), kPrimalChoices[c].c_str(), s.subdomains, hs[b], t[c][a][b], s.numPrimal,
+                      s.seconds);
+      }
+  if (isRoot()) {
+    std::printf("[feti-primal] %s: CG iterations to %.0e, Dirichlet, multiplicity, %d rank(s)\n", label.c_str(),
+                kCountBelos, worldSize());
+    std::printf("[feti-primal] %-26s %-11s", "primal constraints", "subdomains");
+    for (int h : hs) std::printf("  H/h = %-3d", h);
+    std::printf("\n");
+    for (size_t c = 0; c < kPrimalChoices.size(); ++c)
+      for (size_t a = 0; a < ks.size(); ++a) {
+        int n = 1;
+        for (int d = 0; d < dim; ++d) n *= ks[a];
+        std::printf("[feti-primal] %-26s %-11d", kPrimalChoices[c].c_str(), n);
+        for (size_t b = 0; b < hs.size(); ++b)
+          t[c][a][b] < 0 ? std::printf("  %9s", "-") : std::printf("  %9d", t[c][a][b]);
+        std::printf("\n");
+      }
+  }
+  return t;
+}
+
+TEST(FetiIterations, PrimalChoices2d) {
+  // 4 / 16 / 64 subdomains x H/h = 8 / 16 / 32 (the largest 132k DOFs).
+  const auto t = primalTable("2-D", {2, 4, 8}, {8, 16, 32}, 2, squareDeck, 256);
+  for (size_t a = 0; a < 3; ++a)
+    for (size_t b = 0; b < 3; ++b) {
+      // No faces in 2-D: the default is the same method as Vertices and Edges.
+      EXPECT_EQ(t[2][a][b], t[1][a][b]);
+      EXPECT_LE(t[1][a][b], t[0][a][b]) << "edges cost iterations";
+    }
+}
+
+TEST(FetiIterations, PrimalChoices3d) {
+  // 8 / 27 / 64 subdomains x H/h = 4 / 8; 64 x 8 (108k DOFs) is left to
+  // the benchmark (doc/performance.md).
+  const auto t = primalTable("3-D", {2, 3, 4}, {4, 8}, 3, cubeDeck, 24);
+  EXPECT_LE(t[2][1][1], kMaxFaceIterations3d) << "27 subdomains, H/h = 8, Vertices, Edges and Faces";
+  EXPECT_LT(double(t[2][2][0] - t[2][0][0]) / t[2][0][0], kMaxGrowth)
+      << "Vertices, Edges and Faces at H/h = 4: iterations grew from " << t[2][0][0] << " (8 subdomains) to "
+      << t[2][2][0] << " (64)";
+  for (size_t a = 0; a < 3; ++a)
+    for (size_t b = 0; b < 2; ++b)
+      if (t[2][a][b] >= 0) EXPECT_LE(t[2][a][b], t[1][a][b]) << "faces cost iterations";
 }
 
 // ---------------------------------------------------------------------------

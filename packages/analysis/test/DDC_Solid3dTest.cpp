@@ -31,34 +31,6 @@ using PL = Teuchos::ParameterList;
 using ddc::test::relDiff;
 using namespace ddc::test;  // deck builders, communicators (DDC_AnalysisTestDecks.hpp)
 
-/// A Box body (Mesh/Bodies/<name>) with one element type and material.
-struct BoxSpec {
-  double origin[3] = {0.0, 0.0, 0.0}, length[3] = {1.0, 1.0, 1.0};
-  int elements[3] = {2, 2, 2};
-  std::string element = "Hex8";
-  std::string material = "Linear Elastic";
-  double E = 1000.0, nu = 0.3;
-};
-
-PL& addBox(PL& deck, const std::string& name, const BoxSpec& s) {
-  PL& body = deck.sublist("Mesh").sublist("Bodies").sublist(name);
-  body.set("Generator", std::string("Box"));
-  PL& b = body.sublist("Box");
-  for (int c = 0; c < 3; ++c) {
-    const std::string axis(1, "XYZ"[c]);
-    b.set("Origin " + axis, s.origin[c]);
-    b.set("Length " + axis, s.length[c]);
-    b.set("Elements " + axis, s.elements[c]);
-  }
-  setElement(body, s.element, s.material, s.E, s.nu);
-  return body;
-}
-
-void addTraction3(PL& deck, const std::string& name, const std::string& set, const std::array<double, 3>& t) {
-  addTraction(deck, name, set, t[0], t[1]);
-  deck.sublist("Boundary Conditions").sublist(name).set("Traction Z", t[2]);
-}
-
 const std::vector<std::string> kSolidTypes = {"Hex8", "Hex20", "Hex27", "Tet4", "Tet10"};
 
 // ---------------------------------------------------------------------------

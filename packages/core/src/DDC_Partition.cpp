@@ -157,38 +157,42 @@ Partition partitionByBody(const Mesh& mesh) {
   return p;
 }
 
-Partition partitionBoxGrid(const Mesh& mesh, int nx, int ny) {
-  DDC_INPUT_REQUIRE(nx >= 1 && ny >= 1, "'Partition/Box Grid X' and 'Partition/Box Grid Y' must be >= 1, got "
-                                            << nx << " and " << ny);
-  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+Partition partitionBoxGrid(const Mesh& mesh, int nx, int ny, int nz) {
+  DDC_INPUT_REQUIRE(nx >= 1 && ny >= 1 && nz >= 1, "'Partition/Box Grid X', 'Box Grid Y' and 'Box Grid Z' must be "
+                                                   ">= 1, got " << nx << ", " << ny << " and " << nz);
+  const int dim = mesh.dim();
+  DDC_INPUT_REQUIRE(dim == 3 || nz == 1,
+                    "'Partition/Box Grid Z' = " << nz << " on a 2-D mesh: there is no z direction (use 1)");
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
   for (int n = 0; n < mesh.numNodes(); ++n)
-    for (int c = 0; c < 2; ++c) {
+    for (int c = 0; c < dim; ++c) {
       lo[c] = std::min(lo[c], mesh.coord(n)[c]);
       hi[c] = std::max(hi[c], mesh.coord(n)[c]);
     }
-  const int counts[2] = {nx, ny};
+  const int counts[3] = {nx, ny, nz};
   Partition p;
-  p.numSubdomains = nx * ny;
+  p.numSubdomains = nx * ny * nz;
   p.elementSubdomain.resize(mesh.numElements());
   std::vector<int> used(p.numSubdomains, 0);
   for (int e = 0; e < mesh.numElements(); ++e) {
-    double c[2] = {0, 0};
+    double c[3] = {0, 0, 0};
     const int nn = mesh.elementNumNodes(e);
     for (int i = 0; i < nn; ++i)
-      for (int d = 0; d < 2; ++d) c[d] += mesh.coord(mesh.elementNodes(e)[i])[d] / nn;
-    int idx[2];
-    for (int d = 0; d < 2; ++d) {
+      for (int d = 0; d < dim; ++d) c[d] += mesh.coord(mesh.elementNodes(e)[i])[d] / nn;
+    int idx[3] = {0, 0, 0};
+    for (int d = 0; d < dim; ++d) {
       const double w = hi[d] - lo[d];
       idx[d] = w > 0 ? static_cast<int>(std::floor((c[d] - lo[d]) / w * counts[d])) : 0;
       idx[d] = std::min(std::max(idx[d], 0), counts[d] - 1);
     }
-    p.elementSubdomain[e] = idx[0] + nx * idx[1];
+    p.elementSubdomain[e] = idx[0] + nx * (idx[1] + ny * idx[2]);
     used[p.elementSubdomain[e]] = 1;
   }
   for (int s = 0; s < p.numSubdomains; ++s)
-    DDC_INPUT_REQUIRE(used[s], "'Partition/Box Grid X' x 'Partition/Box Grid Y' = " << nx << " x " << ny
-                                                                                  << ": box " << s
-                                                                                  << " holds no element centroid");
+    DDC_INPUT_REQUIRE(used[s], "'Partition/Box Grid X' x 'Partition/Box Grid Y'"
+                                   << (nz > 1 ? " x 'Partition/Box Grid Z'" : "") << " = " << nx << " x " << ny
+                                   << (nz > 1 ? " x " + std::to_string(nz) : std::string()) << ": box " << s
+                                   << " holds no element centroid");
   return p;
 }
 

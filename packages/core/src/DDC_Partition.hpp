@@ -45,13 +45,14 @@ Partition partitionMetis(const Mesh& mesh, int numSubdomains);
 /// One subdomain per body: elementSubdomain[e] = mesh.elementBody(e).
 Partition partitionByBody(const Mesh& mesh);
 
-/// Subdomains as a regular nx × ny grid of boxes over the bounding box of the
-/// mesh nodes; an element belongs to the box holding its centroid (node
-/// average). Subdomain id = ix + nx·iy. On a rectangle with a matching
-/// element grid this gives equal subdomains of known H/h (iteration studies).
-/// 	hrows InputError naming "Partition/Box Grid X|Y" if a count is < 1 or a
-///         box holds no element.
-Partition partitionBoxGrid(const Mesh& mesh, int nx, int ny);
+/// Subdomains as a regular nx × ny (× nz in 3-D) grid of boxes over the
+/// bounding box of the mesh nodes; an element belongs to the box holding its
+/// centroid (node average). Subdomain id = ix + nx·(iy + ny·iz). On a box
+/// with a matching element grid this gives equal subdomains of known H/h
+/// (iteration studies).
+/// \throws InputError naming "Partition/Box Grid X|Y|Z" if a count is < 1,
+///         nz > 1 on a 2-D mesh, or a box holds no element.
+Partition partitionBoxGrid(const Mesh& mesh, int nx, int ny, int nz = 1);
 
 /// Subdomains read from a file: whitespace-separated integers, one per
 /// element in mesh element order (bodies in input order, elements as

@@ -36,6 +36,7 @@
 #include <type_traits>
 
 #include "DDC_Error.hpp"
+#include "DDC_FetiPrimalAverages.hpp"
 #include "DDC_MpiRecords.hpp"
 #include "DDC_Parameters.hpp"
 
@@ -157,7 +158,9 @@ struct FetiDpSolver::Impl {
     int id = -1;
     std::vector<GO> dofs;
     std::vector<char> primal;
-    RCP<CrsMatrix> K;
+    RCP<CrsMatrix> K;      // the matrix FETI-DP works on: K^s, or T^T K^s T with averages
+    RCP<CrsMatrix> Kuser;  // the caller's K^s when K is transformed
+    ChangeOfBasis cob;     // edge/face averages (identity without)
     LO n = 0;
 
     // splits (per local DOF -> block index, or kNone)
@@ -203,6 +206,7 @@ struct FetiDpSolver::Impl {
   Prec prec = Prec::Dirichlet;
   bool stiffnessScaling = false;
   double singularityThreshold = 1e13;
+  PrimalConstraints primalChoice = PrimalConstraints::VerticesEdgesAndFaces;
   std::string belosType = "CG";
   double belosTol = 1e-10;
   int belosMaxIt = 500;
@@ -234,7 +238,8 @@ struct FetiDpSolver::Impl {
   RCP<Import> coarseImport;
   RCP<Export> coarseExport;
   std::vector<LO> coarseOwnedLid;  // coarse LID -> ownedMap LID
-  GO nDual = 0, nCoarse = 0;
+  std::vector<char> coarseIsAverage;  // coarse LID -> an edge/face average (not a vertex DOF)
+  GO nDual = 0, nCoarse = 0, nAverages = 0;
   RCP<CrsMatrix> coarse;
   std::unique_ptr<DirectSolver> coarseSolver;
 
@@ -253,6 +258,7 @@ struct FetiDpSolver::Impl {
   std::string param(const std::string& name) const { return joinPath(path, name); }
 
   void buildTopology(std::vector<FetiSubdomain> local, RCP<const Map> owned);
+  void addAverages(const std::vector<std::vector<int>>& components, const std::vector<int>& dims);
   void buildConstraints();
   void finalizeLm();
   void applyMask(Vector& v) const;
@@ -339,6 +345,8 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
   // 1. Per-subdomain sanity (local checks, raised collectively).
   std::ostringstream err;
   subs.resize(local.size());
+  std::vector<std::vector<int>> components(local.size());
+  std::vector<int> dims(local.size());
   for (size_t ls = 0; ls < local.size() && err.str().empty(); ++ls) {
     FetiSubdomain& in = local[ls];
     Sub& s = subs[ls];
@@ -349,6 +357,10 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
     s.constrainable = std::move(in.constrainable);
     if (s.constrainable.empty()) s.constrainable.assign(s.dofs.size(), 0);
     s.K = in.K;
+    s.Kuser = Teuchos::null;
+    s.cob = ChangeOfBasis();
+    components[ls] = std::move(in.component);
+    dims[ls] = in.dim;
     if (s.primal.size() != s.dofs.size()) {
       err << "subdomain " << s.id << ": " << s.primal.size() << " primal flags for " << s.dofs.size() << " DOFs";
     } else if (s.constrainable.size() != s.dofs.size()) {
@@ -450,6 +462,7 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
     auto c = cOv.getData();
     for (size_t l = 0; l < ovMult.size(); ++l) ovMult[l] = static_cast<int>(std::lround(c[l]));
   }
+  addAverages(components, dims);
 
   // 4. Per-subdomain splits: remainder / primal, and for the Dirichlet
   //    preconditioner the remainder into dual interface (Delta: shared,
@@ -509,6 +522,51 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
   fOp = rcp(new FOperator(this));
   mOp = prec == Prec::None ? Teuchos::null : RCP<Operator>(rcp(new MOperator(this)));
   haveTopology = true;
+}
+
+/// Edge/face averages ("Primal Constraints"; doc/feti-dp.md): classify the
+/// interface by the subdomains sharing each DOF (findPrimalAverages()), make
+/// the first DOF of each group primal and work on K^s in the basis where it
+/// holds the group's average (ChangeOfBasis).
+void FetiDpSolver::Impl::addAverages(const std::vector<std::vector<int>>& components, const std::vector<int>& dims) {
+  nAverages = 0;
+  if (primalChoice == PrimalConstraints::Vertices) return;
+  const std::string choice = primalConstraintNames()[size_t(primalChoice)];
+  std::string msg;
+  int dmin = INT_MAX, dmax = INT_MIN;
+  for (size_t ls = 0; ls < subs.size(); ++ls) {
+    dmin = std::min(dmin, dims[ls]);
+    dmax = std::max(dmax, dims[ls]);
+    if (msg.empty() && ((dims[ls] != 2 && dims[ls] != 3) || components[ls].size() != subs[ls].dofs.size()))
+      msg = "FetiDpSolver::setTopology: subdomain " + std::to_string(subs[ls].id) + ": '" +
+            param("Primal Constraints") + "' = " + choice + " needs FetiSubdomain::dim (2 or 3, got " +
+            std::to_string(dims[ls]) + ") and one FetiSubdomain::component per DOF (got " +
+            std::to_string(components[ls].size()) + " for " + std::to_string(subs[ls].dofs.size()) +
+            " DOFs); or set it to Vertices";
+  }
+  raiseCollectively<std::invalid_argument>(mpi, msg);
+  int loc[2] = {dmin == INT_MAX ? INT_MIN : -dmin, dmax}, glob[2];
+  MPI_Allreduce(loc, glob, 2, MPI_INT, MPI_MAX, mpi);
+  if (glob[1] == INT_MIN) return;  // no subdomains at all
+  if (-glob[0] != glob[1])
+    throw std::invalid_argument("FetiDpSolver::setTopology: the subdomains disagree on FetiSubdomain::dim (" +
+                                std::to_string(-glob[0]) + " and " + std::to_string(glob[1]) + ")");
+  std::vector<AverageInput> in(subs.size());
+  for (size_t ls = 0; ls < subs.size(); ++ls) in[ls] = AverageInput{subs[ls].id, subs[ls].dofs, subs[ls].primal, components[ls]};
+  auto groups = findPrimalAverages(mpi, *ownedMap, in, glob[1], primalChoice);
+  for (size_t ls = 0; ls < subs.size() && msg.empty(); ++ls) {
+    Sub& s = subs[ls];
+    if (groups[ls].empty()) continue;
+    for (const auto& g : groups[ls]) s.primal[g[0]] = 1;
+    try {
+      s.cob = ChangeOfBasis(s.n, std::move(groups[ls]));
+      s.Kuser = s.K;
+      s.K = s.cob.setPattern(*s.Kuser);
+    } catch (const std::exception& e) {
+      msg = "FetiDpSolver::setTopology: subdomain " + std::to_string(s.id) + ": change of basis: " + e.what();
+    }
+  }
+  raiseCollectively<std::invalid_argument>(mpi, msg);
 }
 
 /// Compatibility constraints: the owner of each shared non-primal DOF
@@ -635,20 +693,30 @@ void FetiDpSolver::Impl::buildCoarse() {
   {
     // A DOF is primal if any (hence every) subdomain having it says so;
     // mark at the owner.
-    Vector pOv(dofOvMap), pOwned(ownedMap);
+    Vector pOv(dofOvMap), pOwned(ownedMap), aOv(dofOvMap), aOwned(ownedMap);
     {
       auto p = pOv.getDataNonConst();
+      auto a = aOv.getDataNonConst();
       for (const Sub& s : subs)
-        for (LO k = 0; k < s.n; ++k)
+        for (LO k = 0; k < s.n; ++k) {
           if (s.primal[k]) p[s.ovLid[k]] = 1.0;
+          if (s.cob.isAverage(k)) a[s.ovLid[k]] = 1.0;
+        }
     }
     pOwned.doExport(pOv, *dofExport, Tpetra::ADD);
+    aOwned.doExport(aOv, *dofExport, Tpetra::ADD);
     auto p = pOwned.getData();
+    auto a = aOwned.getData();
+    coarseIsAverage.clear();
+    GO myAverages = 0;
     for (LO l = 0; l < LO(p.size()); ++l)
       if (p[l] > 0.0) {
         ownedPrimal.push_back(ownedMap->getGlobalElement(l));
         coarseOwnedLid.push_back(l);
+        coarseIsAverage.push_back(a[l] > 0.0);
+        myAverages += a[l] > 0.0;
       }
+    nAverages = sumAll(mpi, myAverages);
   }
   primalMap = makeMap(ownedPrimal, ownedMap->getIndexBase(), comm);
   coarseMap = rcp(new Map(kInvalidSize, ownedPrimal.size(), 0, comm));
@@ -789,6 +857,7 @@ void FetiDpSolver::Impl::buildBlocks(Sub& s) {
 
 /// Copy the current K^s values into the blocks (same pattern as setTopology).
 void FetiDpSolver::Impl::refreshBlocks(Sub& s) {
+  if (s.cob.active()) s.cob.update(*s.Kuser);
   const auto& rowMap = *s.K->getRowMap();
   const auto& colMap = *s.K->getColMap();
   s.Krr->resumeFill();
@@ -1127,6 +1196,13 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
             "by 1/m_j, m_j = number of subdomains sharing j) or Stiffness (rho-scaling from diagonal entries: by "
             "K^t_jj / sum_k K^k_jj; better for jumping coefficients).",
             enumValidator(scalingNames(), "Scaling"));
+    pl->set("Primal Constraints", std::string("Vertices, Edges and Faces"),
+            "Primal (coarse) constraints besides the caller's vertex DOFs: Vertices (none), Vertices and Edges "
+            "(plus the average of each displacement component over each edge: in 2-D a subdomain-subdomain "
+            "interface, in 3-D the interface DOFs shared by >= 3 subdomains), Vertices, Edges and Faces (plus "
+            "the averages over the 3-D faces, DOFs shared by exactly 2 subdomains; in 2-D the same as Vertices "
+            "and Edges). Averages enter by a change of basis (doc/feti-dp.md, 'Primal constraints').",
+            enumValidator(primalConstraintNames(), "Primal Constraints"));
     pl->set("Local Singularity Threshold", 1e13,
             "A subdomain's remainder stiffness K_rr whose 1-norm condition estimate (one inverse-iteration step "
             "with a pseudo-random vector) exceeds this is reported singular (insufficient primal DOFs); a direct "
@@ -1182,6 +1258,7 @@ FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramete
   m.prec = prec == "Dirichlet" ? Impl::Prec::Dirichlet : prec == "Lumped" ? Impl::Prec::Lumped : Impl::Prec::None;
   m.stiffnessScaling = params.get<std::string>("Scaling") == "Stiffness";
   m.singularityThreshold = params.get<double>("Local Singularity Threshold");
+  m.primalChoice = primalConstraintsFromName(params.get<std::string>("Primal Constraints"));
   Teuchos::ParameterList& belos = params.sublist("Belos");
   validateLevel(belos, valid->sublist("Belos"), joinPath(path, "Belos"));
   m.belosType = belos.get<std::string>("Solver Type");
@@ -1294,22 +1371,36 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
 
   // f~: interior DOFs as is, dual copies b_j / m_j, primal DOFs assembled
   // directly into the coarse right-hand side.
+  // With averages, f^s = T^T (b_j / m_j): the average DOFs get their
+  // share in f_Pi^s, summed over the subdomains by the coarse assembly.
   m.dofOvWork->doImport(b, *m.dofImport, Tpetra::INSERT);
-  std::vector<std::vector<double>> frBase(m.subs.size());
+  std::vector<std::vector<double>> frBase(m.subs.size()), fpBase(m.subs.size());
   {
     auto bo = m.dofOvWork->getData();
+    std::vector<double> f;
     for (size_t ls = 0; ls < m.subs.size(); ++ls) {
       auto& s = m.subs[ls];
-      for (LO r = 0; r < s.nr; ++r) s.fr[r] = bo[s.ovLid[s.rDof[r]]] * s.invMult[s.rDof[r]];
       std::fill(s.fp.begin(), s.fp.end(), 0.0);
+      if (s.cob.active()) {
+        f.resize(s.n);
+        for (LO k = 0; k < s.n; ++k) f[k] = bo[s.ovLid[k]] * s.invMult[k];
+        s.cob.forceToNew(f);
+        for (LO r = 0; r < s.nr; ++r) s.fr[r] = f[s.rDof[r]];
+        for (LO p = 0; p < s.np; ++p)
+          if (s.cob.isAverage(s.pDof[p])) s.fp[p] = f[s.pDof[p]];
+      } else {
+        for (LO r = 0; r < s.nr; ++r) s.fr[r] = bo[s.ovLid[s.rDof[r]]] * s.invMult[s.rDof[r]];
+      }
       frBase[ls] = s.fr;
+      fpBase[ls] = s.fp;
     }
   }
   Vector fPi(m.coarseMap);
   {
     auto bv = b.getData();
     auto f = fPi.getDataNonConst();
-    for (size_t k = 0; k < m.coarseOwnedLid.size(); ++k) f[k] = bv[m.coarseOwnedLid[k]];
+    for (size_t k = 0; k < m.coarseOwnedLid.size(); ++k)
+      f[k] = m.coarseIsAverage[k] ? 0.0 : bv[m.coarseOwnedLid[k]];
   }
 
   // d = B K~^{-1} f~ (the compatibility constraints have zero right-hand side)
@@ -1374,25 +1465,38 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
   for (size_t ls = 0; ls < m.subs.size(); ++ls) {
     auto& s = m.subs[ls];
     s.fr = frBase[ls];
-    std::fill(s.fp.begin(), s.fp.end(), 0.0);
+    s.fp = fpBase[ls];
   }
   m.scatterBt(*lambda->getVector(0), -1.0);
   m.applyKtildeInv(&fPi);
 
-  // Assemble u: copies of dual DOFs averaged (weights 1/m_j), primal DOFs
-  // from the coarse solution.
+  // Assemble u: copies of dual DOFs averaged (weights 1/m_j), vertex DOFs
+  // from the coarse solution. With averages, u^s = T û^s first; the DOF
+  // that held a group's average is then averaged like a dual DOF.
   m.dofOvWork->putScalar(0.0);
   {
     auto uo = m.dofOvWork->getDataNonConst();
-    for (auto& s : m.subs)
-      for (LO r = 0; r < s.nr; ++r) uo[s.ovLid[s.rDof[r]]] += s.xr[r] * s.invMult[s.rDof[r]];
+    std::vector<double> us;
+    for (auto& s : m.subs) {
+      if (!s.cob.active()) {
+        for (LO r = 0; r < s.nr; ++r) uo[s.ovLid[s.rDof[r]]] += s.xr[r] * s.invMult[s.rDof[r]];
+        continue;
+      }
+      us.assign(s.n, 0.0);
+      for (LO r = 0; r < s.nr; ++r) us[s.rDof[r]] = s.xr[r];
+      for (LO p = 0; p < s.np; ++p) us[s.pDof[p]] = s.up[p];
+      s.cob.displacementToOld(us);
+      for (LO k = 0; k < s.n; ++k)
+        if (s.rIdx[k] != kNone || s.cob.isAverage(k)) uo[s.ovLid[k]] += us[k] * s.invMult[k];
+    }
   }
   u.putScalar(0.0);
   u.doExport(*m.dofOvWork, *m.dofExport, Tpetra::ADD);
   if (m.nCoarse > 0) {
     auto uv = u.getDataNonConst();
     auto c = m.coarseSol->getData();
-    for (size_t k = 0; k < m.coarseOwnedLid.size(); ++k) uv[m.coarseOwnedLid[k]] = c[k];
+    for (size_t k = 0; k < m.coarseOwnedLid.size(); ++k)
+      if (!m.coarseIsAverage[k]) uv[m.coarseOwnedLid[k]] = c[k];
   }
 
   const double t1 = MPI_Wtime();
@@ -1431,23 +1535,44 @@ void FetiDpSolver::setConstraintRows(Teuchos::RCP<const Map> rowMap,
       }
   raiseCollectively<std::invalid_argument>(m.mpi, msg);
 
+  // With averages the rows act on û: c^T u = (c^T T) û, row by row.
+  std::vector<std::vector<ConstraintEntry>> transformed;
+  const std::vector<std::vector<ConstraintEntry>>* use = &entries;
+  bool anyActive = false;
+  for (const auto& s : m.subs) anyActive = anyActive || s.cob.active();
+  if (anyActive) {
+    transformed.resize(entries.size());
+    for (size_t ls = 0; ls < entries.size(); ++ls) {
+      if (!m.subs[ls].cob.active()) {
+        transformed[ls] = entries[ls];
+        continue;
+      }
+      std::map<GO, std::vector<std::pair<LO, double>>> rows;
+      for (const auto& e : entries[ls]) rows[e.row].emplace_back(e.dof, e.coef);
+      for (const auto& [row, list] : rows)
+        for (const auto& [dof, coef] : m.subs[ls].cob.rowToNew(list))
+          transformed[ls].push_back(ConstraintEntry{row, dof, coef});
+    }
+    use = &transformed;
+  }
+
   // Extra row GIDs: nCompat + (rows of lower ranks) + LID in rowMap.
   long long mine = static_cast<long long>(rowMap->getNodeNumElements());
   std::vector<long long> counts(m.size), offsets(m.size, 0);
   MPI_Allgather(&mine, 1, MPI_LONG_LONG, counts.data(), 1, MPI_LONG_LONG, m.mpi);
   for (int r = 1; r < m.size; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
   std::vector<GO> rows;
-  for (const auto& list : entries)
+  for (const auto& list : *use)
     for (const auto& e : list) rows.push_back(e.row);
   std::vector<int> pids;
   std::vector<LO> lids;
   owners(*rowMap, rows, pids, lids);
   size_t k = 0;
-  for (size_t ls = 0; ls < entries.size(); ++ls) {
+  for (size_t ls = 0; ls < use->size(); ++ls) {
     auto& s = m.subs[ls];
     s.extraB.clear();
-    for (size_t i = 0; i < entries[ls].size(); ++i, ++k) {
-      const ConstraintEntry& e = entries[ls][i];
+    for (size_t i = 0; i < (*use)[ls].size(); ++i, ++k) {
+      const ConstraintEntry& e = (*use)[ls][i];
       if (pids[k] < 0) {
         if (msg.empty()) msg = "FetiDpSolver::setConstraintRows: row " + std::to_string(e.row) + " (subdomain " +
                                std::to_string(s.id) + ") is not in the row map";
@@ -1505,6 +1630,7 @@ const FetiDpSolver::Info& FetiDpSolver::setupInfo() const { return impl_->setup;
 Teuchos::RCP<const Map> FetiDpSolver::lmMap() const { return impl_->lmMap; }
 Teuchos::RCP<const Map> FetiDpSolver::primalMap() const { return impl_->primalMap; }
 GO FetiDpSolver::numDualDofs() const { return impl_->nDual; }
+GO FetiDpSolver::numPrimalAverages() const { return impl_->nAverages; }
 
 Teuchos::RCP<Vector> FetiDpSolver::applyB(const std::vector<std::vector<double>>& field) const {
   Impl& m = *impl_;
@@ -1514,8 +1640,10 @@ Teuchos::RCP<Vector> FetiDpSolver::applyB(const std::vector<std::vector<double>>
   if (bad) throw std::invalid_argument("FetiDpSolver::applyB: one value per local DOF of each local subdomain");
   for (size_t ls = 0; ls < field.size(); ++ls) {
     auto& s = m.subs[ls];
-    for (LO r = 0; r < s.nr; ++r) s.xr[r] = field[ls][s.rDof[r]];
-    for (LO p = 0; p < s.np; ++p) s.up[p] = field[ls][s.pDof[p]];
+    std::vector<double> f(field[ls]);
+    s.cob.displacementToNew(f);  // B acts on û
+    for (LO r = 0; r < s.nr; ++r) s.xr[r] = f[s.rDof[r]];
+    for (LO p = 0; p < s.np; ++p) s.up[p] = f[s.pDof[p]];
   }
   auto y = rcp(new Vector(m.lmMap));
   m.gatherB(*y);

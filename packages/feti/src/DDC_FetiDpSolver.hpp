@@ -57,6 +57,13 @@ struct FetiSubdomain {
   /// Dirichlet preconditioner, so that it sees those rows; entries on other
   /// DOFs are exact in F but ignored by the preconditioner.
   std::vector<char> constrainable;
+  /// Spatial dimension of the mesh, 2 or 3 (the same in every subdomain).
+  /// Needed, with `component`, for edge and face averages ("Primal
+  /// Constraints" other than "Vertices"): it decides what an edge is.
+  int dim = 0;
+  /// Per local DOF: the displacement component 0..dim-1 it belongs to
+  /// (averages are taken per component). Needed like `dim`.
+  std::vector<int> component;
 };
 
 /// One entry of an extra constraint row (FetiDpSolver::setConstraintRows()):
@@ -102,6 +109,15 @@ struct ConstraintEntry {
 /// collective over the communicator; an error on one rank (e.g. a singular
 /// subdomain) is raised on every rank with the same message.
 ///
+/// Primal constraints ("Primal Constraints", doc/feti-dp.md "Primal
+/// constraints: vertices, edges, faces"): the caller's primal DOFs
+/// (vertices) and, unless "Vertices", the averages over the edges (and in
+/// 3-D faces) of the interface, one per displacement component, found by
+/// findPrimalAverages() from the DOF sharing alone. Each average becomes an
+/// explicit DOF by a change of basis (ChangeOfBasis, Klawonn & Widlund
+/// 2006): K^s -> T^T K^s T; b, u and the extra rows are transformed here,
+/// so the caller sees the original DOFs only.
+///
 /// Floating subdomains are not treated with a kernel: the caller must make
 /// every K_rr^s nonsingular by choosing enough primal DOFs (doc/feti-dp.md,
 /// "Primal nodes"; the analysis package does it in selectPrimalNodes()).
@@ -129,6 +145,9 @@ class FetiDpSolver {
   /// Every parameter with its default and doc string:
   ///  - "Preconditioner": "Dirichlet" (default) | "Lumped" | "None";
   ///  - "Scaling": "Multiplicity" (default) | "Stiffness";
+  ///  - "Primal Constraints": "Vertices" | "Vertices and Edges" |
+  ///    "Vertices, Edges and Faces" (default; in 2-D there are no faces, so
+  ///    it equals "Vertices and Edges");
   ///  - "Local Singularity Threshold": double (1e13);
   ///  - "Belos": {"Solver Type": "CG" | "GMRES" | "MINRES", "Convergence
   ///    Tolerance" (1e-10), "Maximum Iterations" (500), "Verbosity" (0),
@@ -165,7 +184,8 @@ class FetiDpSolver {
   /// \throws std::invalid_argument (on every rank) if a subdomain is
   ///         inconsistent: sizes, DOFs not in ownedMap, duplicate DOFs or
   ///         subdomain ids, a DOF primal in one subdomain but not in
-  ///         another, K not fill-complete / not n x n.
+  ///         another, K not fill-complete / not n x n, missing or
+  ///         inconsistent dim / component with edge or face averages.
   void setTopology(std::vector<FetiSubdomain> local, Teuchos::RCP<const Map> ownedMap);
 
   /// Collective. After the caller updated the K values: factorise every
@@ -230,6 +250,9 @@ class FetiDpSolver {
   Teuchos::RCP<const Map> primalMap() const;
   /// Global number of dual DOFs: non-primal DOFs shared by >= 2 subdomains.
   GO numDualDofs() const;
+  /// Global number of edge/face averages among the primal DOFs (0 for
+  /// "Vertices"); primalMap() holds vertices and averages.
+  GO numPrimalAverages() const;
   /// Apply B to a field given per subdomain copy: field[i] has one value per
   /// local DOF of the i-th subdomain passed to setTopology() on this rank.
   /// Returns (B field) on lmMap(). A continuous field (the same value in

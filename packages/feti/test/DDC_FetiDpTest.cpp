@@ -176,6 +176,7 @@ class Problem {
         if (rankOf(id) != worldRank()) continue;
         FetiSubdomain sd;
         sd.id = id;
+        sd.dim = 2;
         std::map<GO, LO> local;
         for (int j = b * s_.H; j <= (b + 1) * s_.H; ++j)
           for (int i = a * s_.H; i <= (a + 1) * s_.H; ++i) {
@@ -184,6 +185,7 @@ class Problem {
               local[dof(i, j, c)] = LO(sd.dofs.size());
               sd.dofs.push_back(dof(i, j, c));
               sd.primal.push_back(isPrimalNode(i, j) ? 1 : 0);
+              sd.component.push_back(c);
             }
           }
         const LO n = LO(sd.dofs.size());
@@ -267,9 +269,13 @@ class Problem {
   RCP<const Map> ownedMap_;
 };
 
+/// The tests written for vertex (corner) primal DOFs keep "Vertices"; the
+/// edge-average tests pass their choice.
 Teuchos::ParameterList fetiParams(const std::string& prec = "Dirichlet", const std::string& scaling = "Multiplicity",
-                                  const std::string& solver = "CG", double tol = ddc::test::kTightBelos) {
+                                  const std::string& solver = "CG", double tol = ddc::test::kTightBelos,
+                                  const std::string& primal = "Vertices") {
   Teuchos::ParameterList p("FETI-DP");
+  p.set("Primal Constraints", primal);
   p.set("Preconditioner", prec);
   p.set("Scaling", scaling);
   p.sublist("Belos").set("Solver Type", solver);
