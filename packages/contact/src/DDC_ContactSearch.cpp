@@ -173,13 +173,14 @@ ContactSearch::Eval ContactSearch::evaluate(int k, const Eigen::Vector2d& xs) {
   e.segment = k;
   e.xi = (xs - x1).dot(t) / t.squaredNorm();
   // Clamped points are the node coordinates themselves, so the two segments
-  // meeting at a node tie exactly there.
+  // meeting at a node tie exactly there. Within kEndTolerance of an end the
+  // slave counts as inside (header).
   if (e.xi <= 0.0) {
     e.point = x1;
-    e.outside = e.xi < 0.0;
+    e.outside = e.xi < -kEndTolerance;
   } else if (e.xi >= 1.0) {
     e.point = x2;
-    e.outside = e.xi > 1.0;
+    e.outside = e.xi > 1.0 + kEndTolerance;
   } else {
     e.point = x1 + e.xi * t;
   }

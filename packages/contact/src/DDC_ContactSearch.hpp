@@ -8,7 +8,9 @@
 //
 //  - Segment k with nodes x1, x2 (in MasterSurface order), t = x2 − x1.
 //    Closest projection ξ = (x_s − x1)·t / |t|²; the slave projects *inside*
-//    if 0 ≤ ξ ≤ 1. Clamped point x̄ = x1 if ξ ≤ 0, x2 if ξ ≥ 1 (the node
+//    if −ε ≤ ξ ≤ 1 + ε, ε = kEndTolerance = 1e-10: a slave node on the end
+//    node of a master surface (a patch whose slave and master surfaces end
+//    together) stays inside whatever the round-off of its position. Clamped point x̄ = x1 if ξ ≤ 0, x2 if ξ ≥ 1 (the node
 //    coordinates themselves, so the two segments at a node tie exactly),
 //    x1 + ξ t otherwise. Distance d_k = |x_s − x̄|.
 //  - Unit outward normal n = (t_y, −t_x)/|t| (the body is on the left of
@@ -104,6 +106,11 @@ enum class ContactRejection {
 /// the motion, but a node of the other side of a thin body (or a node that
 /// started inside the master body) always is.
 constexpr double kFacingDepthFraction = 0.5;
+
+/// How far (in the segment parameter ξ) past a segment end a slave still
+/// projects inside (header, "Closest projection"): round-off of positions
+/// computed by different solvers or rank counts is ~1e-16 relative.
+constexpr double kEndTolerance = 1e-10;
 
 /// The facing rule's verdict for a slave node with outward normal
 /// `slaveNormal` at gap `gap` from a master segment with outward normal

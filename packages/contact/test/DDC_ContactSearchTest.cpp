@@ -62,7 +62,7 @@ ContactCandidate bruteForce(const Geometry& g, const Vec& xs, double radius) {
     const double bx = g.x[g.segs[k][1]].x(), by = g.x[g.segs[k][1]].y();
     const double tx = bx - ax, ty = by - ay, len = std::sqrt(tx * tx + ty * ty);
     const double xiRaw = ((xs.x() - ax) * tx + (xs.y() - ay) * ty) / (tx * tx + ty * ty);
-    const bool outside = xiRaw < 0.0 || xiRaw > 1.0;
+    const bool outside = xiRaw < -ddc::kEndTolerance || xiRaw > 1.0 + ddc::kEndTolerance;
     const double xi = std::min(1.0, std::max(0.0, xiRaw));
     const double px = xi == 0.0 ? ax : xi == 1.0 ? bx : ax + xi * tx;
     const double py = xi == 0.0 ? ay : xi == 1.0 ? by : ay + xi * ty;
@@ -415,6 +415,30 @@ TEST(ContactSearch, FreeEndAndLeavingTheSurface) {
   EXPECT_EQ(s.counters().trackingFallbacks, 2);
   EXPECT_EQ(s.globalSearches(), 4);
   EXPECT_EQ(s.trackingCalls(), 2);
+}
+
+TEST(ContactSearch, ASlaveOnTheFreeEndNodeStaysInsideDespiteRoundOff) {
+  // A patch whose slave and master surfaces end together: the slave end node
+  // sits on the master end node (3, 0). Round-off of its position (1e-15
+  // past the end) must not make it "past the free end" (a pair that cannot
+  // be active); a real overhang (1e-6) still is.
+  Geometry g;
+  for (int i = 0; i <= 3; ++i) g.addNode(Vec(i, 0));
+  g.segs = {{1, 0}, {2, 1}, {3, 2}};
+  const MasterSurface m(g.segs);
+  const int sl = g.addNode(Vec(3.0 + 1e-15, 0.0));
+  ContactSearch s(m, {sl}, 0.5);
+  for (bool global : {true, false}) {
+    s.update(g.position(), global);
+    EXPECT_EQ(s.candidates()[0].segment, 2);
+    EXPECT_FALSE(s.candidates()[0].viaCorner) << (global ? "global" : "tracking");
+    EXPECT_EQ(s.candidates()[0].xi, 0.0);
+    EXPECT_TRUE(sameCandidate(s.candidates()[0], bruteForce(g, g.x[sl], 0.5)));
+  }
+  g.x[sl] = Vec(3.0 + 1e-6, 0.0);
+  s.update(g.position(), true);
+  EXPECT_TRUE(s.candidates()[0].viaCorner);
+  EXPECT_TRUE(sameCandidate(s.candidates()[0], bruteForce(g, g.x[sl], 0.5)));
 }
 
 TEST(ContactSearch, StepLimitFallsBackToTheGlobalSearch) {
