@@ -567,7 +567,7 @@ int main(int argc, char** argv) {
           std::cout << "  " << (ok ? "PASS " : "FAIL ") << os.str() << "\n";
           if (!ok) failures.push_back(os.str());
         }
-    // (b) The phase criterion. Reported; asserted only with
+    // (b) The phase criterion (doc/figure4.md). Reported; asserted only with
     // --assert-phases: on the reconstructed benchmark the relative error is
     // largest at contact release (load ~0.8), where U_ref -> 0 and any lag of
     // the release gives a large ratio (doc/figure4.md).

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Across-partition contact performance (issue 5, doc/performance.md): the
+# Across-partition contact performance (doc/performance.md): the
 # two-half-rings benchmark with the decomposed node-to-segment element,
 # FETI-DP against the monolithic direct solve (MUMPS) of the same model, at
 # the default mesh (4 x 64 Quad4 per ring) and at a mesh refined 4x in each

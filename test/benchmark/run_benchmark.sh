@@ -11,7 +11,8 @@
 #
 #   bash test/benchmark/run_benchmark.sh [BUILD_DIR]   # default build
 # Environment: RANKS (2), REPS (3), SIZES (refinements, "10 20 40"),
-#              SUBDOMAINS (FETI-DP subdomains per size, "16 32 64"), TABLE2 (1).
+#              SUBDOMAINS (FETI-DP subdomains per size, "16 32 64"), TABLE2 (1),
+#              PRIMAL (Solver/FETI-DP/Primal Constraints, "Vertices, Edges and Faces").
 # Each elastic-block run is 1 load step = 2 Newton solves of the same
 # matrix (the second checks convergence); times are summed over both.
 set -euo pipefail
@@ -20,6 +21,7 @@ cd "$(dirname "$0")/../.."
 . test/benchmark/common.sh "${1:-build}"
 read -r -a SIZES <<< "${SIZES:-10 20 40}"
 read -r -a SUBS <<< "${SUBDOMAINS:-16 32 64}"
+PRIMAL=${PRIMAL:-Vertices, Edges and Faces}
 
 # run_case LABEL ARGS... -> prints "setup solve iterations memory dofs" (medians) or "failed"
 run_case() {
@@ -48,7 +50,8 @@ for i in "${!SIZES[@]}"; do
         --set "Output/Progress=true")
   for strat in MUMPS Belos-MueLu Belos-FROSch FETI-DP; do
     if [ "$strat" = FETI-DP ]; then
-      args=("${base[@]}" --set "Solver/Strategy=FETI-DP" --set "Partition/Number of Subdomains=$nsub")
+      args=("${base[@]}" --set "Solver/Strategy=FETI-DP" --set "Partition/Number of Subdomains=$nsub"
+            --set "Solver/FETI-DP/Primal Constraints=$PRIMAL")
       subs=$nsub
     else
       args=("${base[@]}" --set "Solver/Linear Solver/Type=$strat")
@@ -62,7 +65,7 @@ for i in "${!SIZES[@]}"; do
       [ "$strat" = MUMPS ] && label="MUMPS (direct)"
       [ "$strat" = Belos-MueLu ] && label="Belos CG + MueLu SA"
       [ "$strat" = Belos-FROSch ] && label="Belos GMRES + FROSch GDSW"
-      [ "$strat" = FETI-DP ] && label="FETI-DP (Dirichlet, MUMPS local/coarse, CG)"
+      [ "$strat" = FETI-DP ] && label="FETI-DP ($PRIMAL, Dirichlet, MUMPS local/coarse, CG)"
       echo "| $d | $subs | $label | $s | $t | $it | $m |"
     fi
   done
@@ -70,7 +73,7 @@ done
 
 if [ "${TABLE2:-1}" = 1 ]; then
   echo
-  echo "FETI-DP dual iterations to relative residual 1e-8 (Belos CG), unit square, Box Grid N x N subdomains, one linear solve:"
+  echo "FETI-DP ($PRIMAL) dual iterations to relative residual 1e-8 (Belos CG), unit square, Box Grid N x N subdomains, one linear solve:"
   echo
   echo "| subdomains | H/h | Dirichlet | Lumped |"
   echo "| ---: | ---: | ---: | ---: |"
@@ -84,6 +87,7 @@ if [ "${TABLE2:-1}" = 1 ]; then
             --set "Mesh/Bodies/Square/Rectangle/Refinement=$ref" --set "Solver/Strategy=FETI-DP" \
             --set "Partition/Method=Box Grid" --set "Partition/Box Grid X=$n" --set "Partition/Box Grid Y=$n" \
             --set "Solver/FETI-DP/Preconditioner=$pre" --set "Solver/FETI-DP/Belos/Convergence Tolerance=1e-8" \
+            --set "Solver/FETI-DP/Primal Constraints=$PRIMAL" \
             > "$log" 2>&1; then
           # the first Newton solve (the second only confirms convergence)
           row="$row $(first_solve_iterations "$log") |"

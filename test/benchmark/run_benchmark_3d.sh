@@ -3,9 +3,9 @@
 # of ctest. examples/block_3d.xml (Hex8 brick, 16 x 4 x 4 elements times
 # Refinement N, 3 (16N+1)(4N+1)^2 DOFs: N = 5, 8, 11 -> 107163, 421443,
 # 1075275) on RANKS ranks with MUMPS (monolithic direct), Belos CG + MueLu
-# and FETI-DP (vertex primal nodes only, Dirichlet preconditioner, METIS
+# and FETI-DP (primal constraints PRIMAL, Dirichlet preconditioner, METIS
 # subdomains of about SUB_DOFS DOFs each: 840, the fastest of 16 ... 512
-# subdomains at 107k DOFs). Prints one markdown table: median
+# subdomains at 107k DOFs with PRIMAL = Vertices). Prints one markdown table: median
 # over REPS runs of linear set-up and solve seconds, dual/Krylov iterations
 # (summed over the 2 Newton solves of the one load step, and of the first
 # solve alone) and peak memory per rank.
@@ -14,7 +14,8 @@
 # Environment: RANKS (2), REPS (3), SIZES (refinements run with every
 #   strategy, "5 8 11"), MUMPS_SIZES (refinements run with MUMPS only, to find
 #   the largest that fits, "9 10"), SUBDOMAINS (FETI-DP subdomains per entry
-#   of SIZES; default DOFs / SUB_DOFS rounded), SUB_DOFS (840),
+#   of SIZES; default DOFs / SUB_DOFS rounded), SUB_DOFS (840), PRIMAL
+#   (Solver/FETI-DP/Primal Constraints, "Vertices, Edges and Faces"),
 #   MEM_FRACTION (0.9: share of MemAvailable the ranks may use together),
 #   TIMEOUT (3600: seconds one run may take).
 #
@@ -34,6 +35,7 @@ cd "$(dirname "$0")/../.."
 # shellcheck source=common.sh
 . test/benchmark/common.sh "${1:-build}"
 SUB_DOFS=${SUB_DOFS:-840}
+PRIMAL=${PRIMAL:-Vertices, Edges and Faces}
 MEM_FRACTION=${MEM_FRACTION:-0.9}
 TIMEOUT=${TIMEOUT:-3600}
 read -r -a SIZES <<< "${SIZES:-5 8 11}"
@@ -142,9 +144,9 @@ for ref in "${ALL[@]}"; do
         args=("${base[@]}" --set "Solver/Strategy=Monolithic" --set "Solver/Linear Solver/Type=MUMPS") ;;
       Belos-MueLu) label="Belos CG + MueLu SA" subs=$RANKS
         args=("${base[@]}" --set "Solver/Strategy=Monolithic" --set "Solver/Linear Solver/Type=Belos-MueLu") ;;
-      FETI-DP) label="FETI-DP (vertices, Dirichlet, MUMPS local/coarse, CG)" subs=$nsub
+      FETI-DP) label="FETI-DP ($PRIMAL, Dirichlet, MUMPS local/coarse, CG)" subs=$nsub
         args=("${base[@]}" --set "Solver/Strategy=FETI-DP" --set "Partition/Number of Subdomains=$nsub"
-              --set "Solver/FETI-DP/Belos/Maximum Iterations=5000") ;;
+              --set "Solver/FETI-DP/Primal Constraints=$PRIMAL" --set "Solver/FETI-DP/Belos/Maximum Iterations=5000") ;;
     esac
     est=$(estimate_mib "$strat" "$n")
     avail=$(budget_mib)

@@ -12,7 +12,7 @@ namespace ddc::test {
 constexpr double kRoundoff = 1e-12;
 
 /// Relative agreement required between runs that differ only in summation
-/// order (1 vs 2 ranks, different partitions), as the issue demands.
+/// order (1 vs 2 ranks, different partitions), as doc/verification.md requires.
 constexpr double kRankIndependence = 1e-10;
 
 /// Central finite differences with step h have truncation error O(h^2) and

@@ -405,7 +405,7 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
       for (size_t j = 0; j < subdomains_[i].elements.size(); ++j)
         sink_.where[subdomains_[i].elements[j]] = {static_cast<int>(i), static_cast<int>(j)};
       fs.push_back({subdomains_[i].id, subdomains_[i].dofs, subdomains_[i].primal, subdomains_[i].K, {}, model_->dim(),
-                    subdomains_[i].component});
+                    subdomains_[i].component, subdomains_[i].coordinates});
       if (model_->hasContact()) {
         // Contact rows may touch the DOFs of contact-surface nodes: the
         // Dirichlet preconditioner treats them as interface DOFs.
@@ -429,11 +429,11 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
       // The size of the coarse problem (doc/feti-dp.md "In 3-D": it grows
       // with the number of subdomain-edge ends a METIS partition makes).
       const long nodes = std::count(primal.begin(), primal.end(), char(1));
-      const GO coarse = GO(feti_->primalMap()->getGlobalNumElements()), averages = feti_->numPrimalAverages();
+      const GO coarse = GO(feti_->primalMap()->getGlobalNumElements()), edgeFace = feti_->numPrimalAverages();
       progress("FETI-DP: " + std::to_string(model_->partition().numSubdomains) + " subdomains, " +
                std::to_string(nodes) + " primal nodes, coarse problem of " + std::to_string(coarse) + " DOFs (" +
-               std::to_string(coarse - averages) + " at primal nodes, " + std::to_string(averages) +
-               " edge/face averages)");
+               std::to_string(coarse - edgeFace) + " at primal nodes, " + std::to_string(edgeFace) +
+               " edge/face constraints)");
     }
   } else {
     K_ = model_->createMatrix();

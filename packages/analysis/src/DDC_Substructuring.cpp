@@ -200,6 +200,7 @@ std::vector<SubdomainSystem> buildSubdomainSystems(const Model& model, const std
     for (size_t i = 0; i < sys.dofs.size(); ++i) local[sys.dofs[i]] = static_cast<int>(i);
     sys.primal.assign(sys.dofs.size(), 0);
     sys.component.assign(sys.dofs.size(), 0);
+    sys.coordinates.assign(sys.dofs.size() * size_t(mesh.dim()), 0.0);
     for (int e : sys.elements) {
       std::vector<int> l;
       for (int i = 0; i < mesh.elementNumNodes(e); ++i) {
@@ -209,7 +210,10 @@ std::vector<SubdomainSystem> buildSubdomainSystems(const Model& model, const std
           const auto it = local.find(g);
           l.push_back(it == local.end() ? -1 : it->second);
           if (it != local.end() && primalNode[n]) sys.primal[it->second] = 1;
-          if (it != local.end()) sys.component[it->second] = c;
+          if (it != local.end()) {
+            sys.component[it->second] = c;
+            for (int d = 0; d < mesh.dim(); ++d) sys.coordinates[size_t(it->second) * mesh.dim() + d] = mesh.coord(n)[d];
+          }
         }
       }
       sys.elementLocal.push_back(std::move(l));

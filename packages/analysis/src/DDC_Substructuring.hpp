@@ -47,6 +47,7 @@ struct SubdomainSystem {
   std::vector<GO> dofs;
   std::vector<char> primal;
   std::vector<int> component;  ///< per DOF: displacement component 0..dim-1
+  std::vector<double> coordinates;  ///< per DOF: dim coordinates of its node
   Teuchos::RCP<CrsMatrix> K;
   std::vector<int> elements;
   std::vector<std::vector<int>> elementLocal;

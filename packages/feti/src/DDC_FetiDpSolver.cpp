@@ -207,6 +207,7 @@ struct FetiDpSolver::Impl {
   bool stiffnessScaling = false;
   double singularityThreshold = 1e13;
   PrimalConstraints primalChoice = PrimalConstraints::VerticesEdgesAndFaces;
+  bool rotations = true;  // "Rotational Constraints"
   std::string belosType = "CG";
   double belosTol = 1e-10;
   int belosMaxIt = 500;
@@ -258,7 +259,8 @@ struct FetiDpSolver::Impl {
   std::string param(const std::string& name) const { return joinPath(path, name); }
 
   void buildTopology(std::vector<FetiSubdomain> local, RCP<const Map> owned);
-  void addAverages(const std::vector<std::vector<int>>& components, const std::vector<int>& dims);
+  void addAverages(const std::vector<std::vector<int>>& components, const std::vector<std::vector<double>>& coords,
+                   const std::vector<int>& dims);
   void buildConstraints();
   void finalizeLm();
   void applyMask(Vector& v) const;
@@ -346,6 +348,7 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
   std::ostringstream err;
   subs.resize(local.size());
   std::vector<std::vector<int>> components(local.size());
+  std::vector<std::vector<double>> coords(local.size());
   std::vector<int> dims(local.size());
   for (size_t ls = 0; ls < local.size() && err.str().empty(); ++ls) {
     FetiSubdomain& in = local[ls];
@@ -360,6 +363,7 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
     s.Kuser = Teuchos::null;
     s.cob = ChangeOfBasis();
     components[ls] = std::move(in.component);
+    coords[ls] = std::move(in.coordinates);
     dims[ls] = in.dim;
     if (s.primal.size() != s.dofs.size()) {
       err << "subdomain " << s.id << ": " << s.primal.size() << " primal flags for " << s.dofs.size() << " DOFs";
@@ -462,7 +466,7 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
     auto c = cOv.getData();
     for (size_t l = 0; l < ovMult.size(); ++l) ovMult[l] = static_cast<int>(std::lround(c[l]));
   }
-  addAverages(components, dims);
+  addAverages(components, coords, dims);
 
   // 4. Per-subdomain splits: remainder / primal, and for the Dirichlet
   //    preconditioner the remainder into dual interface (Delta: shared,
@@ -528,7 +532,8 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
 /// interface by the subdomains sharing each DOF (findPrimalAverages()), make
 /// the first DOF of each group primal and work on K^s in the basis where it
 /// holds the group's average (ChangeOfBasis).
-void FetiDpSolver::Impl::addAverages(const std::vector<std::vector<int>>& components, const std::vector<int>& dims) {
+void FetiDpSolver::Impl::addAverages(const std::vector<std::vector<int>>& components,
+                                     const std::vector<std::vector<double>>& coords, const std::vector<int>& dims) {
   nAverages = 0;
   if (primalChoice == PrimalConstraints::Vertices) return;
   const std::string choice = primalConstraintNames()[size_t(primalChoice)];
@@ -543,6 +548,11 @@ void FetiDpSolver::Impl::addAverages(const std::vector<std::vector<int>>& compon
             std::to_string(dims[ls]) + ") and one FetiSubdomain::component per DOF (got " +
             std::to_string(components[ls].size()) + " for " + std::to_string(subs[ls].dofs.size()) +
             " DOFs); or set it to Vertices";
+    else if (msg.empty() && rotations && coords[ls].size() != subs[ls].dofs.size() * size_t(dims[ls]))
+      msg = "FetiDpSolver::setTopology: subdomain " + std::to_string(subs[ls].id) + ": '" +
+            param("Rotational Constraints") + "' = true needs FetiSubdomain::coordinates (" +
+            std::to_string(dims[ls]) + " per DOF, got " + std::to_string(coords[ls].size()) + " for " +
+            std::to_string(subs[ls].dofs.size()) + " DOFs); or set it to false";
   }
   raiseCollectively<std::invalid_argument>(mpi, msg);
   int loc[2] = {dmin == INT_MAX ? INT_MIN : -dmin, dmax}, glob[2];
@@ -552,14 +562,17 @@ void FetiDpSolver::Impl::addAverages(const std::vector<std::vector<int>>& compon
     throw std::invalid_argument("FetiDpSolver::setTopology: the subdomains disagree on FetiSubdomain::dim (" +
                                 std::to_string(-glob[0]) + " and " + std::to_string(glob[1]) + ")");
   std::vector<AverageInput> in(subs.size());
-  for (size_t ls = 0; ls < subs.size(); ++ls) in[ls] = AverageInput{subs[ls].id, subs[ls].dofs, subs[ls].primal, components[ls]};
-  auto groups = findPrimalAverages(mpi, *ownedMap, in, glob[1], primalChoice);
+  for (size_t ls = 0; ls < subs.size(); ++ls)
+    in[ls] = AverageInput{subs[ls].id, subs[ls].dofs, subs[ls].primal, components[ls],
+                          rotations ? coords[ls] : std::vector<double>()};
+  const auto groups = findPrimalAverages(mpi, *ownedMap, in, glob[1], primalChoice, rotations);
   for (size_t ls = 0; ls < subs.size() && msg.empty(); ++ls) {
     Sub& s = subs[ls];
     if (groups[ls].empty()) continue;
-    for (const auto& g : groups[ls]) s.primal[g[0]] = 1;
     try {
-      s.cob = ChangeOfBasis(s.n, std::move(groups[ls]));
+      s.cob = ChangeOfBasis(s.n, groups[ls]);
+      for (LO k = 0; k < s.n; ++k)
+        if (s.cob.holdsConstraint(k)) s.primal[k] = 1;
       s.Kuser = s.K;
       s.K = s.cob.setPattern(*s.Kuser);
     } catch (const std::exception& e) {
@@ -700,7 +713,7 @@ void FetiDpSolver::Impl::buildCoarse() {
       for (const Sub& s : subs)
         for (LO k = 0; k < s.n; ++k) {
           if (s.primal[k]) p[s.ovLid[k]] = 1.0;
-          if (s.cob.isAverage(k)) a[s.ovLid[k]] = 1.0;
+          if (s.cob.holdsConstraint(k)) a[s.ovLid[k]] = 1.0;
         }
     }
     pOwned.doExport(pOv, *dofExport, Tpetra::ADD);
@@ -1203,6 +1216,11 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
             "the averages over the 3-D faces, DOFs shared by exactly 2 subdomains; in 2-D the same as Vertices "
             "and Edges). Averages enter by a change of basis (doc/feti-dp.md, 'Primal constraints').",
             enumValidator(primalConstraintNames(), "Primal Constraints"));
+    pl->set("Rotational Constraints", true,
+            "With edges / faces: besides the average of each displacement component, make the rigid rotations of "
+            "each edge / face primal (the rigid-body modes restricted to it, orthogonalised against the "
+            "translations; 1 per edge in 2-D, up to 3 per edge / face in 3-D). Needs the DOF coordinates "
+            "(FetiSubdomain::coordinates).");
     pl->set("Local Singularity Threshold", 1e13,
             "A subdomain's remainder stiffness K_rr whose 1-norm condition estimate (one inverse-iteration step "
             "with a pseudo-random vector) exceeds this is reported singular (insufficient primal DOFs); a direct "
@@ -1259,6 +1277,7 @@ FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramete
   m.stiffnessScaling = params.get<std::string>("Scaling") == "Stiffness";
   m.singularityThreshold = params.get<double>("Local Singularity Threshold");
   m.primalChoice = primalConstraintsFromName(params.get<std::string>("Primal Constraints"));
+  m.rotations = params.get<bool>("Rotational Constraints");
   Teuchos::ParameterList& belos = params.sublist("Belos");
   validateLevel(belos, valid->sublist("Belos"), joinPath(path, "Belos"));
   m.belosType = belos.get<std::string>("Solver Type");
@@ -1387,7 +1406,7 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
         s.cob.forceToNew(f);
         for (LO r = 0; r < s.nr; ++r) s.fr[r] = f[s.rDof[r]];
         for (LO p = 0; p < s.np; ++p)
-          if (s.cob.isAverage(s.pDof[p])) s.fp[p] = f[s.pDof[p]];
+          if (s.cob.holdsConstraint(s.pDof[p])) s.fp[p] = f[s.pDof[p]];
       } else {
         for (LO r = 0; r < s.nr; ++r) s.fr[r] = bo[s.ovLid[s.rDof[r]]] * s.invMult[s.rDof[r]];
       }
@@ -1487,7 +1506,7 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
       for (LO p = 0; p < s.np; ++p) us[s.pDof[p]] = s.up[p];
       s.cob.displacementToOld(us);
       for (LO k = 0; k < s.n; ++k)
-        if (s.rIdx[k] != kNone || s.cob.isAverage(k)) uo[s.ovLid[k]] += us[k] * s.invMult[k];
+        if (s.rIdx[k] != kNone || s.cob.holdsConstraint(k)) uo[s.ovLid[k]] += us[k] * s.invMult[k];
     }
   }
   u.putScalar(0.0);

@@ -64,6 +64,9 @@ struct FetiSubdomain {
   /// Per local DOF: the displacement component 0..dim-1 it belongs to
   /// (averages are taken per component). Needed like `dim`.
   std::vector<int> component;
+  /// dim values per local DOF: the coordinates of its node, for the
+  /// rotational edge / face constraints ("Rotational Constraints").
+  std::vector<double> coordinates;
 };
 
 /// One entry of an extra constraint row (FetiDpSolver::setConstraintRows()):
@@ -113,10 +116,11 @@ struct ConstraintEntry {
 /// constraints: vertices, edges, faces"): the caller's primal DOFs
 /// (vertices) and, unless "Vertices", the averages over the edges (and in
 /// 3-D faces) of the interface, one per displacement component, found by
-/// findPrimalAverages() from the DOF sharing alone. Each average becomes an
-/// explicit DOF by a change of basis (ChangeOfBasis, Klawonn & Widlund
-/// 2006): K^s -> T^T K^s T; b, u and the extra rows are transformed here,
-/// so the caller sees the original DOFs only.
+/// findPrimalAverages() from the DOF sharing alone, and (with coordinates)
+/// the rigid rotations of each edge / face. Each such constraint value
+/// becomes an explicit DOF by a change of basis (ChangeOfBasis, Klawonn &
+/// Widlund 2006): K^s -> T^T K^s T; b, u and the extra rows are transformed
+/// here, so the caller sees the original DOFs only.
 ///
 /// Floating subdomains are not treated with a kernel: the caller must make
 /// every K_rr^s nonsingular by choosing enough primal DOFs (doc/feti-dp.md,
@@ -148,6 +152,8 @@ class FetiDpSolver {
   ///  - "Primal Constraints": "Vertices" | "Vertices and Edges" |
   ///    "Vertices, Edges and Faces" (default; in 2-D there are no faces, so
   ///    it equals "Vertices and Edges");
+  ///  - "Rotational Constraints": bool (true): the rotations of each edge /
+  ///    face too (needs FetiSubdomain::coordinates);
   ///  - "Local Singularity Threshold": double (1e13);
   ///  - "Belos": {"Solver Type": "CG" | "GMRES" | "MINRES", "Convergence
   ///    Tolerance" (1e-10), "Maximum Iterations" (500), "Verbosity" (0),
@@ -185,7 +191,8 @@ class FetiDpSolver {
   ///         inconsistent: sizes, DOFs not in ownedMap, duplicate DOFs or
   ///         subdomain ids, a DOF primal in one subdomain but not in
   ///         another, K not fill-complete / not n x n, missing or
-  ///         inconsistent dim / component with edge or face averages.
+  ///         inconsistent dim / component / coordinates with edge or face
+  ///         constraints.
   void setTopology(std::vector<FetiSubdomain> local, Teuchos::RCP<const Map> ownedMap);
 
   /// Collective. After the caller updated the K values: factorise every
@@ -250,8 +257,9 @@ class FetiDpSolver {
   Teuchos::RCP<const Map> primalMap() const;
   /// Global number of dual DOFs: non-primal DOFs shared by >= 2 subdomains.
   GO numDualDofs() const;
-  /// Global number of edge/face averages among the primal DOFs (0 for
-  /// "Vertices"); primalMap() holds vertices and averages.
+  /// Global number of edge/face constraints (averages and rotations) among
+  /// the primal DOFs (0 for "Vertices"); primalMap() holds vertex DOFs and
+  /// these.
   GO numPrimalAverages() const;
   /// Apply B to a field given per subdomain copy: field[i] has one value per
   /// local DOF of the i-th subdomain passed to setTopology() on this rank.

@@ -4,6 +4,7 @@
 
 #include <Tpetra_CrsGraph.hpp>
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <stdexcept>
 
@@ -43,9 +44,9 @@ PrimalConstraints primalConstraintsFromName(const std::string& name) {
   return static_cast<PrimalConstraints>(it - n.begin());
 }
 
-std::vector<std::vector<std::vector<LO>>> findPrimalAverages(MPI_Comm comm, const Map& ownedMap,
-                                                             const std::vector<AverageInput>& subs, int dim,
-                                                             PrimalConstraints choice) {
+std::vector<std::vector<PrimalGroup>> findPrimalAverages(MPI_Comm comm, const Map& ownedMap,
+                                                         const std::vector<AverageInput>& subs, int dim,
+                                                         PrimalConstraints choice, bool rotations) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -59,6 +60,12 @@ std::vector<std::vector<std::vector<LO>>> findPrimalAverages(MPI_Comm comm, cons
             std::to_string(s.component.size()) + " components (one per DOF expected)";
       break;
     }
+    if (rotations && s.coordinates.size() != s.dofs.size() * size_t(std::max(dim, 0))) {
+      msg = "findPrimalAverages: subdomain " + std::to_string(s.id) + ": rotational constraints need " +
+            std::to_string(dim) + " coordinates per DOF, got " + std::to_string(s.coordinates.size()) + " for " +
+            std::to_string(s.dofs.size()) + " DOFs";
+      break;
+    }
     for (int c : s.component)
       if (c < 0 || c >= dim) {
         msg = "findPrimalAverages: subdomain " + std::to_string(s.id) + ": DOF component " + std::to_string(c) +
@@ -68,7 +75,7 @@ std::vector<std::vector<std::vector<LO>>> findPrimalAverages(MPI_Comm comm, cons
   }
   raiseCollectively<std::invalid_argument>(comm, msg);
 
-  std::vector<std::vector<std::vector<LO>>> out(subs.size());
+  std::vector<std::vector<PrimalGroup>> out(subs.size());
   if (choice == PrimalConstraints::Vertices) return out;
 
   // 1. Send every non-primal DOF to its owner, which learns who shares it.
@@ -111,13 +118,13 @@ std::vector<std::vector<std::vector<LO>>> findPrimalAverages(MPI_Comm comm, cons
   for (size_t ls = 0; ls < subs.size(); ++ls) sets[ls].resize(subs[ls].dofs.size());
   for (const auto& m : members) sets[m.localSub][m.dof].push_back(m.subId);
 
-  // 3. Group each subdomain's DOFs by (sharing set, component). Every
-  //    subdomain of a set has all DOFs of that set, so all of them form the
-  //    same groups.
+  // 3. Group each subdomain's DOFs by sharing set. Every subdomain of a set
+  //    has all DOFs of that set, so all of them form the same groups (and,
+  //    from the same data in the same order, the same rows).
   const bool faces = choice == PrimalConstraints::VerticesEdgesAndFaces;
   for (size_t ls = 0; ls < subs.size(); ++ls) {
     const auto& s = subs[ls];
-    std::map<std::pair<std::vector<int>, int>, std::vector<LO>> groups;
+    std::map<std::vector<int>, std::vector<LO>> groups;
     for (LO k = 0; k < LO(s.dofs.size()); ++k) {
       auto& set = sets[ls][k];
       if (set.size() < 2) continue;
@@ -127,15 +134,64 @@ std::vector<std::vector<std::vector<LO>>> findPrimalAverages(MPI_Comm comm, cons
       // three or more = edge.
       const bool isEdge = dim == 2 ? set.size() == 2 : set.size() >= 3;
       const bool isFace = dim == 3 && set.size() == 2;
-      if (isEdge || (isFace && faces)) groups[{set, s.component[k]}].push_back(k);
+      if (isEdge || (isFace && faces)) groups[set].push_back(k);
     }
     for (auto& kv : groups) {
-      auto& g = kv.second;
-      std::sort(g.begin(), g.end(), [&](LO a, LO b) { return s.dofs[a] < s.dofs[b]; });
+      PrimalGroup g;
+      g.dofs = std::move(kv.second);
+      std::sort(g.dofs.begin(), g.dofs.end(), [&](LO a, LO b) { return s.dofs[a] < s.dofs[b]; });
+      const size_t m = g.dofs.size();
+      // Translations: the average of each component present.
+      for (int c = 0; c < dim; ++c) {
+        std::vector<double> row(m, 0.0);
+        double count = 0.0;
+        for (size_t i = 0; i < m; ++i) count += s.component[g.dofs[i]] == c ? 1.0 : 0.0;
+        if (count == 0.0) continue;
+        for (size_t i = 0; i < m; ++i) row[i] = s.component[g.dofs[i]] == c ? 1.0 / count : 0.0;
+        g.rows.push_back(std::move(row));
+      }
+      if (rotations) {
+        // Rigid rotations w x (x - x_c) restricted to the group, made
+        // orthogonal to the rows so far (modified Gram-Schmidt); one that
+        // (nearly) vanishes there is dropped.
+        std::vector<double> xc(dim, 0.0);
+        for (size_t i = 0; i < m; ++i)
+          for (int d = 0; d < dim; ++d) xc[d] += s.coordinates[size_t(g.dofs[i]) * dim + d] / double(m);
+        const int nRot = dim == 2 ? 1 : 3;
+        for (int r = 0; r < nRot; ++r) {
+          std::vector<double> row(m, 0.0);
+          for (size_t i = 0; i < m; ++i) {
+            const double* x = &s.coordinates[size_t(g.dofs[i]) * dim];
+            const int c = s.component[g.dofs[i]];
+            // 2-D (and rotation about z): (-(y - y_c), x - x_c, 0); about x:
+            // (0, -(z - z_c), y - y_c); about y: (z - z_c, 0, -(x - x_c)).
+            const int axis = dim == 2 ? 2 : r;
+            const int a = (axis + 1) % 3, b = (axis + 2) % 3;  // the plane of the rotation
+            if (c == a) row[i] = -(x[b] - xc[b]);
+            if (c == b) row[i] = x[a] - xc[a];
+          }
+          double n0 = 0.0;
+          for (double v : row) n0 += v * v;
+          n0 = std::sqrt(n0);
+          if (n0 == 0.0) continue;
+          for (size_t q = 0; q < g.rows.size(); ++q) {
+            double dot = 0.0, nn = 0.0;
+            for (size_t i = 0; i < m; ++i) dot += row[i] * g.rows[q][i], nn += g.rows[q][i] * g.rows[q][i];
+            for (size_t i = 0; i < m; ++i) row[i] -= dot / nn * g.rows[q][i];
+          }
+          double n1 = 0.0;
+          for (double v : row) n1 += v * v;
+          n1 = std::sqrt(n1);
+          if (n1 <= 1e-8 * n0) continue;  // vanishes on this edge / face
+          for (double& v : row) v /= n1;
+          g.rows.push_back(std::move(row));
+        }
+      }
       out[ls].push_back(std::move(g));
     }
-    std::sort(out[ls].begin(), out[ls].end(),
-              [&](const std::vector<LO>& a, const std::vector<LO>& b) { return s.dofs[a[0]] < s.dofs[b[0]]; });
+    std::sort(out[ls].begin(), out[ls].end(), [&](const PrimalGroup& a, const PrimalGroup& b) {
+      return s.dofs[a.dofs[0]] < s.dofs[b.dofs[0]];
+    });
   }
   return out;
 }
@@ -144,76 +200,193 @@ std::vector<std::vector<std::vector<LO>>> findPrimalAverages(MPI_Comm comm, cons
 // ChangeOfBasis
 // ---------------------------------------------------------------------------
 
-ChangeOfBasis::ChangeOfBasis(LO n, std::vector<std::vector<LO>> groups)
-    : n_(n), groups_(std::move(groups)), head_(size_t(n), -1), group_(size_t(n), -1) {
-  for (size_t g = 0; g < groups_.size(); ++g)
-    for (LO d : groups_[g]) {
-      if (d < 0 || d >= n || group_[d] >= 0)
+ChangeOfBasis::ChangeOfBasis(LO n, const std::vector<PrimalGroup>& groups)
+    : n_(n), group_(size_t(n), -1), rep_(size_t(n), -1) {
+  std::vector<char> seen(size_t(n), 0);
+  for (const PrimalGroup& in : groups) {
+    const size_t m = in.dofs.size(), k = in.rows.size();
+    for (LO d : in.dofs) {
+      if (d < 0 || d >= n || seen[d])
         throw std::invalid_argument("ChangeOfBasis: DOF " + std::to_string(d) + " out of range or in two groups");
-      group_[d] = LO(g);
-      head_[d] = groups_[g][0];
+      seen[d] = 1;
     }
+    if (k == 0) continue;
+    if (k > m) throw std::invalid_argument("ChangeOfBasis: more constraints than DOFs in a group");
+    for (const auto& row : in.rows)
+      if (row.size() != m) throw std::invalid_argument("ChangeOfBasis: a constraint row of the wrong length");
+    // Representatives: Gaussian elimination on the rows with the largest
+    // remaining entry as pivot (column pivoting).
+    std::vector<std::vector<double>> A = in.rows;
+    std::vector<char> used(m, 0);
+    std::vector<size_t> pivots;
+    double scale = 0.0;
+    for (const auto& row : in.rows)
+      for (double v : row) scale = std::max(scale, std::abs(v));
+    for (size_t j = 0; j < k; ++j) {
+      size_t p = m;
+      double best = 0.0;
+      for (size_t c = 0; c < m; ++c)
+        if (!used[c] && std::abs(A[j][c]) > best) best = std::abs(A[j][c]), p = c;
+      if (p == m || best <= 1e-12 * scale)
+        throw std::invalid_argument("ChangeOfBasis: linearly dependent constraint rows in a group");
+      used[p] = 1;
+      pivots.push_back(p);
+      for (size_t j2 = j + 1; j2 < k; ++j2) {
+        const double f = A[j2][p] / A[j][p];
+        for (size_t c = 0; c < m; ++c) A[j2][c] -= f * A[j][c];
+      }
+    }
+    Group g;
+    std::vector<size_t> oIdx;
+    for (size_t p : pivots) g.R.push_back(in.dofs[p]);
+    for (size_t c = 0; c < m; ++c)
+      if (!used[c]) g.O.push_back(in.dofs[c]), oIdx.push_back(c);
+    // C in (R, O) column order; C_R^{-1} by Gauss-Jordan with partial pivoting.
+    const size_t o = g.O.size();
+    g.C.assign(k * m, 0.0);
+    std::vector<double> CR(k * k), inv(k * k, 0.0);
+    for (size_t j = 0; j < k; ++j) {
+      for (size_t l = 0; l < k; ++l) g.C[j * m + l] = CR[j * k + l] = in.rows[j][pivots[l]];
+      for (size_t q = 0; q < o; ++q) g.C[j * m + k + q] = in.rows[j][oIdx[q]];
+      inv[j * k + j] = 1.0;
+    }
+    for (size_t c = 0; c < k; ++c) {
+      size_t p = c;
+      for (size_t r = c + 1; r < k; ++r)
+        if (std::abs(CR[r * k + c]) > std::abs(CR[p * k + c])) p = r;
+      if (CR[p * k + c] == 0.0) throw std::invalid_argument("ChangeOfBasis: singular C_R");
+      for (size_t l = 0; l < k; ++l) std::swap(CR[c * k + l], CR[p * k + l]), std::swap(inv[c * k + l], inv[p * k + l]);
+      const double d = CR[c * k + c];
+      for (size_t l = 0; l < k; ++l) CR[c * k + l] /= d, inv[c * k + l] /= d;
+      for (size_t r = 0; r < k; ++r) {
+        if (r == c) continue;
+        const double f = CR[r * k + c];
+        for (size_t l = 0; l < k; ++l) CR[r * k + l] -= f * CR[c * k + l], inv[r * k + l] -= f * inv[c * k + l];
+      }
+    }
+    g.Minv = inv;
+    g.W.assign(k * o, 0.0);
+    for (size_t j = 0; j < k; ++j)
+      for (size_t q = 0; q < o; ++q) {
+        double v = 0.0;
+        for (size_t l = 0; l < k; ++l) v += inv[j * k + l] * g.C[l * m + k + q];
+        g.W[j * o + q] = v;
+      }
+    for (size_t l = 0; l < k; ++l) rep_[g.R[l]] = LO(l);
+    for (LO d : in.dofs) group_[d] = LO(groups_.size());
+    groups_.push_back(std::move(g));
+  }
+}
+
+LO ChangeOfBasis::numConstraints() const {
+  LO k = 0;
+  for (const auto& g : groups_) k += LO(g.k());
+  return k;
 }
 
 void ChangeOfBasis::tRow(LO i, std::vector<std::pair<LO, double>>& out) const {
   out.clear();
-  if (group_[i] < 0) {
+  if (rep_.empty() || rep_[i] < 0) {  // u_i = û_i (outside the groups, or in O)
     out.emplace_back(i, 1.0);
     return;
   }
-  const auto& g = groups_[group_[i]];
-  out.emplace_back(g[0], 1.0);
-  if (i == g[0]) {
-    for (size_t k = 1; k < g.size(); ++k) out.emplace_back(g[k], -1.0);
-  } else {
-    out.emplace_back(i, 1.0);
-  }
+  // u_R = C_R^{-1} û_R - W û_O
+  const Group& g = groups_[group_[i]];
+  const size_t j = size_t(rep_[i]), k = g.k(), o = g.O.size();
+  for (size_t l = 0; l < k; ++l)
+    if (g.Minv[j * k + l] != 0.0) out.emplace_back(g.R[l], g.Minv[j * k + l]);
+  for (size_t q = 0; q < o; ++q)
+    if (g.W[j * o + q] != 0.0) out.emplace_back(g.O[q], -g.W[j * o + q]);
 }
 
-Teuchos::RCP<CrsMatrix> ChangeOfBasis::setPattern(const CrsMatrix& K) {
+void ChangeOfBasis::tCol(LO a, std::vector<std::pair<LO, double>>& out) const {
+  out.clear();
+  if (group_.empty() || group_[a] < 0) {
+    out.emplace_back(a, 1.0);
+    return;
+  }
+  const Group& g = groups_[group_[a]];
+  const size_t k = g.k(), o = g.O.size();
+  if (rep_[a] >= 0) {  // a = R_l: T(R_j, a) = C_R^{-1}(j, l)
+    const size_t l = size_t(rep_[a]);
+    for (size_t j = 0; j < k; ++j)
+      if (g.Minv[j * k + l] != 0.0) out.emplace_back(g.R[j], g.Minv[j * k + l]);
+    return;
+  }
+  // a = O_q: T(a, a) = 1, T(R_j, a) = -W(j, q)
+  const size_t q = size_t(std::find(g.O.begin(), g.O.end(), a) - g.O.begin());
+  out.emplace_back(a, 1.0);
+  for (size_t j = 0; j < k; ++j)
+    if (g.W[j * o + q] != 0.0) out.emplace_back(g.R[j], -g.W[j * o + q]);
+}
+
+/// K T and then T^T (K T), row by row with a dense accumulator: the cost per
+/// group is about |G|^2 k, and nothing of size |G|^2 k^2 is stored.
+void ChangeOfBasis::multiply(const CrsMatrix& K, bool values) {
   const auto& rowMap = *K.getRowMap();
   const auto& colMap = *K.getColMap();
   CrsMatrix::local_inds_host_view_type inds;
   CrsMatrix::values_host_view_type vals;
-  kOffsets_.assign(size_t(n_) + 1, 0);
-  hatCols_.assign(size_t(n_), {});
-  struct Contribution {
-    size_t src;
-    LO a, b;
-    double coef;
-  };
-  std::vector<Contribution> contrib;
-  std::vector<std::pair<LO, double>> ti, tj;
+  std::vector<double> acc(size_t(n_), 0.0);
+  std::vector<char> mark(size_t(n_), 0);
+  std::vector<LO> touched;
+  std::vector<std::pair<LO, double>> t;
+  // KT rows (in local DOF order of K's rows).
+  std::vector<std::vector<std::pair<LO, double>>> kt(static_cast<size_t>(n_));
   for (LO lr = 0; lr < n_; ++lr) {
     const LO i = LO(rowMap.getGlobalElement(lr));
     K.getLocalRowView(lr, inds, vals);
-    kOffsets_[lr + 1] = kOffsets_[lr] + inds.extent(0);
-    tRow(i, ti);
+    touched.clear();
     for (size_t e = 0; e < inds.extent(0); ++e) {
       const LO j = LO(colMap.getGlobalElement(inds(e)));
-      tRow(j, tj);
-      for (const auto& [a, ca] : ti)
-        for (const auto& [b, cb] : tj) {
-          contrib.push_back(Contribution{kOffsets_[lr] + e, a, b, ca * cb});
-          hatCols_[a].push_back(b);
-        }
+      tRow(j, t);
+      for (const auto& [b, tb] : t) {
+        if (!mark[b]) mark[b] = 1, touched.push_back(b);
+        acc[b] += vals(e) * tb;
+      }
     }
+    auto& row = kt[i];
+    row.reserve(touched.size());
+    for (LO b : touched) row.emplace_back(b, acc[b]), acc[b] = 0.0, mark[b] = 0;
   }
+  // K̂ row a = sum_i T(i, a) KT(i, :).
+  if (!values) hatCols_.assign(size_t(n_), {});
+  std::vector<double> h;
+  if (values) h.assign(hatOffsets_.back(), 0.0);
+  for (LO a = 0; a < n_; ++a) {
+    tCol(a, t);
+    touched.clear();
+    for (const auto& [i, ti] : t)
+      for (const auto& [b, v] : kt[i]) {
+        if (!mark[b]) mark[b] = 1, touched.push_back(b);
+        acc[b] += ti * v;
+      }
+    if (!values) {
+      hatCols_[a] = touched;
+      std::sort(hatCols_[a].begin(), hatCols_[a].end());
+    } else {
+      for (size_t q = 0; q < hatCols_[a].size(); ++q) h[hatOffsets_[a] + q] = acc[hatCols_[a][q]];
+    }
+    for (LO b : touched) acc[b] = 0.0, mark[b] = 0;
+  }
+  if (!values) return;
+  hat_->resumeFill();
+  for (LO a = 0; a < n_; ++a)
+    hat_->replaceLocalValues(a, Teuchos::ArrayView<const LO>(hatCols_[a]),
+                             Teuchos::ArrayView<const double>(h.data() + hatOffsets_[a], hatCols_[a].size()));
+  hat_->fillComplete(hat_->getDomainMap(), hat_->getRangeMap());
+}
+
+Teuchos::RCP<CrsMatrix> ChangeOfBasis::setPattern(const CrsMatrix& K) {
+  // The pattern from a symbolic pass (structural zeros kept: the values of
+  // K may change, its pattern may not).
+  multiply(K, false);
+  kNnz_ = K.getNodeNumEntries();
   hatOffsets_.assign(size_t(n_) + 1, 0);
   Teuchos::Array<size_t> nnz(n_);
   for (LO a = 0; a < n_; ++a) {
-    auto& c = hatCols_[a];
-    std::sort(c.begin(), c.end());
-    c.erase(std::unique(c.begin(), c.end()), c.end());
-    nnz[a] = c.size();
-    hatOffsets_[a + 1] = hatOffsets_[a] + c.size();
-  }
-  plan_.clear();
-  plan_.reserve(contrib.size());
-  for (const auto& c : contrib) {
-    const auto& cols = hatCols_[c.a];
-    const size_t pos = size_t(std::lower_bound(cols.begin(), cols.end(), c.b) - cols.begin());
-    plan_.push_back(PlanEntry{c.src, hatOffsets_[c.a] + pos, c.coef});
+    nnz[a] = hatCols_[a].size();
+    hatOffsets_[a + 1] = hatOffsets_[a] + hatCols_[a].size();
   }
   auto map = Teuchos::rcp(new Map(static_cast<Tpetra::global_size_t>(n_), 0, K.getComm()));
   auto graph = Teuchos::rcp(new CrsGraph(map, map, nnz()));
@@ -226,59 +399,61 @@ Teuchos::RCP<CrsMatrix> ChangeOfBasis::setPattern(const CrsMatrix& K) {
 }
 
 void ChangeOfBasis::update(const CrsMatrix& K) {
-  CrsMatrix::local_inds_host_view_type inds;
-  CrsMatrix::values_host_view_type vals;
-  std::vector<double> k(kOffsets_.back());
-  for (LO lr = 0; lr < n_; ++lr) {
-    K.getLocalRowView(lr, inds, vals);
-    if (kOffsets_[lr] + inds.extent(0) != kOffsets_[lr + 1])
-      throw std::logic_error("the sparsity pattern of K changed since setTopology(); call setTopology() again");
-    for (size_t e = 0; e < vals.extent(0); ++e) k[kOffsets_[lr] + e] = vals(e);
-  }
-  std::vector<double> h(hatOffsets_.back(), 0.0);
-  for (const auto& p : plan_) h[p.dst] += p.coef * k[p.src];
-  hat_->resumeFill();
-  for (LO a = 0; a < n_; ++a)
-    hat_->replaceLocalValues(a, Teuchos::ArrayView<const LO>(hatCols_[a]),
-                             Teuchos::ArrayView<const double>(h.data() + hatOffsets_[a], hatCols_[a].size()));
-  hat_->fillComplete(hat_->getDomainMap(), hat_->getRangeMap());
+  if (K.getNodeNumEntries() != kNnz_)
+    throw std::logic_error("the sparsity pattern of K changed since setTopology(); call setTopology() again");
+  multiply(K, true);
 }
 
 void ChangeOfBasis::forceToNew(std::vector<double>& f) const {
+  // f̂_R = C_R^{-T} f_R,  f̂_O = f_O - W^T f_R
+  std::vector<double> fr;
   for (const auto& g : groups_) {
-    const double f0 = f[g[0]];
-    double sum = f0;
-    for (size_t k = 1; k < g.size(); ++k) {
-      sum += f[g[k]];
-      f[g[k]] -= f0;
+    const size_t k = g.k(), o = g.O.size();
+    fr.resize(k);
+    for (size_t j = 0; j < k; ++j) fr[j] = f[g.R[j]];
+    for (size_t l = 0; l < k; ++l) {
+      double v = 0.0;
+      for (size_t j = 0; j < k; ++j) v += g.Minv[j * k + l] * fr[j];
+      f[g.R[l]] = v;
     }
-    f[g[0]] = sum;
+    for (size_t q = 0; q < o; ++q) {
+      double v = 0.0;
+      for (size_t j = 0; j < k; ++j) v += g.W[j * o + q] * fr[j];
+      f[g.O[q]] -= v;
+    }
   }
 }
 
 void ChangeOfBasis::displacementToOld(std::vector<double>& u) const {
+  // u_R = C_R^{-1} û_R - W û_O
+  std::vector<double> ur;
   for (const auto& g : groups_) {
-    const double avg = u[g[0]];
-    double dev = 0.0;
-    for (size_t k = 1; k < g.size(); ++k) {
-      dev += u[g[k]];
-      u[g[k]] += avg;
+    const size_t k = g.k(), o = g.O.size();
+    ur.assign(k, 0.0);
+    for (size_t j = 0; j < k; ++j) {
+      for (size_t l = 0; l < k; ++l) ur[j] += g.Minv[j * k + l] * u[g.R[l]];
+      for (size_t q = 0; q < o; ++q) ur[j] -= g.W[j * o + q] * u[g.O[q]];
     }
-    u[g[0]] = avg - dev;
+    for (size_t j = 0; j < k; ++j) u[g.R[j]] = ur[j];
   }
 }
 
 void ChangeOfBasis::displacementToNew(std::vector<double>& u) const {
+  // û_R = C u_G
+  std::vector<double> ur;
   for (const auto& g : groups_) {
-    double sum = 0.0;
-    for (LO d : g) sum += u[d];
-    const double avg = sum / double(g.size());
-    for (size_t k = 1; k < g.size(); ++k) u[g[k]] -= avg;
-    u[g[0]] = avg;
+    const size_t k = g.k(), o = g.O.size(), m = k + o;
+    ur.assign(k, 0.0);
+    for (size_t j = 0; j < k; ++j) {
+      for (size_t l = 0; l < k; ++l) ur[j] += g.C[j * m + l] * u[g.R[l]];
+      for (size_t q = 0; q < o; ++q) ur[j] += g.C[j * m + k + q] * u[g.O[q]];
+    }
+    for (size_t j = 0; j < k; ++j) u[g.R[j]] = ur[j];
   }
 }
 
 std::vector<std::pair<LO, double>> ChangeOfBasis::rowToNew(const std::vector<std::pair<LO, double>>& row) const {
+  // (T^T c)_a = sum_i T(i, a) c_i
   std::map<LO, double> acc;
   std::vector<std::pair<LO, double>> t;
   for (const auto& [i, c] : row) {

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <functional>
 
+#include "DDC_TestErrors.hpp"
 #include "DDC_Amesos2Solver.hpp"
 #include "DDC_DirectSolver.hpp"
 #include "DDC_Error.hpp"
@@ -147,17 +148,7 @@ double solveResidual(DirectSolver& s, const RCP<const CrsMatrix>& A, size_t k = 
   return relResidual(*A, x, b);
 }
 
-/// Expect `f` to throw E whose message contains every string in `needles`.
-template <class E, class Fn>
-void expectThrowWith(Fn f, std::initializer_list<std::string> needles) {
-  try {
-    f();
-    ADD_FAILURE() << "nothing thrown";
-  } catch (const E& e) {
-    const std::string msg = e.what();
-    for (const auto& n : needles) EXPECT_NE(msg.find(n), std::string::npos) << "'" << n << "' not in: " << msg;
-  }
-}
+using ddc::test::expectThrowWith;
 
 // ---- every back end --------------------------------------------------------
 

@@ -22,26 +22,11 @@
 #include "DDC_DirectSolver.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_FetiDpSolver.hpp"
+#include "DDC_FetiPrimalAverages.hpp"
+#include "DDC_FetiTolerances.hpp"
+#include "DDC_TestErrors.hpp"
 #include "DDC_TestTolerances.hpp"
 
-namespace ddc::test {
-/// FETI-DP vs direct solve of the assembled matrix, relative 2-norm of the
-/// difference (the issue's requirement). With the Belos tolerance
-/// kTightBelos = 1e-12 on ||d - F lambda|| / ||d|| and cond(F) = O(10..100)
-/// for these Dirichlet-preconditioned problems, lambda and hence u are
-/// accurate to ~1e-10; 1e-8 leaves a factor 100. A wrong B sign, a missing
-/// coarse contribution or a wrong RHS split gives O(1) errors.
-constexpr double kFetiVsDirect = 1e-8;
-/// Belos tolerance for the accuracy tests (the issue's choice).
-constexpr double kTightBelos = 1e-12;
-/// Belos tolerance of the iteration-count tests (the issue's choice).
-constexpr double kCountBelos = 1e-8;
-/// FETI-DP theory (kappa <= C (1 + log H/h)^2) bounds the dual iterations
-/// independently of the number of subdomains; the issue asks for <= 30 CG
-/// iterations (Dirichlet) at H/h = 16 and < 20 % growth from 4x4 to 8x8.
-constexpr int kMaxDirichletIterations = 30;
-constexpr double kMaxGrowth = 0.20;
-}  // namespace ddc::test
 
 namespace {
 
@@ -62,18 +47,7 @@ RCP<const Comm> selfComm() { return rcp(new Teuchos::MpiComm<int>(MPI_COMM_SELF)
 int worldRank() { return worldComm()->getRank(); }
 int worldSize() { return worldComm()->getSize(); }
 
-template <class E, class Fn>
-void expectThrowWith(Fn f, std::initializer_list<std::string> needles) {
-  try {
-    f();
-    ADD_FAILURE() << "expected an exception";
-  } catch (const E& e) {
-    const std::string what = e.what();
-    for (const auto& n : needles) EXPECT_NE(what.find(n), std::string::npos) << "'" << n << "' not in: " << what;
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "wrong exception type: " << e.what();
-  }
-}
+using ddc::test::expectThrowWith;
 
 // ---- element matrices ------------------------------------------------------
 
@@ -186,6 +160,8 @@ class Problem {
               sd.dofs.push_back(dof(i, j, c));
               sd.primal.push_back(isPrimalNode(i, j) ? 1 : 0);
               sd.component.push_back(c);
+              sd.coordinates.push_back(double(i));
+              sd.coordinates.push_back(double(j));
             }
           }
         const LO n = LO(sd.dofs.size());
@@ -355,6 +331,25 @@ TEST_P(FetiDpAccuracy, MatchesDirectSolve) {
   if (L.Sx * L.Sy == 1) EXPECT_EQ(r.info.iterations, 0);  // no interface
 }
 
+/// The same layouts with edge constraints (doc/feti-dp.md "Primal
+/// constraints"): averages only, and averages with the edge rotations.
+TEST_P(FetiDpAccuracy, MatchesDirectSolveWithEdgeConstraints) {
+  const Layout L = GetParam();
+  Spec s;
+  s.Sx = L.Sx, s.Sy = L.Sy, s.dpn = L.dpn, s.H = 4, s.blockwise = L.blockwise;
+  for (bool rotations : {false, true}) {
+    auto p = fetiParams("Dirichlet", "Multiplicity", "CG", ddc::test::kTightBelos, "Vertices and Edges");
+    p.set("Rotational Constraints", rotations);
+    const FetiRun r = runFeti(s, p);
+    char name[128];
+    std::snprintf(name, sizeof name, "%s %dx%d H/h=4 %s edges%s", L.dpn == 1 ? "Laplace" : "elasticity", L.Sx, L.Sy,
+                  L.blockwise ? "blockwise" : "round-robin", rotations ? " + rotations" : "");
+    report(name, r);
+    EXPECT_LT(r.error, ddc::test::kFetiVsDirect) << name;
+    EXPECT_LE(r.info.relativeResidual, ddc::test::kTightBelos) << name;
+  }
+}
+
 // 1x1: no interface, no LM (must work); 2x1, 3x3, 4x4 contain floating
 // subdomains (a > 0: not touching the fixed left edge); 3x3 and 4x4 put
 // several subdomains on each rank.
@@ -439,11 +434,12 @@ TEST(FetiDp, RedundantMultipliersAtANonPrimalCrossPoint) {
 }
 
 TEST(FetiDp, BAnnihilatesContinuousFields) {
+  for (const std::string primal : {"Vertices", "Vertices and Edges"})
   for (int dpn : {1, 2}) {
     Spec s;
     s.Sx = 3, s.Sy = 3, s.H = 3, s.dpn = dpn;
     Problem pb(s);
-    auto params = fetiParams();
+    auto params = fetiParams("Dirichlet", "Multiplicity", "CG", ddc::test::kTightBelos, primal);
     FetiDpSolver feti(worldComm(), params, "FETI-DP");
     auto subs = pb.subdomains();
     std::vector<std::vector<double>> cont, jump;
@@ -537,10 +533,10 @@ std::vector<ExtraRow> extraRows() {
   };
 }
 
-TEST(FetiDp, ExtraRowsMatchTheSaddlePointSolve) {
-  // K u + B_c^T mu = b, B_c u = c on the active rows, mu = 0 on the
-  // inactive one: FETI-DP with setConstraintRows()/setConstraintState()
-  // against MUMPS on the assembled saddle-point matrix.
+/// K u + B_c^T mu = b, B_c u = c on the active rows, mu = 0 on the
+/// inactive one: FETI-DP with setConstraintRows()/setConstraintState()
+/// against MUMPS on the assembled saddle-point matrix.
+void checkExtraRows(const std::string& primal) {
   Spec s;
   s.Sx = 2, s.Sy = 2, s.H = 4, s.dpn = 2;
   Problem pb(s);
@@ -577,7 +573,7 @@ TEST(FetiDp, ExtraRowsMatchTheSaddlePointSolve) {
     subs[ls].constrainable.assign(subs[ls].dofs.size(), 0);
     for (const auto& e : entries[ls]) subs[ls].constrainable[e.dof] = 1;
   }
-  auto params = fetiParams();
+  auto params = fetiParams("Dirichlet", "Multiplicity", "CG", ddc::test::kTightBelos, primal);
   FetiDpSolver feti(worldComm(), params, "FETI-DP");
   feti.setTopology(subs, pb.ownedMap());
   feti.setConstraintRows(rowMap, entries);
@@ -670,8 +666,8 @@ TEST(FetiDp, ExtraRowsMatchTheSaddlePointSolve) {
   double g[4] = {du, un, dm, mn}, G[4];
   MPI_Allreduce(g, G, 4, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
   if (me == 0)
-    std::printf("[ feti-dp  ] extra rows: it %d, max |u - u_ref| / max|u_ref| %.2e, multipliers %.2e\n",
-                info.iterations, G[0] / G[1], G[2] / G[3]);
+    std::printf("[ feti-dp  ] extra rows (%s): it %d, max |u - u_ref| / max|u_ref| %.2e, multipliers %.2e\n",
+                primal.c_str(), info.iterations, G[0] / G[1], G[2] / G[3]);
   EXPECT_GT(G[3], 0.0) << "the reference multipliers vanish: the rows do nothing";
   EXPECT_LT(G[0] / G[1], ddc::test::kFetiVsDirect);
   EXPECT_LT(G[2] / G[3], ddc::test::kFetiVsDirect);
@@ -686,6 +682,12 @@ TEST(FetiDp, ExtraRowsMatchTheSaddlePointSolve) {
     EXPECT_NEAR(v, rows[r].c, 1e-10) << "reference row " << r;
   }
 }
+
+TEST(FetiDp, ExtraRowsMatchTheSaddlePointSolve) { checkExtraRows("Vertices"); }
+
+/// Contact rows keep working with edge constraints: rows on edge DOFs are
+/// transformed with the change of basis (ChangeOfBasis::rowToNew).
+TEST(FetiDp, ExtraRowsMatchTheSaddlePointSolveWithEdgeConstraints) { checkExtraRows("Vertices and Edges"); }
 
 TEST(FetiDp, ExtraRowErrorsAreCollective) {
   Spec s;
@@ -710,6 +712,134 @@ TEST(FetiDp, ExtraRowErrorsAreCollective) {
   const size_t owned = rowMap->getNodeNumElements();
   expectThrowWith<ddc::SolverError>([&] { feti.setConstraintState(std::vector<char>(owned, 1), std::vector<double>(owned, 1.0)); },
                   {"constraint row 0", "no entry"});
+}
+
+// ---- edge constraints: change of basis and counts -------------------------------
+
+/// ChangeOfBasis against dense algebra on a 7-DOF example with two groups:
+/// T^{-1} T = I, K̂ = T^T K T, f̂ = T^T f, rows c^T T, and û_R = C u.
+TEST(FetiDpChangeOfBasis, MatchesDenseAlgebra) {
+  const LO n = 7;
+  std::vector<ddc::PrimalGroup> groups(2);
+  groups[0].dofs = {1, 3, 4, 6};
+  groups[0].rows = {{0.25, 0.25, 0.25, 0.25}, {-0.6, -0.2, 0.2, 0.6}};
+  groups[1].dofs = {2, 5};
+  groups[1].rows = {{0.5, 0.5}};
+  ddc::ChangeOfBasis T(n, groups);
+  EXPECT_EQ(T.numConstraints(), 3);
+  // K: a dense SPD matrix (all couplings present).
+  std::vector<double> K(n * n);
+  for (LO i = 0; i < n; ++i)
+    for (LO j = 0; j < n; ++j) K[i * n + j] = (i == j ? 10.0 : 0.0) + 1.0 / (1.0 + i + j);
+  auto map = rcp(new Map(n, 0, selfComm()));
+  auto Km = rcp(new CrsMatrix(map, n));
+  for (LO i = 0; i < n; ++i) {
+    std::vector<GO> cols(n);
+    for (LO j = 0; j < n; ++j) cols[j] = j;
+    Km->insertGlobalValues(i, Teuchos::ArrayView<const GO>(cols), Teuchos::ArrayView<const double>(&K[i * n], n));
+  }
+  Km->fillComplete();
+  // Dense T from its columns T e_a.
+  std::vector<double> Td(n * n);
+  for (LO a = 0; a < n; ++a) {
+    std::vector<double> e(n, 0.0);
+    e[a] = 1.0;
+    T.displacementToOld(e);
+    for (LO i = 0; i < n; ++i) Td[i * n + a] = e[i];
+  }
+  // T^{-1} T = I.
+  std::vector<double> x(n);
+  for (LO i = 0; i < n; ++i) x[i] = std::sin(1.0 + i);
+  std::vector<double> y(x);
+  T.displacementToOld(y);
+  T.displacementToNew(y);
+  for (LO i = 0; i < n; ++i) EXPECT_NEAR(y[i], x[i], ddc::test::kRoundoff);
+  // û_R holds the constraint values c_j^T u.
+  std::vector<double> u(x), uh(x);
+  T.displacementToNew(uh);
+  std::vector<double> values;
+  for (const auto& g : groups)
+    for (const auto& row : g.rows) {
+      double v = 0.0;
+      for (size_t q = 0; q < g.dofs.size(); ++q) v += row[q] * u[g.dofs[q]];
+      values.push_back(v);
+    }
+  std::vector<double> held;
+  for (LO i = 0; i < n; ++i)
+    if (T.holdsConstraint(i)) held.push_back(uh[i]);
+  ASSERT_EQ(held.size(), 3u);
+  for (double v : values)
+    EXPECT_TRUE(std::any_of(held.begin(), held.end(), [&](double h) { return std::abs(h - v) < 1e-12; }))
+        << "constraint value " << v << " not held by any representative DOF";
+  // K̂ = T^T K T.
+  auto Khat = T.setPattern(*Km);
+  CrsMatrix::local_inds_host_view_type inds;
+  CrsMatrix::values_host_view_type vals;
+  std::vector<double> KhatD(n * n, 0.0);
+  for (LO r = 0; r < n; ++r) {
+    Khat->getLocalRowView(r, inds, vals);
+    for (size_t e = 0; e < inds.extent(0); ++e) KhatD[r * n + Khat->getColMap()->getGlobalElement(inds(e))] += vals(e);
+  }
+  for (LO a = 0; a < n; ++a)
+    for (LO b = 0; b < n; ++b) {
+      double v = 0.0;
+      for (LO i = 0; i < n; ++i)
+        for (LO j = 0; j < n; ++j) v += Td[i * n + a] * K[i * n + j] * Td[j * n + b];
+      EXPECT_NEAR(KhatD[a * n + b], v, 1e-12 * 20.0) << "K^(" << a << ", " << b << ")";
+    }
+  // f̂ = T^T f and rows c^T T.
+  std::vector<double> f(x);
+  T.forceToNew(f);
+  for (LO a = 0; a < n; ++a) {
+    double v = 0.0;
+    for (LO i = 0; i < n; ++i) v += Td[i * n + a] * x[i];
+    EXPECT_NEAR(f[a], v, ddc::test::kRoundoff);
+  }
+  const auto row = T.rowToNew({{3, 2.0}, {0, -1.0}});
+  std::vector<double> rowD(n, 0.0);
+  for (const auto& [a, v] : row) rowD[a] = v;
+  for (LO a = 0; a < n; ++a) EXPECT_NEAR(rowD[a], 2.0 * Td[3 * n + a] - Td[0 * n + a], ddc::test::kRoundoff);
+  // Dependent rows are rejected.
+  std::vector<ddc::PrimalGroup> bad(1);
+  bad[0].dofs = {0, 1};
+  bad[0].rows = {{0.5, 0.5}, {1.0, 1.0}};
+  expectThrowWith<std::invalid_argument>([&] { ddc::ChangeOfBasis(n, bad); }, {"linearly dependent"});
+}
+
+TEST(FetiDp, EdgeConstraintCounts) {
+  // 3x3 elasticity, H = 4: 12 subdomain-subdomain edges, each with the two
+  // component averages and (with coordinates) one rotation; 10 vertex nodes.
+  Spec s;
+  s.Sx = 3, s.Sy = 3, s.H = 4, s.dpn = 2;
+  Problem pb(s);
+  for (bool rotations : {false, true}) {
+    auto params = fetiParams("Dirichlet", "Multiplicity", "CG", ddc::test::kTightBelos, "Vertices and Edges");
+    params.set("Rotational Constraints", rotations);
+    FetiDpSolver feti(worldComm(), params, "FETI-DP");
+    feti.setTopology(pb.subdomains(), pb.ownedMap());
+    const GO perEdge = rotations ? 3 : 2;
+    EXPECT_EQ(feti.numPrimalAverages(), 12 * perEdge);
+    EXPECT_EQ(feti.primalMap()->getGlobalNumElements(), size_t(10 * 2 + 12 * perEdge));
+  }
+  // "Vertices, Edges and Faces" is the same in 2-D.
+  auto params = fetiParams("Dirichlet", "Multiplicity", "CG", ddc::test::kTightBelos, "Vertices, Edges and Faces");
+  FetiDpSolver feti(worldComm(), params, "FETI-DP");
+  feti.setTopology(pb.subdomains(), pb.ownedMap());
+  EXPECT_EQ(feti.numPrimalAverages(), 12 * 3);
+}
+
+TEST(FetiDp, EdgeRotationsFixAFloatingSubdomain) {
+  // Elasticity 2x1 without any vertex: the edge's two averages leave
+  // subdomain 1 its rotation (singular), its rotation constraint removes it.
+  Spec s;
+  s.Sx = 2, s.Sy = 1, s.H = 4, s.dpn = 2, s.primal = false;
+  auto p = fetiParams("Dirichlet", "Multiplicity", "CG", ddc::test::kTightBelos, "Vertices and Edges");
+  p.set("Rotational Constraints", false);
+  expectThrowWith<ddc::SolverError>([&] { runFeti(s, p, false); }, {"subdomain 1", "singular"});
+  p.set("Rotational Constraints", true);
+  const FetiRun r = runFeti(s, p);
+  report("elasticity 2x1 no vertices, edge + rotation", r);
+  EXPECT_LT(r.error, ddc::test::kFetiVsDirect);
 }
 
 // ---- iteration counts --------------------------------------------------------
@@ -804,6 +934,8 @@ TEST(FetiDpErrors, MisspeltParametersNameThePath) {
   FetiDpSolver f(worldComm(), p, "FETI-DP");
   EXPECT_EQ(p.get<std::string>("Preconditioner"), "Dirichlet");
   EXPECT_EQ(p.get<std::string>("Scaling"), "Multiplicity");
+  EXPECT_EQ(p.get<std::string>("Primal Constraints"), "Vertices, Edges and Faces");
+  EXPECT_TRUE(p.get<bool>("Rotational Constraints"));
   EXPECT_EQ(p.sublist("Belos").get<std::string>("Solver Type"), "CG");
   EXPECT_EQ(p.sublist("Belos").get<int>("Maximum Iterations"), 500);
   EXPECT_EQ(p.sublist("Local Solver").get<std::string>("Type"), "MUMPS");
@@ -811,6 +943,35 @@ TEST(FetiDpErrors, MisspeltParametersNameThePath) {
   for (auto it = FetiDpSolver::getValidParameters()->begin(); it != FetiDpSolver::getValidParameters()->end(); ++it)
     EXPECT_FALSE(FetiDpSolver::getValidParameters()->entry(it).docString().empty())
         << FetiDpSolver::getValidParameters()->name(it);
+}
+
+TEST(FetiDpErrors, PrimalConstraintInputIsChecked) {
+  {
+    auto p = fetiParams("Dirichlet", "Multiplicity", "CG", ddc::test::kTightBelos, "Edges");
+    expectThrowWith<ddc::InputError>([&] { FetiDpSolver f(worldComm(), p, "Solver/FETI-DP"); },
+                                     {"Solver/FETI-DP/Primal Constraints", "Edges", "Vertices and Edges"});
+  }
+  Spec s;
+  s.Sx = 2, s.Sy = 2, s.H = 2, s.dpn = 2;
+  Problem pb(s);
+  {
+    // No dimension / components: the solver cannot tell edges from faces.
+    auto subs = pb.subdomains();
+    for (auto& sd : subs) sd.dim = 0, sd.component.clear();
+    auto p = fetiParams("Dirichlet", "Multiplicity", "CG", ddc::test::kTightBelos, "Vertices and Edges");
+    FetiDpSolver feti(worldComm(), p, "Solver/FETI-DP");
+    expectThrowWith<std::invalid_argument>([&] { feti.setTopology(subs, pb.ownedMap()); },
+                                           {"Solver/FETI-DP/Primal Constraints", "FetiSubdomain::dim", "Vertices"});
+  }
+  {
+    // Rotations without coordinates.
+    auto subs = pb.subdomains();
+    for (auto& sd : subs) sd.coordinates.clear();
+    auto p = fetiParams("Dirichlet", "Multiplicity", "CG", ddc::test::kTightBelos, "Vertices and Edges");
+    FetiDpSolver feti(worldComm(), p, "Solver/FETI-DP");
+    expectThrowWith<std::invalid_argument>([&] { feti.setTopology(subs, pb.ownedMap()); },
+                                           {"Solver/FETI-DP/Rotational Constraints", "FetiSubdomain::coordinates"});
+  }
 }
 
 TEST(FetiDpErrors, SingularSubdomainNamesIt) {

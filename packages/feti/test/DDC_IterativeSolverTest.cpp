@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "DDC_TestErrors.hpp"
 #include "DDC_DirectSolver.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_IterativeSolvers.hpp"
@@ -390,16 +391,7 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
-template <class E, class Fn>
-void expectThrowWith(Fn f, std::initializer_list<std::string> needles) {
-  try {
-    f();
-    ADD_FAILURE() << "nothing thrown";
-  } catch (const E& e) {
-    const std::string msg = e.what();
-    for (const auto& n : needles) EXPECT_NE(msg.find(n), std::string::npos) << "'" << n << "' not in: " << msg;
-  }
-}
+using ddc::test::expectThrowWith;
 
 /// A solver of `type` through the factory, `opts` going into its sublist.
 std::unique_ptr<DirectSolver> make(const std::string& type, const Teuchos::ParameterList& opts = {}) {
