@@ -2,7 +2,8 @@
 # DDContact set-up on Debian 12: installs what is missing (apt), configures
 # and builds, then runs the main example or the test suite.
 #
-#   bash cmake/setup.sh example   # build + two-half-rings example on 2 MPI ranks
+#   bash cmake/setup.sh example   # build + the two half-rings on 2 MPI ranks: the paper's
+#                                 # method and the conventional monolithic reference
 #   bash cmake/setup.sh test      # build + the whole ctest suite
 #
 # Environment: BUILD_DIR (default: build), JOBS (default: nproc).
@@ -47,9 +48,7 @@ export OPENBLAS_NUM_THREADS=1
 # --- 3. run ------------------------------------------------------------------
 case "$mode" in
   example)
-    out=ddcontact-out/two_half_rings
-    mpirun -np 2 "$BUILD_DIR/src/ddcontact" examples/two_half_rings.xml --output-dir "$out"
-    echo "== results: $out/history.csv, $out/vtk/solution.pvd (open in ParaView)"
+    bash examples/two_half_rings.sh "$BUILD_DIR" ddcontact-out/two_half_rings
     ;;
   test)
     ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS"

@@ -15,6 +15,7 @@ mkdir -p "$out"
 for n in 20 100; do
   start=$(date +%s.%N)
   mpirun -np 2 "$B/src/ddcontact" examples/two_half_rings.xml --output-dir "$out/nts$n" \
+    --set "Contact/Formulation=Node-To-Segment" --set "Solver/Strategy=Monolithic" \
     --set "Load Stepping/Number of Steps=$n" --set "Output/VTK=false" > "$out/nts$n.log" 2>&1 || { cat "$out/nts$n.log"; exit 1; }
   end=$(date +%s.%N)
   printf "monolithic NTS, %3d steps, 2 ranks: %.2f s wall (history.csv wall_seconds of the last step: %s)\n" \

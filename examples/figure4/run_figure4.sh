@@ -93,8 +93,8 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_
 
 mkdir -p "$out/runs" "$out/logs"
 # The runs: label, steps, formulation, strategy.
-decomposed_partition=(--set "Partition/Method=$partition")
-[[ -n $subdomains ]] && decomposed_partition+=(--set "Partition/Number of Subdomains=$subdomains")
+# The deck's own partition (METIS, 4 subdomains) is replaced, count included.
+decomposed_partition=(--set "Partition/Method=$partition" --set "Partition/Number of Subdomains=${subdomains:-0}")
 run() {  # run LABEL STEPS FORMULATION STRATEGY [extra ddcontact args...]
   local label=$1 steps=$2 formulation=$3 strat=$4
   shift 4
