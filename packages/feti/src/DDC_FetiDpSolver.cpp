@@ -213,6 +213,7 @@ struct FetiDpSolver::Impl {
   int belosMaxIt = 500;
   int belosVerbosity = 0;
   int belosOutputFrequency = -1;
+  Teuchos::ParameterList belosExtra;  // other Belos parameters, passed through
   Teuchos::ParameterList localSolverParams, coarseSolverParams;
   DirectSolverFactory factory = DirectSolverFactory::withBuiltins();
 
@@ -1245,7 +1246,10 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
     belos.set("Output Frequency", -1, "Print the status test every this many iterations (-1: only at the end).",
               Teuchos::rcp(new NumberValidator<int>(NumberValidator<int>::Bound{1, true}, std::nullopt, {-1})));
     // sublist(name, false, doc) keeps the doc string (set(name, list, doc) drops it).
-    pl->sublist("Belos", false, "Dual iterations on F lambda = d (passed to Belos::SolverFactory).")
+    pl->sublist("Belos", false,
+                "Dual iterations on F lambda = d (passed to Belos::SolverFactory). Besides the options below, any "
+                "parameter of the chosen Belos solver (e.g. 'Num Blocks' or 'Orthogonalization' for GMRES) is "
+                "accepted with the type Belos gives it and passed through.")
         .setParameters(belos);
     pl->sublist("Local Solver", false,
                 "Direct solver {Type, ...} for the subdomain matrices K_rr and K_II (on MPI_COMM_SELF).")
@@ -1262,8 +1266,13 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
 
 FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::ParameterList& params,
                            const std::string& path)
+    : FetiDpSolver(std::move(comm), params, path, DirectSolverFactory::withBuiltins()) {}
+
+FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::ParameterList& params,
+                           const std::string& path, DirectSolverFactory solvers)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
+  m.factory = std::move(solvers);
   if (comm.is_null()) throw std::invalid_argument("FetiDpSolver: null communicator");
   m.comm = comm;
   m.mpi = rawComm(comm);
@@ -1278,8 +1287,40 @@ FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramete
   m.singularityThreshold = params.get<double>("Local Singularity Threshold");
   m.primalChoice = primalConstraintsFromName(params.get<std::string>("Primal Constraints"));
   m.rotations = params.get<bool>("Rotational Constraints");
+  // Belos: the entries documented here are validated with their ranges;
+  // any other entry must be a parameter of the chosen Belos solver (its
+  // getValidParameters(), same type) and is passed through to it.
   Teuchos::ParameterList& belos = params.sublist("Belos");
-  validateLevel(belos, valid->sublist("Belos"), joinPath(path, "Belos"));
+  {
+    const Teuchos::ParameterList& validBelos = valid->sublist("Belos");
+    const std::string where = joinPath(path, "Belos");
+    Teuchos::ParameterList ours("Belos");
+    m.belosExtra = Teuchos::ParameterList("Belos");
+    for (auto it = belos.begin(); it != belos.end(); ++it)
+      (validBelos.isParameter(belos.name(it)) ? ours : m.belosExtra).setEntry(belos.name(it), belos.entry(it));
+    validateLevel(ours, validBelos, where);
+    belos.setParameters(ours);  // defaults filled in
+    const std::string type = ours.get<std::string>("Solver Type");
+    const auto belosValid =
+        Belos::SolverFactory<Scalar, MultiVector, Operator>().create(type, Teuchos::parameterList())->getValidParameters();
+    std::vector<std::string> names;
+    for (auto it = validBelos.begin(); it != validBelos.end(); ++it) names.push_back(validBelos.name(it));
+    for (auto it = belosValid->begin(); it != belosValid->end(); ++it)
+      if (!validBelos.isParameter(belosValid->name(it))) names.push_back(belosValid->name(it));
+    for (auto it = m.belosExtra.begin(); it != m.belosExtra.end(); ++it) {
+      const std::string& name = m.belosExtra.name(it);
+      const Teuchos::ParameterEntry& e = m.belosExtra.entry(it);
+      if (!belosValid->isParameter(name))
+        DDC_THROW(InputError, "parameter '" << joinPath(where, name) << "' is neither a FETI-DP Belos option nor a "
+                                            << "parameter of Belos' " << type << " solver; valid names: "
+                                            << quotedNames(names));
+      const Teuchos::ParameterEntry& v = belosValid->getEntry(name);
+      if (e.isList() != v.isList() || (!e.isList() && e.getAny(false).type() != v.getAny(false).type()))
+        DDC_THROW(InputError, "parameter '" << joinPath(where, name) << "' must be of type "
+                                            << v.getAny(false).typeName() << " (Belos' " << type << " solver), got "
+                                            << e.getAny(false).typeName());
+    }
+  }
   m.belosType = belos.get<std::string>("Solver Type");
   m.belosTol = belos.get<double>("Convergence Tolerance");
   m.belosMaxIt = belos.get<int>("Maximum Iterations");
@@ -1445,6 +1486,7 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
     bp->set("Maximum Iterations", m.belosMaxIt);
     bp->set("Verbosity", m.belosVerbosity);
     bp->set("Output Frequency", m.belosOutputFrequency);
+    bp->setParameters(m.belosExtra);
     auto solver = factory.create(m.belosType, bp);
     auto problem = rcp(new Belos::LinearProblem<Scalar, MultiVector, Operator>(m.fOp, lambda, d));
     if (!m.mOp.is_null()) problem->setLeftPrec(m.mOp);

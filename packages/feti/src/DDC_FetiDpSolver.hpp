@@ -157,7 +157,8 @@ class FetiDpSolver {
   ///  - "Local Singularity Threshold": double (1e13);
   ///  - "Belos": {"Solver Type": "CG" | "GMRES" | "MINRES", "Convergence
   ///    Tolerance" (1e-10), "Maximum Iterations" (500), "Verbosity" (0),
-  ///    "Output Frequency" (-1)};
+  ///    "Output Frequency" (-1)}, and any other parameter of the chosen
+  ///    Belos solver (its getValidParameters(), same type), passed through;
   ///  - "Local Solver", "Coarse Solver": DirectSolverFactory {Type, ...}
   ///    sublists, Type "MUMPS" by default.
   static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
@@ -171,6 +172,15 @@ class FetiDpSolver {
   ///         unknown "Belos/Solver Type").
   FetiDpSolver(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::ParameterList& params,
                const std::string& path);
+  /// As above, with the back ends of "Local Solver" and "Coarse Solver"
+  /// taken from `solvers` instead of DirectSolverFactory::withBuiltins(): a
+  /// host adds its own sparse direct solver with DirectSolverFactory::add()
+  /// (as Belos::SolverFactory::addFactory does for Krylov solvers) and names
+  /// it in "Local Solver/Type" or "Coarse Solver/Type". Its sublist is
+  /// validated against the factory's entry. The local solvers must be exact:
+  /// FETI-DP's operator F is only as accurate as K_rr^{-1}.
+  FetiDpSolver(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::ParameterList& params,
+               const std::string& path, DirectSolverFactory solvers);
   ~FetiDpSolver();
   FetiDpSolver(const FetiDpSolver&) = delete;
   FetiDpSolver& operator=(const FetiDpSolver&) = delete;

@@ -714,6 +714,63 @@ TEST(FetiDp, ExtraRowErrorsAreCollective) {
                   {"constraint row 0", "no entry"});
 }
 
+// ---- a host-registered local solver --------------------------------------------
+
+/// A host's own back end: MUMPS behind a wrapper that counts factorisations.
+class CountingSolver : public ddc::DirectSolver {
+ public:
+  CountingSolver(std::unique_ptr<ddc::DirectSolver> inner, int* count) : inner_(std::move(inner)), count_(count) {}
+  void symbolic(const RCP<const CrsMatrix>& A) override { inner_->symbolic(A); }
+  void numeric() override {
+    ++*count_;
+    inner_->numeric();
+  }
+  void solve(const MultiVector& b, MultiVector& x) override { inner_->solve(b, x); }
+  std::string name() const override { return "Counting " + inner_->name(); }
+
+ private:
+  std::unique_ptr<ddc::DirectSolver> inner_;
+  int* count_;
+};
+
+TEST(FetiDp, HostRegisteredLocalSolverIsUsed) {
+  // DirectSolverFactory::add() + the factory argument of FetiDpSolver: the
+  // subdomain matrices (K_rr and, for the Dirichlet preconditioner, K_II of
+  // every subdomain) are factorised by the host's back end.
+  int numerics = 0;
+  auto solvers = ddc::DirectSolverFactory::withBuiltins();
+  ddc::DirectSolverFactory::Entry counting;
+  counting.create = [&numerics](const Teuchos::ParameterList&) -> std::unique_ptr<ddc::DirectSolver> {
+    Teuchos::ParameterList p;
+    p.set("Type", std::string("MUMPS"));
+    return std::make_unique<CountingSolver>(ddc::DirectSolverFactory::withBuiltins().create(p, "inner"), &numerics);
+  };
+  counting.validParameters = rcp(new Teuchos::ParameterList("Counting"));
+  counting.description = "MUMPS counting its factorisations (a test back end)";
+  solvers.add("Counting", counting);
+
+  Spec s;
+  s.Sx = 3, s.Sy = 3, s.H = 4, s.dpn = 2;
+  Problem pb(s);
+  auto params = fetiParams();
+  params.sublist("Local Solver").set("Type", std::string("Counting"));
+  FetiDpSolver feti(worldComm(), params, "FETI-DP", solvers);
+  const auto subs = pb.subdomains();
+  const int nLocal = int(subs.size());
+  feti.setTopology(subs, pb.ownedMap());
+  feti.numeric();
+  EXPECT_EQ(numerics, 2 * nLocal) << "one K_rr and one K_II factorisation per local subdomain";
+  auto b = pb.load();
+  Vector u(pb.ownedMap());
+  feti.solve(*b, u);
+  EXPECT_LT(relDiff(u, *directSolve(pb, *b)), ddc::test::kFetiVsDirect);
+  // The built-in factory does not know it: an InputError naming the path.
+  auto unknown = fetiParams();
+  unknown.sublist("Local Solver").set("Type", std::string("Counting"));
+  expectThrowWith<ddc::InputError>([&] { FetiDpSolver f(worldComm(), unknown, "Solver/FETI-DP"); },
+                                   {"Solver/FETI-DP/Local Solver/Type", "Counting"});
+}
+
 // ---- edge constraints: change of basis and counts -------------------------------
 
 /// ChangeOfBasis against dense algebra on a 7-DOF example with two groups:
@@ -971,6 +1028,34 @@ TEST(FetiDpErrors, PrimalConstraintInputIsChecked) {
     FetiDpSolver feti(worldComm(), p, "Solver/FETI-DP");
     expectThrowWith<std::invalid_argument>([&] { feti.setTopology(subs, pb.ownedMap()); },
                                            {"Solver/FETI-DP/Rotational Constraints", "FetiSubdomain::coordinates"});
+  }
+}
+
+TEST(FetiDp, OtherBelosParametersArePassedThrough) {
+  Spec s;
+  s.Sx = 3, s.Sy = 3, s.dpn = 2, s.H = 4;
+  auto p = fetiParams("Dirichlet", "Multiplicity", "GMRES");
+  p.sublist("Belos").set("Num Blocks", 7);
+  p.sublist("Belos").set("Orthogonalization", std::string("ICGS"));
+  const FetiRun r = runFeti(s, p);
+  report("elasticity 3x3 GMRES(7), ICGS", r);
+  EXPECT_LT(r.error, ddc::test::kFetiVsDirect);
+  EXPECT_EQ(p.sublist("Belos").get<int>("Num Blocks"), 7);
+}
+
+TEST(FetiDpErrors, BelosParametersAreValidatedAgainstTheChosenSolver) {
+  {
+    // CG has no restart length.
+    auto p = fetiParams("Dirichlet", "Multiplicity", "CG");
+    p.sublist("Belos").set("Num Blocks", 7);
+    expectThrowWith<ddc::InputError>([&] { FetiDpSolver f(worldComm(), p, "Solver/FETI-DP"); },
+                                     {"Solver/FETI-DP/Belos/Num Blocks", "CG", "Convergence Tolerance"});
+  }
+  {
+    auto p = fetiParams("Dirichlet", "Multiplicity", "GMRES");
+    p.sublist("Belos").set("Num Blocks", std::string("7"));
+    expectThrowWith<ddc::InputError>([&] { FetiDpSolver f(worldComm(), p, "Solver/FETI-DP"); },
+                                     {"Solver/FETI-DP/Belos/Num Blocks", "must be of type int"});
   }
 }
 
