@@ -429,7 +429,7 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
       // The size of the coarse problem (doc/feti-dp.md "In 3-D": it grows
       // with the number of subdomain-edge ends a METIS partition makes).
       const long nodes = std::count(primal.begin(), primal.end(), char(1));
-      const GO coarse = GO(feti_->primalMap()->getGlobalNumElements()), edgeFace = feti_->numPrimalAverages();
+      const GO coarse = GO(feti_->primalMap()->getGlobalNumElements()), edgeFace = feti_->numEdgeFaceConstraints();
       progress("FETI-DP: " + std::to_string(model_->partition().numSubdomains) + " subdomains, " +
                std::to_string(nodes) + " primal nodes, coarse problem of " + std::to_string(coarse) + " DOFs (" +
                std::to_string(coarse - edgeFace) + " at primal nodes, " + std::to_string(edgeFace) +

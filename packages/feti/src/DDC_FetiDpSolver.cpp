@@ -36,7 +36,7 @@
 #include <type_traits>
 
 #include "DDC_Error.hpp"
-#include "DDC_FetiPrimalAverages.hpp"
+#include "DDC_FetiEdgeFaceConstraints.hpp"
 #include "DDC_MpiRecords.hpp"
 #include "DDC_Parameters.hpp"
 
@@ -158,9 +158,9 @@ struct FetiDpSolver::Impl {
     int id = -1;
     std::vector<GO> dofs;
     std::vector<char> primal;
-    RCP<CrsMatrix> K;      // the matrix FETI-DP works on: K^s, or T^T K^s T with averages
+    RCP<CrsMatrix> K;      // the matrix FETI-DP works on: K^s, or T^T K^s T with edge/face constraints
     RCP<CrsMatrix> Kuser;  // the caller's K^s when K is transformed
-    ChangeOfBasis cob;     // edge/face averages (identity without)
+    ChangeOfBasis cob;     // edge/face constraints (identity without)
     LO n = 0;
 
     // splits (per local DOF -> block index, or kNone)
@@ -240,8 +240,8 @@ struct FetiDpSolver::Impl {
   RCP<Import> coarseImport;
   RCP<Export> coarseExport;
   std::vector<LO> coarseOwnedLid;  // coarse LID -> ownedMap LID
-  std::vector<char> coarseIsAverage;  // coarse LID -> an edge/face average (not a vertex DOF)
-  GO nDual = 0, nCoarse = 0, nAverages = 0;
+  std::vector<char> coarseIsEdgeFace;  // coarse LID -> an edge/face constraint value (not a vertex DOF)
+  GO nDual = 0, nCoarse = 0, nEdgeFace = 0;
   RCP<CrsMatrix> coarse;
   std::unique_ptr<DirectSolver> coarseSolver;
 
@@ -260,7 +260,7 @@ struct FetiDpSolver::Impl {
   std::string param(const std::string& name) const { return joinPath(path, name); }
 
   void buildTopology(std::vector<FetiSubdomain> local, RCP<const Map> owned);
-  void addAverages(const std::vector<std::vector<int>>& components, const std::vector<std::vector<double>>& coords,
+  void addEdgeFaceConstraints(const std::vector<std::vector<int>>& components, const std::vector<std::vector<double>>& coords,
                    const std::vector<int>& dims);
   void buildConstraints();
   void finalizeLm();
@@ -467,7 +467,7 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
     auto c = cOv.getData();
     for (size_t l = 0; l < ovMult.size(); ++l) ovMult[l] = static_cast<int>(std::lround(c[l]));
   }
-  addAverages(components, coords, dims);
+  addEdgeFaceConstraints(components, coords, dims);
 
   // 4. Per-subdomain splits: remainder / primal, and for the Dirichlet
   //    preconditioner the remainder into dual interface (Delta: shared,
@@ -529,13 +529,13 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
   haveTopology = true;
 }
 
-/// Edge/face averages ("Primal Constraints"; doc/feti-dp.md): classify the
-/// interface by the subdomains sharing each DOF (findPrimalAverages()), make
+/// Edge/face constraints ("Primal Constraints"; doc/feti-dp.md): classify the
+/// interface by the subdomains sharing each DOF (findEdgeFaceConstraints()), make
 /// the first DOF of each group primal and work on K^s in the basis where it
 /// holds the group's average (ChangeOfBasis).
-void FetiDpSolver::Impl::addAverages(const std::vector<std::vector<int>>& components,
+void FetiDpSolver::Impl::addEdgeFaceConstraints(const std::vector<std::vector<int>>& components,
                                      const std::vector<std::vector<double>>& coords, const std::vector<int>& dims) {
-  nAverages = 0;
+  nEdgeFace = 0;
   if (primalChoice == PrimalConstraints::Vertices) return;
   const std::string choice = primalConstraintNames()[size_t(primalChoice)];
   std::string msg;
@@ -562,11 +562,11 @@ void FetiDpSolver::Impl::addAverages(const std::vector<std::vector<int>>& compon
   if (-glob[0] != glob[1])
     throw std::invalid_argument("FetiDpSolver::setTopology: the subdomains disagree on FetiSubdomain::dim (" +
                                 std::to_string(-glob[0]) + " and " + std::to_string(glob[1]) + ")");
-  std::vector<AverageInput> in(subs.size());
+  std::vector<EdgeFaceInput> in(subs.size());
   for (size_t ls = 0; ls < subs.size(); ++ls)
-    in[ls] = AverageInput{subs[ls].id, subs[ls].dofs, subs[ls].primal, components[ls],
+    in[ls] = EdgeFaceInput{subs[ls].id, subs[ls].dofs, subs[ls].primal, components[ls],
                           rotations ? coords[ls] : std::vector<double>()};
-  const auto groups = findPrimalAverages(mpi, *ownedMap, in, glob[1], primalChoice, rotations);
+  const auto groups = findEdgeFaceConstraints(mpi, *ownedMap, in, glob[1], primalChoice, rotations);
   for (size_t ls = 0; ls < subs.size() && msg.empty(); ++ls) {
     Sub& s = subs[ls];
     if (groups[ls].empty()) continue;
@@ -721,16 +721,16 @@ void FetiDpSolver::Impl::buildCoarse() {
     aOwned.doExport(aOv, *dofExport, Tpetra::ADD);
     auto p = pOwned.getData();
     auto a = aOwned.getData();
-    coarseIsAverage.clear();
-    GO myAverages = 0;
+    coarseIsEdgeFace.clear();
+    GO myEdgeFace = 0;
     for (LO l = 0; l < LO(p.size()); ++l)
       if (p[l] > 0.0) {
         ownedPrimal.push_back(ownedMap->getGlobalElement(l));
         coarseOwnedLid.push_back(l);
-        coarseIsAverage.push_back(a[l] > 0.0);
-        myAverages += a[l] > 0.0;
+        coarseIsEdgeFace.push_back(a[l] > 0.0);
+        myEdgeFace += a[l] > 0.0;
       }
-    nAverages = sumAll(mpi, myAverages);
+    nEdgeFace = sumAll(mpi, myEdgeFace);
   }
   primalMap = makeMap(ownedPrimal, ownedMap->getIndexBase(), comm);
   coarseMap = rcp(new Map(kInvalidSize, ownedPrimal.size(), 0, comm));
@@ -1431,7 +1431,7 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
 
   // f~: interior DOFs as is, dual copies b_j / m_j, primal DOFs assembled
   // directly into the coarse right-hand side.
-  // With averages, f^s = T^T (b_j / m_j): the average DOFs get their
+  // With edge/face constraints, f^s = T^T (b_j / m_j): the constraint DOFs get their
   // share in f_Pi^s, summed over the subdomains by the coarse assembly.
   m.dofOvWork->doImport(b, *m.dofImport, Tpetra::INSERT);
   std::vector<std::vector<double>> frBase(m.subs.size()), fpBase(m.subs.size());
@@ -1460,7 +1460,7 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
     auto bv = b.getData();
     auto f = fPi.getDataNonConst();
     for (size_t k = 0; k < m.coarseOwnedLid.size(); ++k)
-      f[k] = m.coarseIsAverage[k] ? 0.0 : bv[m.coarseOwnedLid[k]];
+      f[k] = m.coarseIsEdgeFace[k] ? 0.0 : bv[m.coarseOwnedLid[k]];
   }
 
   // d = B K~^{-1} f~ (the compatibility constraints have zero right-hand side)
@@ -1532,8 +1532,9 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
   m.applyKtildeInv(&fPi);
 
   // Assemble u: copies of dual DOFs averaged (weights 1/m_j), vertex DOFs
-  // from the coarse solution. With averages, u^s = T û^s first; the DOF
-  // that held a group's average is then averaged like a dual DOF.
+  // from the coarse solution. With edge/face constraints, u^s = T û^s
+  // first; the DOFs that held constraint values are then averaged like dual
+  // DOFs.
   m.dofOvWork->putScalar(0.0);
   {
     auto uo = m.dofOvWork->getDataNonConst();
@@ -1557,7 +1558,7 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
     auto uv = u.getDataNonConst();
     auto c = m.coarseSol->getData();
     for (size_t k = 0; k < m.coarseOwnedLid.size(); ++k)
-      if (!m.coarseIsAverage[k]) uv[m.coarseOwnedLid[k]] = c[k];
+      if (!m.coarseIsEdgeFace[k]) uv[m.coarseOwnedLid[k]] = c[k];
   }
 
   const double t1 = MPI_Wtime();
@@ -1596,7 +1597,7 @@ void FetiDpSolver::setConstraintRows(Teuchos::RCP<const Map> rowMap,
       }
   raiseCollectively<std::invalid_argument>(m.mpi, msg);
 
-  // With averages the rows act on û: c^T u = (c^T T) û, row by row.
+  // With edge/face constraints the rows act on û: c^T u = (c^T T) û, row by row.
   std::vector<std::vector<ConstraintEntry>> transformed;
   const std::vector<std::vector<ConstraintEntry>>* use = &entries;
   bool anyActive = false;
@@ -1691,7 +1692,7 @@ const FetiDpSolver::Info& FetiDpSolver::setupInfo() const { return impl_->setup;
 Teuchos::RCP<const Map> FetiDpSolver::lmMap() const { return impl_->lmMap; }
 Teuchos::RCP<const Map> FetiDpSolver::primalMap() const { return impl_->primalMap; }
 GO FetiDpSolver::numDualDofs() const { return impl_->nDual; }
-GO FetiDpSolver::numPrimalAverages() const { return impl_->nAverages; }
+GO FetiDpSolver::numEdgeFaceConstraints() const { return impl_->nEdgeFace; }
 
 Teuchos::RCP<Vector> FetiDpSolver::applyB(const std::vector<std::vector<double>>& field) const {
   Impl& m = *impl_;

@@ -116,7 +116,7 @@ struct ConstraintEntry {
 /// constraints: vertices, edges, faces"): the caller's primal DOFs
 /// (vertices) and, unless "Vertices", the averages over the edges (and in
 /// 3-D faces) of the interface, one per displacement component, found by
-/// findPrimalAverages() from the DOF sharing alone, and (with coordinates)
+/// findEdgeFaceConstraints() from the DOF sharing alone, and (with coordinates)
 /// the rigid rotations of each edge / face. Each such constraint value
 /// becomes an explicit DOF by a change of basis (ChangeOfBasis, Klawonn &
 /// Widlund 2006): K^s -> T^T K^s T; b, u and the extra rows are transformed
@@ -270,7 +270,7 @@ class FetiDpSolver {
   /// Global number of edge/face constraints (averages and rotations) among
   /// the primal DOFs (0 for "Vertices"); primalMap() holds vertex DOFs and
   /// these.
-  GO numPrimalAverages() const;
+  GO numEdgeFaceConstraints() const;
   /// Apply B to a field given per subdomain copy: field[i] has one value per
   /// local DOF of the i-th subdomain passed to setTopology() on this rank.
   /// Returns (B field) on lmMap(). A continuous field (the same value in

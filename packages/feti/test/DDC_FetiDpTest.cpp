@@ -22,7 +22,7 @@
 #include "DDC_DirectSolver.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_FetiDpSolver.hpp"
-#include "DDC_FetiPrimalAverages.hpp"
+#include "DDC_FetiEdgeFaceConstraints.hpp"
 #include "DDC_FetiTolerances.hpp"
 #include "DDC_TestErrors.hpp"
 #include "DDC_TestTolerances.hpp"
@@ -875,14 +875,14 @@ TEST(FetiDp, EdgeConstraintCounts) {
     FetiDpSolver feti(worldComm(), params, "FETI-DP");
     feti.setTopology(pb.subdomains(), pb.ownedMap());
     const GO perEdge = rotations ? 3 : 2;
-    EXPECT_EQ(feti.numPrimalAverages(), 12 * perEdge);
+    EXPECT_EQ(feti.numEdgeFaceConstraints(), 12 * perEdge);
     EXPECT_EQ(feti.primalMap()->getGlobalNumElements(), size_t(10 * 2 + 12 * perEdge));
   }
   // "Vertices, Edges and Faces" is the same in 2-D.
   auto params = fetiParams("Dirichlet", "Multiplicity", "CG", ddc::test::kTightBelos, "Vertices, Edges and Faces");
   FetiDpSolver feti(worldComm(), params, "FETI-DP");
   feti.setTopology(pb.subdomains(), pb.ownedMap());
-  EXPECT_EQ(feti.numPrimalAverages(), 12 * 3);
+  EXPECT_EQ(feti.numEdgeFaceConstraints(), 12 * 3);
 }
 
 TEST(FetiDp, EdgeRotationsFixAFloatingSubdomain) {

@@ -4,7 +4,7 @@
 // Pierson 2000 for averages in 3-D).
 //
 // Two pieces, both mesh-free:
-//  - findPrimalAverages(): classify the interface DOFs by the set of
+//  - findEdgeFaceConstraints(): classify the interface DOFs by the set of
 //    subdomains sharing them (as PETSc's PCBDDC graph and FROSch's
 //    DDInterface do): in 2-D every set of two subdomains is an edge; in 3-D
 //    a set of two is a face and a set of three or more an edge. Each edge /
@@ -36,9 +36,9 @@ const std::vector<std::string>& primalConstraintNames();
 /// \throws std::invalid_argument for a name not in primalConstraintNames().
 PrimalConstraints primalConstraintsFromName(const std::string& name);
 
-/// One subdomain as findPrimalAverages() needs it (the fields of
+/// One subdomain as findEdgeFaceConstraints() needs it (the fields of
 /// FetiSubdomain of the same name).
-struct AverageInput {
+struct EdgeFaceInput {
   int id = -1;                      ///< global subdomain id
   std::vector<GO> dofs;             ///< global ids of the subdomain's free DOFs
   std::vector<char> primal;         ///< per local DOF: already primal (a vertex)
@@ -66,8 +66,8 @@ struct PrimalGroup {
 /// \throws std::invalid_argument (on every rank) for dim not 2 or 3, a
 ///         component outside 0..dim-1, sizes that do not match, or
 ///         rotations without coordinates.
-std::vector<std::vector<PrimalGroup>> findPrimalAverages(MPI_Comm comm, const Map& ownedMap,
-                                                         const std::vector<AverageInput>& subs, int dim,
+std::vector<std::vector<PrimalGroup>> findEdgeFaceConstraints(MPI_Comm comm, const Map& ownedMap,
+                                                         const std::vector<EdgeFaceInput>& subs, int dim,
                                                          PrimalConstraints choice, bool rotations);
 
 /// The change of basis u = T û of one subdomain (Klawonn & Widlund 2006,
@@ -84,7 +84,7 @@ std::vector<std::vector<PrimalGroup>> findPrimalAverages(MPI_Comm comm, const Ma
 class ChangeOfBasis {
  public:
   ChangeOfBasis() = default;
-  /// \param n number of local DOFs; \param groups as from findPrimalAverages().
+  /// \param n number of local DOFs; \param groups as from findEdgeFaceConstraints().
   /// \throws std::invalid_argument for DOFs out of range or in two groups,
   ///         or rows that are linearly dependent.
   ChangeOfBasis(LO n, const std::vector<PrimalGroup>& groups);
@@ -132,6 +132,7 @@ class ChangeOfBasis {
   std::vector<Group> groups_;
   std::vector<LO> group_;  // per local DOF: its group index, or -1
   std::vector<LO> rep_;    // per local DOF: its index in its group's R, or -1
+  std::vector<LO> other_;  // per local DOF: its index in its group's O, or -1
   size_t kNnz_ = 0;        // entries of K at setPattern()
   std::vector<size_t> hatOffsets_;
   std::vector<std::vector<LO>> hatCols_;

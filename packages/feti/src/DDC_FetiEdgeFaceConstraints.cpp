@@ -1,6 +1,6 @@
 // Edge and face averages for FETI-DP: classification and change of basis
-// (see DDC_FetiPrimalAverages.hpp, doc/feti-dp.md).
-#include "DDC_FetiPrimalAverages.hpp"
+// (see DDC_FetiEdgeFaceConstraints.hpp, doc/feti-dp.md).
+#include "DDC_FetiEdgeFaceConstraints.hpp"
 
 #include <Tpetra_CrsGraph.hpp>
 #include <algorithm>
@@ -44,31 +44,31 @@ PrimalConstraints primalConstraintsFromName(const std::string& name) {
   return static_cast<PrimalConstraints>(it - n.begin());
 }
 
-std::vector<std::vector<PrimalGroup>> findPrimalAverages(MPI_Comm comm, const Map& ownedMap,
-                                                         const std::vector<AverageInput>& subs, int dim,
+std::vector<std::vector<PrimalGroup>> findEdgeFaceConstraints(MPI_Comm comm, const Map& ownedMap,
+                                                         const std::vector<EdgeFaceInput>& subs, int dim,
                                                          PrimalConstraints choice, bool rotations) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   std::string msg;
-  if (dim != 2 && dim != 3) msg = "findPrimalAverages: spatial dimension " + std::to_string(dim) + ", expected 2 or 3";
+  if (dim != 2 && dim != 3) msg = "findEdgeFaceConstraints: spatial dimension " + std::to_string(dim) + ", expected 2 or 3";
   for (const auto& s : subs) {
     if (!msg.empty()) break;
     if (s.primal.size() != s.dofs.size() || s.component.size() != s.dofs.size()) {
-      msg = "findPrimalAverages: subdomain " + std::to_string(s.id) + ": " + std::to_string(s.dofs.size()) +
+      msg = "findEdgeFaceConstraints: subdomain " + std::to_string(s.id) + ": " + std::to_string(s.dofs.size()) +
             " DOFs but " + std::to_string(s.primal.size()) + " primal flags and " +
             std::to_string(s.component.size()) + " components (one per DOF expected)";
       break;
     }
     if (rotations && s.coordinates.size() != s.dofs.size() * size_t(std::max(dim, 0))) {
-      msg = "findPrimalAverages: subdomain " + std::to_string(s.id) + ": rotational constraints need " +
+      msg = "findEdgeFaceConstraints: subdomain " + std::to_string(s.id) + ": rotational constraints need " +
             std::to_string(dim) + " coordinates per DOF, got " + std::to_string(s.coordinates.size()) + " for " +
             std::to_string(s.dofs.size()) + " DOFs";
       break;
     }
     for (int c : s.component)
       if (c < 0 || c >= dim) {
-        msg = "findPrimalAverages: subdomain " + std::to_string(s.id) + ": DOF component " + std::to_string(c) +
+        msg = "findEdgeFaceConstraints: subdomain " + std::to_string(s.id) + ": DOF component " + std::to_string(c) +
               " outside 0.." + std::to_string(dim - 1);
         break;
       }
@@ -91,7 +91,7 @@ std::vector<std::vector<PrimalGroup>> findPrimalAverages(MPI_Comm comm, const Ma
     ownedMap.getRemoteIndexList(Teuchos::ArrayView<const GO>(gids.data(), gids.size()), pids(), lids());
     for (size_t k = 0; k < gids.size(); ++k) {
       if (pids[k] < 0) {
-        if (msg.empty()) msg = "findPrimalAverages: DOF " + std::to_string(gids[k]) + " is not in the owned DOF map";
+        if (msg.empty()) msg = "findEdgeFaceConstraints: DOF " + std::to_string(gids[k]) + " is not in the owned DOF map";
         continue;
       }
       send[pids[k]].push_back(ShareMsg{gids[k], subs[who[k].first].id, rank, who[k].first, who[k].second});
@@ -201,7 +201,7 @@ std::vector<std::vector<PrimalGroup>> findPrimalAverages(MPI_Comm comm, const Ma
 // ---------------------------------------------------------------------------
 
 ChangeOfBasis::ChangeOfBasis(LO n, const std::vector<PrimalGroup>& groups)
-    : n_(n), group_(size_t(n), -1), rep_(size_t(n), -1) {
+    : n_(n), group_(size_t(n), -1), rep_(size_t(n), -1), other_(size_t(n), -1) {
   std::vector<char> seen(size_t(n), 0);
   for (const PrimalGroup& in : groups) {
     const size_t m = in.dofs.size(), k = in.rows.size();
@@ -273,6 +273,7 @@ ChangeOfBasis::ChangeOfBasis(LO n, const std::vector<PrimalGroup>& groups)
         g.W[j * o + q] = v;
       }
     for (size_t l = 0; l < k; ++l) rep_[g.R[l]] = LO(l);
+    for (size_t q = 0; q < o; ++q) other_[g.O[q]] = LO(q);
     for (LO d : in.dofs) group_[d] = LO(groups_.size());
     groups_.push_back(std::move(g));
   }
@@ -314,7 +315,7 @@ void ChangeOfBasis::tCol(LO a, std::vector<std::pair<LO, double>>& out) const {
     return;
   }
   // a = O_q: T(a, a) = 1, T(R_j, a) = -W(j, q)
-  const size_t q = size_t(std::find(g.O.begin(), g.O.end(), a) - g.O.begin());
+  const size_t q = size_t(other_[a]);
   out.emplace_back(a, 1.0);
   for (size_t j = 0; j < k; ++j)
     if (g.W[j * o + q] != 0.0) out.emplace_back(g.R[j], -g.W[j * o + q]);
