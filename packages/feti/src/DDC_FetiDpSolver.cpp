@@ -260,8 +260,8 @@ struct FetiDpSolver::Impl {
   std::string param(const std::string& name) const { return joinPath(path, name); }
 
   void buildTopology(std::vector<FetiSubdomain> local, RCP<const Map> owned);
-  void addEdgeFaceConstraints(const std::vector<std::vector<int>>& components, const std::vector<std::vector<double>>& coords,
-                   const std::vector<int>& dims);
+  void addEdgeFaceConstraints(const std::vector<std::vector<int>>& components,
+                              const std::vector<std::vector<double>>& coords, const std::vector<int>& dims);
   void buildConstraints();
   void finalizeLm();
   void applyMask(Vector& v) const;
@@ -530,11 +530,12 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
 }
 
 /// Edge/face constraints ("Primal Constraints"; doc/feti-dp.md): classify the
-/// interface by the subdomains sharing each DOF (findEdgeFaceConstraints()), make
-/// the first DOF of each group primal and work on K^s in the basis where it
-/// holds the group's average (ChangeOfBasis).
+/// interface by the subdomains sharing each DOF (findEdgeFaceConstraints()),
+/// make the representative DOFs of each group primal and work on K^s in the
+/// basis where they hold the group's constraint values (ChangeOfBasis).
 void FetiDpSolver::Impl::addEdgeFaceConstraints(const std::vector<std::vector<int>>& components,
-                                     const std::vector<std::vector<double>>& coords, const std::vector<int>& dims) {
+                                                const std::vector<std::vector<double>>& coords,
+                                                const std::vector<int>& dims) {
   nEdgeFace = 0;
   if (primalChoice == PrimalConstraints::Vertices) return;
   const std::string choice = primalConstraintNames()[size_t(primalChoice)];
@@ -565,7 +566,7 @@ void FetiDpSolver::Impl::addEdgeFaceConstraints(const std::vector<std::vector<in
   std::vector<EdgeFaceInput> in(subs.size());
   for (size_t ls = 0; ls < subs.size(); ++ls)
     in[ls] = EdgeFaceInput{subs[ls].id, subs[ls].dofs, subs[ls].primal, components[ls],
-                          rotations ? coords[ls] : std::vector<double>()};
+                           rotations ? coords[ls] : std::vector<double>()};
   const auto groups = findEdgeFaceConstraints(mpi, *ownedMap, in, glob[1], primalChoice, rotations);
   for (size_t ls = 0; ls < subs.size() && msg.empty(); ++ls) {
     Sub& s = subs[ls];
@@ -1215,7 +1216,8 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
             "(plus the average of each displacement component over each edge: in 2-D a subdomain-subdomain "
             "interface, in 3-D the interface DOFs shared by >= 3 subdomains), Vertices, Edges and Faces (plus "
             "the averages over the 3-D faces, DOFs shared by exactly 2 subdomains; in 2-D the same as Vertices "
-            "and Edges). Averages enter by a change of basis (doc/feti-dp.md, 'Primal constraints').",
+            "and Edges). The constraint values (averages; rotations: 'Rotational Constraints') enter by a change of "
+            "basis (doc/feti-dp.md, 'Primal constraints').",
             enumValidator(primalConstraintNames(), "Primal Constraints"));
     pl->set("Rotational Constraints", true,
             "With edges / faces: besides the average of each displacement component, make the rigid rotations of "

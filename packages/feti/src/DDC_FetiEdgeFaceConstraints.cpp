@@ -45,8 +45,8 @@ PrimalConstraints primalConstraintsFromName(const std::string& name) {
 }
 
 std::vector<std::vector<PrimalGroup>> findEdgeFaceConstraints(MPI_Comm comm, const Map& ownedMap,
-                                                         const std::vector<EdgeFaceInput>& subs, int dim,
-                                                         PrimalConstraints choice, bool rotations) {
+                                                              const std::vector<EdgeFaceInput>& subs, int dim,
+                                                              PrimalConstraints choice, bool rotations) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);

@@ -67,8 +67,8 @@ struct PrimalGroup {
 ///         component outside 0..dim-1, sizes that do not match, or
 ///         rotations without coordinates.
 std::vector<std::vector<PrimalGroup>> findEdgeFaceConstraints(MPI_Comm comm, const Map& ownedMap,
-                                                         const std::vector<EdgeFaceInput>& subs, int dim,
-                                                         PrimalConstraints choice, bool rotations);
+                                                              const std::vector<EdgeFaceInput>& subs, int dim,
+                                                              PrimalConstraints choice, bool rotations);
 
 /// The change of basis u = T û of one subdomain (Klawonn & Widlund 2006,
 /// sec. 4, in the form of Li & Widlund 2006): in a group G with constraint
