@@ -37,6 +37,7 @@
 
 #include "DDC_Error.hpp"
 #include "DDC_FetiEdgeFaceConstraints.hpp"
+#include "DDC_MapOwners.hpp"
 #include "DDC_MpiRecords.hpp"
 #include "DDC_Parameters.hpp"
 
@@ -71,26 +72,6 @@ GO sumAll(MPI_Comm comm, GO v) {
   long long l = v, g = 0;
   MPI_Allreduce(&l, &g, 1, MPI_LONG_LONG, MPI_SUM, comm);
   return static_cast<GO>(g);
-}
-
-/// Owning rank and LID of each of `gids` in `map` (-1 if absent).
-/// Collective. The query is made with unique GIDs: Tpetra 13.2's
-/// distributed directory answers -1 for repeated GIDs in one query.
-void owners(const Map& map, const std::vector<GO>& gids, std::vector<int>& pids, std::vector<LO>& lids) {
-  std::vector<GO> unique(gids);
-  std::sort(unique.begin(), unique.end());
-  unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
-  std::vector<int> up(unique.size());
-  std::vector<LO> ul(unique.size());
-  map.getRemoteIndexList(Teuchos::ArrayView<const GO>(unique.data(), unique.size()),
-                         Teuchos::ArrayView<int>(up.data(), up.size()), Teuchos::ArrayView<LO>(ul.data(), ul.size()));
-  pids.resize(gids.size());
-  lids.resize(gids.size());
-  for (size_t k = 0; k < gids.size(); ++k) {
-    const size_t u = size_t(std::lower_bound(unique.begin(), unique.end(), gids[k]) - unique.begin());
-    pids[k] = up[u];
-    lids[k] = ul[u];
-  }
 }
 
 RCP<const Map> makeMap(const std::vector<GO>& gids, GO indexBase, const RCP<const Teuchos::Comm<int>>& comm) {

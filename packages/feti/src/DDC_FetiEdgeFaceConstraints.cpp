@@ -8,6 +8,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "DDC_MapOwners.hpp"
 #include "DDC_MpiRecords.hpp"
 
 namespace ddc {
@@ -86,9 +87,9 @@ std::vector<std::vector<PrimalGroup>> findEdgeFaceConstraints(MPI_Comm comm, con
     for (size_t ls = 0; ls < subs.size(); ++ls)
       for (LO k = 0; k < LO(subs[ls].dofs.size()); ++k)
         if (!subs[ls].primal[k]) gids.push_back(subs[ls].dofs[k]), who.emplace_back(int(ls), k);
-    Teuchos::Array<int> pids(gids.size());
-    Teuchos::Array<LO> lids(gids.size());
-    ownedMap.getRemoteIndexList(Teuchos::ArrayView<const GO>(gids.data(), gids.size()), pids(), lids());
+    std::vector<int> pids;
+    std::vector<LO> lids;
+    owners(ownedMap, gids, pids, lids);
     for (size_t k = 0; k < gids.size(); ++k) {
       if (pids[k] < 0) {
         if (msg.empty()) msg = "findEdgeFaceConstraints: DOF " + std::to_string(gids[k]) + " is not in the owned DOF map";
