@@ -15,3 +15,6 @@ run(${CMAKE_COMMAND} -S ${CONSUMER_SOURCE} -B ${WORK_DIR}/build -DCMAKE_PREFIX_P
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 find_program(MPIRUN NAMES mpirun mpiexec REQUIRED)
 run(${MPIRUN} --oversubscribe -np 2 ${WORK_DIR}/build/host_program)
+# Depths (b) and (c): the host's own mesh, element loop and Newton with the
+# contact component and FetiDpSolver reproduce the whole analysis to 1e-10.
+run(${MPIRUN} --oversubscribe -np 2 ${WORK_DIR}/build/host_contact_feti)

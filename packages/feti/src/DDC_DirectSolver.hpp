@@ -15,17 +15,10 @@
 #include <string>
 #include <vector>
 
+#include "DDC_TpetraTypes.hpp"
+
 namespace ddc {
 
-using Scalar = double;
-using LO = Tpetra::Map<>::local_ordinal_type;
-using GO = Tpetra::Map<>::global_ordinal_type;
-using Node = Tpetra::Map<>::node_type;
-using Map = Tpetra::Map<LO, GO, Node>;
-using CrsMatrix = Tpetra::CrsMatrix<Scalar, LO, GO, Node>;
-using CrsGraph = Tpetra::CrsGraph<LO, GO, Node>;
-using MultiVector = Tpetra::MultiVector<Scalar, LO, GO, Node>;
-using Vector = Tpetra::Vector<Scalar, LO, GO, Node>;
 
 /// A sparse direct solver for a square, fill-complete Tpetra::CrsMatrix whose
 /// row, range and domain maps are the same map. The matrix may live on any

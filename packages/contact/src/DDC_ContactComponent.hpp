@@ -1,0 +1,320 @@
+// Contact as a component a host code drives (doc/embedding.md, "(c) The
+// contact component"): the whole node-to-segment contact lifecycle behind one class,
+// in the host's node and DOF numbering, with nothing of a mesh, a partition,
+// FETI-DP or a Newton loop inside. The shape follows LLNL Tribol's interface
+// (register the surfaces, then the fields; update at step ends; read rows,
+// gaps and contributions):
+//
+//   ContactComponent c(comm, options, {slaveCounterpart, masterCounterpart});
+//   c.registerNodes(myOwnedSurfaceNodes);   // id, reference coordinates
+//   c.registerPair(pair);                   // facets of my elements, slave nodes
+//   c.commit();                             // collective: slots, ownership
+//   c.setDofs(hostOwnedMap, nodeDofs, multiplierDofs);  // host DOF ids
+//   c.updatePairing(u, /*global=*/true, /*freeze=*/true);
+//   per Newton iteration: c.contactRows() / c.assemble(...); c.updateActiveSet(u, λ)
+//   per converged step:   c.updatePairing(u, true, freeze)
+//
+// Data layout. The surfaces are small against the bodies, so after commit()
+// every rank holds every surface node's reference coordinates, DOF ids and
+// owner, and every contact slot (one per slave node: its pairing, state,
+// frozen projection and normal) — the same numbers on every rank. Field
+// values (displacements, multipliers) stay distributed in the host's map and
+// move only in the counted exchanges (exchanges(), bytesExchanged()):
+//  - conventional element: the surface positions are gathered to every rank
+//    at each pairing and active-set update;
+//  - decomposed element: at step ends the owner of each slave node searches
+//    over the master-surface nodes the other ranks send it because they lie
+//    in its bounding box (one exchange); the contact state is checked on the
+//    multiplier map (partial gaps of the two counterparts summed there), with
+//    no geometry moving (doc/contact.md).
+//
+// Ownership. A surface node belongs to the rank that registers it, and its
+// DOF ids must be owned by that rank in the host's map (setDofs() checks).
+// A slot and its multiplier belong to the owner of its slave node. The
+// master counterpart of a pair is evaluated on the rank that registered its
+// master facet, and its constraint row is labelled with that facet's host
+// subdomain (ContactFacet::subdomain).
+#pragma once
+
+#include <Eigen/Dense>
+#include <Teuchos_Comm.hpp>
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "DDC_ContactElement.hpp"
+#include "DDC_ContactSearch.hpp"
+#include "DDC_TpetraTypes.hpp"
+
+namespace ddc {
+
+/// One contact slot: a slave node of a pair, its multiplier, and its
+/// current pairing and state. Replicated on every rank.
+struct ContactSlot {
+  int pair = 0;
+  int slaveNode = -1;        ///< host node id
+  int master[2] = {-1, -1};  ///< master segment nodes (host node ids); -1: not paired
+  int segment = -1;          ///< index of that segment in the pair's master surface (-1: not paired)
+  int masterElement = -1;    ///< the host element whose side the master segment is (-1: not paired)
+  bool active = false;
+  ContactPairState state;    ///< multiplier, frozen ξ^p / n^p
+  double gap = 0.0;          ///< g_N at the last update
+  Eigen::Vector2d normal = Eigen::Vector2d::Zero();  ///< normal used by the element
+  double tributaryLength = 0.0;  ///< half the reference length of the adjacent slave segments
+  /// Contact pressure −λ / tributary length (> 0 in compression), 0 when inactive.
+  double pressure() const { return active && tributaryLength > 0 ? -state.multiplier / tributaryLength : 0.0; }
+  bool paired() const { return master[0] >= 0; }
+};
+
+/// Summary of the contact state for output.
+struct ContactSummary {
+  int active = 0;
+  double force[2] = {0.0, 0.0};  ///< resultant contact force on the slave bodies, Σ -λ n
+};
+
+/// A contact-surface node, registered by the rank that owns its DOFs.
+struct ContactNode {
+  int id = -1;                  ///< the host's node id (≥ 0, unique)
+  Eigen::Vector2d X = Eigen::Vector2d::Zero();  ///< reference coordinates
+};
+
+/// The DOFs of a registered node (setDofs()).
+struct ContactNodeDofs {
+  int id = -1;                     ///< a node this rank registered
+  std::array<GO, 2> dofs{{-1, -1}};  ///< host DOF ids of u_x, u_y (owned here in the host's map)
+  /// The DOF is prescribed (a Dirichlet condition): a pair whose DOFs are
+  /// all prescribed has a given gap and never becomes active.
+  std::array<bool, 2> prescribed{{false, false}};
+};
+
+/// A straight 2-node facet (segment) of a contact surface, registered by
+/// the rank that evaluates its element.
+struct ContactFacet {
+  long id = -1;  ///< position of the facet in its surface: orders the facets (search tie-breaks), unique per surface
+  std::array<int, 2> nodes{{-1, -1}};  ///< host node ids, oriented with the body on the left of nodes[0] → nodes[1]
+  int element = -1;    ///< host element id (messages; ContactSlot::masterElement)
+  int subdomain = -1;  ///< host subdomain of the element: the label of the master counterpart's rows
+  /// Master facets: depth of the element behind the facet (> 0; the facing
+  /// rule, doc/contact.md "Which slave nodes pair", masterElementDepths()).
+  double depth = 0.0;
+};
+
+/// One contact pair as this rank registers it: its share of the facets and
+/// slave nodes (every rank registers the same pairs in the same order; the
+/// shares are merged in commit()).
+struct ContactPairSurfaces {
+  std::string name;        ///< short name: "pair 'name' slave node ..." (describeSlot())
+  std::string path;        ///< where the host defined it (e.g. a parameter path), for errors; default: name
+  std::string slaveName;   ///< the slave surface, for messages
+  std::string masterName;  ///< the master surface, for messages
+  std::vector<int> slaveNodes;  ///< candidate slave nodes; nodes on the master surface are skipped
+  std::vector<ContactFacet> slaveFacets;   ///< oriented with the slave body on the left
+  std::vector<ContactFacet> masterFacets;  ///< with depth
+};
+
+/// Options of the component (resolved values, not parameter names).
+struct ContactComponentOptions {
+  /// false: conventional nonlinear NTS (one element per pair, projection and
+  /// normal follow the current configuration); true: the decomposed slave and
+  /// master counterparts with projection and normal frozen over each step.
+  bool decomposed = false;
+  double searchRadius = 0.0;          ///< absolute, > 0
+  double penetrationTolerance = 0.0;  ///< absolute: activate when g_N < -tol
+};
+
+/// One coefficient of a contact constraint row (decomposed element): the
+/// pair's frozen gap is g_N = Σ coefficient · x(dof) over its entries.
+struct ContactRowEntry {
+  int slot = -1;       ///< the contact slot (replicated index)
+  GO row = -1;         ///< its multiplier id (multiplierMap())
+  GO dof = -1;         ///< host DOF id
+  double coefficient = 0.0;
+  bool master = false;  ///< entry of the master counterpart (else the slave's)
+  int subdomain = -1;   ///< master: the master facet's subdomain; slave: -1 (any subdomain holding the slave node)
+};
+
+/// The contact component (see the top of this file).
+class ContactComponent {
+ public:
+  /// \param elements the counterparts {"Decomposed NTS Slave", "Decomposed NTS
+  ///        Master"} when options.decomposed, else {"Node-To-Segment"}
+  ///        (any ContactElement with those DOF layouts)
+  /// \throws std::invalid_argument if the evaluators do not match the formulation.
+  ContactComponent(Teuchos::RCP<const Teuchos::Comm<int>> comm, ContactComponentOptions options,
+                   std::vector<std::shared_ptr<const ContactElement>> elements);
+  ~ContactComponent();
+
+  // ---- registration ----------------------------------------------------------
+  /// Register surface nodes this rank owns (may be called several times).
+  void registerNodes(const std::vector<ContactNode>& nodes);
+  /// Register this rank's share of a pair; returns the pair index.
+  int registerPair(ContactPairSurfaces pair);
+  /// Collective: merge the registrations, build the slots (one per slave
+  /// node, in ascending node id; owner = the slave node's owner) and the
+  /// searches. Every node a facet or a slave list names must be registered
+  /// by exactly one rank.
+  /// \throws InputError (every rank) naming the pair and the node/facet.
+  void commit();
+  /// Collective, after commit(): the host DOF ids of the nodes this rank
+  /// registered (every one of them) and, optionally, the host DOF id of the
+  /// multiplier of each slot this rank owns (ownedSlots() order) when the
+  /// host carries the multipliers in its own vector (monolithic
+  /// saddle-point system); otherwise the multipliers are ids 0..numSlots−1
+  /// of multiplierMap() and the host passes them to the calls that read them.
+  /// \throws InputError (every rank) if a DOF id is not owned by this rank in
+  ///         `hostMap`, a registered node has no DOFs, or the multipliers do
+  ///         not match the owned slots.
+  void setDofs(Teuchos::RCP<const Map> hostMap, const std::vector<ContactNodeDofs>& nodeDofs,
+               const std::vector<GO>& multiplierDofs = {});
+
+  // ---- lifecycle -------------------------------------------------------------
+  /// Pair every slave node with a master segment at the state u (host owned
+  /// map; tracking from the previous pairing, a global search when
+  /// `global`). With `freeze`, the decomposed element's projection ξ^p and
+  /// normal n^p are taken from this configuration. Decomposed + global: the
+  /// bounding-box-limited exchange; otherwise the surface positions are
+  /// gathered. One counted exchange either way.
+  /// \return true if any slave changed its master segment (new topology);
+  ///         the slots that did are appended to `changedSlots` when given.
+  bool updatePairing(const Vector& u, bool global, bool freeze, std::vector<int>* changedSlots = nullptr);
+  /// Activate every paired slot (Initial Contact State = In Contact), except
+  /// the fully prescribed ones (fullyPrescribed()).
+  void activateAllPaired();
+  /// Update gaps and multipliers from (u, λ), then apply the contact-state
+  /// rules: release an active slot in tension (λ > 0), activate an inactive
+  /// paired slot with g_N < −tol. Returns the slots whose state changed.
+  /// λ: `multipliers` on multiplierMap(), or, when the host gave multiplier
+  /// DOFs to setDofs(), null (read from u).
+  /// \throws InputError (every rank: the slots are replicated) if a fully
+  ///         prescribed slot penetrates.
+  std::vector<int> updateActiveSet(const Vector& u, const Vector* multipliers = nullptr);
+  /// Restore slots saved before a failed increment (pairing and state).
+  /// \return true if the pairing differs from the current one (new topology).
+  bool restoreSlots(const std::vector<ContactSlot>& saved);
+
+  // ---- what the host assembles or solves with ---------------------------------
+  /// Decomposed element: the constraint row of every paired slot whose
+  /// counterparts this rank evaluates (slave: the slots it owns; master: the
+  /// slots whose master facet it registered), in host DOF ids. The
+  /// coefficients are the multiplier row of each counterpart's tangent, so
+  /// any registered counterpart pair works; they do not depend on the state
+  /// (frozen geometry). Zero coefficients are left out.
+  std::vector<ContactRowEntry> contactRows() const;
+  /// Every contact contribution evaluated on this rank at (u, λ) — the
+  /// conventional element of each owned slot, or the two counterparts where
+  /// they live; a released or unpaired slot contributes Π = ½λ² on its
+  /// multiplier — handed to `add` with its DOF ids (host ids; the
+  /// multiplier last, its id as in multiplierMap()). `what` as for elements;
+  /// the tangent is always computed.
+  void assemble(const Vector& u, const Vector* multipliers, unsigned what,
+                const std::function<void(const std::vector<GO>& dofs, ElementResult& result)>& add) const;
+
+  // ---- queries ---------------------------------------------------------------
+  bool decomposed() const { return options_.decomposed; }
+  const ContactComponentOptions& options() const { return options_; }
+  int numPairs() const;
+  const std::vector<ContactSlot>& slots() const { return slots_; }
+  /// Owner rank of slot k (the owner of its slave node).
+  int slotOwner(int k) const;
+  /// Slots this rank owns, ascending (the order of multiplierMap()).
+  const std::vector<int>& ownedSlots() const { return localSlots_; }
+  /// Decomposed: paired slots whose master counterpart this rank evaluates.
+  const std::vector<int>& localMasterSlots() const { return localMasterSlots_; }
+  /// This rank's multipliers, one per owned slot: a one-to-one map.
+  Teuchos::RCP<const Map> multiplierMap() const { return multiplierMap_; }
+  /// Multiplier id of slot k (host DOF id when the host gave them).
+  GO multiplierId(int k) const { return lmGid_[k]; }
+  /// Host DOF ids of the DOFs of the conventional element of slot k
+  /// ([u_s, u_1, u_2, λ]; [λ] when unpaired) and of the decomposed
+  /// counterparts ([u_s, λ] / [u_1, u_2, λ]).
+  std::vector<GO> slotDofs(int k) const;
+  std::vector<GO> slaveSideDofs(int k) const;
+  std::vector<GO> masterSideDofs(int k) const;
+  /// True if slot k is paired and all DOFs of its slave node and master
+  /// segment are prescribed: its gap is given, contact cannot act on it.
+  bool fullyPrescribed(int k) const;
+  /// Host node ids of every surface node (slave or master), ascending.
+  const std::vector<int>& surfaceNodes() const { return nodeIds_; }
+  bool isSurfaceNode(int id) const { return index(id) >= 0; }
+  /// Reference coordinates of a surface node.
+  Eigen::Vector2d referencePosition(int id) const;
+  ContactSummary summary() const;
+  /// "pair 'P' slave node n at (x, y)" for messages.
+  std::string describeSlot(int k) const;
+  /// The pair's registered name (messages).
+  const std::string& pairName(int p) const;
+  /// Contact-geometry exchanges (every pairing update, and for conventional
+  /// NTS every active-set update) since construction, and the bytes they
+  /// moved between ranks.
+  long exchanges() const { return exchanges_; }
+  long bytesExchanged() const { return bytesExchanged_; }
+  /// Search work summed over the pairs: {tracking queries, tracking fallbacks, global queries}.
+  std::array<long, 3> searchCounters() const;
+
+  /// After the initial pairing: a slave node that starts inside the master
+  /// body of its pair and is not paired (farther than the search radius from
+  /// the master surface, or rejected by the facing rule) can never be pushed
+  /// out. `locate[p]` returns the element of pair p's master body containing
+  /// a reference point, or −1 (e.g. BodyLocator::elementContaining; an empty
+  /// function skips the pair). Replicated data: the same verdict on every rank.
+  /// \throws InputError naming the pair, the node, the depth and why.
+  void checkInitialPenetration(const std::vector<std::function<int(const Eigen::Vector2d&)>>& locate) const;
+
+ private:
+  struct Pair;
+  struct Field;
+  int index(int id) const;
+  Eigen::Vector2d currentPosition(int id, const std::vector<double>& surfaceValues) const;
+  void gatherSurface(const Vector& u, const Vector* multipliers, std::vector<double>& values) const;
+  void refreshSlotGeometry(const std::vector<double>& surfaceValues);
+  void distributedSearch(const Vector& u, std::vector<std::vector<ContactCandidate>>& cands,
+                         std::vector<std::vector<char>>& pastFreeEnd);
+  void assembleFrozenGaps(const Vector& u, const Vector* multipliers);
+  void buildTopology();
+  /// Field values at this rank's counterpart DOFs and multipliers.
+  Field gatherField(const Vector& u, const Vector* multipliers) const;
+  void evaluate(int k, int side, const Field& f, bool forceActive, unsigned what, ElementResult& er,
+                std::vector<GO>& dofs) const;
+  void requireCommitted(const char* what) const;
+
+  Teuchos::RCP<const Teuchos::Comm<int>> comm_;
+  ContactComponentOptions options_;
+  std::shared_ptr<const ContactElement> ntsElement_, slaveElement_, masterElement_;
+  bool committed_ = false, hasDofs_ = false, multipliersInHost_ = false;
+
+  std::vector<ContactNode> myNodes_;  ///< registered here, before commit()
+  std::vector<Pair> pairs_;
+  // Surface nodes after commit(), ascending id: replicated.
+  std::vector<int> nodeIds_;
+  std::vector<Eigen::Vector2d> X_;
+  std::vector<int> owner_;
+  std::vector<std::array<GO, 2>> dofs_;
+  std::vector<std::array<char, 2>> prescribed_;
+
+  std::vector<ContactSlot> slots_;
+  std::vector<int> slotOwner_;
+  std::vector<GO> lmGid_;
+  std::vector<int> localSlots_, localMasterSlots_;
+  std::vector<std::pair<int, int>> slaveNeighbourSends_;  ///< decomposed: (owned slave-surface node, rank needing it)
+  std::vector<int> masterSurfaceNodes_;  ///< nodes of the master surfaces (may repeat across pairs)
+  double pairingMargin_ = 0.0;
+
+  Teuchos::RCP<const Map> hostMap_;
+  Teuchos::RCP<const Map> surfaceMap_;    ///< replicated: every surface DOF
+  Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> surfaceImporter_;
+  Teuchos::RCP<const Map> multiplierMap_, multiplierAllMap_;
+  Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> lmAllImporter_;  ///< multiplierMap_ -> multiplierAllMap_
+  Teuchos::RCP<const Map> dofOverlapMap_;  ///< host DOFs of this rank's counterparts / elements
+  Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> dofImporter_;
+  Teuchos::RCP<const Map> lmOverlapMap_;   ///< multipliers of this rank's counterparts
+  Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> lmImporter_;      ///< multiplierMap_ -> lmOverlapMap_
+  Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> lmHostImporter_;  ///< hostMap_ -> lmOverlapMap_ (host multipliers)
+  Teuchos::RCP<const Tpetra::Export<LO, GO, Node>> lmExporter_;      ///< lmOverlapMap_ -> multiplierMap_
+  long distributedQueries_ = 0;
+  mutable long exchanges_ = 0, bytesExchanged_ = 0;
+  long bytesPerExchange_ = 0;
+};
+
+}  // namespace ddc

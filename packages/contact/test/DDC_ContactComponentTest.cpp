@@ -1,0 +1,245 @@
+// The contact component driven by a host with its own node and DOF
+// numbering, no mesh and no analysis (doc/embedding.md, "(c) The
+// contact component"): registration, pairing, rows, gaps and the active set of the
+// decomposed element, contributions of the conventional one, and the errors
+// of a registration that does not match the host's DOF ownership. On 2 ranks
+// the master surface and the slave surface belong to different ranks, so
+// every value that pairs them has crossed ranks.
+#include <gtest/gtest.h>
+
+#include <Teuchos_DefaultComm.hpp>
+#include <Tpetra_Core.hpp>
+#include <cmath>
+#include <memory>
+
+#include "DDC_ContactComponent.hpp"
+#include "DDC_DecomposedNodeToSegment.hpp"
+#include "DDC_Error.hpp"
+#include "DDC_NodeToSegment.hpp"
+#include "DDC_TestErrors.hpp"
+#include "DDC_TestTolerances.hpp"
+
+namespace {
+
+using ddc::ContactComponent;
+using ddc::GO;
+using ddc::InputError;
+using ddc::test::kRoundoff;
+
+// The host: a flat master surface y = 0 (nodes 0, 1, 2 at x = 0, 1, 2; the
+// master body below) and a slave surface y = kGap0 above it (nodes 10, 11 at
+// x = 0.5, 1.5; the slave body above). Host DOFs: node n's u_x, u_y are
+// 2·i, 2·i + 1 with i its position in {0, 1, 2, 10, 11}. The master nodes
+// belong to rank 0, the slave nodes to the last rank.
+constexpr double kGap0 = 0.1;
+const int kNodes[5] = {0, 1, 2, 10, 11};
+const double kX[5][2] = {{0, 0}, {1, 0}, {2, 0}, {0.5, kGap0}, {1.5, kGap0}};
+
+struct Host {
+  Teuchos::RCP<const Teuchos::Comm<int>> comm = Tpetra::getDefaultComm();
+  int me = comm->getRank(), last = comm->getSize() - 1;
+  bool ownsMaster() const { return me == 0; }
+  bool ownsSlave() const { return me == last; }
+  bool owns(int i) const { return i < 3 ? ownsMaster() : ownsSlave(); }
+  Teuchos::RCP<const ddc::Map> map() const {
+    std::vector<GO> gids;
+    for (int i = 0; i < 5; ++i)
+      if (owns(i)) gids.insert(gids.end(), {GO(2 * i), GO(2 * i + 1)});
+    return Teuchos::rcp(new ddc::Map(10, Teuchos::ArrayView<const GO>(gids), 0, comm));
+  }
+};
+
+std::vector<std::shared_ptr<const ddc::ContactElement>> elements(bool decomposed) {
+  if (decomposed)
+    return {std::make_shared<ddc::DecomposedNtsSlaveElement>(), std::make_shared<ddc::DecomposedNtsMasterElement>()};
+  return {std::make_shared<ddc::NodeToSegmentElement>()};
+}
+
+/// Register the host's surfaces; `tweak` may change this rank's share first.
+std::unique_ptr<ContactComponent> registered(const Host& h, bool decomposed,
+                                             const std::function<void(std::vector<ddc::ContactNode>&,
+                                                                      ddc::ContactPairSurfaces&)>& tweak = {}) {
+  ddc::ContactComponentOptions o;
+  o.decomposed = decomposed;
+  o.searchRadius = 0.5;
+  o.penetrationTolerance = 1e-12;
+  auto c = std::make_unique<ContactComponent>(h.comm, o, elements(decomposed));
+  std::vector<ddc::ContactNode> nodes;
+  for (int i = 0; i < 5; ++i)
+    if (h.owns(i)) nodes.push_back({kNodes[i], Eigen::Vector2d(kX[i][0], kX[i][1])});
+  ddc::ContactPairSurfaces pair;
+  pair.name = "P";
+  pair.slaveName = "upper/bottom";
+  pair.masterName = "lower/top";
+  if (h.ownsMaster()) {
+    // Master body below: travelling right to left keeps it on the left.
+    pair.masterFacets.push_back({0, {{2, 1}}, 100, 0, 1.0});
+    pair.masterFacets.push_back({1, {{1, 0}}, 101, 0, 1.0});
+  }
+  if (h.ownsSlave()) {
+    pair.slaveFacets.push_back({0, {{10, 11}}, 200, 1, 0.0});
+    pair.slaveNodes = {10, 11};
+  }
+  if (tweak) tweak(nodes, pair);
+  c->registerNodes(nodes);
+  c->registerPair(pair);
+  c->commit();
+  return c;
+}
+
+std::vector<ddc::ContactNodeDofs> dofsOf(const Host& h) {
+  std::vector<ddc::ContactNodeDofs> d;
+  for (int i = 0; i < 5; ++i)
+    if (h.owns(i)) d.push_back({kNodes[i], {{GO(2 * i), GO(2 * i + 1)}}, {{false, false}}});
+  return d;
+}
+
+/// u with the slave surface moved down by `down` (y of nodes 10, 11).
+Teuchos::RCP<ddc::Vector> state(const Host& h, const Teuchos::RCP<const ddc::Map>& map, double down) {
+  auto u = Teuchos::rcp(new ddc::Vector(map));
+  for (int i = 3; i < 5; ++i)
+    if (h.owns(i)) u->replaceGlobalValue(GO(2 * i + 1), -down);
+  return u;
+}
+
+TEST(ContactComponent, DecomposedRowsGapsAndActiveSetAcrossRanks) {
+  Host h;
+  auto c = registered(h, true);
+  auto map = h.map();
+  c->setDofs(map, dofsOf(h));  // multipliers not in the host's vector
+  ASSERT_EQ(c->slots().size(), 2u);
+  EXPECT_EQ(c->ownedSlots().size(), h.ownsSlave() ? 2u : 0u);
+  auto u = state(h, map, 0.0);
+  const long exchanges0 = c->exchanges();
+  c->updatePairing(*u, /*global=*/true, /*freeze=*/true);
+  EXPECT_EQ(c->exchanges(), exchanges0 + 1) << "one exchange per step-end pairing";
+  for (int k = 0; k < 2; ++k) {
+    const auto& s = c->slots()[k];
+    ASSERT_TRUE(s.paired()) << c->describeSlot(k);
+    EXPECT_NEAR(s.gap, kGap0, kRoundoff);
+    EXPECT_NEAR(s.state.frozenXi, 0.5, kRoundoff);
+    EXPECT_EQ(s.masterElement, s.slaveNode == 10 ? 101 : 100);
+  }
+  // Rows in host DOF ids: n^p = (0, 1) on the slave's u_y, −½ n^p on each
+  // master node's u_y; the master entries carry the master facet's subdomain.
+  const auto rows = c->contactRows();
+  double slaveSum = 0, masterSum = 0;
+  for (const auto& e : rows) {
+    EXPECT_EQ(e.dof % 2, 1) << "only u_y: the normal is vertical";
+    (e.master ? masterSum : slaveSum) += e.coefficient;
+    if (e.master) EXPECT_EQ(e.subdomain, 0);
+  }
+  double sums[2] = {slaveSum, masterSum}, total[2];
+  Teuchos::reduceAll(*h.comm, Teuchos::REDUCE_SUM, 2, sums, total);
+  EXPECT_NEAR(total[0], 2.0, kRoundoff) << "two slave rows with coefficient 1";
+  EXPECT_NEAR(total[1], -2.0, kRoundoff) << "two master rows with −½ −½";
+
+  // Push the slave surface through: both pairs activate (frozen gap < 0).
+  ddc::Vector lambda(c->multiplierMap());
+  auto pushed = state(h, map, 0.15);
+  auto changed = c->updateActiveSet(*pushed, &lambda);
+  EXPECT_EQ(changed.size(), 2u);
+  for (const auto& s : c->slots()) {
+    EXPECT_TRUE(s.active);
+    EXPECT_NEAR(s.gap, kGap0 - 0.15, kRoundoff) << "the frozen gap, summed on the multiplier map";
+  }
+  // Tension releases them.
+  lambda.putScalar(1.0);
+  changed = c->updateActiveSet(*pushed, &lambda);
+  EXPECT_EQ(changed.size(), 2u);
+  for (const auto& s : c->slots()) EXPECT_FALSE(s.active);
+}
+
+TEST(ContactComponent, ConventionalContributionsUseHostDofs) {
+  Host h;
+  auto c = registered(h, false);
+  auto map = h.map();
+  c->setDofs(map, dofsOf(h));
+  auto u = state(h, map, 0.15);
+  c->updatePairing(*u, true, false);
+  c->activateAllPaired();
+  ddc::Vector lambda(c->multiplierMap());
+  int evaluated = 0;
+  c->assemble(*u, &lambda, ddc::kResidual, [&](const std::vector<GO>& dofs, ddc::ElementResult& r) {
+    ++evaluated;
+    ASSERT_EQ(dofs.size(), 7u) << "slave, two master nodes, multiplier";
+    EXPECT_GE(dofs[0], 6) << "the slave node's host DOFs first";
+    EXPECT_NEAR(r.residual[6], kGap0 - 0.15, kRoundoff) << "active: the multiplier row is the gap";
+  });
+  EXPECT_EQ(evaluated, h.ownsSlave() ? 2 : 0) << "each slot on the owner of its slave node";
+}
+
+TEST(ContactComponent, HostMultipliersAreReadFromTheHostVector) {
+  // Multiplier DOFs in the host's map (a monolithic saddle-point host): the
+  // host numbers them after its displacement DOFs.
+  Host h;
+  auto c = registered(h, true);
+  std::vector<GO> gids;
+  for (int i = 0; i < 5; ++i)
+    if (h.owns(i)) gids.insert(gids.end(), {GO(2 * i), GO(2 * i + 1)});
+  std::vector<GO> lm;
+  if (h.ownsSlave()) lm = {10, 11};
+  gids.insert(gids.end(), lm.begin(), lm.end());
+  auto map = Teuchos::rcp(new ddc::Map(12, Teuchos::ArrayView<const GO>(gids), 0, h.comm));
+  c->setDofs(map, dofsOf(h), lm);
+  EXPECT_EQ(c->multiplierId(0), 10);
+  auto u = Teuchos::rcp(new ddc::Vector(map));
+  c->updatePairing(*u, true, true);
+  c->activateAllPaired();
+  if (h.ownsSlave()) u->replaceGlobalValue(GO(11), 2.0);  // slot 1 in tension
+  const auto changed = c->updateActiveSet(*u);
+  ASSERT_EQ(changed.size(), 1u);
+  EXPECT_EQ(changed[0], 1);
+  EXPECT_EQ(c->slots()[1].state.multiplier, 2.0);
+}
+
+// ---- registrations that do not match the host ------------------------------------
+
+TEST(ContactComponent, DofIdsTheRegisteringRankDoesNotOwnAreRejectedOnEveryRank) {
+  Host h;
+  auto c = registered(h, true);
+  auto map = h.map();
+  auto dofs = dofsOf(h);
+  // The slave owner claims a DOF id of the master surface (rank 0's) — or,
+  // on one rank, an id outside the host's map.
+  const GO foreign = h.comm->getSize() > 1 ? GO(0) : GO(99);
+  if (h.ownsSlave()) dofs.back().dofs[1] = foreign;
+  ddc::test::expectThrowWith<InputError>([&] { c->setDofs(map, dofs); },
+                                         {"surface node 11", "DOF id " + std::to_string(foreign) + " for u_y",
+                                          "does not own in the host's DOF map"});
+}
+
+TEST(ContactComponent, ANodeRegisteredByTwoRanksIsRejected) {
+  Host h;
+  if (h.comm->getSize() < 2) GTEST_SKIP() << "needs two ranks";
+  ddc::test::expectThrowWith<InputError>(
+      [&] {
+        registered(h, true, [&](std::vector<ddc::ContactNode>& nodes, ddc::ContactPairSurfaces&) {
+          if (h.ownsSlave()) nodes.push_back({0, Eigen::Vector2d(0, 0)});
+        });
+      },
+      {"surface node 0 is registered by ranks 0 and", "registered once, by its owner"});
+}
+
+TEST(ContactComponent, AFacetOnAnUnregisteredNodeIsRejected) {
+  Host h;
+  ddc::test::expectThrowWith<InputError>(
+      [&] {
+        registered(h, true, [&](std::vector<ddc::ContactNode>&, ddc::ContactPairSurfaces& pair) {
+          if (h.ownsMaster()) pair.masterFacets.push_back({2, {{0, 7}}, 102, 0, 1.0});
+        });
+      },
+      {"contact pair 'P'", "master node 7 is not a registered surface node"});
+}
+
+TEST(ContactComponent, MultipliersOfSlotsTheRankDoesNotOwnAreRejected) {
+  Host h;
+  auto c = registered(h, true);
+  auto map = h.map();
+  // One multiplier id per owned slot is required; rank 0 owns none.
+  std::vector<GO> lm = {0};
+  ddc::test::expectThrowWith<InputError>([&] { c->setDofs(map, dofsOf(h), h.ownsMaster() ? lm : std::vector<GO>{}); },
+                                         {"multiplier"});
+}
+
+}  // namespace
