@@ -369,88 +369,12 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
                                                           << comm_->getSize() << ")");
 
 
-  const bool feti = params.sublist("Solver").get<std::string>("Strategy") == "FETI-DP";
-  if (feti) {
-    DDC_INPUT_REQUIRE(!contact.enabled() || contact.decomposed,
-                      "Solver/Strategy = FETI-DP with Contact/Formulation = Node-To-Segment: the conventional "
-                      "element couples the slave and master DOFs directly (its projection and normal follow both "
-                      "sides), so it cannot be split across subdomains; use Contact/Formulation = Decomposed "
-                      "Node-To-Segment with FETI-DP, or Solver/Strategy = Monolithic");
-    DDC_INPUT_REQUIRE(!params.sublist("Solver").isSublist("Linear Solver"),
-                      "sublist 'Solver/Linear Solver' does not apply to Solver/Strategy = FETI-DP (its local and "
-                      "coarse solvers are set in 'Solver/FETI-DP')");
-  } else {
-    DDC_INPUT_REQUIRE(!params.sublist("Solver").isSublist("FETI-DP"),
-                      "sublist 'Solver/FETI-DP' does not apply to Solver/Strategy = Monolithic");
-    solver_ = DirectSolverFactory::withIterativeSolvers().create(params.sublist("Solver").sublist("Linear Solver"),
-                                                                 "Solver/Linear Solver");
-    const std::string type = params.sublist("Solver").sublist("Linear Solver").get<std::string>("Type");
-    DDC_INPUT_REQUIRE(!contact.enabled() || type == "MUMPS" || type == "Amesos2",
-                      "Solver/Linear Solver/Type = " << type << " cannot solve the saddle-point system of contact "
-                                                     "(Lagrange multipliers): use MUMPS or Amesos2 with Contact/Pairs");
-  }
+  strategy_ = makeSolutionStrategy(comm_, params.sublist("Solver"), contact);
 
   model_ = std::make_shared<Model>(comm_, mesh, std::move(elements), std::move(partition), std::move(bcs),
                                    std::move(contact), std::move(contactElements));
   u_ = model_->createVector();
-  if (feti) {
-    std::vector<std::string> report;
-    const auto primal = selectPrimalNodes(*model_, &report);
-    for (const auto& line : report) progress("FETI-DP: " + line);
-    subdomains_ = buildSubdomainSystems(*model_, primal);
-    sink_.systems = &subdomains_;
-    sink_.where.assign(mesh->numElements(), {-1, -1});
-    std::vector<FetiSubdomain> fs;
-    for (size_t i = 0; i < subdomains_.size(); ++i) {
-      for (size_t j = 0; j < subdomains_[i].elements.size(); ++j)
-        sink_.where[subdomains_[i].elements[j]] = {static_cast<int>(i), static_cast<int>(j)};
-      fs.push_back({subdomains_[i].id, subdomains_[i].dofs, subdomains_[i].primal, subdomains_[i].K, {}, model_->dim(),
-                    subdomains_[i].component, subdomains_[i].coordinates});
-      if (model_->hasContact()) {
-        // Contact rows may touch the DOFs of contact-surface nodes: the
-        // Dirichlet preconditioner treats them as interface DOFs.
-        auto& flags = fs.back().constrainable;
-        flags.assign(subdomains_[i].dofs.size(), 0);
-        for (int e : subdomains_[i].elements)
-          for (int a = 0; a < mesh->elementNumNodes(e); ++a) {
-            const int node = mesh->elementNodes(e)[a];
-            if (!model_->isContactSurfaceNode(node)) continue;
-            for (int c = 0; c < model_->dim(); ++c) {
-              const auto& d = subdomains_[i].dofs;
-              const auto it = std::lower_bound(d.begin(), d.end(), model_->dof(node, c));
-              if (it != d.end() && *it == model_->dof(node, c)) flags[it - d.begin()] = 1;
-            }
-          }
-      }
-    }
-    feti_ = std::make_unique<FetiDpSolver>(comm_, params.sublist("Solver").sublist("FETI-DP"), "Solver/FETI-DP");
-    feti_->setTopology(std::move(fs), model_->ownedMap());
-    {
-      // The size of the coarse problem (doc/feti-dp.md "In 3-D": it grows
-      // with the number of subdomain-edge ends a METIS partition makes).
-      const long nodes = std::count(primal.begin(), primal.end(), char(1));
-      const GO coarse = GO(feti_->primalMap()->getGlobalNumElements()), edgeFace = feti_->numEdgeFaceConstraints();
-      progress("FETI-DP: " + std::to_string(model_->partition().numSubdomains) + " subdomains, " +
-               std::to_string(nodes) + " primal nodes, coarse problem of " + std::to_string(coarse) + " DOFs (" +
-               std::to_string(coarse - edgeFace) + " at primal nodes, " + std::to_string(edgeFace) +
-               " edge/face constraints)");
-    }
-  } else {
-    K_ = model_->createMatrix();
-    topologyVersion_ = model_->topologyVersion();
-    // Nodal coordinates per DOF (near-null space of the iterative back ends).
-    const int dim = model_->dim();
-    auto coords = Teuchos::rcp(new MultiVector(model_->ownedMap(), dim));
-    const auto& map = *model_->ownedMap();
-    for (int n = 0; n < mesh->numNodes(); ++n)
-      for (int c = 0; c < dim; ++c) {
-        const LO l = map.getLocalElement(model_->dof(n, c));
-        if (l == Teuchos::OrdinalTraits<LO>::invalid()) continue;
-        for (int k = 0; k < dim; ++k) coords->replaceLocalValue(l, k, mesh->coord(n)[k]);
-      }
-    solver_->setDofsPerNode(dim);
-    solver_->setCoordinates(coords);
-  }
+  strategy_->setUp(model_, [this](const std::string& line) { progress(line); });
   params_ = params;
 }
 
@@ -491,39 +415,19 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
     return a;
   };
   if (contact) seen.push_back(activeSet());
-  // FETI-DP: the contact rows of this (sub)step, from the projections and
-  // normals frozen at the last converged state. They stay fixed during the
-  // Newton iterations; only their active flags and right-hand sides change.
-  std::vector<LO> lmLids;  // owned multiplier DOFs (LIDs in the owned map), in row-map order
-  if (feti_ && contact) {
-    feti_->setConstraintRows(model_->multiplierMap(), model_->contactRowEntries(subdomains_));
-    for (int k : model_->ownedSlots()) lmLids.push_back(model_->ownedMap()->getLocalElement(model_->multiplierDof(k)));
-  }
-  auto b = feti_ && contact ? model_->createVector() : Teuchos::null;
+  strategy_->beginIncrement();
   for (int it = 0; it < maxIt; ++it) {
-    auto tick = std::chrono::steady_clock::now();
-    auto lap = [&tick] {
-      const auto now = std::chrono::steady_clock::now();
-      const double dt = std::chrono::duration<double>(now - tick).count();
-      tick = now;
-      return dt;
-    };
-    if (!feti_ && model_->topologyVersion() != topologyVersion_) {
-      K_ = model_->createMatrix();  // the contact pairing changed the pattern
-      topologyVersion_ = model_->topologyVersion();
-      symbolicDone_ = false;
-    }
-    // One element pass: the residual and either the global tangent
-    // (Monolithic) or the subdomain stiffness matrices (FETI-DP).
+    const auto start = std::chrono::steady_clock::now();
+    // One element pass: the residual and what the strategy solves with (the
+    // global tangent, or the subdomain stiffness matrices).
     try {
-      model_->assemble(*u, lambda1, nullptr, r.get(), feti_ ? nullptr : K_.get(), it == 0 ? dp.get() : nullptr,
-                       feti_ ? &sink_ : nullptr);
+      strategy_->assemble(*u, lambda1, *r, it == 0 ? dp.get() : nullptr);
     } catch (const InadmissibleDeformation& e) {
       rec.failure = std::string("Newton iteration ") + std::to_string(it) + ": " + e.what();
       progress("    " + rec.failure);
       return false;
     }
-    timing_.assembly += lap();
+    timing_.assembly += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double rnorm = r->norm2();
     rec.residualHistory.push_back(rnorm);
     if (!std::isfinite(rnorm)) {
@@ -537,58 +441,12 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
     const bool residualOk = it > 0 && rnorm <= std::max(rtol * r0, atol);
 
     r->scale(-1.0);
-    lap();
-    int solveIterations = 0;
-    if (feti_) {
-      if (contact) {
-        // Contact rows: active flag per slot, c = -(residual of the
-        // multiplier row) = -g_N (with the predictor's share of the
-        // prescribed increment in the first iteration). The multipliers are
-        // not subdomain DOFs: b is 0 there.
-        std::vector<char> active;
-        std::vector<double> c;
-        b->assign(*r);
-        auto bv = b->getDataNonConst();
-        for (size_t i = 0; i < lmLids.size(); ++i) {
-          const auto& sl = model_->contactSlots()[model_->ownedSlots()[i]];
-          active.push_back(sl.active && sl.paired());
-          c.push_back(bv[lmLids[i]]);
-          bv[lmLids[i]] = 0.0;
-        }
-        feti_->setConstraintState(active, c);
-      }
-      feti_->numeric();
-      timing_.linearSetup += lap();
-      const auto info = feti_->solve(contact ? *b : *r, *du);
-      if (contact) {
-        // Multiplier increments: from FETI-DP on active rows; a released
-        // multiplier goes to zero (its row of -r is -λ).
-        auto mu = feti_->constraintMultipliers()->getData();
-        auto dv = du->getDataNonConst();
-        auto rv = r->getData();
-        for (size_t i = 0; i < lmLids.size(); ++i) {
-          const auto& sl = model_->contactSlots()[model_->ownedSlots()[i]];
-          dv[lmLids[i]] = sl.active && sl.paired() ? mu[i] : rv[lmLids[i]];
-        }
-      }
-      timing_.linearSolve += lap();
-      rec.dualIterations += info.iterations;
-      solveIterations = info.iterations;
-      auto& f = timing_.feti;
-      f[0] += info.localFactorSeconds, f[1] += info.coarseFactorSeconds, f[2] += info.dirichletFactorSeconds;
-      f[3] += info.localSolveSeconds, f[4] += info.coarseSolveSeconds, f[5] += info.preconditionerSeconds;
-    } else {
-      if (!symbolicDone_) {
-        solver_->symbolic(K_);
-        symbolicDone_ = true;
-      }
-      solver_->numeric();
-      timing_.linearSetup += lap();
-      solver_->solve(*r, *du);
-      timing_.linearSolve += lap();
-      rec.dualIterations += solver_->lastIterations();
-      solveIterations = solver_->lastIterations();
-    }
+    const StrategySolveInfo info = strategy_->solve(*r, *du);
+    timing_.linearSetup += info.setupSeconds;
+    timing_.linearSolve += info.solveSeconds;
+    rec.dualIterations += info.iterations;
+    const int solveIterations = info.iterations;
+    for (int i = 0; i < 6; ++i) timing_.feti[i] += info.feti[i];
     ++timing_.linearSolves;
     // |du·r|: the energy norm of the correction.
     const double energy = std::abs(du->dot(*r));
@@ -848,15 +706,8 @@ void Analysis::runSteps(OutputDirectory* dir) {
                   timing_.assembly, timing_.linearSetup, timing_.linearSolve, timing_.linearSolves, dual,
                   timing_.peakMemoryMiB);
     progress(buf);
-    if (feti_) {
-      double f[6];
-      Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 6, timing_.feti.data(), f);
-      std::snprintf(buf, sizeof buf,
-                    "FETI-DP (max over ranks): local factorisation %.3f s, coarse factorisation %.3f s, Dirichlet "
-                    "factorisation %.3f s; local solves %.3f s, coarse solves %.3f s, preconditioner %.3f s",
-                    f[0], f[1], f[2], f[3], f[4], f[5]);
-      progress(buf);
-    }
+    const std::string breakdown = strategy_->timingReport(timing_.feti);
+    if (!breakdown.empty()) progress(breakdown);
   }
   if (dir) {
     hist->close();

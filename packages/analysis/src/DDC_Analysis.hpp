@@ -21,7 +21,7 @@
 #include "DDC_FetiDpSolver.hpp"
 #include "DDC_Model.hpp"
 #include "DDC_OutputDirectory.hpp"
-#include "DDC_Substructuring.hpp"
+#include "DDC_SolutionStrategy.hpp"
 
 namespace ddc {
 
@@ -103,17 +103,11 @@ class Analysis {
   Teuchos::ParameterList params_;
   ElementFactory factory_;
   std::shared_ptr<Model> model_;
-  std::unique_ptr<DirectSolver> solver_;       ///< Monolithic
-  std::unique_ptr<FetiDpSolver> feti_;         ///< FETI-DP
-  std::vector<SubdomainSystem> subdomains_;    ///< FETI-DP: this rank's subdomain problems
-  SubdomainSink sink_;
-  Teuchos::RCP<CrsMatrix> K_;
+  std::unique_ptr<SolutionStrategy> strategy_;  ///< Monolithic or FETI-DP
   Teuchos::RCP<Vector> u_;
   std::vector<StepRecord> history_;
   RunTiming timing_;
-  bool symbolicDone_ = false;
   bool progressEnabled_ = true;
-  int topologyVersion_ = -1;
 };
 
 /// Build the mesh described by "Mesh" (validated in place). Exposed for tools

@@ -1,0 +1,243 @@
+#include "DDC_SolutionStrategy.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+#include <algorithm>
+#include <chrono>
+
+#include "DDC_Error.hpp"
+
+namespace ddc {
+
+namespace {
+
+/// Seconds since the last call (or construction).
+class Lap {
+ public:
+  double operator()() {
+    const auto now = std::chrono::steady_clock::now();
+    const double dt = std::chrono::duration<double>(now - tick_).count();
+    tick_ = now;
+    return dt;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point tick_ = std::chrono::steady_clock::now();
+};
+
+// ---- Monolithic ---------------------------------------------------------------
+
+class MonolithicStrategy : public SolutionStrategy {
+ public:
+  explicit MonolithicStrategy(Teuchos::ParameterList& solverParams) {
+    solver_ = DirectSolverFactory::withIterativeSolvers().create(solverParams.sublist("Linear Solver"),
+                                                                 "Solver/Linear Solver");
+  }
+
+  std::string name() const override { return "Monolithic"; }
+
+  void setUp(std::shared_ptr<Model> model, const std::function<void(const std::string&)>&) override {
+    model_ = std::move(model);
+    K_ = model_->createMatrix();
+    topologyVersion_ = model_->topologyVersion();
+    // Nodal coordinates per DOF (near-null space of the iterative back ends).
+    const Mesh& mesh = model_->mesh();
+    const int dim = model_->dim();
+    auto coords = Teuchos::rcp(new MultiVector(model_->ownedMap(), dim));
+    const auto& map = *model_->ownedMap();
+    for (int n = 0; n < mesh.numNodes(); ++n)
+      for (int c = 0; c < dim; ++c) {
+        const LO l = map.getLocalElement(model_->dof(n, c));
+        if (l == Teuchos::OrdinalTraits<LO>::invalid()) continue;
+        for (int k = 0; k < dim; ++k) coords->replaceLocalValue(l, k, mesh.coord(n)[k]);
+      }
+    solver_->setDofsPerNode(dim);
+    solver_->setCoordinates(coords);
+  }
+
+  AssemblyResult assemble(const Vector& u, double lambda, Vector& r, const Vector* prescribedStep) override {
+    if (model_->topologyVersion() != topologyVersion_) {
+      K_ = model_->createMatrix();  // the contact pairing changed the pattern
+      topologyVersion_ = model_->topologyVersion();
+      symbolicDone_ = false;
+    }
+    return model_->assemble(u, lambda, nullptr, &r, K_.get(), prescribedStep);
+  }
+
+  StrategySolveInfo solve(const Vector& b, Vector& du) override {
+    StrategySolveInfo info;
+    Lap lap;
+    if (!symbolicDone_) {
+      solver_->symbolic(K_);
+      symbolicDone_ = true;
+    }
+    solver_->numeric();
+    info.setupSeconds = lap();
+    solver_->solve(b, du);
+    info.solveSeconds = lap();
+    info.iterations = solver_->lastIterations();
+    return info;
+  }
+
+ private:
+  std::shared_ptr<Model> model_;
+  std::unique_ptr<DirectSolver> solver_;
+  Teuchos::RCP<CrsMatrix> K_;
+  int topologyVersion_ = -1;
+  bool symbolicDone_ = false;
+};
+
+// ---- FETI-DP ------------------------------------------------------------------
+
+class FetiDpStrategy : public SolutionStrategy {
+ public:
+  FetiDpStrategy(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::ParameterList& solverParams)
+      : feti_(std::make_unique<FetiDpSolver>(comm, solverParams.sublist("FETI-DP"), "Solver/FETI-DP")) {}
+
+  std::string name() const override { return "FETI-DP"; }
+
+  void setUp(std::shared_ptr<Model> model, const std::function<void(const std::string&)>& progress) override {
+    model_ = std::move(model);
+    const Mesh& mesh = model_->mesh();
+    std::vector<std::string> report;
+    const auto primal = selectPrimalNodes(*model_, &report);
+    for (const auto& line : report) progress("FETI-DP: " + line);
+    subdomains_ = buildSubdomainSystems(*model_, primal);
+    sink_.systems = &subdomains_;
+    sink_.where.assign(mesh.numElements(), {-1, -1});
+    std::vector<FetiSubdomain> fs;
+    for (size_t i = 0; i < subdomains_.size(); ++i) {
+      for (size_t j = 0; j < subdomains_[i].elements.size(); ++j)
+        sink_.where[subdomains_[i].elements[j]] = {static_cast<int>(i), static_cast<int>(j)};
+      fs.push_back({subdomains_[i].id, subdomains_[i].dofs, subdomains_[i].primal, subdomains_[i].K, {}, model_->dim(),
+                    subdomains_[i].component, subdomains_[i].coordinates});
+      if (model_->hasContact()) {
+        // Contact rows may touch the DOFs of contact-surface nodes: the
+        // Dirichlet preconditioner treats them as interface DOFs.
+        auto& flags = fs.back().constrainable;
+        flags.assign(subdomains_[i].dofs.size(), 0);
+        for (int e : subdomains_[i].elements)
+          for (int a = 0; a < mesh.elementNumNodes(e); ++a) {
+            const int node = mesh.elementNodes(e)[a];
+            if (!model_->isContactSurfaceNode(node)) continue;
+            for (int c = 0; c < model_->dim(); ++c) {
+              const auto& d = subdomains_[i].dofs;
+              const auto it = std::lower_bound(d.begin(), d.end(), model_->dof(node, c));
+              if (it != d.end() && *it == model_->dof(node, c)) flags[it - d.begin()] = 1;
+            }
+          }
+      }
+    }
+    feti_->setTopology(std::move(fs), model_->ownedMap());
+    // The size of the coarse problem (doc/feti-dp.md "In 3-D": it grows with
+    // the number of subdomain-edge ends a METIS partition makes).
+    const long nodes = std::count(primal.begin(), primal.end(), char(1));
+    const GO coarse = GO(feti_->primalMap()->getGlobalNumElements()), edgeFace = feti_->numEdgeFaceConstraints();
+    progress("FETI-DP: " + std::to_string(model_->partition().numSubdomains) + " subdomains, " +
+             std::to_string(nodes) + " primal nodes, coarse problem of " + std::to_string(coarse) + " DOFs (" +
+             std::to_string(coarse - edgeFace) + " at primal nodes, " + std::to_string(edgeFace) +
+             " edge/face constraints)");
+    if (model_->hasContact()) b_ = model_->createVector();
+  }
+
+  void beginIncrement() override {
+    // The contact rows of this (sub)step, from the projections and normals
+    // frozen at the last converged state. They stay fixed during the Newton
+    // iterations; only their active flags and right-hand sides change.
+    if (!model_->hasContact()) return;
+    feti_->setConstraintRows(model_->multiplierMap(), model_->contactRowEntries(subdomains_));
+    lmLids_.clear();
+    for (int k : model_->ownedSlots())
+      lmLids_.push_back(model_->ownedMap()->getLocalElement(model_->contact()->multiplierId(k)));
+  }
+
+  AssemblyResult assemble(const Vector& u, double lambda, Vector& r, const Vector* prescribedStep) override {
+    return model_->assemble(u, lambda, nullptr, &r, nullptr, prescribedStep, &sink_);
+  }
+
+  StrategySolveInfo solve(const Vector& bModel, Vector& du) override {
+    StrategySolveInfo out;
+    Lap lap;
+    const bool contact = model_->hasContact();
+    if (contact) {
+      // Contact rows: active flag per slot, c = the right-hand side of the
+      // multiplier row (−g_N, with the predictor's share of the prescribed
+      // increment in the first iteration). The multipliers are not
+      // subdomain DOFs: b is 0 there.
+      std::vector<char> active;
+      std::vector<double> c;
+      b_->assign(bModel);
+      auto bv = b_->getDataNonConst();
+      for (size_t i = 0; i < lmLids_.size(); ++i) {
+        const auto& sl = model_->contactSlots()[model_->ownedSlots()[i]];
+        active.push_back(sl.active && sl.paired());
+        c.push_back(bv[lmLids_[i]]);
+        bv[lmLids_[i]] = 0.0;
+      }
+      feti_->setConstraintState(active, c);
+    }
+    feti_->numeric();
+    out.setupSeconds = lap();
+    const auto info = feti_->solve(contact ? *b_ : bModel, du);
+    if (contact) {
+      // Multiplier increments: from FETI-DP on active rows; a released
+      // multiplier goes to zero (its row of b is −λ).
+      auto mu = feti_->constraintMultipliers()->getData();
+      auto dv = du.getDataNonConst();
+      auto rv = bModel.getData();
+      for (size_t i = 0; i < lmLids_.size(); ++i) {
+        const auto& sl = model_->contactSlots()[model_->ownedSlots()[i]];
+        dv[lmLids_[i]] = sl.active && sl.paired() ? mu[i] : rv[lmLids_[i]];
+      }
+    }
+    out.solveSeconds = lap();
+    out.iterations = info.iterations;
+    out.feti = {info.localFactorSeconds, info.coarseFactorSeconds, info.dirichletFactorSeconds,
+                info.localSolveSeconds,  info.coarseSolveSeconds,  info.preconditionerSeconds};
+    return out;
+  }
+
+  std::string timingReport(const std::array<double, 6>& breakdown) const override {
+    double f[6];
+    Teuchos::reduceAll(*model_->comm(), Teuchos::REDUCE_MAX, 6, breakdown.data(), f);
+    char buf[300];
+    std::snprintf(buf, sizeof buf,
+                  "FETI-DP (max over ranks): local factorisation %.3f s, coarse factorisation %.3f s, Dirichlet "
+                  "factorisation %.3f s; local solves %.3f s, coarse solves %.3f s, preconditioner %.3f s",
+                  f[0], f[1], f[2], f[3], f[4], f[5]);
+    return buf;
+  }
+
+ private:
+  std::shared_ptr<Model> model_;
+  std::unique_ptr<FetiDpSolver> feti_;
+  std::vector<SubdomainSystem> subdomains_;  ///< this rank's subdomain problems
+  SubdomainSink sink_;
+  Teuchos::RCP<Vector> b_;    ///< right-hand side without the multiplier rows
+  std::vector<LO> lmLids_;    ///< owned multiplier DOFs (LIDs in the model's map), in row-map order
+};
+
+}  // namespace
+
+std::unique_ptr<SolutionStrategy> makeSolutionStrategy(Teuchos::RCP<const Teuchos::Comm<int>> comm,
+                                                       Teuchos::ParameterList& solver, const ContactOptions& contact) {
+  if (solver.get<std::string>("Strategy") == "FETI-DP") {
+    DDC_INPUT_REQUIRE(!contact.enabled() || contact.decomposed,
+                      "Solver/Strategy = FETI-DP with Contact/Formulation = Node-To-Segment: the conventional "
+                      "element couples the slave and master DOFs directly (its projection and normal follow both "
+                      "sides), so it cannot be split across subdomains; use Contact/Formulation = Decomposed "
+                      "Node-To-Segment with FETI-DP, or Solver/Strategy = Monolithic");
+    DDC_INPUT_REQUIRE(!solver.isSublist("Linear Solver"),
+                      "sublist 'Solver/Linear Solver' does not apply to Solver/Strategy = FETI-DP (its local and "
+                      "coarse solvers are set in 'Solver/FETI-DP')");
+    return std::make_unique<FetiDpStrategy>(comm, solver);
+  }
+  DDC_INPUT_REQUIRE(!solver.isSublist("FETI-DP"), "sublist 'Solver/FETI-DP' does not apply to Solver/Strategy = Monolithic");
+  auto strategy = std::make_unique<MonolithicStrategy>(solver);
+  const std::string type = solver.sublist("Linear Solver").get<std::string>("Type");
+  DDC_INPUT_REQUIRE(!contact.enabled() || type == "MUMPS" || type == "Amesos2",
+                    "Solver/Linear Solver/Type = " << type << " cannot solve the saddle-point system of contact "
+                                                   "(Lagrange multipliers): use MUMPS or Amesos2 with Contact/Pairs");
+  return strategy;
+}
+
+}  // namespace ddc
