@@ -9,10 +9,10 @@
 // The problem: a Neo-Hookean punch (the "Upper" block, 1 x 0.5) pressed by a
 // prescribed displacement of its top into a wider block ("Lower", 2 x 1)
 // fixed at its bottom; non-matching meshes on the contact interface. The host
-// splits each block at x = 1 into two subdomains (four in all) and makes the
-// two ends of each block's cut primal. The same problem is run through the
-// whole analysis (what the ddcontact application runs) with another
-// partition; the per-step strain energies and contact forces must agree to
+// splits each block at x = 1 into two subdomains (four in all) and lets
+// findPrimalVertices() choose the primal vertices from the DOF sharing. The
+// same problem is run through the whole analysis (what the ddcontact
+// application runs) with another partition and the analysis' corner rule; the per-step strain energies and contact forces must agree to
 // kAgreement: FETI-DP solves the same equations for any partition, so only
 // the Newton and Krylov tolerances (1e-12) separate the two.
 #include <DDC_Analysis.hpp>
@@ -22,6 +22,8 @@
 #include <DDC_ElementFactory.hpp>
 #include <DDC_Error.hpp>
 #include <DDC_FetiDpSolver.hpp>
+#include <DDC_FetiPrimalVertices.hpp>
+#include <DDC_MpiRecords.hpp>
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_Core.hpp>
 #include <Tpetra_Export.hpp>
@@ -252,13 +254,6 @@ class Host {
 
   void buildFeti() {
     const int me = comm_->getRank(), P = comm_->getSize();
-    // Primal: the ends of each block's cut x = 1 (free DOFs only).
-    std::set<int> primal;
-    for (int b = 0; b < 2; ++b) {
-      const Block& k = kBlocks[b];
-      const int i = int(std::lround((1.0 - k.x0) / k.lx * k.nx));
-      primal.insert({mesh_.node(b, i, 0), mesh_.node(b, i, k.ny)});
-    }
     std::vector<ddc::FetiSubdomain> fs;
     for (int s = 0; s < 4; ++s) {
       if (s * P / 4 != me) continue;
@@ -282,7 +277,6 @@ class Host {
         for (int a : mesh_.quads[e]) nodeOfDof[dof_[a]] = a, nodeOfDof[dof_[a] + 1] = a;
       for (GO g : f.dofs) {
         const int a = nodeOfDof[g];
-        f.primal.push_back(primal.count(a) ? 1 : 0);
         f.component.push_back(int(g - dof_[a]));
         f.coordinates.insert(f.coordinates.end(), {mesh_.X[a].x(), mesh_.X[a].y()});
         f.constrainable.push_back(contact_->isSurfaceNode(a) ? 1 : 0);
@@ -313,6 +307,10 @@ class Host {
       fs.push_back(f);
       subdomains_.push_back(std::move(sd));
     }
+    // Primal vertices from the DOF sharing and the stiffness patterns alone
+    // (here: none, each cut is one edge; its averages and rotation are primal).
+    const auto vertices = ddc::findPrimalVertices(ddc::rawComm(*comm_), *map_, fs, 2);
+    for (size_t i = 0; i < fs.size(); ++i) fs[i].primal = vertices[i];
     auto params = fetiParameters();
     feti_ = std::make_unique<ddc::FetiDpSolver>(comm_, params, "host FETI-DP");
     feti_->setTopology(std::move(fs), map_);

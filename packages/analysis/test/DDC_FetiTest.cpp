@@ -47,6 +47,8 @@
 
 #include "DDC_Analysis.hpp"
 #include "DDC_Error.hpp"
+#include "DDC_FetiPrimalVertices.hpp"
+#include "DDC_MpiRecords.hpp"
 #include "DDC_Substructuring.hpp"
 #include "DDC_AnalysisTestDecks.hpp"
 #include "DDC_FetiTolerances.hpp"
@@ -198,6 +200,7 @@ struct FirstSolve {
   double directResidual = 0.0;   ///< ||K u_direct - b|| / ||b||: the reference is checked too
   size_t numPrimal = 0, numLm = 0;
   long long numDual = 0;
+  long long numEdgeFace = 0;  ///< edge/face constraints among the primal DOFs
   int subdomains = 0;
   std::vector<std::string> primalReport;  ///< subdomains that needed extra corners
   double seconds = 0.0;
@@ -206,7 +209,10 @@ struct FirstSolve {
 /// Build the model of `deck` (partition included), assemble K du = -r(0) at
 /// u = 0, load factor 1 (for a linear problem: the whole solution), and solve
 /// it by FETI-DP with `feti` and (if `direct`) by MUMPS.
-FirstSolve firstSolve(PL deck, const PL& feti, bool direct = true) {
+/// With `meshFreeVertices`, the primal vertices come from
+/// findPrimalVertices() (DOF sharing and stiffness patterns only) instead of
+/// the analysis' corner rule.
+FirstSolve firstSolve(PL deck, const PL& feti, bool direct = true, bool meshFreeVertices = false) {
   const auto t0 = std::chrono::steady_clock::now();
   useMonolithic(deck);  // the Analysis is only used to build and hold the model
   ddc::Analysis a(worldComm(), deck);
@@ -227,6 +233,10 @@ FirstSolve firstSolve(PL deck, const PL& feti, bool direct = true) {
     fs.push_back({systems[i].id, systems[i].dofs, systems[i].primal, systems[i].K, {}, model.dim(),
                   systems[i].component, systems[i].coordinates});
   }
+  if (meshFreeVertices) {
+    const auto flags = ddc::findPrimalVertices(ddc::rawComm(*worldComm()), *model.ownedMap(), fs, model.dim());
+    for (size_t i = 0; i < fs.size(); ++i) fs[i].primal = flags[i];
+  }
   auto u0 = model.createVector();
   auto dp = model.createVector();
   model.prescribedIncrement(0.0, 1.0, *dp);
@@ -242,6 +252,7 @@ FirstSolve firstSolve(PL deck, const PL& feti, bool direct = true) {
   out.numPrimal = solver.primalMap()->getGlobalNumElements();
   out.numLm = solver.lmMap()->getGlobalNumElements();
   out.numDual = solver.numDualDofs();
+  out.numEdgeFace = solver.numEdgeFaceConstraints();
 
   if (direct) {
     auto K = model.createMatrix();
@@ -743,6 +754,25 @@ TEST(FetiIterations, PrimalChoices3d) {
   for (size_t a = 0; a < 3; ++a)
     for (size_t b = 0; b < 2; ++b)
       if (t[2][a][b] >= 0) EXPECT_LE(t[2][a][b], t[1][a][b]) << "faces cost iterations";
+}
+
+/// Mesh-free vertices in 3-D (doc/feti-dp.md "Primal nodes"): on a Box Grid
+/// k x k x k of a cube, findPrimalVertices() picks exactly the points where
+/// eight subdomains meet ((k-1)^3 of them); the subdomain edges' ends on the
+/// boundary stay in their edges. With faces and edges FETI-DP then matches
+/// MUMPS.
+TEST(FetiMeshFreeVertices, CubeCrossPointsAndAccuracy) {
+  for (int k : {2, 3}) {
+    const auto s = firstSolve(cubeDeck(k, 3), fetiParams(kTightBelos), true, /*meshFreeVertices=*/true);
+    const long long vertexDofs = (long long)(s.numPrimal) - s.numEdgeFace, expected = 3LL * (k - 1) * (k - 1) * (k - 1);
+    if (isRoot())
+      std::printf("[feti-accuracy] cube Box Grid %dx%dx%d mesh-free vertices: %lld vertex DOFs, %lld edge/face "
+                  "constraints, error %.2e, CG %d it\n",
+                  k, k, k, vertexDofs, s.numEdgeFace, s.error, s.info.iterations);
+    EXPECT_EQ(vertexDofs, expected) << "the points where eight subdomains meet";
+    EXPECT_LT(s.error, kFetiVsDirect) << k << "^3 subdomains";
+    EXPECT_GT(s.numEdgeFace, 0) << "the edges and faces carry the rest of the coarse space";
+  }
 }
 
 // ---------------------------------------------------------------------------

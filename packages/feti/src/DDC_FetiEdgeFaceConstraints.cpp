@@ -45,12 +45,58 @@ PrimalConstraints primalConstraintsFromName(const std::string& name) {
   return static_cast<PrimalConstraints>(it - n.begin());
 }
 
-std::vector<std::vector<PrimalGroup>> findEdgeFaceConstraints(MPI_Comm comm, const Map& ownedMap,
-                                                              const std::vector<EdgeFaceInput>& subs, int dim,
-                                                              PrimalConstraints choice, bool rotations) {
+std::vector<std::vector<std::vector<int>>> dofSharingSets(MPI_Comm comm, const Map& ownedMap,
+                                                          const std::vector<EdgeFaceInput>& subs) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
+  std::string msg;
+  // 1. Send every non-primal DOF to its owner, which learns who shares it.
+  std::vector<std::vector<ShareMsg>> send(size);
+  {
+    std::vector<GO> gids;
+    std::vector<std::pair<int, LO>> who;
+    for (size_t ls = 0; ls < subs.size(); ++ls)
+      for (LO k = 0; k < LO(subs[ls].dofs.size()); ++k)
+        if (!subs[ls].primal[k]) gids.push_back(subs[ls].dofs[k]), who.emplace_back(int(ls), k);
+    std::vector<int> pids;
+    std::vector<LO> lids;
+    owners(ownedMap, gids, pids, lids);
+    for (size_t k = 0; k < gids.size(); ++k) {
+      if (pids[k] < 0) {
+        if (msg.empty()) msg = "FETI-DP primal constraints: DOF " + std::to_string(gids[k]) + " is not in the owned DOF map";
+        continue;
+      }
+      send[pids[k]].push_back(ShareMsg{gids[k], subs[who[k].first].id, rank, who[k].first, who[k].second});
+    }
+  }
+  raiseCollectively<std::invalid_argument>(comm, msg);
+  std::vector<ShareMsg> recv = exchangeRecords(comm, send);
+  std::sort(recv.begin(), recv.end(), [](const ShareMsg& a, const ShareMsg& b) {
+    return a.gid != b.gid ? a.gid < b.gid : a.subId < b.subId;
+  });
+
+  // 2. The owner returns the sorted set of sharing subdomains to each sharer.
+  std::vector<std::vector<MemberMsg>> reply(size);
+  for (size_t a = 0; a < recv.size();) {
+    size_t b = a;
+    while (b < recv.size() && recv[b].gid == recv[a].gid) ++b;
+    if (b - a >= 2)
+      for (size_t i = a; i < b; ++i)
+        for (size_t j = a; j < b; ++j) reply[recv[i].rank].push_back(MemberMsg{recv[i].localSub, recv[i].dof, recv[j].subId});
+    a = b;
+  }
+  std::vector<MemberMsg> members = exchangeRecords(comm, reply);
+  std::vector<std::vector<std::vector<int>>> sets(subs.size());
+  for (size_t ls = 0; ls < subs.size(); ++ls) sets[ls].resize(subs[ls].dofs.size());
+  for (const auto& m : members) sets[m.localSub][m.dof].push_back(m.subId);
+
+  return sets;
+}
+
+std::vector<std::vector<PrimalGroup>> findEdgeFaceConstraints(MPI_Comm comm, const Map& ownedMap,
+                                                              const std::vector<EdgeFaceInput>& subs, int dim,
+                                                              PrimalConstraints choice, bool rotations) {
   std::string msg;
   if (dim != 2 && dim != 3) msg = "findEdgeFaceConstraints: spatial dimension " + std::to_string(dim) + ", expected 2 or 3";
   for (const auto& s : subs) {
@@ -79,45 +125,7 @@ std::vector<std::vector<PrimalGroup>> findEdgeFaceConstraints(MPI_Comm comm, con
   std::vector<std::vector<PrimalGroup>> out(subs.size());
   if (choice == PrimalConstraints::Vertices) return out;
 
-  // 1. Send every non-primal DOF to its owner, which learns who shares it.
-  std::vector<std::vector<ShareMsg>> send(size);
-  {
-    std::vector<GO> gids;
-    std::vector<std::pair<int, LO>> who;
-    for (size_t ls = 0; ls < subs.size(); ++ls)
-      for (LO k = 0; k < LO(subs[ls].dofs.size()); ++k)
-        if (!subs[ls].primal[k]) gids.push_back(subs[ls].dofs[k]), who.emplace_back(int(ls), k);
-    std::vector<int> pids;
-    std::vector<LO> lids;
-    owners(ownedMap, gids, pids, lids);
-    for (size_t k = 0; k < gids.size(); ++k) {
-      if (pids[k] < 0) {
-        if (msg.empty()) msg = "findEdgeFaceConstraints: DOF " + std::to_string(gids[k]) + " is not in the owned DOF map";
-        continue;
-      }
-      send[pids[k]].push_back(ShareMsg{gids[k], subs[who[k].first].id, rank, who[k].first, who[k].second});
-    }
-  }
-  raiseCollectively<std::invalid_argument>(comm, msg);
-  std::vector<ShareMsg> recv = exchangeRecords(comm, send);
-  std::sort(recv.begin(), recv.end(), [](const ShareMsg& a, const ShareMsg& b) {
-    return a.gid != b.gid ? a.gid < b.gid : a.subId < b.subId;
-  });
-
-  // 2. The owner returns the sorted set of sharing subdomains to each sharer.
-  std::vector<std::vector<MemberMsg>> reply(size);
-  for (size_t a = 0; a < recv.size();) {
-    size_t b = a;
-    while (b < recv.size() && recv[b].gid == recv[a].gid) ++b;
-    if (b - a >= 2)
-      for (size_t i = a; i < b; ++i)
-        for (size_t j = a; j < b; ++j) reply[recv[i].rank].push_back(MemberMsg{recv[i].localSub, recv[i].dof, recv[j].subId});
-    a = b;
-  }
-  std::vector<MemberMsg> members = exchangeRecords(comm, reply);
-  std::vector<std::vector<std::vector<int>>> sets(subs.size());
-  for (size_t ls = 0; ls < subs.size(); ++ls) sets[ls].resize(subs[ls].dofs.size());
-  for (const auto& m : members) sets[m.localSub][m.dof].push_back(m.subId);
+  auto sets = dofSharingSets(comm, ownedMap, subs);
 
   // 3. Group each subdomain's DOFs by sharing set. Every subdomain of a set
   //    has all DOFs of that set, so all of them form the same groups (and,

@@ -56,6 +56,14 @@ struct PrimalGroup {
   std::vector<std::vector<double>> rows;
 };
 
+/// Per subdomain of `subs`, per local DOF: the ids of the subdomains sharing
+/// it, ascending (its interface set), for every non-primal DOF shared by two
+/// or more subdomains; empty otherwise. Collective over `comm` (each DOF's
+/// owner in `ownedMap` learns who has it and tells them).
+/// \throws std::invalid_argument (on every rank) for a DOF not in `ownedMap`.
+std::vector<std::vector<std::vector<int>>> dofSharingSets(MPI_Comm comm, const Map& ownedMap,
+                                                          const std::vector<EdgeFaceInput>& subs);
+
 /// The edges / faces (per subdomain of `subs`, in the same order) whose
 /// constraints are primal under `choice`, sorted by their first global id.
 /// Every subdomain sharing a group's DOFs gets the same group and the same

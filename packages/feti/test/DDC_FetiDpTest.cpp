@@ -23,6 +23,8 @@
 #include "DDC_Error.hpp"
 #include "DDC_FetiDpSolver.hpp"
 #include "DDC_FetiEdgeFaceConstraints.hpp"
+#include "DDC_FetiPrimalVertices.hpp"
+#include "DDC_MpiRecords.hpp"
 #include "DDC_FetiTolerances.hpp"
 #include "DDC_TestErrors.hpp"
 #include "DDC_TestTolerances.hpp"
@@ -897,6 +899,71 @@ TEST(FetiDp, EdgeRotationsFixAFloatingSubdomain) {
   const FetiRun r = runFeti(s, p);
   report("elasticity 2x1 no vertices, edge + rotation", r);
   EXPECT_LT(r.error, ddc::test::kFetiVsDirect);
+}
+
+// ---- mesh-free vertices ----------------------------------------------------------
+
+/// findPrimalVertices() on the synthetic grid: from the DOFs, coordinates and
+/// stiffness patterns alone it finds exactly the cross points (nodes of four
+/// subdomains); the ends of interfaces on the boundary stay in their edges.
+TEST(FetiDpPrimalVertices, FindsTheCrossPointsFromTheSharingAlone) {
+  for (int S : {2, 3, 4}) {
+    Spec s;
+    s.Sx = S, s.Sy = S, s.H = 4, s.dpn = 2, s.blockwise = S == 4;
+    Problem pb(s);
+    const auto subs = pb.subdomains();
+    const auto flags = ddc::findPrimalVertices(ddc::rawComm(*worldComm()), *pb.ownedMap(), subs, 2);
+    ASSERT_EQ(flags.size(), subs.size());
+    long found = 0;
+    for (size_t ls = 0; ls < subs.size(); ++ls)
+      for (size_t k = 0; k < subs[ls].dofs.size(); ++k) {
+        const GO node = subs[ls].dofs[k] / 2;
+        const int i = int(node % (S * s.H)) + 1, j = int(node / (S * s.H));
+        const bool cross = i % s.H == 0 && j % s.H == 0 && pb.nodeCount(i, j) == 4;
+        EXPECT_EQ(flags[ls][k] != 0, cross) << S << "x" << S << " subdomain " << subs[ls].id << " node (" << i << ", "
+                                            << j << ")";
+        found += flags[ls][k];
+      }
+    long total = 0;
+    Teuchos::reduceAll(*worldComm(), Teuchos::REDUCE_SUM, found, Teuchos::outArg(total));
+    EXPECT_GT(total, 0L) << "a copy of each cross-point DOF in each of its 4 subdomains";
+  }
+}
+
+/// With those vertices and the default edge constraints (averages and
+/// rotations) FETI-DP solves the problem like the direct solver, floating
+/// subdomains included: a host needs no mesh to choose its primal DOFs.
+TEST(FetiDpPrimalVertices, MeshFreeVerticesWithEdgesMatchTheDirectSolve) {
+  Spec s;
+  s.Sx = 3, s.Sy = 3, s.H = 4, s.dpn = 2;
+  Problem pb(s);
+  auto subs = pb.subdomains();
+  const auto flags = ddc::findPrimalVertices(ddc::rawComm(*worldComm()), *pb.ownedMap(), subs, 2);
+  for (size_t ls = 0; ls < subs.size(); ++ls) subs[ls].primal = flags[ls];
+  auto p = fetiParams("Dirichlet", "Multiplicity", "CG", ddc::test::kTightBelos, "Vertices, Edges and Faces");
+  FetiDpSolver feti(worldComm(), p, "FETI-DP");
+  feti.setTopology(subs, pb.ownedMap());
+  feti.numeric();
+  auto b = pb.load();
+  Vector u(pb.ownedMap());
+  FetiRun r;
+  r.info = feti.solve(*b, u);
+  r.error = relDiff(u, *directSolve(pb, *b));
+  report("elasticity 3x3 mesh-free vertices + edges", r);
+  EXPECT_LT(r.error, ddc::test::kFetiVsDirect);
+}
+
+TEST(FetiDpPrimalVertices, InputIsChecked) {
+  Spec s;
+  Problem pb(s);
+  auto subs = pb.subdomains();
+  for (auto& sd : subs) sd.coordinates.clear();
+  expectThrowWith<std::invalid_argument>(
+      [&] { ddc::findPrimalVertices(ddc::rawComm(*worldComm()), *pb.ownedMap(), subs, 2); },
+      {"coordinates per DOF needed"});
+  expectThrowWith<std::invalid_argument>(
+      [&] { ddc::findPrimalVertices(ddc::rawComm(*worldComm()), *pb.ownedMap(), pb.subdomains(), 4); },
+      {"spatial dimension 4"});
 }
 
 // ---- iteration counts --------------------------------------------------------

@@ -1,0 +1,383 @@
+// FETI-DP, interface (doc/feti-dp.md "Unknowns", "Jump operator"): the
+// checks of the caller's subdomains, DOF multiplicities, which DOFs are
+// primal / dual, the compatibility rows of B~ (one per pair of subdomains
+// sharing a non-primal DOF) and the LM maps. See DDC_FetiDpImpl.hpp.
+#include <Teuchos_CommHelpers.hpp>
+#include <Tpetra_Export.hpp>
+#include <Tpetra_Import.hpp>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "DDC_Error.hpp"
+#include "DDC_FetiDpImpl.hpp"
+#include "DDC_MapOwners.hpp"
+#include "DDC_MpiRecords.hpp"
+
+namespace ddc {
+
+// ---------------------------------------------------------------------------
+// topology
+// ---------------------------------------------------------------------------
+
+void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<const Map> owned) {
+  haveTopology = analysed = factored = false;
+  subs.clear();
+  extraRowMap = Teuchos::null;
+  extraOffset = 0;
+  if (owned.is_null()) throw std::invalid_argument("FetiDpSolver::setTopology: null owned DOF map");
+  ownedMap = owned;
+
+  // 1. Per-subdomain sanity (local checks, raised collectively).
+  std::ostringstream err;
+  subs.resize(local.size());
+  std::vector<std::vector<int>> components(local.size());
+  std::vector<std::vector<double>> coords(local.size());
+  std::vector<int> dims(local.size());
+  for (size_t ls = 0; ls < local.size() && err.str().empty(); ++ls) {
+    FetiSubdomain& in = local[ls];
+    Sub& s = subs[ls];
+    s.id = in.id;
+    s.n = static_cast<LO>(in.dofs.size());
+    s.dofs = std::move(in.dofs);
+    s.primal = std::move(in.primal);
+    s.constrainable = std::move(in.constrainable);
+    if (s.constrainable.empty()) s.constrainable.assign(s.dofs.size(), 0);
+    s.K = in.K;
+    s.Kuser = Teuchos::null;
+    s.cob = ChangeOfBasis();
+    components[ls] = std::move(in.component);
+    coords[ls] = std::move(in.coordinates);
+    dims[ls] = in.dim;
+    if (s.primal.size() != s.dofs.size()) {
+      err << "subdomain " << s.id << ": " << s.primal.size() << " primal flags for " << s.dofs.size() << " DOFs";
+    } else if (s.constrainable.size() != s.dofs.size()) {
+      err << "subdomain " << s.id << ": " << s.constrainable.size() << " constrainable flags for " << s.dofs.size()
+          << " DOFs";
+    } else if (s.K.is_null() || !s.K->isFillComplete()) {
+      err << "subdomain " << s.id << ": K must be a fill-complete CrsMatrix";
+    } else if (s.K->getRowMap()->getGlobalNumElements() != s.dofs.size() ||
+               s.K->getRowMap()->getNodeNumElements() != s.dofs.size() ||
+               !s.K->getRowMap()->isSameAs(*s.K->getDomainMap()) ||
+               !s.K->getRowMap()->isSameAs(*s.K->getRangeMap()) || s.K->getRowMap()->getIndexBase() != 0 ||
+               !s.K->getRowMap()->isContiguous()) {
+      err << "subdomain " << s.id << ": K must live on MPI_COMM_SELF with row = range = domain map 0.."
+          << s.dofs.size() << "-1 (one row per DOF), got " << s.K->getRowMap()->getGlobalNumElements() << " rows";
+    } else {
+      std::vector<GO> sorted(s.dofs);
+      std::sort(sorted.begin(), sorted.end());
+      auto dup = std::adjacent_find(sorted.begin(), sorted.end());
+      if (dup != sorted.end()) err << "subdomain " << s.id << ": DOF " << *dup << " appears twice";
+    }
+  }
+  raiseCollectively<std::invalid_argument>(mpi, err.str().empty() ? "" : "FetiDpSolver::setTopology: " + err.str());
+
+  // Subdomain ids unique across ranks.
+  {
+    int nLocal = static_cast<int>(subs.size());
+    std::vector<int> counts(size), displs(size, 0);
+    MPI_Allgather(&nLocal, 1, MPI_INT, counts.data(), 1, MPI_INT, mpi);
+    for (int r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+    std::vector<int> ids(subs.size()), all(displs[size - 1] + counts[size - 1] + 1);
+    for (size_t i = 0; i < subs.size(); ++i) ids[i] = subs[i].id;
+    MPI_Allgatherv(ids.empty() ? all.data() : ids.data(), nLocal, MPI_INT, all.data(), counts.data(),
+                   displs.data(), MPI_INT, mpi);
+    all.pop_back();
+    std::sort(all.begin(), all.end());
+    auto dup = std::adjacent_find(all.begin(), all.end());
+    if (dup != all.end())
+      throw std::invalid_argument("FetiDpSolver::setTopology: subdomain id " + std::to_string(*dup) +
+                                  " is used twice");
+  }
+
+  // 2. Overlapped DOF map of this rank's subdomains; all DOFs in ownedMap.
+  {
+    std::vector<GO> gids;
+    for (const Sub& s : subs) gids.insert(gids.end(), s.dofs.begin(), s.dofs.end());
+    std::sort(gids.begin(), gids.end());
+    gids.erase(std::unique(gids.begin(), gids.end()), gids.end());
+    dofOvMap = makeMap(gids, ownedMap->getIndexBase(), comm);
+    std::vector<int> pids;
+    std::vector<LO> lids;
+    owners(*ownedMap, gids, pids, lids);
+    std::string msg;
+    for (size_t k = 0; k < gids.size(); ++k)
+      if (pids[k] < 0) {
+        msg = "FetiDpSolver::setTopology: DOF " + std::to_string(gids[k]) + " of a subdomain on rank " +
+              std::to_string(rank) + " is not in the owned DOF map";
+        break;
+      }
+    raiseCollectively<std::invalid_argument>(mpi, msg);
+    dofImport = rcp(new Import(ownedMap, dofOvMap));
+    dofExport = rcp(new Export(dofOvMap, ownedMap));
+    for (Sub& s : subs) {
+      s.ovLid.resize(s.n);
+      for (LO k = 0; k < s.n; ++k) s.ovLid[k] = dofOvMap->getLocalElement(s.dofs[k]);
+    }
+  }
+
+  // 3. Multiplicity and primal consistency: counts summed at the owner.
+  std::vector<int> ovMult(dofOvMap->getNodeNumElements());
+  {
+    Vector cOv(dofOvMap), pOv(dofOvMap), cOwned(ownedMap), pOwned(ownedMap);
+    {
+      auto c = cOv.getDataNonConst();
+      auto p = pOv.getDataNonConst();
+      for (const Sub& s : subs)
+        for (LO k = 0; k < s.n; ++k) {
+          c[s.ovLid[k]] += 1.0;
+          if (s.primal[k]) p[s.ovLid[k]] += 1.0;
+        }
+    }
+    cOwned.doExport(cOv, *dofExport, Tpetra::ADD);
+    pOwned.doExport(pOv, *dofExport, Tpetra::ADD);
+    std::string msg;
+    {
+      auto c = cOwned.getData();
+      auto p = pOwned.getData();
+      ownedMult.assign(c.size(), 0);
+      for (LO l = 0; l < LO(c.size()); ++l) {
+        ownedMult[l] = static_cast<int>(std::lround(c[l]));
+        const long np = std::lround(p[l]);
+        if (np != 0 && np != ownedMult[l] && msg.empty())
+          msg = "FetiDpSolver::setTopology: DOF " + std::to_string(ownedMap->getGlobalElement(l)) +
+                " is primal in " + std::to_string(np) + " of the " + std::to_string(ownedMult[l]) +
+                " subdomains sharing it; a DOF must be primal in all of them or in none";
+      }
+    }
+    raiseCollectively<std::invalid_argument>(mpi, msg);
+    cOv.doImport(cOwned, *dofImport, Tpetra::INSERT);
+    auto c = cOv.getData();
+    for (size_t l = 0; l < ovMult.size(); ++l) ovMult[l] = static_cast<int>(std::lround(c[l]));
+  }
+  addEdgeFaceConstraints(components, coords, dims);
+
+  // 4. Per-subdomain splits: remainder / primal, and for the Dirichlet
+  //    preconditioner the remainder into dual interface (Delta: shared,
+  //    non-primal) and interior (I) DOFs.
+  for (Sub& s : subs) {
+    s.rIdx.assign(s.n, kNone);
+    s.pIdx.assign(s.n, kNone);
+    s.invMult.assign(s.n, 1.0);
+    s.rDof.clear();
+    s.pDof.clear();
+    for (LO k = 0; k < s.n; ++k) {
+      s.invMult[k] = 1.0 / ovMult[s.ovLid[k]];
+      if (s.primal[k]) {
+        s.pIdx[k] = LO(s.pDof.size());
+        s.pDof.push_back(k);
+      } else {
+        s.rIdx[k] = LO(s.rDof.size());
+        s.rDof.push_back(k);
+      }
+    }
+    s.nr = LO(s.rDof.size());
+    s.np = LO(s.pDof.size());
+    s.dIdx.assign(s.nr, kNone);
+    s.iIdx.assign(s.nr, kNone);
+    s.iR.clear();
+    s.nd = 0;
+    for (LO r = 0; r < s.nr; ++r) {
+      // Dual: shared with another subdomain, or touched by extra rows (so
+      // that the Dirichlet preconditioner sees those rows too).
+      if (ovMult[s.ovLid[s.rDof[r]]] >= 2 || s.constrainable[s.rDof[r]]) {
+        s.dIdx[r] = s.nd++;
+      } else {
+        s.iIdx[r] = LO(s.iR.size());
+        s.iR.push_back(r);
+      }
+    }
+    s.ni = LO(s.iR.size());
+  }
+
+  buildConstraints();
+  buildCoarse();
+  std::string msg;
+  for (Sub& s : subs) {
+    try {
+      buildBlocks(s);
+    } catch (const std::exception& e) {
+      msg = "FetiDpSolver::setTopology: subdomain " + std::to_string(s.id) + ": " + e.what();
+      break;
+    }
+  }
+  raiseCollectively<std::invalid_argument>(mpi, msg);
+
+  coarseOvWork = rcp(new Vector(coarseOvMap));
+  coarseWork = rcp(new Vector(coarseMap));
+  coarseSol = rcp(new Vector(coarseMap));
+  dofOvWork = rcp(new Vector(dofOvMap));
+  makeOperators();
+  haveTopology = true;
+}
+
+/// Edge/face constraints ("Primal Constraints"; doc/feti-dp.md): classify the
+/// interface by the subdomains sharing each DOF (findEdgeFaceConstraints()),
+/// make the representative DOFs of each group primal and work on K^s in the
+/// basis where they hold the group's constraint values (ChangeOfBasis).
+void FetiDpSolver::Impl::addEdgeFaceConstraints(const std::vector<std::vector<int>>& components,
+                                                const std::vector<std::vector<double>>& coords,
+                                                const std::vector<int>& dims) {
+  nEdgeFace = 0;
+  if (primalChoice == PrimalConstraints::Vertices) return;
+  const std::string choice = primalConstraintNames()[size_t(primalChoice)];
+  std::string msg;
+  int dmin = INT_MAX, dmax = INT_MIN;
+  for (size_t ls = 0; ls < subs.size(); ++ls) {
+    dmin = std::min(dmin, dims[ls]);
+    dmax = std::max(dmax, dims[ls]);
+    if (msg.empty() && ((dims[ls] != 2 && dims[ls] != 3) || components[ls].size() != subs[ls].dofs.size()))
+      msg = "FetiDpSolver::setTopology: subdomain " + std::to_string(subs[ls].id) + ": '" +
+            param("Primal Constraints") + "' = " + choice + " needs FetiSubdomain::dim (2 or 3, got " +
+            std::to_string(dims[ls]) + ") and one FetiSubdomain::component per DOF (got " +
+            std::to_string(components[ls].size()) + " for " + std::to_string(subs[ls].dofs.size()) +
+            " DOFs); or set it to Vertices";
+    else if (msg.empty() && rotations && coords[ls].size() != subs[ls].dofs.size() * size_t(dims[ls]))
+      msg = "FetiDpSolver::setTopology: subdomain " + std::to_string(subs[ls].id) + ": '" +
+            param("Rotational Constraints") + "' = true needs FetiSubdomain::coordinates (" +
+            std::to_string(dims[ls]) + " per DOF, got " + std::to_string(coords[ls].size()) + " for " +
+            std::to_string(subs[ls].dofs.size()) + " DOFs); or set it to false";
+  }
+  raiseCollectively<std::invalid_argument>(mpi, msg);
+  int loc[2] = {dmin == INT_MAX ? INT_MIN : -dmin, dmax}, glob[2];
+  MPI_Allreduce(loc, glob, 2, MPI_INT, MPI_MAX, mpi);
+  if (glob[1] == INT_MIN) return;  // no subdomains at all
+  if (-glob[0] != glob[1])
+    throw std::invalid_argument("FetiDpSolver::setTopology: the subdomains disagree on FetiSubdomain::dim (" +
+                                std::to_string(-glob[0]) + " and " + std::to_string(glob[1]) + ")");
+  std::vector<EdgeFaceInput> in(subs.size());
+  for (size_t ls = 0; ls < subs.size(); ++ls)
+    in[ls] = EdgeFaceInput{subs[ls].id, subs[ls].dofs, subs[ls].primal, components[ls],
+                           rotations ? coords[ls] : std::vector<double>()};
+  const auto groups = findEdgeFaceConstraints(mpi, *ownedMap, in, glob[1], primalChoice, rotations);
+  for (size_t ls = 0; ls < subs.size() && msg.empty(); ++ls) {
+    Sub& s = subs[ls];
+    if (groups[ls].empty()) continue;
+    try {
+      s.cob = ChangeOfBasis(s.n, groups[ls]);
+      for (LO k = 0; k < s.n; ++k)
+        if (s.cob.holdsConstraint(k)) s.primal[k] = 1;
+      s.Kuser = s.K;
+      s.K = s.cob.setPattern(*s.Kuser);
+    } catch (const std::exception& e) {
+      msg = "FetiDpSolver::setTopology: subdomain " + std::to_string(s.id) + ": change of basis: " + e.what();
+    }
+  }
+  raiseCollectively<std::invalid_argument>(mpi, msg);
+}
+
+/// Compatibility constraints: the owner of each shared non-primal DOF
+/// receives (DOF, subdomain id, rank, local subdomain, local DOF) from every
+/// subdomain having it, creates one row per pair of them (+1 for the smaller
+/// id, -1 for the other) and returns the entries to the subdomains' ranks.
+void FetiDpSolver::Impl::buildConstraints() {
+  std::vector<int> pids;
+  std::vector<LO> lids;
+  std::vector<std::vector<ShareRecord>> send(size);
+  {
+    // Owners of the shared non-primal DOFs of this rank's subdomains.
+    std::vector<GO> gids;
+    std::vector<std::pair<int, LO>> who;  // (local subdomain, local DOF)
+    for (size_t ls = 0; ls < subs.size(); ++ls) {
+      const Sub& s = subs[ls];
+      for (LO r = 0; r < s.nr; ++r)
+        if (s.dIdx[r] != kNone && s.invMult[s.rDof[r]] < 1.0) {
+          gids.push_back(s.dofs[s.rDof[r]]);
+          who.emplace_back(int(ls), s.rDof[r]);
+        }
+    }
+    owners(*ownedMap, gids, pids, lids);
+    for (size_t k = 0; k < gids.size(); ++k)
+      send[pids[k]].push_back(ShareRecord{gids[k], subs[who[k].first].id, rank, who[k].first, who[k].second});
+  }
+  std::vector<ShareRecord> recv = exchangeRecords(mpi, send);
+  std::sort(recv.begin(), recv.end(), [](const ShareRecord& a, const ShareRecord& b) {
+    return a.gid != b.gid ? a.gid < b.gid : a.subId < b.subId;
+  });
+
+  // Count rows, then number them contiguously across ranks (rank order).
+  GO nRows = 0, nGroups = 0;
+  for (size_t a = 0; a < recv.size();) {
+    size_t b = a;
+    while (b < recv.size() && recv[b].gid == recv[a].gid) ++b;
+    const GO m = GO(b - a);
+    nRows += m * (m - 1) / 2;
+    ++nGroups;
+    a = b;
+  }
+  long long myRows = nRows, offset = 0;
+  MPI_Exscan(&myRows, &offset, 1, MPI_LONG_LONG, MPI_SUM, mpi);
+  if (rank == 0) offset = 0;
+  nDual = sumAll(mpi, nGroups);
+
+  std::vector<std::vector<LmRecord>> reply(size);
+  GO next = offset;
+  for (size_t a = 0; a < recv.size();) {
+    size_t b = a;
+    while (b < recv.size() && recv[b].gid == recv[a].gid) ++b;
+    for (size_t i = a; i < b; ++i)
+      for (size_t j = i + 1; j < b; ++j) {
+        reply[recv[i].rank].push_back(LmRecord{next, recv[i].localSub, recv[i].dof, +1.0});
+        reply[recv[j].rank].push_back(LmRecord{next, recv[j].localSub, recv[j].dof, -1.0});
+        ++next;
+      }
+    a = b;
+  }
+  nCompat = sumAll(mpi, nRows);
+  compatOffset = offset;
+  nCompatOwned = nRows;
+
+  std::vector<LmRecord> entries = exchangeRecords(mpi, reply);
+  for (Sub& s : subs) s.compatB.clear();
+  for (const auto& e : entries) subs[e.localSub].compatB.push_back(GidEntry{e.lm, e.dof, e.coef});
+  finalizeLm();
+}
+
+/// The LM maps from the compatibility rows and the extra rows: lmMap owns
+/// this rank's compatibility rows and its extra rows (those of its part of
+/// extraRowMap); lmOvMap has every row this rank's subdomains touch. Also
+/// the per-subdomain B (LIDs), the work vectors, the mask (all rows in) and
+/// the row entry counts.
+void FetiDpSolver::Impl::finalizeLm() {
+  std::vector<GO> owned;
+  for (GO k = 0; k < nCompatOwned; ++k) owned.push_back(compatOffset + k);
+  const GO nExtraOwned = extraRowMap.is_null() ? 0 : GO(extraRowMap->getNodeNumElements());
+  for (GO k = 0; k < nExtraOwned; ++k) owned.push_back(nCompat + extraOffset + k);
+  lmMap = makeMap(owned, 0, comm);
+  std::vector<GO> lmGids;
+  for (const Sub& s : subs) {
+    for (const auto& e : s.compatB) lmGids.push_back(e.lm);
+    for (const auto& e : s.extraB) lmGids.push_back(e.lm);
+  }
+  std::sort(lmGids.begin(), lmGids.end());
+  lmGids.erase(std::unique(lmGids.begin(), lmGids.end()), lmGids.end());
+  lmOvMap = makeMap(lmGids, 0, comm);
+  lmImport = rcp(new Import(lmMap, lmOvMap));
+  lmExport = rcp(new Export(lmOvMap, lmMap));
+  for (Sub& s : subs) {
+    s.B.clear();
+    for (const auto& e : s.compatB) s.B.push_back(BEntry{lmOvMap->getLocalElement(e.lm), e.dof, e.coef, e.coef, false});
+    for (const auto& e : s.extraB) s.B.push_back(BEntry{lmOvMap->getLocalElement(e.lm), e.dof, e.coef, e.coef, true});
+    // Deterministic order within a subdomain (by LM, then DOF).
+    std::sort(s.B.begin(), s.B.end(),
+              [](const BEntry& a, const BEntry& b) { return a.lm != b.lm ? a.lm < b.lm : a.dof < b.dof; });
+  }
+  lmOvWork = rcp(new Vector(lmOvMap));
+  lmWork = rcp(new Vector(lmMap));
+  rhs = rcp(new Vector(lmMap));
+  lastLambda = rcp(new Vector(lmMap));
+  mask = Teuchos::null;
+  Vector countOv(lmOvMap);
+  {
+    auto c = countOv.getDataNonConst();
+    for (const Sub& s : subs)
+      for (const BEntry& e : s.B) c[e.lm] += 1.0;
+  }
+  rowEntries = rcp(new Vector(lmMap));
+  rowEntries->doExport(countOv, *lmExport, Tpetra::ADD);
+}
+
+}  // namespace ddc
