@@ -1,5 +1,6 @@
 #include "DDC_ShapeFunctions.hpp"
 
+#include <Sacado.hpp>
 #include <cmath>
 #include <stdexcept>
 
@@ -7,9 +8,15 @@ namespace ddc {
 
 namespace {
 
+// The families below are templates on the scalar T (double, or a Sacado
+// forward-AD type for derivatives with respect to xi, e.g. the contact
+// projection). N: numNodes values; dN: numNodes x dim, row-major. Either may
+// be null.
+
 /// 1-D Lagrange polynomials of order 1 (nodes -1, 1) or 2 (nodes -1, 0, 1),
 /// and their derivatives, at x; index i is the node's position in that list.
-void lagrange1d(int order, double x, double L[3], double dL[3]) {
+template <class T>
+void lagrange1d(int order, const T& x, T L[3], T dL[3]) {
   if (order == 1) {
     L[0] = 0.5 * (1 - x), L[1] = 0.5 * (1 + x);
     dL[0] = -0.5, dL[1] = 0.5;
@@ -21,37 +28,38 @@ void lagrange1d(int order, double x, double L[3], double dL[3]) {
 
 /// Tensor-product Lagrange: N_a = prod_m L_{i_m(a)}(xi_m), with the 1-D
 /// node index i_m(a) read from the node's reference coordinate.
-void lagrangeBox(const ReferenceCell& c, int order, const std::array<double, 3>& xi, Eigen::VectorXd* N,
-                 Eigen::MatrixXd* dN) {
-  double L[3][3], dL[3][3];
+template <class T>
+void lagrangeBox(const ReferenceCell& c, int order, const T* xi, T* N, T* dN) {
+  T L[3][3], dL[3][3];
   for (int m = 0; m < c.dim; ++m) lagrange1d(order, xi[m], L[m], dL[m]);
   for (int a = 0; a < c.numNodes; ++a) {
     int idx[3];
     // Coordinate -1, 0, +1 -> index 0, 1, 2 (order 2) or -1, +1 -> 0, 1.
     for (int m = 0; m < c.dim; ++m) idx[m] = static_cast<int>(std::lround((c.nodes[a][m] + 1) * 0.5 * order));
     if (N) {
-      double p = 1.0;
+      T p = 1.0;
       for (int m = 0; m < c.dim; ++m) p *= L[m][idx[m]];
-      (*N)(a) = p;
+      N[a] = p;
     }
     if (dN)
       for (int k = 0; k < c.dim; ++k) {
-        double p = 1.0;
+        T p = 1.0;
         for (int m = 0; m < c.dim; ++m) p *= m == k ? dL[m][idx[m]] : L[m][idx[m]];
-        (*dN)(a, k) = p;
+        dN[a * c.dim + k] = p;
       }
   }
 }
 
 /// Serendipity (Quad8, Hex20): corner and mid-edge nodes only.
-void serendipity(const ReferenceCell& c, const std::array<double, 3>& xi, Eigen::VectorXd* N, Eigen::MatrixXd* dN) {
+template <class T>
+void serendipity(const ReferenceCell& c, const T* xi, T* N, T* dN) {
   const int d = c.dim;
   for (int a = 0; a < c.numNodes; ++a) {
     const auto& xa = c.nodes[a];
-    double f[3];  // 1 + xa_m xi_m (unused in the direction of a mid-edge node)
+    T f[3];  // 1 + xa_m xi_m (unused in the direction of a mid-edge node)
     for (int m = 0; m < d; ++m) f[m] = 1 + xa[m] * xi[m];
     auto productExcept = [&](int skip1, int skip2) {
-      double p = 1.0;
+      T p = 1.0;
       for (int m = 0; m < d; ++m)
         if (m != skip1 && m != skip2) p *= f[m];
       return p;
@@ -61,20 +69,20 @@ void serendipity(const ReferenceCell& c, const std::array<double, 3>& xi, Eigen:
       if (xa[m] == 0) k = m;
     if (k < 0) {
       const double scale = std::ldexp(1.0, -d);
-      double s = -(d - 1);
+      T s = -(d - 1);
       for (int m = 0; m < d; ++m) s += xa[m] * xi[m];
-      if (N) (*N)(a) = scale * productExcept(-1, -1) * s;
+      if (N) N[a] = scale * productExcept(-1, -1) * s;
       if (dN)
         for (int j = 0; j < d; ++j)
-          (*dN)(a, j) = scale * xa[j] * productExcept(j, -1) * s + scale * productExcept(-1, -1) * xa[j];
+          dN[a * d + j] = scale * xa[j] * productExcept(j, -1) * s + scale * productExcept(-1, -1) * xa[j];
     } else {
       const double scale = std::ldexp(1.0, 1 - d);
-      const double bubble = 1 - xi[k] * xi[k];
-      if (N) (*N)(a) = scale * bubble * productExcept(k, -1);
+      const T bubble = 1 - xi[k] * xi[k];
+      if (N) N[a] = scale * bubble * productExcept(k, -1);
       if (dN)
         for (int j = 0; j < d; ++j)
-          (*dN)(a, j) = j == k ? scale * (-2 * xi[k]) * productExcept(k, -1)
-                               : scale * bubble * xa[j] * productExcept(k, j);
+          dN[a * d + j] = j == k ? T(scale * (-2 * xi[k]) * productExcept(k, -1))
+                                 : T(scale * bubble * xa[j] * productExcept(k, j));
     }
   }
 }
@@ -82,9 +90,10 @@ void serendipity(const ReferenceCell& c, const std::array<double, 3>& xi, Eigen:
 /// Simplex (Tri3/Tri6/Tet4/Tet10) in barycentric coordinates lambda_0 =
 /// 1 - sum xi, lambda_{m+1} = xi_m; quadratic cells take their mid-edge
 /// nodes from the reference cell's edges.
-void simplex(const ReferenceCell& c, const std::array<double, 3>& xi, Eigen::VectorXd* N, Eigen::MatrixXd* dN) {
+template <class T>
+void simplex(const ReferenceCell& c, const T* xi, T* N, T* dN) {
   const int d = c.dim;
-  double lam[4];
+  T lam[4];
   Eigen::Matrix<double, 4, 3> dlam = Eigen::Matrix<double, 4, 3>::Zero();
   lam[0] = 1;
   for (int m = 0; m < d; ++m) {
@@ -95,16 +104,16 @@ void simplex(const ReferenceCell& c, const std::array<double, 3>& xi, Eigen::Vec
   }
   const bool quadratic = c.numNodes > c.numCorners;
   for (int a = 0; a < c.numCorners; ++a) {
-    if (N) (*N)(a) = quadratic ? lam[a] * (2 * lam[a] - 1) : lam[a];
+    if (N) N[a] = quadratic ? T(lam[a] * (2 * lam[a] - 1)) : lam[a];
     if (dN)
-      for (int k = 0; k < d; ++k) (*dN)(a, k) = quadratic ? (4 * lam[a] - 1) * dlam(a, k) : dlam(a, k);
+      for (int k = 0; k < d; ++k) dN[a * d + k] = quadratic ? T((4 * lam[a] - 1) * dlam(a, k)) : T(dlam(a, k));
   }
   if (!quadratic) return;
   for (const auto& e : c.edges) {
     const int s = e.start, t = e.end;
-    if (N) (*N)(e.middle) = 4 * lam[s] * lam[t];
+    if (N) N[e.middle] = 4 * lam[s] * lam[t];
     if (dN)
-      for (int k = 0; k < d; ++k) (*dN)(e.middle, k) = 4 * (dlam(s, k) * lam[t] + lam[s] * dlam(t, k));
+      for (int k = 0; k < d; ++k) dN[e.middle * d + k] = 4 * (dlam(s, k) * lam[t] + lam[s] * dlam(t, k));
   }
 }
 
@@ -200,10 +209,9 @@ const QuadratureRule& facetQuadratureRule(CellType facet) {
   }
 }
 
-void shapeFunctions(CellType cell, const std::array<double, 3>& xi, Eigen::VectorXd* N, Eigen::MatrixXd* dN) {
+template <class T>
+void shapeFunctionsT(CellType cell, const T* xi, T* N, T* dN) {
   const ReferenceCell& c = referenceCell(cell);
-  if (N) N->resize(c.numNodes);
-  if (dN) dN->resize(c.numNodes, c.dim);
   switch (cell) {
     case CellType::Line2:
     case CellType::Quad4:
@@ -223,6 +231,21 @@ void shapeFunctions(CellType cell, const std::array<double, 3>& xi, Eigen::Vecto
       return simplex(c, xi, N, dN);
   }
   throw std::invalid_argument("shapeFunctions: unknown cell type");
+}
+
+template void shapeFunctionsT<double>(CellType, const double*, double*, double*);
+template void shapeFunctionsT<Sacado::Fad::DFad<double>>(CellType, const Sacado::Fad::DFad<double>*,
+                                                          Sacado::Fad::DFad<double>*, Sacado::Fad::DFad<double>*);
+
+void shapeFunctions(CellType cell, const std::array<double, 3>& xi, Eigen::VectorXd* N, Eigen::MatrixXd* dN) {
+  const ReferenceCell& c = referenceCell(cell);
+  if (N) N->resize(c.numNodes);
+  if (dN) dN->resize(c.numNodes, c.dim);
+  // dN is column-major in Eigen; the families write row-major.
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> d;
+  if (dN) d.resize(c.numNodes, c.dim);
+  shapeFunctionsT<double>(cell, xi.data(), N ? N->data() : nullptr, dN ? d.data() : nullptr);
+  if (dN) *dN = d;
 }
 
 const QuadratureRule& quadratureRule(CellType cell) {

@@ -31,6 +31,13 @@ namespace ddc {
 ///        dN_a/dxi_k
 void shapeFunctions(CellType cell, const std::array<double, 3>& xi, Eigen::VectorXd* N, Eigen::MatrixXd* dN);
 
+/// The same for a scalar type T: double or Sacado::Fad::DFad<double> (for
+/// derivatives with respect to xi, e.g. of a contact projection). `xi` has
+/// cellDimension(cell) entries; N (numCellNodes values) and dN
+/// (numCellNodes x cellDimension, row-major) may be null.
+template <class T>
+void shapeFunctionsT(CellType cell, const T* xi, T* N, T* dN);
+
 /// A quadrature rule on a reference cell: sum_q w_q f(xi_q) ~ integral of f.
 struct QuadratureRule {
   std::vector<std::array<double, 3>> points;  ///< reference coordinates

@@ -1,0 +1,65 @@
+// The decomposed node-to-surface element of Fang & Izzuddin (2022) on a
+// facet of any type (paper Figure 1: a slave node and an 8-node facet): the
+// slave and master counterparts with the projection ξ^p and normal n^p frozen
+// at the last converged configuration (paper eq. 1), meeting only on the
+// contact multiplier λ (doc/contact.md). The 2-D, 2-node case is
+// DDC_DecomposedNodeToSegment.hpp; this is its generalisation to curved
+// segments (Line3) and to 3-D facets (Tri3, Tri6, Quad4, Quad8, Quad9):
+//
+//   g_N = n^p·( x_s − Σ_i N_i(ξ^p) x_i ) = g_s + g_m,
+//   slave  active:  Π = λ n^p·x_s               inactive: ½ λ²
+//   master active:  Π = −λ n^p·Σ N_i(ξ^p) x_i   inactive: 0
+//
+// The gap is linear in the displacements, so residuals are λ times fixed
+// coefficients and tangents have only the multiplier row and column; one row
+// of the FETI-DP constraint operator per active pair (constraintRow()).
+// Freeze ξ^p, n^p from projectOntoFacet() (DDC_NodeToSurface.hpp) at the end
+// of each converged step: there the frozen gap and its gradient equal the
+// conventional element's.
+#pragma once
+
+#include <Eigen/Dense>
+#include <array>
+
+#include "DDC_ContactElement.hpp"
+#include "DDC_ReferenceCell.hpp"
+
+namespace ddc {
+
+/// The frozen geometry of one pair (paper eq. 1).
+struct FrozenFacetProjection {
+  std::array<double, 2> xi{{0.0, 0.0}};  ///< ξ^p on the master facet (its reference coordinates)
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< unit n^p (z = 0 in 2-D)
+};
+
+/// One counterpart of the decomposed element on a facet type.
+/// Slave: nodes [slave], DOFs [u_s, λ]. Master: nodes [facet nodes], DOFs
+/// [u_1, ..., u_m, λ] (node-major, dim per node, λ last).
+class DecomposedSurfaceCounterpart {
+ public:
+  /// \param facet the master facet type (Line2, Line3, Tri3, Tri6, Quad4, Quad8, Quad9)
+  /// \param master true: the master counterpart; false: the slave counterpart
+  /// \throws std::invalid_argument for a cell type that is not a facet.
+  DecomposedSurfaceCounterpart(CellType facet, bool master);
+  int dim() const { return dim_; }
+  int numNodes() const { return numNodes_; }
+  int numDofs() const { return dim_ * numNodes_ + 1; }
+  bool isMaster() const { return master_; }
+  /// The coefficients c of this counterpart's part of the gap,
+  /// g_part = c·(X + u) over its nodal DOFs (slave: n^p; master: −N_i(ξ^p) n^p).
+  /// \throws std::invalid_argument if the frozen normal is not a unit vector.
+  Eigen::VectorXd constraintRow(const FrozenFacetProjection& frozen) const;
+  /// This counterpart's part of the frozen gap.
+  double gapPart(const Eigen::MatrixXd& X, const Eigen::MatrixXd& u, const FrozenFacetProjection& frozen) const;
+  /// Energy, residual, tangent (see the top of this file); `state` gives the
+  /// multiplier and the active flag.
+  void computeContact(const Eigen::MatrixXd& X, const Eigen::MatrixXd& u, const FrozenFacetProjection& frozen,
+                      const ContactPairState& state, unsigned what, ElementResult& out) const;
+
+ private:
+  CellType facet_;
+  bool master_;
+  int dim_, numNodes_;
+};
+
+}  // namespace ddc

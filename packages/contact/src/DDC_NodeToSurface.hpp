@@ -1,0 +1,92 @@
+// The conventional nonlinear node-to-surface (NTS) contact element on a
+// curved facet of any type — the monolithic reference of doc/contact.md in
+// 3-D, and on 3-node segments in 2-D. A slave node and a master facet:
+//
+//   facet types   2-D: Line2, Line3 (sides of Quad4 / Quad9)
+//                 3-D: Tri3, Tri6, Quad4, Quad8, Quad9 (faces of Tet4, Tet10,
+//                      Hex8, Hex20, Hex27), nodes in the order of
+//                      DDC_ReferenceCell.hpp with outward orientation
+//   x(ξ)          = Σ N_i(ξ) x_i,  x = X + u,  ξ = ξ (2-D) or (ξ, η) (3-D)
+//   a_α           = ∂x/∂ξ_α (tangents)
+//   n             3-D: a_1 × a_2 / |a_1 × a_2|, outward for an outward facet;
+//                 2-D: (a_y, −a_x) / |a|, the master body on the left of the
+//                 direction of travel (as DDC_NodeToSegment.hpp)
+//   ξ̄             closest-point projection: (x_s − x(ξ̄))·a_α(ξ̄) = 0, by a
+//                 local Newton iteration on ξ (projectOntoFacet())
+//   g_N           = n(ξ̄)·(x_s − x(ξ̄)), > 0 separated, < 0 penetration
+//
+// Potential (Fang & Izzuddin 2022, eq. 2): active Π_c = λ g_N, released
+// Π_c = ½ λ². Residual = ∂Π_c/∂(u, λ) (the sign convention of
+// DDC_NodeToSegment.hpp: λ < 0 in compression).
+//
+// Linearisation. At the closest point, δg_N = G·δu with G = [n; −N_i(ξ̄) n]
+// (the tangential terms vanish because x_s − x(ξ̄) is normal to the facet, and
+// n·δn = 0). The tangent λ ∂G/∂u carries the variation of ξ̄ and of n
+// (Wriggers, Computational Contact Mechanics, ch. 9; Laursen, ch. 5). It is
+// computed exactly by forward automatic differentiation (Sacado): the
+// converged projection ξ̄ is made a function of the nodal positions by one
+// Newton step in AD arithmetic from ξ̄, ξ̄(x) = ξ̄ − J⁻¹ f(ξ̄, x) with f_α =
+// −(x_s − x(ξ))·a_α and J = ∂f/∂ξ at ξ̄, whose derivative is the implicit
+// derivative dξ̄/dx = −J⁻¹ ∂f/∂x exactly (f = 0 there); then G is evaluated
+// at ξ̄(x). No second derivatives of the shape functions are written by hand.
+#pragma once
+
+#include <Eigen/Dense>
+#include <array>
+
+#include "DDC_ContactElement.hpp"
+#include "DDC_ReferenceCell.hpp"
+
+namespace ddc {
+
+/// Result of projectOntoFacet().
+struct FacetProjection {
+  std::array<double, 2> xi{{0.0, 0.0}};  ///< facet coordinates of the closest point (reference cell of the facet)
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< unit outward normal there (z = 0 in 2-D)
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();   ///< x(ξ̄) (z = 0 in 2-D)
+  double gap = 0.0;         ///< g_N = n·(x_s − x(ξ̄))
+  bool inside = false;      ///< ξ̄ lies in the reference facet (within kEndTolerance)
+  bool converged = false;   ///< the local Newton iteration converged
+  int iterations = 0;
+};
+
+/// The spatial dimension of a facet type's host cells (2 for Line*, 3 for
+/// Tri*, Quad*); throws std::invalid_argument for a volume cell type.
+int facetSpaceDimension(CellType facet);
+
+/// Closest-point projection of x_s onto a facet in its current position by
+/// Newton's method on ξ from `start` (default: the facet's centre), with the
+/// full Jacobian J_αβ = a_α·a_β − (x_s − x)·∂a_α/∂ξ_β. Converged when the
+/// update is below 1e-13 in ξ; at most 30 iterations.
+/// \param x facet node positions, numCellNodes(facet) x dim
+/// \param xs slave position (dim entries)
+FacetProjection projectOntoFacet(CellType facet, const Eigen::MatrixXd& x, const Eigen::VectorXd& xs,
+                                 const std::array<double, 2>* start = nullptr);
+
+/// Conventional node-to-surface element on a facet type. Nodes [slave, facet
+/// nodes...]; DOFs [u_s, u_1, ..., u_m, λ] (node-major, dim per node). Not a
+/// ContactElement (whose DOF layout is 2-D): the contact component uses it
+/// directly.
+class NodeToSurfaceElement {
+ public:
+  /// \throws std::invalid_argument for a cell type that is not a facet.
+  explicit NodeToSurfaceElement(CellType facet);
+  CellType facet() const { return facet_; }
+  int dim() const { return dim_; }
+  int numNodes() const { return numNodes_; }
+  int numDofs() const { return dim_ * numNodes_ + 1; }
+  /// Energy, residual and tangent (see the top of this file).
+  /// \param X, u reference positions and displacements, numNodes() x dim()
+  /// \throws InadmissibleDeformation if the facet is degenerate (zero tangent
+  ///         area) or the projection does not converge.
+  void computeContact(const Eigen::MatrixXd& X, const Eigen::MatrixXd& u, const ContactPairState& state, unsigned what,
+                      ElementResult& out) const;
+  /// The projection of the slave node at (X, u).
+  FacetProjection project(const Eigen::MatrixXd& X, const Eigen::MatrixXd& u) const;
+
+ private:
+  CellType facet_;
+  int dim_, numNodes_;
+};
+
+}  // namespace ddc
