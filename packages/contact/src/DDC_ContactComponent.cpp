@@ -91,6 +91,12 @@ void ContactComponent::requireCommitted(const char* what) const {
     throw std::logic_error(std::string("ContactComponent::") + what + ": call commit() and setDofs() first");
 }
 
+void ContactComponent::requireHostMultipliers() const {
+  if (!multipliersInHost_)
+    throw std::logic_error("ContactComponent: the multipliers are not in the host's vector (setDofs() got no "
+                           "multiplier DOFs); pass them on multiplierMap()");
+}
+
 void ContactComponent::registerNodes(const std::vector<ContactNode>& nodes) {
   if (committed_) throw std::logic_error("ContactComponent::registerNodes after commit()");
   myNodes_.insert(myNodes_.end(), nodes.begin(), nodes.end());
@@ -424,9 +430,7 @@ ContactComponent::Field ContactComponent::gatherField(const Vector& u, const Vec
   if (multipliers) {
     f.lm->doImport(*multipliers, *lmImporter_, Tpetra::INSERT);
   } else {
-    if (!multipliersInHost_)
-      throw std::logic_error("ContactComponent: the multipliers are not in the host's vector (setDofs() got no "
-                             "multiplier DOFs); pass them on multiplierMap()");
+    requireHostMultipliers();
     f.lm->doImport(u, *lmHostImporter_, Tpetra::INSERT);
   }
   f.d = f.dof->getData();
@@ -529,7 +533,8 @@ void ContactComponent::gatherSurface(const Vector& u, const Vector* multipliers,
   Vector lm(multiplierAllMap_);
   if (multipliers) {
     lm.doImport(*multipliers, *lmAllImporter_, Tpetra::INSERT);
-  } else if (multipliersInHost_) {
+  } else {
+    requireHostMultipliers();
     Vector owned(multiplierMap_);
     auto ud = u.getData();
     for (size_t i = 0; i < localSlots_.size(); ++i)

@@ -278,6 +278,8 @@ class ContactComponent {
   void evaluate(int k, int side, const Field& f, bool forceActive, unsigned what, ElementResult& er,
                 std::vector<GO>& dofs) const;
   void requireCommitted(const char* what) const;
+  /// Throws std::logic_error unless the host gave multiplier DOFs to setDofs().
+  void requireHostMultipliers() const;
 
   Teuchos::RCP<const Teuchos::Comm<int>> comm_;
   ContactComponentOptions options_;

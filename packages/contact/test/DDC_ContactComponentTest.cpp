@@ -193,6 +193,20 @@ TEST(ContactComponent, HostMultipliersAreReadFromTheHostVector) {
   EXPECT_EQ(c->slots()[1].state.multiplier, 2.0);
 }
 
+TEST(ContactComponent, MultipliersMustComeFromSomewhere) {
+  // Multipliers neither in the host's vector nor passed: a caller bug, not a
+  // silent λ = 0 (both the conventional gather and the decomposed path).
+  Host h;
+  for (bool decomposed : {false, true}) {
+    auto c = registered(h, decomposed);
+    auto map = h.map();
+    c->setDofs(map, dofsOf(h));
+    auto u = state(h, map, 0.0);
+    c->updatePairing(*u, true, true);
+    EXPECT_THROW(c->updateActiveSet(*u), std::logic_error) << (decomposed ? "decomposed" : "conventional");
+  }
+}
+
 // ---- registrations that do not match the host ------------------------------------
 
 TEST(ContactComponent, DofIdsTheRegisteringRankDoesNotOwnAreRejectedOnEveryRank) {
