@@ -464,36 +464,22 @@ void ContactComponent::assemble(const Vector& u, const Vector* multipliers, unsi
   const Field f = gatherField(u, multipliers);
   ElementResult er;
   std::vector<GO> dofs;
-  // Unpaired slots carry only Π = ½λ² (λ = 0).
-  auto released = [&](int k) {
-    dofs.assign(1, lmGid_[k]);
-    releasedContribution(1, f.multiplier(k), kAll, er);
-    add(dofs, er);
-  };
-  if (options_.decomposed) {
-    // Each counterpart where it lives (the slave's on the owner of the slave
-    // node, the master's on the rank of the master facet); they share only
-    // the multiplier.
-    for (int k : localSlots_) {
-      if (!slots_[k].paired()) {
-        released(k);
-        continue;
-      }
-      evaluate(k, 0, f, false, what | kTangent, er, dofs);
-      add(dofs, er);
-    }
-    for (int k : localMasterSlots_) {
-      evaluate(k, 1, f, false, what | kTangent, er, dofs);
-      add(dofs, er);
-    }
-    return;
-  }
+  // The conventional element of each owned slot, or the decomposed
+  // counterparts where they live (the slave's on the owner of the slave node,
+  // the master's on the rank of the master facet); they share only the
+  // multiplier. Unpaired slots carry only Π = ½λ² (λ = 0).
+  const int side = options_.decomposed ? 0 : 2;
   for (int k : localSlots_) {
-    if (!slots_[k].paired()) {
-      released(k);
-      continue;
+    if (slots_[k].paired()) {
+      evaluate(k, side, f, false, what | kTangent, er, dofs);
+    } else {
+      dofs.assign(1, lmGid_[k]);
+      releasedContribution(1, f.multiplier(k), kAll, er);
     }
-    evaluate(k, 2, f, false, what | kTangent, er, dofs);
+    add(dofs, er);
+  }
+  for (int k : localMasterSlots_) {
+    evaluate(k, 1, f, false, what | kTangent, er, dofs);
     add(dofs, er);
   }
 }
