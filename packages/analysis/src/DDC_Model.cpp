@@ -218,7 +218,6 @@ void Model::elementDofs(int e, std::vector<GO>& dofs) const {
 
 void Model::buildTopology() {
   const Mesh& mesh = *mesh_;
-  const int me = comm_->getRank();
   const GO first = ownedMap_->getMinGlobalIndex();
   const size_t numOwned = ownedMap_->getNodeNumElements();
   std::vector<GO> dofs;
@@ -307,7 +306,6 @@ void Model::buildTopology() {
   ov->fillComplete(ownedMap_, ownedMap_);
   overlapGraph_ = ov;
   ++topologyVersion_;
-  (void)me;
 }
 
 void Model::assembleTractions() {
