@@ -1,10 +1,12 @@
 #include "DDC_ContactParameters.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <utility>
 
+#include "DDC_ContactSurface.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_Parameters.hpp"
 
@@ -12,17 +14,46 @@ namespace ddc {
 
 namespace {
 
-using Edge = std::pair<int, int>;
+/// A facet compared by its corner node ids, sorted: orientation and the
+/// middle nodes of quadratic facets do not matter for "the same facet" (as
+/// Mesh::facetKey()).
+using FacetKey = std::vector<int>;
 
-/// The segments of side set `set` as sorted node pairs, sorted (orientation
-/// does not matter for "the same segment").
-std::vector<Edge> segmentsOf(const Mesh& mesh, const std::string& set) {
-  std::vector<Edge> out;
-  for (const Segment& s : mesh.sideSet(set))
-    out.emplace_back(std::min(s.nodes[0], s.nodes[1]), std::max(s.nodes[0], s.nodes[1]));
+/// The corner nodes of a side-set facet: start and end in 2-D (Line2, Line3),
+/// the face corners in 3-D.
+std::vector<int> cornersOf(const Mesh& mesh, const Segment& s, const std::string& set) {
+  const int corners = referenceCell(contactFacetType(mesh.dim(), s.numNodes, set)).numCorners;
+  return std::vector<int>(s.nodes.begin(), s.nodes.begin() + corners);
+}
+
+/// The facets of side set `set` as keys, sorted and unique.
+std::vector<FacetKey> facetsOf(const Mesh& mesh, const std::string& set) {
+  std::vector<FacetKey> out;
+  for (const Segment& s : mesh.sideSet(set)) {
+    out.push_back(cornersOf(mesh, s, set));
+    std::sort(out.back().begin(), out.back().end());
+  }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
+}
+
+/// The automatic length scale of one master facet (header): 2-D the length
+/// start → end (the chord of a Line3 segment), 3-D the square root of the area
+/// of the polygon through the face's corners, ½|(x_1 − x_0) × (x_2 − x_0)| for
+/// a triangle and ½|(x_2 − x_0) × (x_3 − x_1)| (the diagonals) for a
+/// quadrilateral.
+double facetSize(const Mesh& mesh, const Segment& s, const std::string& set) {
+  const std::vector<int> c = cornersOf(mesh, s, set);
+  if (mesh.dim() == 2) {
+    const auto& a = mesh.coord(c[0]);
+    const auto& b = mesh.coord(c[1]);
+    return std::hypot(b[0] - a[0], b[1] - a[1]);
+  }
+  auto x = [&](int i) { return Eigen::Vector3d(mesh.coord(c[i]).data()); };
+  const Eigen::Vector3d twiceArea = c.size() == 3 ? Eigen::Vector3d((x(1) - x(0)).cross(x(2) - x(0)))
+                                                  : Eigen::Vector3d((x(2) - x(0)).cross(x(3) - x(1)));
+  return std::sqrt(0.5 * twiceArea.norm());
 }
 
 /// The first element common to two sorted ranges, if any.
@@ -44,21 +75,23 @@ bool firstCommon(const std::vector<T>& a, const std::vector<T>& b, T& out) {
 }
 
 /// Pairs must not constrain one thing twice (doc/contact.md "Pairs that
-/// overlap"); the comparison is by nodes and segments, so two side sets of
-/// different names over the same curve count as the same surface.
+/// overlap"); the comparison is by nodes and facets (segments in 2-D, faces in
+/// 3-D), so two side sets of different names over the same surface count as
+/// the same surface.
 void checkPairsDoNotOverlap(const std::vector<ContactPairDefinition>& pairs, const Mesh& mesh,
                             const std::string& path) {
   struct Sets {
     std::vector<int> slaveNodes;  // the pair's slave nodes: not on its master surface
-    std::vector<Edge> slaveSegments, masterSegments;
+    std::vector<FacetKey> slaveFacets, masterFacets;
   };
   std::vector<Sets> sets;
   for (const auto& d : pairs) {
     Sets s;
-    s.slaveSegments = segmentsOf(mesh, d.slaveSet);
-    s.masterSegments = segmentsOf(mesh, d.masterSet);
+    s.slaveFacets = facetsOf(mesh, d.slaveSet);
+    s.masterFacets = facetsOf(mesh, d.masterSet);
     std::vector<int> master;
-    for (const Edge& e : s.masterSegments) master.insert(master.end(), {e.first, e.second});
+    for (const Segment& f : mesh.sideSet(d.masterSet))
+      master.insert(master.end(), f.nodes.begin(), f.nodes.begin() + f.numNodes);
     std::sort(master.begin(), master.end());
     for (int n : mesh.nodeSet(d.slaveSet))
       if (!std::binary_search(master.begin(), master.end(), n)) s.slaveNodes.push_back(n);
@@ -66,44 +99,50 @@ void checkPairsDoNotOverlap(const std::vector<ContactPairDefinition>& pairs, con
     sets.push_back(std::move(s));
   }
   auto where = [&](size_t i) { return "'" + path + "/Pairs/" + pairs[i].name + "'"; };
-  auto segment = [&](const Edge& e) {
+  // "segment of nodes a-b at (x, y)-(x, y)" in 2-D, "facet of nodes a-b-c-d
+  // at (x, y, z)" (the first corner) in 3-D.
+  const char* noun = mesh.dim() == 2 ? "segment" : "facet";
+  auto facet = [&](const FacetKey& k) {
     std::ostringstream os;
-    os << "nodes " << e.first << "-" << e.second << " at (" << mesh.coord(e.first)[0] << ", " << mesh.coord(e.first)[1]
-       << ")-(" << mesh.coord(e.second)[0] << ", " << mesh.coord(e.second)[1] << ")";
+    os << noun << " of nodes " << k[0];
+    for (size_t i = 1; i < k.size(); ++i) os << "-" << k[i];
+    os << " at (" << mesh.coordText(k[0]) << ")";
+    if (mesh.dim() == 2) os << "-(" << mesh.coordText(k[1]) << ")";
     return os.str();
   };
   for (size_t i = 0; i < pairs.size(); ++i)
     for (size_t j = i + 1; j < pairs.size(); ++j) {
       int node = -1;
-      Edge e{-1, -1}, f{-1, -1};
-      // Duplicated: a slave node of both pairs and a master segment of both.
-      // Its nearest segment may then be the same in both pairs: two identical
+      FacetKey e, f;
+      // Duplicated: a slave node of both pairs and a master facet of both.
+      // Its nearest facet may then be the same in both pairs: two identical
       // constraint rows, singular whenever both are active.
       DDC_INPUT_REQUIRE(!(firstCommon(sets[i].slaveNodes, sets[j].slaveNodes, node) &&
-                          firstCommon(sets[i].masterSegments, sets[j].masterSegments, e)),
+                          firstCommon(sets[i].masterFacets, sets[j].masterFacets, e)),
                         "contact pairs " << where(i) << " and " << where(j) << " duplicate each other: slave node "
-                                         << node << " at (" << mesh.coord(node)[0] << ", " << mesh.coord(node)[1]
-                                         << ") is a slave of both (Slave '" << pairs[i].slaveSet << "' and '"
-                                         << pairs[j].slaveSet << "') and their master surfaces ('" << pairs[i].masterSet
-                                         << "' and '" << pairs[j].masterSet << "') share the segment of " << segment(e)
+                                         << node << " at (" << mesh.coordText(node) << ") is a slave of both (Slave '"
+                                         << pairs[i].slaveSet << "' and '" << pairs[j].slaveSet
+                                         << "') and their master surfaces ('" << pairs[i].masterSet << "' and '"
+                                         << pairs[j].masterSet << "') share the " << facet(e)
                                          << ", so the node could get two identical contact constraints (a singular "
                                             "system); a slave node may belong to several pairs only if their master "
-                                            "surfaces share no segment: remove the duplicated pair");
+                                            "surfaces share no "
+                                         << noun << ": remove the duplicated pair");
       // Mirrored: each pair's slave surface overlaps the other's master
-      // surface (two-pass node-to-segment): with Lagrange multipliers the
-      // constraints of the two passes are dependent on matching meshes
-      // (identical up to sign: singular) and over-constrain the interface
-      // otherwise.
-      DDC_INPUT_REQUIRE(!(firstCommon(sets[i].slaveSegments, sets[j].masterSegments, e) &&
-                          firstCommon(sets[i].masterSegments, sets[j].slaveSegments, f)),
+      // surface (two-pass contact): with Lagrange multipliers the constraints
+      // of the two passes are dependent on matching meshes (identical up to
+      // sign: singular) and over-constrain the interface otherwise.
+      DDC_INPUT_REQUIRE(!(firstCommon(sets[i].slaveFacets, sets[j].masterFacets, e) &&
+                          firstCommon(sets[i].masterFacets, sets[j].slaveFacets, f)),
                         "contact pairs " << where(i) << " and " << where(j) << " mirror each other: the slave "
                                          << "surface of the first ('" << pairs[i].slaveSet << "') and the master "
-                                         << "surface of the second ('" << pairs[j].masterSet << "') share the segment of "
-                                         << segment(e) << ", and the master surface of the first ('"
-                                         << pairs[i].masterSet << "') and the slave surface of the second ('"
-                                         << pairs[j].slaveSet << "') share the segment of " << segment(f)
-                                         << "; contact on one interface in both directions (two-pass node-to-segment) "
-                                            "over-constrains it: the Lagrange-multiplier rows of the two passes are "
+                                         << "surface of the second ('" << pairs[j].masterSet << "') share the "
+                                         << facet(e) << ", and the master surface of the first ('" << pairs[i].masterSet
+                                         << "') and the slave surface of the second ('" << pairs[j].slaveSet
+                                         << "') share the " << facet(f) << "; contact on one interface in both "
+                                         << "directions (two-pass "
+                                         << (mesh.dim() == 2 ? "node-to-segment" : "node-to-surface")
+                                         << ") over-constrains it: the Lagrange-multiplier rows of the two passes are "
                                             "dependent on matching meshes (a singular system) and conflict otherwise, "
                                             "and the reported contact force adds both directions: keep one of the two "
                                             "pairs");
@@ -120,23 +159,31 @@ Teuchos::RCP<const Teuchos::ParameterList> ContactOptions::getValidParameters() 
           "Node-To-Segment: projection and normal frozen at the last converged configuration, pairs "
           "refreshed at step ends (Fang & Izzuddin eq. 1); its slave and master counterparts may sit in "
           "different subdomains and share only the multiplier, so it works with both Solver/Strategy values "
-          "(with FETI-DP each active pair is a row of the constraint operator B).",
-          enumValidator({"Node-To-Segment", "Decomposed Node-To-Segment"}, "Formulation"));
+          "(with FETI-DP each active pair is a row of the constraint operator B). Node-To-Surface and "
+          "Decomposed Node-To-Surface are the same two formulations by the names that fit facets of any "
+          "type (3-node segments in 2-D, faces in 3-D).",
+          enumValidator({"Node-To-Segment", "Decomposed Node-To-Segment", "Node-To-Surface",
+                         "Decomposed Node-To-Surface"},
+                        "Formulation"));
   pl->set("Initial Contact State", "In Contact",
           "Active set at the start of each step: In Contact (every slave node with a master segment within "
           "the search radius starts active, as in the paper) or Previous Step (the converged active set of "
           "the previous step).",
           enumValidator({"In Contact", "Previous Step"}, "Initial Contact State"));
   pl->set("Search Radius", 0.0,
-          "Slave nodes farther than this from every master segment are not paired. 0: automatic, the mean "
-          "master segment length.",
+          "Slave nodes farther than this from every master facet are not paired. 0: automatic, h = the mean "
+          "master facet size: in 2-D the length of a segment from its start to its end node (the chord of a "
+          "3-node segment), in 3-D the square root of a face's area (of the polygon through its corners).",
           atLeast(0.0));
   pl->set("Penetration Tolerance", 1e-6,
-          "An inactive pair is activated when g_N < -tol * (mean master segment length).", atLeast(0.0));
+          "An inactive pair is activated when g_N < -tol * h, h the mean master facet size (Search Radius).",
+          atLeast(0.0));
   Teuchos::ParameterList pairs("Pairs");
   Teuchos::ParameterList pair("<Pair Name>");
   pair.set("Slave", "", "Slave side set 'Body/set' (its nodes carry the Lagrange multipliers).");
-  pair.set("Master", "", "Master side set 'Body/set' (2-node segments: Quad4 bodies).");
+  pair.set("Master", "",
+           "Master side set 'Body/set': sides of 2-D bodies (2-node segments of Quad4, 3-node of Quad9) or faces "
+           "of 3-D bodies (Tri3, Tri6, Quad4, Quad8, Quad9 faces of Tet4, Tet10, Hex8, Hex20, Hex27).");
   setSublist(pairs, "<Pair Name>", pair, "One sublist per contact pair.");
   setSublist(*pl, "Pairs", pairs, "Contact pairs; none means no contact.");
   return pl;
@@ -147,12 +194,13 @@ ContactOptions ContactOptions::fromParameters(Teuchos::ParameterList& list, cons
   const auto valid = getValidParameters();
   validateLevel(list, *valid, path);
   ContactOptions o;
-  o.decomposed = list.get<std::string>("Formulation") == "Decomposed Node-To-Segment";
+  const std::string formulation = list.get<std::string>("Formulation");
+  o.decomposed = formulation == "Decomposed Node-To-Segment" || formulation == "Decomposed Node-To-Surface";
   o.initialInContact = list.get<std::string>("Initial Contact State") == "In Contact";
   const auto& validPair = valid->sublist("Pairs").sublist("<Pair Name>");
   auto& pairs = list.sublist("Pairs");
-  double lengthSum = 0.0;
-  int segments = 0;
+  double sizeSum = 0.0;
+  int facets = 0;
   for (auto it = pairs.begin(); it != pairs.end(); ++it) {
     const std::string name = pairs.name(it);
     const std::string where = path + "/Pairs/" + name;
@@ -160,36 +208,34 @@ ContactOptions ContactOptions::fromParameters(Teuchos::ParameterList& list, cons
     auto& p = pairs.sublist(name);
     validateLevel(p, validPair, where);
     ContactPairDefinition d{name, p.get<std::string>("Slave"), p.get<std::string>("Master")};
-    // Node-to-segment contact is 2-D; the 3-D node-to-facet element is not
-    // available yet (doc/contact.md).
-    DDC_INPUT_REQUIRE(mesh.dim() == 2, "contact pair '" << where << "': the mesh is 3-D (body '" << mesh.body(0).name
-                                                        << "' has " << cellTypeName(mesh.body(0).cellType)
-                                                        << " cells); contact is available for 2-D meshes only");
     for (const auto& [key, set] : {std::pair<const char*, std::string>{"Slave", d.slaveSet}, {"Master", d.masterSet}}) {
       DDC_INPUT_REQUIRE(!set.empty(), "parameter '" << where << "/" << key << "' is required (a side set 'Body/set')");
+      // A node set (a generator's "all" or corner, a Gmsh physical point) has
+      // no facets, hence no outward normals to take contact on.
+      DDC_INPUT_REQUIRE(mesh.hasSideSet(set) || !mesh.hasNodeSet(set),
+                        "contact pair '" << where << "/" << key << "': '" << set
+                                         << "' is a node set, not a side set; a contact surface must be a side set of "
+                                         << (mesh.dim() == 2 ? "element sides (a generator's named side, a Gmsh "
+                                                               "physical curve of a 2-D body)"
+                                                             : "element faces (a generator's named face, a Gmsh "
+                                                               "physical surface of a 3-D body)")
+                                         << ", whose facets give the surface and its outward normals");
       try {
-        for (const Segment& s : mesh.sideSet(set))
-          DDC_INPUT_REQUIRE(s.numNodes == 2, "'" << where << "/" << key << "' = '" << set
-                                                 << "': contact surfaces must be sides of Quad4 bodies (2-node "
-                                                    "segments); Quad9 contact is not supported yet");
+        for (const Segment& s : mesh.sideSet(set)) contactFacetType(mesh.dim(), s.numNodes, set);
       } catch (const InputError& e) {
-        const std::string msg = e.what();
-        if (msg.rfind("'" + where, 0) == 0) throw;
-        throw InputError("contact pair '" + where + "/" + key + "': " + msg);
+        throw InputError("contact pair '" + where + "/" + key + "': " + e.what());
       }
     }
     DDC_INPUT_REQUIRE(d.slaveSet != d.masterSet, "contact pair '" << where << "': Slave and Master are the same side set '"
                                                                   << d.slaveSet << "'");
     for (const Segment& s : mesh.sideSet(d.masterSet)) {
-      const auto& a = mesh.coord(s.nodes[0]);
-      const auto& b = mesh.coord(s.nodes[1]);
-      lengthSum += std::hypot(b[0] - a[0], b[1] - a[1]);
-      ++segments;
+      sizeSum += facetSize(mesh, s, d.masterSet);
+      ++facets;
     }
     o.pairs.push_back(d);
   }
   checkPairsDoNotOverlap(o.pairs, mesh, path);
-  const double h = segments ? lengthSum / segments : 1.0;
+  const double h = facets ? sizeSum / facets : 1.0;
   o.searchRadius = list.get<double>("Search Radius");
   if (o.searchRadius == 0.0) o.searchRadius = h;
   const double tol = list.get<double>("Penetration Tolerance");

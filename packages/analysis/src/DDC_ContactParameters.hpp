@@ -1,5 +1,16 @@
 // The "Contact" sublist: formulation, contact pairs (slave / master side
 // sets), search and active-set options.
+//
+// Contact surfaces are side sets of any element type: sides of 2-D bodies
+// (Line2 segments of Quad4, Line3 of Quad9) and faces of 3-D bodies (Tri3,
+// Tri6, Quad4, Quad8, Quad9 faces of Tet4, Tet10, Hex8, Hex20, Hex27); see
+// DDC_ContactSurface.hpp. The automatic length scale h (Search Radius 0,
+// Penetration Tolerance) is the mean size of the master facets of all pairs:
+//   2-D   the length |x_end − x_start| of a segment (for a Line3 segment the
+//         chord, not the arc; for Line2 the segment length as before);
+//   3-D   the square root of the face's area, taken as the area of the
+//         polygon through its corners (½|(x_1 − x_0) × (x_2 − x_0)| for a
+//         triangle, ½|(x_2 − x_0) × (x_3 − x_1)| for a quadrilateral).
 #pragma once
 
 #include <Teuchos_ParameterList.hpp>
@@ -25,19 +36,22 @@ struct ContactOptions {
   /// Start every step with all paired slave nodes active (the paper), or
   /// with the active set of the previous step.
   bool initialInContact = true;
-  double searchRadius = 0.0;          ///< absolute
-  double penetrationTolerance = 0.0;  ///< absolute: activate when g_N < -tol
+  double searchRadius = 0.0;          ///< absolute (automatic: h, the file comment)
+  double penetrationTolerance = 0.0;  ///< absolute: activate when g_N < -tol (the parameter times h)
   std::vector<ContactPairDefinition> pairs;
 
   bool enabled() const { return !pairs.empty(); }
 
   static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
-  /// Validate "Contact" (in place) against the mesh: sets must exist, be
-  /// Quad4 sides, and slave and master must differ; no two pairs may share a
-  /// slave node and a master segment (duplicated pairs) or each have its
+  /// Validate "Contact" (in place) against the mesh: sets must exist and be
+  /// side sets (a node set has no facets) of facets of an element type
+  /// (contactFacetType()), and slave and master must differ; no two pairs may
+  /// share a slave node and a master facet (duplicated pairs) or each have its
   /// slave surface on the other's master surface (mirrored pairs), compared
-  /// by nodes and segments, not by names (doc/contact.md "Pairs that
-  /// overlap"). Every rank holds the mesh, so every rank throws alike.
+  /// by nodes and by facets' sorted corner nodes, not by names (doc/contact.md
+  /// "Pairs that overlap"). Formulation "Node-To-Surface" / "Decomposed
+  /// Node-To-Surface" are synonyms of "Node-To-Segment" / "Decomposed
+  /// Node-To-Segment". Every rank holds the mesh, so every rank throws alike.
   /// \throws InputError naming the parameter path or both pairs.
   static ContactOptions fromParameters(Teuchos::ParameterList& list, const Mesh& mesh, const std::string& path);
 };
