@@ -26,6 +26,11 @@
 //      compared by nodes and segments, not by side-set names.
 //   9. inside Newton, a slave node on the free end of the master surface
 //      keeps its segment against round-off displacements past the end.
+//  10. contact input on every element type: pairs of Quad9 sides and of 3-D
+//      faces are accepted with the automatic length scale h of their facets
+//      (2-D Quad4: the mean segment length as before), overlapping 3-D pairs
+//      are found by their faces, a node set is no contact surface, and the
+//      Node-To-Surface formulation names are synonyms.
 // Decks are in-memory Teuchos::ParameterLists (the half-rings deck is read
 // from examples/). The measured numbers are printed on rank 0 for
 // doc/verification.md.
@@ -41,6 +46,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -965,6 +971,170 @@ TEST(OverlappingPairs, PairsThatShareOnlyOneSideAreAccepted) {
             ddc::test::kNoInputError);
   EXPECT_EQ(pairsError({{"A", "Upper/bottom", "Lower/top"}, {"B", "Lower/right", "Upper/right"}}),
             ddc::test::kNoInputError);
+}
+
+// ---------------------------------------------------------------------------
+// 10. Contact input on every element type.
+
+/// Two blocks of `type`, "Lower" under "Upper", each 1.5 wide (3 elements) and
+/// 1 high (2 elements), in 3-D 2 deep (2 elements): Lower/top faces are
+/// 0.5 x 1.0.
+std::shared_ptr<ddc::Mesh> stackedBlocks(ddc::CellType type) {
+  auto m = std::make_shared<ddc::Mesh>();
+  const bool is3d = ddc::cellDimension(type) == 3;
+  for (const auto& [name, y0] : {std::pair<const char*, double>{"Lower", 0.0}, {"Upper", 1.0}}) {
+    PL p(is3d ? "Box" : "Rectangle");
+    p.set("Origin Y", y0);
+    p.set("Length X", 1.5);
+    p.set("Elements X", 3);
+    p.set("Elements Y", 2);
+    if (is3d) {
+      p.set("Length Z", 2.0);
+      p.set("Elements Z", 2);
+      ddc::generateBox(*m, name, type, p, "Box");
+    } else {
+      ddc::generateRectangle(*m, name, type, p, "Rectangle");
+    }
+  }
+  return m;
+}
+
+/// A "Contact" list with the pairs {name, slave, master}.
+PL contactList(const std::vector<std::array<std::string, 3>>& pairs) {
+  PL c("Contact");
+  for (const auto& p : pairs) {
+    c.sublist("Pairs").sublist(p[0]).set("Slave", p[1]);
+    c.sublist("Pairs").sublist(p[0]).set("Master", p[2]);
+  }
+  return c;
+}
+
+TEST(ContactInput, FacesOf3dBodiesArePairsWithTheSquareRootOfTheFaceAreaAsLengthScale) {
+  // Hexahedron faces 0.5 x 1.0; a Kuhn tetrahedron face is half of that.
+  for (const auto& [type, area] : std::vector<std::pair<ddc::CellType, double>>{{ddc::CellType::Hex8, 0.5},
+                                                                                {ddc::CellType::Hex20, 0.5},
+                                                                                {ddc::CellType::Hex27, 0.5},
+                                                                                {ddc::CellType::Tet4, 0.25},
+                                                                                {ddc::CellType::Tet10, 0.25}}) {
+    const auto mesh = stackedBlocks(type);
+    PL c = contactList({{"Interface", "Upper/bottom", "Lower/top"}});
+    c.set("Penetration Tolerance", 1e-3);
+    const auto o = ddc::ContactOptions::fromParameters(c, *mesh, "Contact");
+    ASSERT_EQ(o.pairs.size(), 1u);
+    EXPECT_NEAR(o.searchRadius, std::sqrt(area), kRoundoff) << ddc::cellTypeName(type);
+    EXPECT_NEAR(o.penetrationTolerance, 1e-3 * std::sqrt(area), kRoundoff) << ddc::cellTypeName(type);
+  }
+}
+
+TEST(ContactInput, Quad9SidesArePairsWithTheChordLengthAsLengthScale) {
+  const auto mesh = stackedBlocks(ddc::CellType::Quad9);
+  PL c = contactList({{"Interface", "Upper/bottom", "Lower/top"}});
+  const auto o = ddc::ContactOptions::fromParameters(c, *mesh, "Contact");
+  EXPECT_NEAR(o.searchRadius, 0.5, kRoundoff);
+  EXPECT_NEAR(o.penetrationTolerance, 1e-6 * 0.5, kRoundoff);
+}
+
+TEST(ContactInput, Quad4LengthScaleIsTheMeanMasterSegmentLengthBitForBit) {
+  // A distorted master body: segments of different lengths. The arithmetic
+  // of the 2-D code: the sum of hypot(dx, dy) over the segments, divided by
+  // their number.
+  auto mesh = std::make_shared<ddc::Mesh>();
+  for (const auto& [name, y0, nx] : {std::tuple<const char*, double, int>{"Lower", 0.0, 5}, {"Upper", 1.0, 4}}) {
+    PL p("Rectangle");
+    p.set("Origin Y", y0);
+    p.set("Elements X", nx);
+    p.set("Elements Y", 3);
+    p.set("Distortion", 0.3);
+    ddc::generateRectangle(*mesh, name, ddc::CellType::Quad4, p, "Rectangle");
+  }
+  PL c = contactList({{"A", "Upper/bottom", "Lower/top"}, {"B", "Lower/right", "Upper/right"}});
+  const auto o = ddc::ContactOptions::fromParameters(c, *mesh, "Contact");
+  double sum = 0.0;
+  int n = 0;
+  for (const char* set : {"Lower/top", "Upper/right"})
+    for (const ddc::Segment& s : mesh->sideSet(set)) {
+      const auto& a = mesh->coord(s.nodes[0]);
+      const auto& b = mesh->coord(s.nodes[1]);
+      sum += std::hypot(b[0] - a[0], b[1] - a[1]);
+      ++n;
+    }
+  EXPECT_EQ(o.searchRadius, sum / n);
+  EXPECT_EQ(o.penetrationTolerance, 1e-6 * (sum / n));
+}
+
+TEST(ContactInput, OverlappingPairsOf3dFacesAreInputErrors) {
+  for (ddc::CellType type : {ddc::CellType::Hex20, ddc::CellType::Tet4}) {
+    const auto mesh = stackedBlocks(type);
+    auto error = [&](const std::vector<std::array<std::string, 3>>& pairs) {
+      PL c = contactList(pairs);
+      return ddc::test::inputErrorOf([&] { ddc::ContactOptions::fromParameters(c, *mesh, "Contact"); });
+    };
+    const std::string duplicated =
+        error({{"A", "Upper/bottom", "Lower/top"}, {"B", "Upper/left", "Lower/top"}});  // a shared edge of slaves
+    EXPECT_NE(duplicated.find("contact pairs 'Contact/Pairs/A' and 'Contact/Pairs/B' duplicate each other: slave "
+                              "node "),
+              std::string::npos)
+        << duplicated;
+    EXPECT_NE(duplicated.find("share the facet of nodes "), std::string::npos) << duplicated;
+    EXPECT_NE(duplicated.find("share no facet: remove the duplicated pair"), std::string::npos) << duplicated;
+    const std::string mirrored = error({{"A", "Upper/bottom", "Lower/top"}, {"B", "Lower/top", "Upper/bottom"}});
+    EXPECT_NE(mirrored.find("mirror each other: the slave surface of the first ('Upper/bottom') and the master "
+                            "surface of the second ('Upper/bottom') share the facet of nodes "),
+              std::string::npos)
+        << mirrored;
+    EXPECT_NE(mirrored.find("(two-pass node-to-surface)"), std::string::npos) << mirrored;
+    // The sorted corner nodes of the first common face (the smallest key)
+    // and the coordinates of its first corner, with z.
+    std::vector<int> key;
+    for (const ddc::Segment& f : mesh->sideSet("Upper/bottom")) {
+      const int corners = ddc::referenceCell(ddc::referenceCell(type).facets[f.localSide].type).numCorners;
+      std::vector<int> k(f.nodes.begin(), f.nodes.begin() + corners);
+      std::sort(k.begin(), k.end());
+      if (key.empty() || k < key) key = k;
+    }
+    std::ostringstream text;
+    text << "facet of nodes " << key[0];
+    for (std::size_t i = 1; i < key.size(); ++i) text << "-" << key[i];
+    const auto& x = mesh->coord(key[0]);
+    text << " at (" << x[0] << ", " << x[1] << ", " << x[2] << ")";
+    EXPECT_NE(mirrored.find(text.str()), std::string::npos) << text.str() << " not in: " << mirrored;
+    // Other faces of the same bodies are legitimate second pairs.
+    EXPECT_EQ(error({{"A", "Upper/bottom", "Lower/top"}, {"B", "Upper/front", "Lower/front"}}),
+              ddc::test::kNoInputError);
+  }
+}
+
+TEST(ContactInput, ANodeSetIsNoContactSurface) {
+  for (ddc::CellType type : {ddc::CellType::Quad4, ddc::CellType::Hex8}) {
+    const auto mesh = stackedBlocks(type);
+    const std::string corner = type == ddc::CellType::Quad4 ? "Lower/top right" : "Lower/top right front";
+    for (const auto& [pair, key, set] : {std::tuple<std::array<std::string, 3>, std::string, std::string>{
+                                             {"Interface", "Upper/all", "Lower/top"}, "Slave", "Upper/all"},
+                                         {{"Interface", "Upper/bottom", corner}, "Master", corner}}) {
+      PL c = contactList({pair});
+      const std::string msg =
+          ddc::test::inputErrorOf([&] { ddc::ContactOptions::fromParameters(c, *mesh, "Contact"); });
+      EXPECT_NE(msg.find("contact pair 'Contact/Pairs/Interface/" + key + "': '" + set +
+                         "' is a node set, not a side set; a contact surface must be a side set of " +
+                         (type == ddc::CellType::Quad4 ? "element sides" : "element faces")),
+                std::string::npos)
+          << msg;
+    }
+  }
+}
+
+TEST(ContactInput, NodeToSurfaceNamesAreSynonymsOfNodeToSegment) {
+  const auto mesh = stackedBlocks(ddc::CellType::Hex8);
+  for (const auto& [formulation, decomposed] :
+       std::vector<std::pair<std::string, bool>>{{"Node-To-Segment", false},
+                                                 {"Decomposed Node-To-Segment", true},
+                                                 {"Node-To-Surface", false},
+                                                 {"Decomposed Node-To-Surface", true}}) {
+    PL c = contactList({{"Interface", "Upper/bottom", "Lower/top"}});
+    c.set("Formulation", formulation);
+    EXPECT_EQ(ddc::ContactOptions::fromParameters(c, *mesh, "Contact").decomposed, decomposed) << formulation;
+  }
+  EXPECT_EQ(ddc::ContactOptions::getValidParameters()->get<std::string>("Formulation"), "Node-To-Segment");
 }
 
 }  // namespace
