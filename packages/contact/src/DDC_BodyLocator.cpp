@@ -6,63 +6,117 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <stdexcept>
 
 #include "DDC_Error.hpp"
 #include "DDC_Mesh.hpp"
 
 namespace ddc {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Largest extent of a box (lower corner in b[0..2], upper in b[3..5]) over
+/// its first `dim` axes.
+double largestExtent(const std::array<double, 6>& b, int dim) {
+  double s = b[3] - b[0];
+  for (int d = 1; d < dim; ++d) s = std::max(s, b[3 + d] - b[d]);
+  return s;
+}
+
+/// Distance from x to the segment p–q.
+double segmentDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& x) {
+  const Eigen::Vector3d t = q - p, d = x - p;
+  const double xi = std::min(1.0, std::max(0.0, d.dot(t) / t.squaredNorm()));
+  return (d - xi * t).norm();
+}
+
+/// Distance from x to the closed triangle t: to its plane if x projects into
+/// the triangle, else to the nearest edge.
+double triangleDistance(const Eigen::Vector3d* t, const Eigen::Vector3d& x) {
+  const Eigen::Vector3d n = (t[1] - t[0]).cross(t[2] - t[0]);
+  bool over = true;
+  for (int k = 0; k < 3; ++k) over = over && (t[(k + 1) % 3] - t[k]).cross(x - t[k]).dot(n) >= 0.0;
+  if (over) return std::abs(n.dot(x - t[0])) / n.norm();
+  return std::min({segmentDistance(t[0], t[1], x), segmentDistance(t[1], t[2], x), segmentDistance(t[2], t[0], x)});
+}
+
+/// Solid angle of triangle t seen from x, positive if t runs counter-clockwise
+/// seen from x (from inside for an outward face); Van Oosterom & Strackee,
+/// IEEE Trans. Biomed. Eng. 30 (1983) 125. Well-conditioned unless x is
+/// within round-off of the triangle, which the margin test handles first.
+double solidAngle(const Eigen::Vector3d* t, const Eigen::Vector3d& x) {
+  const Eigen::Vector3d a = t[0] - x, b = t[1] - x, c = t[2] - x;
+  const double la = a.norm(), lb = b.norm(), lc = c.norm();
+  return 2.0 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la);
+}
+
+/// A point of dimension `pointDim` was given for a body of the other one.
+[[noreturn]] void throwWrongDimension(const Mesh& mesh, int body, int pointDim) {
+  DDC_THROW(std::invalid_argument, "BodyLocator: a " << pointDim << "-D point for body '" << mesh.body(body).name
+                                                     << "', which is " << mesh.dim() << "-D; pass an Eigen::Vector"
+                                                     << mesh.dim() << "d");
+}
+
+}  // namespace
 
 BodyLocator::BodyLocator(const Mesh& mesh, int body)
-    : mesh_(mesh), firstElement_(mesh.body(body).firstElement), numElements_(mesh.body(body).numElements) {
-  std::vector<std::array<double, 4>> boxes(numElements_);  // xmin, ymin, xmax, ymax
-  double lo[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-  double hi[2] = {-lo[0], -lo[1]};
+    : mesh_(mesh),
+      body_(body),
+      dim_(mesh.dim()),
+      numFacets_(static_cast<int>(referenceCell(mesh.body(body).cellType).facets.size())),
+      firstElement_(mesh.body(body).firstElement),
+      numElements_(mesh.body(body).numElements) {
+  const int numCorners = referenceCell(mesh.body(body).cellType).numCorners;
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<std::array<double, 6>> boxes(numElements_);  // lower corner, upper corner
+  std::array<double, 6> all = {inf, inf, inf, -inf, -inf, -inf};
   double meanSize = 0.0;
   for (int i = 0; i < numElements_; ++i) {
     auto& b = boxes[i];
-    b = {lo[0], lo[1], hi[0], hi[1]};
+    b = {inf, inf, inf, -inf, -inf, -inf};
     const int* nodes = mesh_.elementNodes(firstElement_ + i);
-    for (int a = 0; a < 4; ++a) {
+    for (int a = 0; a < numCorners; ++a) {
       const auto& x = mesh_.coord(nodes[a]);
-      b[0] = std::min(b[0], x[0]), b[1] = std::min(b[1], x[1]);
-      b[2] = std::max(b[2], x[0]), b[3] = std::max(b[3], x[1]);
+      for (int d = 0; d < dim_; ++d) b[d] = std::min(b[d], x[d]), b[3 + d] = std::max(b[3 + d], x[d]);
     }
-    lo[0] = std::min(lo[0], b[0]), lo[1] = std::min(lo[1], b[1]);
-    hi[0] = std::max(hi[0], b[2]), hi[1] = std::max(hi[1], b[3]);
-    meanSize += std::max(b[2] - b[0], b[3] - b[1]) / numElements_;
+    for (int d = 0; d < dim_; ++d) all[d] = std::min(all[d], b[d]), all[3 + d] = std::max(all[3 + d], b[3 + d]);
+    meanSize += largestExtent(b, dim_) / numElements_;
   }
   if (numElements_ == 0) return;
-  // Boundary edges: corner edges that only one element of the body has.
-  std::map<std::pair<int, int>, int> edgeCount;
-  auto edgeKey = [&](int e, int a) {
-    const int* nodes = mesh_.elementNodes(e);
-    const auto& side = referenceCell(mesh_.elementType(e)).facets[a];
-    const int p = nodes[side.nodes[0]], q = nodes[side.nodes[1]];
-    return std::make_pair(std::min(p, q), std::max(p, q));
-  };
+  // Boundary facets: corner edges (2-D) or faces (3-D) that only one element
+  // of the body has.
+  std::map<std::vector<int>, int> facetCount;
   for (int i = 0; i < numElements_; ++i)
-    for (int a = 0; a < 4; ++a) ++edgeCount[edgeKey(firstElement_ + i, a)];
-  boundaryEdge_.resize(numElements_);
+    for (int a = 0; a < numFacets_; ++a) ++facetCount[mesh_.facetKey(firstElement_ + i, a)];
+  boundaryFacet_.resize(numElements_);
   for (int i = 0; i < numElements_; ++i)
-    for (int a = 0; a < 4; ++a) boundaryEdge_[i][a] = edgeCount[edgeKey(firstElement_ + i, a)] == 1;
-  // Bins about one element wide (at most ~1e6 of them over the body's box):
-  // a query meets O(1) elements.
-  const double extent = std::max(hi[0] - lo[0], hi[1] - lo[1]);
-  h_ = std::max({meanSize, extent / 1000.0, std::numeric_limits<double>::min()});
-  x0_ = lo[0];
-  y0_ = lo[1];
-  nx_ = std::max(1LL, static_cast<long long>(std::ceil((hi[0] - lo[0]) / h_)));
-  ny_ = std::max(1LL, static_cast<long long>(std::ceil((hi[1] - lo[1]) / h_)));
+    for (int a = 0; a < numFacets_; ++a) boundaryFacet_[i][a] = facetCount[mesh_.facetKey(firstElement_ + i, a)] == 1;
+  // Bins about one element wide (at most ~1e6 of them over the body's box:
+  // 1000 per axis in 2-D, 100 in 3-D): a query meets O(1) elements.
+  const double smallest = largestExtent(all, dim_) / (dim_ == 2 ? 1000.0 : 100.0);
+  h_ = std::max({meanSize, smallest, std::numeric_limits<double>::min()});
+  for (int d = 0; d < dim_; ++d) {
+    origin_[d] = all[d];
+    n_[d] = std::max(1LL, static_cast<long long>(std::ceil((all[3 + d] - all[d]) / h_)));
+  }
   // Each element goes into every bin its box, grown by the margin, touches: a
-  // point within the margin of an element's edge finds that element.
+  // point within the margin of an element's facet finds that element.
   for (int i = 0; i < numElements_; ++i) {
     const auto& b = boxes[i];
-    const double grow = kInsideMargin * std::max(b[2] - b[0], b[3] - b[1]);
-    for (long long ix = cell(b[0] - grow, x0_, nx_); ix <= cell(b[2] + grow, x0_, nx_); ++ix)
-      for (long long iy = cell(b[1] - grow, y0_, ny_); iy <= cell(b[3] + grow, y0_, ny_); ++iy)
-        bins_.emplace_back(ix * ny_ + iy, firstElement_ + i);
+    const double grow = kInsideMargin * largestExtent(b, dim_);
+    std::array<long long, 3> lo{{0, 0, 0}}, hi{{0, 0, 0}};
+    for (int d = 0; d < dim_; ++d) {
+      lo[d] = cell(b[d] - grow, origin_[d], n_[d]);
+      hi[d] = cell(b[3 + d] + grow, origin_[d], n_[d]);
+    }
+    for (long long ix = lo[0]; ix <= hi[0]; ++ix)
+      for (long long iy = lo[1]; iy <= hi[1]; ++iy)
+        for (long long iz = lo[2]; iz <= hi[2]; ++iz)
+          bins_.emplace_back((ix * n_[1] + iy) * n_[2] + iz, firstElement_ + i);
   }
   std::sort(bins_.begin(), bins_.end());
+  if (dim_ == 3) boxes_ = std::move(boxes);
 }
 
 long long BodyLocator::cell(double v, double origin, long long n) const {
@@ -83,8 +137,8 @@ bool BodyLocator::inClosure(int e, const Eigen::Vector2d& x) const {
   return true;
 }
 
-bool BodyLocator::onBoundaryEdge(int e, int a, const Eigen::Vector2d& x) const {
-  if (!boundaryEdge_[e - firstElement_][a]) return false;
+bool BodyLocator::onBoundaryFacet(int e, int a, const Eigen::Vector2d& x) const {
+  if (!boundaryFacet_[e - firstElement_][a]) return false;
   const int* nodes = mesh_.elementNodes(e);
   const auto& side = referenceCell(mesh_.elementType(e)).facets[a];
   const auto& p = mesh_.coord(nodes[side.nodes[0]]);
@@ -94,21 +148,82 @@ bool BodyLocator::onBoundaryEdge(int e, int a, const Eigen::Vector2d& x) const {
   return (d - xi * t).norm() <= kInsideMargin * t.norm();
 }
 
-int BodyLocator::elementContaining(const Eigen::Vector2d& x) const {
+int BodyLocator::faceTriangles(int e, int f, Triangle* triangles) const {
+  // The face's corners in their outward order, starting at the one with the
+  // smallest node number: a triangle as it is, a quadrilateral split along
+  // the diagonal from that corner (the rule of the class documentation).
+  const int* nodes = mesh_.elementNodes(e);
+  const ReferenceFacet& face = referenceCell(mesh_.elementType(e)).facets[f];
+  const int n = referenceCell(face.type).numCorners;
+  int first = 0;
+  for (int k = 1; k < n; ++k)
+    if (nodes[face.nodes[k]] < nodes[face.nodes[first]]) first = k;
+  auto corner = [&](int k) {
+    const auto& x = mesh_.coord(nodes[face.nodes[(first + k) % n]]);
+    return Eigen::Vector3d(x[0], x[1], x[2]);
+  };
+  triangles[0] = {corner(0), corner(1), corner(2)};
+  if (n == 3) return 1;
+  triangles[1] = {corner(0), corner(2), corner(3)};
+  return 2;
+}
+
+double BodyLocator::margin(int e) const { return kInsideMargin * largestExtent(boxes_[e - firstElement_], 3); }
+
+bool BodyLocator::inClosure(int e, const Eigen::Vector3d& x) const {
+  const auto& b = boxes_[e - firstElement_];
+  const double tol = margin(e);
+  for (int d = 0; d < 3; ++d)
+    if (x[d] < b[d] - tol || x[d] > b[3 + d] + tol) return false;
+  double angle = 0.0;
+  Triangle triangles[2];
+  for (int f = 0; f < numFacets_; ++f)
+    for (int k = 0, n = faceTriangles(e, f, triangles); k < n; ++k) {
+      if (triangleDistance(triangles[k].data(), x) <= tol) return true;
+      angle += solidAngle(triangles[k].data(), x);
+    }
+  return angle > 2.0 * kPi;  // 4π inside (winding number 1), 0 outside
+}
+
+bool BodyLocator::onBoundaryFacet(int e, int f, const Eigen::Vector3d& x) const {
+  if (!boundaryFacet_[e - firstElement_][f]) return false;
+  Triangle triangles[2];
+  const int n = faceTriangles(e, f, triangles);
+  const double tol = margin(e);
+  for (int k = 0; k < n; ++k)
+    if (triangleDistance(triangles[k].data(), x) <= tol) return true;
+  return false;
+}
+
+template <class Point>
+int BodyLocator::locate(const Point& x) const {
   if (bins_.empty() || !x.allFinite()) return -1;
-  const double fx = (x.x() - x0_) / h_, fy = (x.y() - y0_) / h_;
-  if (fx < -1.0 || fy < -1.0 || fx > double(nx_) + 1.0 || fy > double(ny_) + 1.0) return -1;
-  const long long key = cell(x.x(), x0_, nx_) * ny_ + cell(x.y(), y0_, ny_);
+  long long key = 0;
+  for (int d = 0; d < dim_; ++d) {
+    const double f = (x[d] - origin_[d]) / h_;
+    if (f < -1.0 || f > double(n_[d]) + 1.0) return -1;
+    key = key * n_[d] + cell(x[d], origin_[d], n_[d]);
+  }
   auto it = std::lower_bound(bins_.begin(), bins_.end(), std::make_pair(key, std::numeric_limits<int>::min()));
   int found = -1;
   for (; it != bins_.end() && it->first == key; ++it) {
     const int e = it->second;
     if (!inClosure(e, x)) continue;
-    for (int a = 0; a < 4; ++a)
-      if (onBoundaryEdge(e, a, x)) return -1;  // on the body's boundary: not inside
+    for (int a = 0; a < numFacets_; ++a)
+      if (onBoundaryFacet(e, a, x)) return -1;  // on the body's boundary: not inside
     if (found < 0) found = e;  // bins are sorted by element: the lowest index
   }
   return found;
+}
+
+int BodyLocator::elementContaining(const Eigen::Vector2d& x) const {
+  if (dim_ != 2) throwWrongDimension(mesh_, body_, 2);
+  return locate(x);
+}
+
+int BodyLocator::elementContaining(const Eigen::Vector3d& x) const {
+  if (dim_ != 3) throwWrongDimension(mesh_, body_, 3);
+  return locate(x);
 }
 
 }  // namespace ddc
