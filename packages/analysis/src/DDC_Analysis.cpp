@@ -227,6 +227,8 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
     : comm_(std::move(comm)), factory_(std::move(factory)) {
   // Contact elements live in the contact package; make sure they are known.
   if (!factory_.has("Node-To-Segment")) registerContactElements(factory_);
+  if (!factory_.has(surfaceContactElementName(SurfaceContactRole::Conventional, CellType::Quad4)))
+    registerSurfaceContactElements(factory_);
   const auto valid = getValidParameters(factory_);
   validateLevel(params, *valid, "");
   for (const char* s : {"Load Stepping", "Newton", "Solver", "Partition", "Output"})
@@ -371,8 +373,19 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
 
   strategy_ = makeSolutionStrategy(comm_, params.sublist("Solver"), contact);
 
+  // The contact elements of facets other than 2-node segments, by role and
+  // facet type, from the factory (host codes may replace them there).
+  auto surfaceElements = [factory = factory_](SurfaceContactRole role, CellType facet) {
+    Teuchos::ParameterList pl;
+    const std::string type = surfaceContactElementName(role, facet);
+    pl.set("Type", type);
+    auto el = std::dynamic_pointer_cast<const SurfaceContactElement>(factory.create(pl, "Contact/Formulation"));
+    DDC_INPUT_REQUIRE(el != nullptr, "element type '" << type << "' registered in the factory is not a surface "
+                                                      "contact element");
+    return el;
+  };
   model_ = std::make_shared<Model>(comm_, mesh, std::move(elements), std::move(partition), std::move(bcs),
-                                   std::move(contact), std::move(contactElements));
+                                   std::move(contact), std::move(contactElements), surfaceElements);
   u_ = model_->createVector();
   strategy_->setUp(model_, [this](const std::string& line) { progress(line); });
   params_ = params;
@@ -411,7 +424,7 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
   // between two segments cycles as surely as one flipping its state.
   auto activeSet = [&] {
     std::vector<int> a;
-    for (const auto& sl : model_->contactSlots()) a.insert(a.end(), {int(sl.active), sl.master[0], sl.master[1]});
+    for (const auto& sl : model_->contactSlots()) a.insert(a.end(), {int(sl.active), sl.master[0], sl.master[1], sl.segment});
     return a;
   };
   if (contact) seen.push_back(activeSet());
@@ -645,6 +658,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
         rec.activeContacts = cs.active;
         rec.contactForce[0] = cs.force[0];
         rec.contactForce[1] = cs.force[1];
+        rec.contactForce[2] = cs.force[2];
         rec.contactExchanges = model_->exchanges() - exchanges0;
         rec.contactBytes = model_->bytesExchanged() - bytes0;
       }

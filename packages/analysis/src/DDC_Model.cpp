@@ -14,6 +14,7 @@
 
 #include "DDC_BodyLocator.hpp"
 #include "DDC_ContactSearch.hpp"
+#include "DDC_ContactSurface.hpp"
 #include "DDC_ContinuumElement.hpp"
 #include "DDC_DecomposedNodeToSegment.hpp"
 #include "DDC_Error.hpp"
@@ -25,7 +26,8 @@ namespace ddc {
 
 Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const Mesh> mesh,
              std::vector<std::shared_ptr<const Element>> elements, Partition partition, BoundaryConditions bcs,
-             ContactOptions contact, std::vector<std::shared_ptr<const ContactElement>> contactElements)
+             ContactOptions contact, std::vector<std::shared_ptr<const ContactElement>> contactElements,
+             ContactComponent::SurfaceElementSource surfaceElements)
     : comm_(std::move(comm)),
       mesh_(std::move(mesh)),
       elements_(std::move(elements)),
@@ -36,19 +38,12 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
   for (int b = 0; b < mesh_->numBodies(); ++b)
     DDC_ASSERT(elements_[b]->dim() == mesh_->dim(), "body '" << mesh_->body(b).name << "': a " << elements_[b]->dim()
                                                               << "-D element on a " << mesh_->dim() << "-D mesh");
-  // Contact is two-dimensional (node-to-segment); the 3-D node-to-facet
-  // element is not available yet (doc/contact.md).
-  DDC_INPUT_REQUIRE(mesh_->dim() == 2 || !contactOptions_.enabled(),
-                    "contact pair 'Contact/Pairs/" << contactOptions_.pairs[0].name << "': the mesh is 3-D (body '"
-                                                   << mesh_->body(0).name << "' has "
-                                                   << cellTypeName(mesh_->body(0).cellType)
-                                                   << " cells); contact is available for 2-D meshes only");
   subdomainRank_ = subdomainOwnerRank(partition_.numSubdomains, comm_->getSize());
   for (int e = 0; e < mesh_->numElements(); ++e)
     if (subdomainRank_[partition_.elementSubdomain[e]] == comm_->getRank()) localElements_.push_back(e);
 
   computeNodeOwners();
-  if (contactOptions_.enabled()) buildContact(std::move(contactElements));
+  if (contactOptions_.enabled()) buildContact(std::move(contactElements), std::move(surfaceElements));
   // The formulation alone says nothing about whether the contact maps exist:
   // with no pairs there are none, and the run is a plain analysis.
   decomposed_ = contactOptions_.decomposed && hasContact();
@@ -61,7 +56,7 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
       if (nodeOwner_[n] != comm_->getRank()) continue;
       ContactNodeDofs d;
       d.id = n;
-      for (int c = 0; c < 2; ++c) {
+      for (int c = 0; c < mesh_->dim(); ++c) {
         d.dofs[c] = dof(n, c);
         d.prescribed[c] = constrained_[dof(n, c)] != 0;
       }
@@ -74,12 +69,15 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
     auto zero = createVector();
     contact_->updatePairing(*zero, /*global=*/true, /*freeze=*/true);
     std::vector<std::unique_ptr<BodyLocator>> locators;
-    std::vector<std::function<int(const Eigen::Vector2d&)>> locate;
+    std::vector<std::function<int(const Eigen::VectorXd&)>> locate;
     for (const auto& def : contactOptions_.pairs) {
       const std::string body = def.masterSet.substr(0, def.masterSet.find('/'));
       locators.push_back(std::make_unique<BodyLocator>(*mesh_, mesh_->bodyIndex(body)));
       const BodyLocator* l = locators.back().get();
-      locate.push_back([l](const Eigen::Vector2d& x) { return l->elementContaining(x); });
+      if (mesh_->dim() == 2)
+        locate.push_back([l](const Eigen::VectorXd& x) { return l->elementContaining(Eigen::Vector2d(x)); });
+      else
+        locate.push_back([l](const Eigen::VectorXd& x) { return l->elementContaining(Eigen::Vector3d(x)); });
     }
     contact_->checkInitialPenetration(locate);
   }
@@ -87,7 +85,8 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
   assembleTractions();
 }
 
-void Model::buildContact(std::vector<std::shared_ptr<const ContactElement>> contactElements) {
+void Model::buildContact(std::vector<std::shared_ptr<const ContactElement>> contactElements,
+                         ContactComponent::SurfaceElementSource surfaceElements) {
   // Register the contact surfaces with the component: each rank the surface
   // nodes it owns and the facets of its elements (doc/embedding.md,
   // "(c) The contact component"); the component merges them.
@@ -97,25 +96,23 @@ void Model::buildContact(std::vector<std::shared_ptr<const ContactElement>> cont
   options.decomposed = contactOptions_.decomposed;
   options.searchRadius = contactOptions_.searchRadius;
   options.penetrationTolerance = contactOptions_.penetrationTolerance;
-  contact_ = std::make_unique<ContactComponent>(comm_, options, std::move(contactElements));
+  contact_ = std::make_unique<ContactComponent>(comm_, options, std::move(contactElements), std::move(surfaceElements));
   std::vector<char> isSurface(mesh.numNodes(), 0);
-  auto facets = [&](const std::string& set, bool master) {
-    const auto segments = masterSegmentsFromSideSet(mesh, set);
-    const auto& sides = mesh.sideSet(set);
-    std::vector<double> depths;
-    if (master) depths = masterElementDepths(mesh, set);
+  auto facets = [&](const std::string& set, bool master, CellType& type) {
+    const ContactSurfaceFacets surface = contactSurfaceFromSideSet(mesh, set);
+    type = surface.type;
     std::vector<ContactFacet> mine;
-    for (size_t i = 0; i < segments.size(); ++i) {
-      for (int n : segments[i]) isSurface[n] = 1;
-      const int e = sides[i].element;
+    for (size_t i = 0; i < surface.nodes.size(); ++i) {
+      for (int n : surface.nodes[i]) isSurface[n] = 1;
+      const int e = surface.elements[i];
       const int sub = partition_.elementSubdomain[e];
       if (subdomainRank_[sub] != me) continue;
       ContactFacet f;
       f.id = long(i);
-      f.nodes = segments[i];
+      f.nodes = surface.nodes[i];
       f.element = e;
       f.subdomain = sub;
-      if (master) f.depth = depths[i];
+      if (master) f.depth = surface.depths[i];
       mine.push_back(f);
     }
     return mine;
@@ -126,8 +123,8 @@ void Model::buildContact(std::vector<std::shared_ptr<const ContactElement>> cont
     pair.path = "Contact/Pairs/" + def.name;
     pair.slaveName = def.slaveSet;
     pair.masterName = def.masterSet;
-    pair.slaveFacets = facets(def.slaveSet, false);
-    pair.masterFacets = facets(def.masterSet, true);
+    pair.slaveFacets = facets(def.slaveSet, false, pair.slaveFacetType);
+    pair.masterFacets = facets(def.masterSet, true, pair.masterFacetType);
     for (int n : mesh.nodeSet(def.slaveSet)) {
       isSurface[n] = 1;
       if (nodeOwner_[n] == me) pair.slaveNodes.push_back(n);
@@ -136,7 +133,8 @@ void Model::buildContact(std::vector<std::shared_ptr<const ContactElement>> cont
   }
   std::vector<ContactNode> nodes;
   for (int n = 0; n < mesh.numNodes(); ++n)
-    if (isSurface[n] && nodeOwner_[n] == me) nodes.push_back({n, Eigen::Vector2d(mesh.coord(n)[0], mesh.coord(n)[1])});
+    if (isSurface[n] && nodeOwner_[n] == me)
+      nodes.push_back({n, Eigen::Vector3d(mesh.coord(n)[0], mesh.coord(n)[1], mesh.coord(n)[2])});
   contact_->registerNodes(nodes);
   contact_->commit();
 }
@@ -615,7 +613,8 @@ std::vector<std::vector<ConstraintEntry>> Model::contactRowEntries(const std::ve
       slaveSystem = systems.size();
       const int n = contact_->slots()[e.slot].slaveNode;
       for (size_t i = 0; i < systems.size() && slaveSystem == systems.size(); ++i)
-        if (localIndex(systems[i], dof(n, 0)) >= 0 || localIndex(systems[i], dof(n, 1)) >= 0) slaveSystem = i;
+        for (int c = 0; c < mesh_->dim(); ++c)
+          if (slaveSystem == systems.size() && localIndex(systems[i], dof(n, c)) >= 0) slaveSystem = i;
     }
     for (size_t i = 0; i < systems.size(); ++i) {
       if (e.master ? systems[i].id != e.subdomain : i != slaveSystem) continue;

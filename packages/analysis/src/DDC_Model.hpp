@@ -51,10 +51,13 @@ class Model {
   /// \param elements one evaluator per body (index = body index)
   /// \param contactElements evaluators by name: "Node-To-Segment" or the
   ///        pair "Decomposed NTS Slave" / "Decomposed NTS Master" (only the
-  ///        ones the formulation needs)
+  ///        ones the formulation needs): pairs of 2-node segments
+  /// \param surfaceElements the contact elements of the other facet types
+  ///        (Quad9 sides, 3-D faces; ContactComponent)
   Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const Mesh> mesh,
         std::vector<std::shared_ptr<const Element>> elements, Partition partition, BoundaryConditions bcs,
-        ContactOptions contact = {}, std::vector<std::shared_ptr<const ContactElement>> contactElements = {});
+        ContactOptions contact = {}, std::vector<std::shared_ptr<const ContactElement>> contactElements = {},
+        ContactComponent::SurfaceElementSource surfaceElements = makeSurfaceContactElement);
   ~Model();
 
   const Mesh& mesh() const { return *mesh_; }
@@ -159,7 +162,8 @@ class Model {
 
  private:
   void computeNodeOwners();
-  void buildContact(std::vector<std::shared_ptr<const ContactElement>> contactElements);
+  void buildContact(std::vector<std::shared_ptr<const ContactElement>> contactElements,
+                    ContactComponent::SurfaceElementSource surfaceElements);
   void buildDofNumbering();
   void buildConstraints();
   void buildTopology();

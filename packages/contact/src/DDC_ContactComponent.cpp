@@ -7,11 +7,14 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include "DDC_Error.hpp"
 #include "DDC_MpiRecords.hpp"
+#include "DDC_ShapeFunctions.hpp"
 
 namespace ddc {
 
@@ -28,11 +31,13 @@ Teuchos::RCP<const Map> mapOf(const std::vector<GO>& gids, const Teuchos::RCP<co
 /// Records of the registration gather (plain data for exchangeRecords()).
 struct NodeRecord {
   int id, rank;
-  double x, y;
+  double x, y, z;
 };
 struct FacetRecord {
   long id;
-  int n0, n1, element, subdomain, rank;
+  int numNodes;
+  std::array<int, ContactSlot::kMaxFacetNodes> nodes;
+  int element, subdomain, rank;
   double depth;
 };
 
@@ -44,19 +49,70 @@ std::vector<T> allGather(MPI_Comm comm, const std::vector<T>& mine) {
   return exchangeRecords(comm, std::vector<std::vector<T>>(size, mine));
 }
 
+/// Corner node ids of a facet's side `s` (sorted), and the polyline through
+/// the side's nodes (corner, middle, corner): the facet's boundary pieces
+/// for the free-boundary rule. Line facets: the end node itself.
+struct FacetSide {
+  std::vector<int> key;       ///< sorted corner node ids
+  std::vector<int> polyline;  ///< node ids along the side
+};
+std::vector<FacetSide> facetSides(CellType type, const int* nodes) {
+  const ReferenceCell& ref = referenceCell(type);
+  std::vector<FacetSide> sides;
+  if (ref.dim == 1) {
+    for (int end = 0; end < 2; ++end) sides.push_back({{nodes[end]}, {nodes[end]}});
+    return sides;
+  }
+  for (const auto& e : ref.edges) {
+    FacetSide s;
+    s.key = {std::min(nodes[e.start], nodes[e.end]), std::max(nodes[e.start], nodes[e.end])};
+    s.polyline = e.middle >= 0 ? std::vector<int>{nodes[e.start], nodes[e.middle], nodes[e.end]}
+                               : std::vector<int>{nodes[e.start], nodes[e.end]};
+    sides.push_back(s);
+  }
+  return sides;
+}
+
 }  // namespace
 
 /// A pair after commit(): merged facets (ascending facet id), its search.
 struct ContactComponent::Pair {
   std::string name, path, slaveName, masterName;
+  CellType slaveType = CellType::Line2, masterType = CellType::Line2;
+  /// Line2 master facets: the 2-D segment search and elements; otherwise the
+  /// facet search and the surface elements.
+  bool segments() const { return masterType == CellType::Line2; }
   // Registration shares (before commit()).
   std::vector<int> mySlaves;
   std::vector<ContactFacet> mySlaveFacets, myMasterFacets;
   // After commit().
   std::vector<FacetRecord> masterFacets;  ///< in surface (search) order
-  FacingRule rule;                        ///< slave segments, master depths
-  std::unique_ptr<ContactSearch> search;
+  std::vector<FacetRecord> slaveFacets;   ///< ascending id
+  FacingRule rule;                        ///< Line2: slave segments, master depths
+  std::unique_ptr<ContactSearch> search;  ///< Line2
+  std::unique_ptr<FacetSearch> facetSearch;  ///< other facet types
+  std::vector<int> slaves;                   ///< slave node ids, in slot order
+  /// Other facet types: per slave node, its slave facets and its local node
+  /// number in each (the nodal normal of the facing rule).
+  std::map<int, std::vector<std::pair<int, int>>> slaveFacetsAt;
+  /// Other facet types: per master facet, its sides on the surface's free
+  /// boundary (polylines of node ids).
+  std::vector<std::vector<std::vector<int>>> freeSides;
   std::vector<int> slots;  ///< slots of the pair, in search order
+  std::vector<int> facetNodes(int f) const {
+    return {masterFacets[f].nodes.begin(), masterFacets[f].nodes.begin() + masterFacets[f].numNodes};
+  }
+};
+
+/// The pairing of one slave node found by a search (either kind of pair).
+struct ContactComponent::Found {
+  int facet = -1;            ///< master facet in the pair (-1: not paired)
+  bool pastFreeEnd = false;  ///< nearest point on the master surface's free boundary: not paired
+  bool viaCorner = false;    ///< the slave projects outside the facet (corner / edge rule)
+  std::array<double, 2> xi{{0.0, 0.0}};  ///< Line2: ξ ∈ [0, 1] in xi[0]; facets: ξ^p
+  double gap = 0.0, distance = 0.0;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  Eigen::Vector3d slaveNormal = Eigen::Vector3d::Zero();  ///< replicated search: n_s (hysteresis)
 };
 
 /// Field values at this rank's counterpart DOFs (dof) and multipliers (lm).
@@ -69,8 +125,9 @@ struct ContactComponent::Field {
 };
 
 ContactComponent::ContactComponent(Teuchos::RCP<const Teuchos::Comm<int>> comm, ContactComponentOptions options,
-                                   std::vector<std::shared_ptr<const ContactElement>> elements)
-    : comm_(std::move(comm)), options_(options) {
+                                   std::vector<std::shared_ptr<const ContactElement>> elements,
+                                   SurfaceElementSource surfaceElements)
+    : comm_(std::move(comm)), options_(options), surfaceSource_(std::move(surfaceElements)) {
   if (options_.decomposed) {
     if (elements.size() != 2 || !elements[0] || !elements[1])
       throw std::invalid_argument("ContactComponent: decomposed contact needs the slave and master counterparts "
@@ -82,6 +139,7 @@ ContactComponent::ContactComponent(Teuchos::RCP<const Teuchos::Comm<int>> comm, 
       throw std::invalid_argument("ContactComponent: conventional contact needs the \"Node-To-Segment\" element");
     ntsElement_ = elements[0];
   }
+  if (!surfaceSource_) throw std::invalid_argument("ContactComponent: no source of surface contact elements");
 }
 
 ContactComponent::~ContactComponent() = default;
@@ -109,6 +167,8 @@ int ContactComponent::registerPair(ContactPairSurfaces pair) {
   p.path = pair.path.empty() ? pair.name : pair.path;
   p.slaveName = pair.slaveName;
   p.masterName = pair.masterName;
+  p.slaveType = pair.slaveFacetType;
+  p.masterType = pair.masterFacetType;
   p.mySlaves = std::move(pair.slaveNodes);
   p.mySlaveFacets = std::move(pair.slaveFacets);
   p.myMasterFacets = std::move(pair.masterFacets);
@@ -121,7 +181,7 @@ int ContactComponent::index(int id) const {
   return it != nodeIds_.end() && *it == id ? int(it - nodeIds_.begin()) : -1;
 }
 
-Eigen::Vector2d ContactComponent::referencePosition(int id) const {
+Eigen::Vector3d ContactComponent::referencePosition(int id) const {
   const int i = index(id);
   DDC_ASSERT(i >= 0, "node " << id << " is not on a contact surface");
   return X_[i];
@@ -137,9 +197,44 @@ void ContactComponent::commit() {
   if (committed_) throw std::logic_error("ContactComponent::commit called twice");
   const MPI_Comm mpi = rawComm(comm_);
   const int me = comm_->getRank();
+  // 0. The space dimension: every pair's facets agree on it.
+  for (size_t p = 0; p < pairs_.size(); ++p) {
+    const Pair& pair = pairs_[p];
+    for (CellType t : {pair.slaveType, pair.masterType}) {
+      int d = 0;
+      try {
+        d = facetSpaceDimension(t);
+      } catch (const std::invalid_argument&) {
+        DDC_THROW(InputError, "contact pair '" << pair.path << "': " << cellTypeName(t)
+                                               << " is not a facet cell type (Line2, Line3, Tri3, Tri6, Quad4, "
+                                                  "Quad8, Quad9): contact surfaces are sides (2-D) or faces (3-D)");
+      }
+      const int first = facetSpaceDimension(pairs_[0].masterType);
+      DDC_INPUT_REQUIRE(d == first, "contact pair '" << pair.path << "': its " << cellTypeName(t) << " facets are "
+                                                     << d << "-D but pair '" << pairs_[0].path << "' has "
+                                                     << cellTypeName(pairs_[0].masterType)
+                                                     << " master facets; all contact surfaces have one dimension");
+    }
+  }
+  if (!pairs_.empty()) dim_ = facetSpaceDimension(pairs_[0].masterType);
+  // The surface contact elements of the facet types in use.
+  for (const auto& pair : pairs_) {
+    if (pair.segments()) continue;
+    const auto roles = options_.decomposed
+                           ? std::vector<SurfaceContactRole>{SurfaceContactRole::Slave, SurfaceContactRole::Master}
+                           : std::vector<SurfaceContactRole>{SurfaceContactRole::Conventional};
+    for (SurfaceContactRole role : roles) {
+      auto& el = surfaceElements_[{role, pair.masterType}];
+      if (el) continue;
+      el = surfaceSource_(role, pair.masterType);
+      if (!el || el->facet() != pair.masterType || el->role() != role || el->dim() != dim_)
+        throw std::invalid_argument("ContactComponent: the surface contact element source gave no '" +
+                                    surfaceContactElementName(role, pair.masterType) + "' element");
+    }
+  }
   // 1. Surface nodes: every rank learns every node and its owner.
   std::vector<NodeRecord> mine;
-  for (const auto& n : myNodes_) mine.push_back({n.id, me, n.X.x(), n.X.y()});
+  for (const auto& n : myNodes_) mine.push_back({n.id, me, n.X.x(), n.X.y(), n.X.z()});
   std::vector<NodeRecord> all = allGather(mpi, mine);
   std::sort(all.begin(), all.end(), [](const NodeRecord& a, const NodeRecord& b) {
     return a.id < b.id || (a.id == b.id && a.rank < b.rank);
@@ -150,7 +245,7 @@ void ContactComponent::commit() {
                       "contact: surface node " << all[i].id << " is registered by ranks " << all[i - 1].rank << " and "
                                                << all[i].rank << "; each node must be registered once, by its owner");
     nodeIds_.push_back(all[i].id);
-    X_.emplace_back(all[i].x, all[i].y);
+    X_.emplace_back(all[i].x, all[i].y, dim_ == 2 ? 0.0 : all[i].z);
     owner_.push_back(all[i].rank);
   }
   myNodes_.clear();
@@ -161,13 +256,17 @@ void ContactComponent::commit() {
   };
 
   // 2. Per pair: merge the facets and slave nodes, build the slots and the search.
-  std::vector<char> isMasterNode(nodeIds_.size(), 0);
   for (int p = 0; p < numPairs(); ++p) {
     Pair& pair = pairs_[p];
-    auto gatherFacets = [&](const std::vector<ContactFacet>& facets, const char* role) {
+    auto gatherFacets = [&](const std::vector<ContactFacet>& facets, CellType type, const char* role) {
+      const int m = numCellNodes(type);
       std::vector<FacetRecord> recs;
-      for (const auto& f : facets)
-        recs.push_back({f.id, f.nodes[0], f.nodes[1], f.element, f.subdomain, me, f.depth});
+      for (const auto& f : facets) {
+        FacetRecord r{f.id, m, {}, f.element, f.subdomain, me, f.depth};
+        r.nodes.fill(-1);
+        std::copy(f.nodes.begin(), f.nodes.end(), r.nodes.begin());
+        recs.push_back(r);
+      }
       auto merged = allGather(mpi, recs);
       std::sort(merged.begin(), merged.end(), [](const FacetRecord& a, const FacetRecord& b) { return a.id < b.id; });
       for (size_t i = 1; i < merged.size(); ++i)
@@ -176,14 +275,23 @@ void ContactComponent::commit() {
                                                                              << " is registered twice (ranks "
                                                                              << merged[i - 1].rank << " and "
                                                                              << merged[i].rank << ")");
-      for (const auto& f : merged) {
-        requireNode(pair, f.n0, role);
-        requireNode(pair, f.n1, role);
-      }
+      for (const auto& f : merged)
+        for (int a = 0; a < f.numNodes; ++a) requireNode(pair, f.nodes[a], role);
       return merged;
     };
-    const auto slaveFacets = gatherFacets(pair.mySlaveFacets, "slave");
-    pair.masterFacets = gatherFacets(pair.myMasterFacets, "master");
+    // The facet sizes are checked on each rank's share: agree before merging.
+    std::string error;
+    for (const auto& [facets, type, role] :
+         {std::make_tuple(&pair.mySlaveFacets, pair.slaveType, "slave"),
+          std::make_tuple(&pair.myMasterFacets, pair.masterType, "master")})
+      for (const auto& f : *facets)
+        if (int(f.nodes.size()) != numCellNodes(type) && error.empty())
+          error = "contact pair '" + pair.path + "': " + role + " facet " + std::to_string(f.id) + " has " +
+                  std::to_string(f.nodes.size()) + " nodes; a " + cellTypeName(type) + " facet has " +
+                  std::to_string(numCellNodes(type));
+    raiseCollectively<InputError>(mpi, error);
+    pair.slaveFacets = gatherFacets(pair.mySlaveFacets, pair.slaveType, "slave");
+    pair.masterFacets = gatherFacets(pair.myMasterFacets, pair.masterType, "master");
     std::vector<int> slaveNodes = allGather(mpi, pair.mySlaves);
     std::sort(slaveNodes.begin(), slaveNodes.end());
     slaveNodes.erase(std::unique(slaveNodes.begin(), slaveNodes.end()), slaveNodes.end());
@@ -192,29 +300,80 @@ void ContactComponent::commit() {
     pair.myMasterFacets.clear();
     DDC_INPUT_REQUIRE(!pair.masterFacets.empty(), "contact pair '" << pair.path << "': the master surface '"
                                                                    << pair.masterName << "' has no facets");
-    std::vector<std::array<int, 2>> masterSegments, slaveSegments;
-    for (const auto& f : pair.masterFacets) {
-      masterSegments.push_back({f.n0, f.n1});
-      pair.rule.masterDepths.push_back(f.depth);
-    }
-    for (const auto& f : slaveFacets) slaveSegments.push_back({f.n0, f.n1});
-    MasterSurface master(masterSegments);
-    for (int n : master.nodes()) isMasterNode[index(n)] = 1;
+    std::set<int> masterNodes;
+    for (const auto& f : pair.masterFacets) masterNodes.insert(f.nodes.begin(), f.nodes.begin() + f.numNodes);
     std::vector<int> slaves;
     for (int n : slaveNodes) {
-      if (master.localNode(n) >= 0) continue;  // a node of both surfaces (shared corner) is not a slave
+      if (masterNodes.count(n)) continue;  // a node of both surfaces (shared corner) is not a slave
       requireNode(pair, n, "slave");
       slaves.push_back(n);
     }
     DDC_INPUT_REQUIRE(!slaves.empty(), "contact pair '" << pair.path << "': the slave side set '" << pair.slaveName
                                                         << "' has no nodes off the master surface");
+    // Both surfaces consistently oriented: a side two facets share is run
+    // through in opposite directions (otherwise some normals point inwards).
+    for (const auto* facets : {&pair.slaveFacets, &pair.masterFacets}) {
+      const CellType type = facets == &pair.slaveFacets ? pair.slaveType : pair.masterType;
+      std::map<std::pair<int, int>, long> directed;
+      for (const auto& f : *facets) {
+        if (referenceCell(type).dim == 1) {
+          // Segments: a node is the start of one segment and the end of another.
+          for (int end = 0; end < 2; ++end) {
+            const auto [it, fresh] = directed.insert({{f.nodes[end], end}, f.id});
+            DDC_INPUT_REQUIRE(fresh, "contact pair '" << pair.path << "': the "
+                                                      << (facets == &pair.slaveFacets ? "slave" : "master")
+                                                      << " surface is not consistently oriented: facets " << it->second
+                                                      << " and " << f.id << " both " << (end ? "end" : "start")
+                                                      << " at node " << f.nodes[end]
+                                                      << " (a normal points into the body)");
+          }
+          continue;
+        }
+        for (const auto& e : referenceCell(type).edges) {
+          const auto [it, fresh] = directed.insert({{f.nodes[e.start], f.nodes[e.end]}, f.id});
+          DDC_INPUT_REQUIRE(fresh, "contact pair '" << pair.path << "': the "
+                                                    << (facets == &pair.slaveFacets ? "slave" : "master")
+                                                    << " surface is not consistently oriented: facets " << it->second
+                                                    << " and " << f.id << " both run from node " << f.nodes[e.start]
+                                                    << " to node " << f.nodes[e.end]
+                                                    << " along their shared side (one of them has an inward normal)");
+        }
+      }
+    }
+    pair.slaves = slaves;
     std::map<int, double> tributary;
-    for (const auto& sg : slaveSegments) {
-      const Eigen::Vector2d& a = X_[index(sg[0])];
-      const Eigen::Vector2d& b = X_[index(sg[1])];
-      const double half = 0.5 * std::hypot(b.x() - a.x(), b.y() - a.y());
-      tributary[sg[0]] += half;
-      tributary[sg[1]] += half;
+    if (pair.segments() && pair.slaveType == CellType::Line2) {
+      for (const auto& f : pair.slaveFacets) {
+        const Eigen::Vector3d& a = X_[index(f.nodes[0])];
+        const Eigen::Vector3d& b = X_[index(f.nodes[1])];
+        const double half = 0.5 * std::hypot(b.x() - a.x(), b.y() - a.y());
+        tributary[f.nodes[0]] += half;
+        tributary[f.nodes[1]] += half;
+      }
+    } else {
+      // The facet's measure lumped to its nodes by the HRZ rule (Hinton, Rock
+      // & Zienkiewicz 1976): ∫N_i² dA scaled to the facet's measure, positive
+      // for quadratic facets too, exact shares on regular linear facets.
+      const QuadratureRule& q = facetQuadratureRule(pair.slaveType);
+      const int m = numCellNodes(pair.slaveType);
+      const int pd = referenceCell(pair.slaveType).dim;
+      for (const auto& f : pair.slaveFacets) {
+        std::vector<double> share(m, 0.0);
+        double measure = 0.0, sum = 0.0;
+        for (size_t g = 0; g < q.weights.size(); ++g) {
+          Eigen::VectorXd N;
+          Eigen::MatrixXd dN;
+          shapeFunctions(pair.slaveType, q.points[g], &N, &dN);
+          Eigen::Vector3d a[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+          for (int i = 0; i < m; ++i)
+            for (int al = 0; al < pd; ++al) a[al] += dN(i, al) * X_[index(f.nodes[i])];
+          const double J = pd == 1 ? a[0].norm() : a[0].cross(a[1]).norm();
+          measure += q.weights[g] * J;
+          for (int i = 0; i < m; ++i) share[i] += q.weights[g] * J * N[i] * N[i];
+        }
+        for (double s : share) sum += s;
+        for (int i = 0; i < m; ++i) tributary[f.nodes[i]] += sum > 0 ? share[i] * measure / sum : 0.0;
+      }
     }
     for (int n : slaves) {
       ContactSlot s;
@@ -226,39 +385,81 @@ void ContactComponent::commit() {
       slotOwner_.push_back(owner_[index(n)]);
     }
     // Margin of the bounding-box exchange: the search radius plus two
-    // master segments (a slave's segment and its neighbours), with room
+    // master facets (a slave's facet and its neighbours), with room
     // for stretching (x 2).
     double longest = 0.0;
-    for (int g = 0; g < master.numSegments(); ++g) {
-      const Eigen::Vector2d& a = X_[index(master.segment(g)[0])];
-      const Eigen::Vector2d& b = X_[index(master.segment(g)[1])];
-      longest = std::max(longest, std::hypot(b.x() - a.x(), b.y() - a.y()));
-    }
+    for (const auto& f : pair.masterFacets)
+      for (int a = 0; a < f.numNodes; ++a)
+        for (int b = a + 1; b < f.numNodes; ++b) {
+          const Eigen::Vector3d d = X_[index(f.nodes[b])] - X_[index(f.nodes[a])];
+          longest = std::max(longest, dim_ == 2 ? std::hypot(d.x(), d.y()) : d.norm());
+        }
     pairingMargin_ = std::max(pairingMargin_, options_.searchRadius + 4.0 * longest);
-    for (int n : master.nodes()) masterSurfaceNodes_.push_back(n);
-    // The facing rule (doc/contact.md "Which slave nodes pair"): slave nodal
-    // normals from the slave segments, master element depths from the host.
-    pair.rule.slaveSegments = std::move(slaveSegments);
-    pair.search = std::make_unique<ContactSearch>(std::move(master), slaves, options_.searchRadius, pair.rule);
+    for (int n : masterNodes) masterSurfaceNodes_.push_back(n);
+    if (pair.segments()) {
+      // The facing rule (doc/contact.md "Which slave nodes pair"): slave nodal
+      // normals from the slave segments, master element depths from the host.
+      std::vector<std::array<int, 2>> masterSegments;
+      for (const auto& f : pair.masterFacets) {
+        masterSegments.push_back({f.nodes[0], f.nodes[1]});
+        pair.rule.masterDepths.push_back(f.depth);
+      }
+      DDC_INPUT_REQUIRE(pair.slaveType == CellType::Line2,
+                        "contact pair '" << pair.path << "': Line2 master facets need Line2 slave facets, not "
+                                         << cellTypeName(pair.slaveType));
+      for (const auto& f : pair.slaveFacets) pair.rule.slaveSegments.push_back({f.nodes[0], f.nodes[1]});
+      pair.search = std::make_unique<ContactSearch>(MasterSurface(masterSegments), slaves, options_.searchRadius,
+                                                    pair.rule);
+    } else {
+      std::vector<std::vector<int>> facets;
+      for (size_t f = 0; f < pair.masterFacets.size(); ++f) {
+        facets.push_back(pair.facetNodes(int(f)));
+        DDC_INPUT_REQUIRE(pair.masterFacets[f].depth > 0.0, "contact pair '" << pair.path << "': master facet "
+                                                                             << pair.masterFacets[f].id
+                                                                             << " has no depth (> 0 expected)");
+      }
+      pair.facetSearch = std::make_unique<FacetSearch>(pair.masterType, facets, options_.searchRadius);
+      for (size_t f = 0; f < pair.slaveFacets.size(); ++f)
+        for (int a = 0; a < pair.slaveFacets[f].numNodes; ++a)
+          pair.slaveFacetsAt[pair.slaveFacets[f].nodes[a]].emplace_back(int(f), a);
+      for (int n : slaves)
+        DDC_INPUT_REQUIRE(pair.slaveFacetsAt.count(n), "contact pair '" << pair.path << "': slave node " << n
+                                                                         << " is on no facet of the slave surface '"
+                                                                         << pair.slaveName
+                                                                         << "' (slave nodes must lie on a surface)");
+      // Free boundary: sides only one master facet has.
+      std::map<std::vector<int>, int> count;
+      for (const auto& f : pair.masterFacets)
+        for (const auto& s : facetSides(pair.masterType, f.nodes.data())) ++count[s.key];
+      for (const auto& f : pair.masterFacets) {
+        pair.freeSides.emplace_back();
+        for (const auto& s : facetSides(pair.masterType, f.nodes.data()))
+          if (count[s.key] == 1) pair.freeSides.back().push_back(s.polyline);
+      }
+    }
   }
   for (size_t k = 0; k < slots_.size(); ++k)
     if (slotOwner_[k] == me) localSlots_.push_back(static_cast<int>(k));
 
   // 3. Decomposed pairing (distributedSearch()): the slave nodal normals need
-  //    the positions of the nodes next to each slave node on the slave
-  //    surface; those owned by another rank than the slave's are sent to it.
+  //    the positions of the nodes of the slave facets at each slave node;
+  //    those owned by another rank than the slave's are sent to it.
   if (options_.decomposed) {
     std::vector<std::pair<int, int>> sends;  // (node, rank) with node owned here
     for (const auto& pair : pairs_) {
       std::vector<int> slaveNodes;
       for (int k : pair.slots) slaveNodes.push_back(slots_[k].slaveNode);
       std::sort(slaveNodes.begin(), slaveNodes.end());
-      for (const auto& sg : pair.rule.slaveSegments)
-        for (int end = 0; end < 2; ++end) {
-          const int a = sg[end], b = sg[1 - end];
+      for (const auto& f : pair.slaveFacets)
+        for (int i = 0; i < f.numNodes; ++i) {
+          const int a = f.nodes[i];
           if (!std::binary_search(slaveNodes.begin(), slaveNodes.end(), a)) continue;
-          const int oa = owner_[index(a)], ob = owner_[index(b)];
-          if (ob == me && oa != ob) sends.emplace_back(b, oa);
+          for (int j = 0; j < f.numNodes; ++j) {
+            const int b = f.nodes[j];
+            if (j == i) continue;
+            const int oa = owner_[index(a)], ob = owner_[index(b)];
+            if (ob == me && oa != ob) sends.emplace_back(b, oa);
+          }
         }
     }
     std::sort(sends.begin(), sends.end());
@@ -280,8 +481,8 @@ void ContactComponent::setDofs(Teuchos::RCP<const Map> hostMap, const std::vecto
   std::vector<char> given(nodeIds_.size(), 0);
   struct DofRecord {
     int id;
-    GO d0, d1;
-    int p0, p1;
+    GO d[3];
+    int p[3];
   };
   std::vector<DofRecord> mine;
   for (const auto& nd : nodeDofs) {
@@ -292,20 +493,17 @@ void ContactComponent::setDofs(Teuchos::RCP<const Map> hostMap, const std::vecto
          << (i < 0 ? "is not a registered surface node" : "rank " + std::to_string(i < 0 ? -1 : owner_[i]) +
                                                                  " registered");
     } else {
-      for (int c = 0; c < 2 && os.tellp() == 0; ++c)
+      for (int c = 0; c < dim_ && os.tellp() == 0; ++c)
         if (!hostMap->isNodeGlobalElement(nd.dofs[c]))
           os << "contact: surface node " << nd.id << " (rank " << me << ") has DOF id " << nd.dofs[c] << " for u_"
-             << "xy"[c] << ", which rank " << me << " does not own in the host's DOF map: register each surface "
+             << "xyz"[c] << ", which rank " << me << " does not own in the host's DOF map: register each surface "
              << "node on the rank that owns its DOFs";
     }
     if (os.tellp() != 0 && error.empty()) error = os.str();
     if (i >= 0) given[i] = 1;
-    mine.push_back({nd.id, nd.dofs[0], nd.dofs[1], int(nd.prescribed[0]), int(nd.prescribed[1])});
+    DofRecord r{nd.id, {nd.dofs[0], nd.dofs[1], nd.dofs[2]}, {nd.prescribed[0], nd.prescribed[1], nd.prescribed[2]}};
+    mine.push_back(r);
   }
-  for (size_t i = 0; i < nodeIds_.size() && error.empty(); ++i)
-    if (owner_[i] == me && !given[i])
-      error = "contact: rank " + std::to_string(me) + " registered surface node " + std::to_string(nodeIds_[i]) +
-              " but gave no DOFs for it";
   if (error.empty() && !multiplierDofs.empty()) {
     if (multiplierDofs.size() != localSlots_.size()) {
       error = "contact: rank " + std::to_string(me) + " gives " + std::to_string(multiplierDofs.size()) +
@@ -329,12 +527,14 @@ void ContactComponent::setDofs(Teuchos::RCP<const Map> hostMap, const std::vecto
 
   // Replicate the DOF ids and prescribed flags.
   const auto all = allGather(mpi, mine);
-  dofs_.assign(nodeIds_.size(), {{-1, -1}});
-  prescribed_.assign(nodeIds_.size(), {{0, 0}});
+  dofs_.assign(nodeIds_.size(), {{-1, -1, -1}});
+  prescribed_.assign(nodeIds_.size(), {{0, 0, 0}});
   for (const auto& r : all) {
     const int i = index(r.id);
-    dofs_[i] = {{r.d0, r.d1}};
-    prescribed_[i] = {{char(r.p0), char(r.p1)}};
+    for (int c = 0; c < dim_; ++c) {
+      dofs_[i][c] = r.d[c];
+      prescribed_[i][c] = char(r.p[c]);
+    }
   }
   // Multiplier ids: the host's DOFs, or the slot index.
   lmGid_.assign(slots_.size(), -1);
@@ -357,7 +557,7 @@ void ContactComponent::setDofs(Teuchos::RCP<const Map> hostMap, const std::vecto
   // Replicated map of every surface DOF: the gather of the conventional
   // element and of the pairing outside step ends.
   std::vector<GO> gids;
-  for (const auto& d : dofs_) gids.insert(gids.end(), {d[0], d[1]});
+  for (const auto& d : dofs_) gids.insert(gids.end(), d.begin(), d.begin() + dim_);
   surfaceMap_ = mapOf(gids, comm_);
   surfaceImporter_ = Teuchos::rcp(new TpetraImport(hostMap_, surfaceMap_));
   long received = 0;
@@ -372,24 +572,34 @@ void ContactComponent::setDofs(Teuchos::RCP<const Map> hostMap, const std::vecto
   buildTopology();
 }
 
+void ContactComponent::appendNodeDofs(int node, std::vector<GO>& dofs) const {
+  const auto& d = dofs_[index(node)];
+  dofs.insert(dofs.end(), d.begin(), d.begin() + dim_);
+}
+
 std::vector<GO> ContactComponent::slotDofs(int k) const {
   const ContactSlot& s = slots_[k];
   std::vector<GO> dofs;
-  if (s.paired())
-    for (int n : {s.slaveNode, s.master[0], s.master[1]}) dofs.insert(dofs.end(), dofs_[index(n)].begin(), dofs_[index(n)].end());
+  if (s.paired()) {
+    appendNodeDofs(s.slaveNode, dofs);
+    for (int a = 0; a < s.numMaster; ++a) appendNodeDofs(s.master[a], dofs);
+  }
   dofs.push_back(lmGid_[k]);
   return dofs;
 }
 
 std::vector<GO> ContactComponent::slaveSideDofs(int k) const {
-  const auto& d = dofs_[index(slots_[k].slaveNode)];
-  return {d[0], d[1], lmGid_[k]};
+  std::vector<GO> dofs;
+  appendNodeDofs(slots_[k].slaveNode, dofs);
+  dofs.push_back(lmGid_[k]);
+  return dofs;
 }
 
 std::vector<GO> ContactComponent::masterSideDofs(int k) const {
-  const auto& a = dofs_[index(slots_[k].master[0])];
-  const auto& b = dofs_[index(slots_[k].master[1])];
-  return {a[0], a[1], b[0], b[1], lmGid_[k]};
+  std::vector<GO> dofs;
+  for (int a = 0; a < slots_[k].numMaster; ++a) appendNodeDofs(slots_[k].master[a], dofs);
+  dofs.push_back(lmGid_[k]);
+  return dofs;
 }
 
 void ContactComponent::buildTopology() {
@@ -446,16 +656,36 @@ void ContactComponent::evaluate(int k, int side, const Field& f, bool forceActiv
   ContactPairState state = s.state;
   state.active = s.active || forceActive;
   state.multiplier = f.multiplier(k);
-  const int nn = side == 0 ? 1 : side == 1 ? 2 : 3;
-  const int all[3] = {s.slaveNode, s.master[0], s.master[1]};
-  const int* nodes = side == 1 ? all + 1 : all;
-  Eigen::MatrixX2d X(nn, 2), ue(nn, 2);
-  for (int i = 0; i < nn; ++i) {
-    X.row(i) = X_[index(nodes[i])].transpose();
-    for (int c = 0; c < 2; ++c) ue(i, c) = f.at(dofs[2 * i + c]);
+  std::vector<int> nodes;
+  if (side != 1) nodes.push_back(s.slaveNode);
+  if (side != 0) nodes.insert(nodes.end(), s.master.begin(), s.master.begin() + s.numMaster);
+  const int nn = int(nodes.size());
+  const Pair& pair = pairs_[s.pair];
+  if (pair.segments()) {
+    Eigen::MatrixX2d X(nn, 2), ue(nn, 2);
+    for (int i = 0; i < nn; ++i) {
+      X.row(i) = X_[index(nodes[i])].head<2>().transpose();
+      for (int c = 0; c < 2; ++c) ue(i, c) = f.at(dofs[2 * i + c]);
+    }
+    const ContactElement& el = side == 0 ? *slaveElement_ : side == 1 ? *masterElement_ : *ntsElement_;
+    el.computeContact(X, ue, state, what, er);
+    return;
   }
-  const ContactElement& el = side == 0 ? *slaveElement_ : side == 1 ? *masterElement_ : *ntsElement_;
-  el.computeContact(X, ue, state, what, er);
+  Eigen::MatrixXd X(nn, dim_), ue(nn, dim_);
+  for (int i = 0; i < nn; ++i) {
+    X.row(i) = X_[index(nodes[i])].head(dim_).transpose();
+    for (int c = 0; c < dim_; ++c) ue(i, c) = f.at(dofs[dim_ * i + c]);
+  }
+  const SurfaceContactRole role = side == 0   ? SurfaceContactRole::Slave
+                                  : side == 1 ? SurfaceContactRole::Master
+                                              : SurfaceContactRole::Conventional;
+  surfaceElement(role, pair.masterType).computeSurfaceContact(X, ue, s.frozen, state, what, er);
+}
+
+const SurfaceContactElement& ContactComponent::surfaceElement(SurfaceContactRole role, CellType facet) const {
+  const auto it = surfaceElements_.find({role, facet});
+  DDC_ASSERT(it != surfaceElements_.end(), "no " << surfaceContactElementName(role, facet) << " element");
+  return *it->second;
 }
 
 void ContactComponent::assemble(const Vector& u, const Vector* multipliers, unsigned what,
@@ -535,137 +765,314 @@ void ContactComponent::gatherSurface(const Vector& u, const Vector* multipliers,
   for (size_t k = 0; k < slots_.size(); ++k) values.push_back(l[multiplierAllMap_->getLocalElement(lmGid_[k])]);
 }
 
-Eigen::Vector2d ContactComponent::currentPosition(int id, const std::vector<double>& v) const {
+Eigen::Vector3d ContactComponent::currentPosition(int id, const std::vector<double>& v) const {
   const int i = index(id);
   DDC_ASSERT(i >= 0, "node " << id << " is not on a contact surface");
-  return {X_[i].x() + v[2 * i], X_[i].y() + v[2 * i + 1]};
+  Eigen::Vector3d x = X_[i];
+  for (int c = 0; c < dim_; ++c) x[c] += v[size_t(dim_) * i + c];
+  return x;
 }
 
 namespace {
-/// A surface node's current position, sent to the ranks whose slave bounding box contains it.
+/// A surface node's current position, sent to the ranks whose slave bounding
+/// box contains it (D coordinates: the 2-D records stay as small as before).
+template <int D>
 struct NodePosition {
   int node;
-  double x, y;
+  double x[D];
 };
 /// The pairing of one slot, found by the owner of its slave node.
+template <int D>
 struct SlotPairing {
-  int slot, segment, pastFreeEnd, viaCorner;
-  double xi, gap, distance, nx, ny;
+  int slot, facet, pastFreeEnd, viaCorner;
+  double xi[D - 1], gap, distance, n[D];
 };
 }  // namespace
 
-void ContactComponent::distributedSearch(const Vector& u, std::vector<std::vector<ContactCandidate>>& cands,
-                                         std::vector<std::vector<char>>& pastFreeEnd) {
+Eigen::MatrixXd ContactComponent::facetPositions(const Pair& pair, int f,
+                                                 const std::function<Eigen::Vector3d(int)>& position) const {
+  const FacetRecord& r = pair.masterFacets[f];
+  Eigen::MatrixXd x(r.numNodes, dim_);
+  for (int a = 0; a < r.numNodes; ++a) x.row(a) = position(r.nodes[a]).head(dim_).transpose();
+  return x;
+}
+
+Eigen::Vector3d ContactComponent::slaveNormal(const Pair& pair, int node,
+                                              const std::function<Eigen::Vector3d(int)>& position) const {
+  // The normalised sum of the unit outward normals of the slave facets at
+  // the node, each at the node's reference coordinates in that facet.
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  const auto it = pair.slaveFacetsAt.find(node);
+  if (it == pair.slaveFacetsAt.end()) return sum;
+  const ReferenceCell& ref = referenceCell(pair.slaveType);
+  for (const auto& [f, a] : it->second) {
+    const FacetRecord& r = pair.slaveFacets[f];
+    Eigen::MatrixXd x(r.numNodes, dim_);
+    for (int b = 0; b < r.numNodes; ++b) x.row(b) = position(r.nodes[b]).head(dim_).transpose();
+    Eigen::Vector3d point, normal;
+    if (facetPointAndNormal(pair.slaveType, x, {ref.nodes[a][0], ref.nodes[a][1]}, point, normal)) sum += normal;
+  }
+  const double n = sum.norm();
+  // Normals that cancel (a fold of the slave surface) give no direction: such
+  // a node faces nothing.
+  return n > 0.0 ? Eigen::Vector3d(sum / n) : Eigen::Vector3d::Zero();
+}
+
+std::vector<ContactComponent::Found> ContactComponent::facetPairing(
+    const Pair& pair, FacetSearch& search, const std::vector<int>& facets, const std::vector<int>& slaves,
+    const std::function<Eigen::Vector3d(int)>& position) const {
+  // doc/contact.md, "Curved facets and 3-D": the nearest point of the
+  // surface (interior projection, else the nearest point of a facet's
+  // boundary with the direction as normal); not paired if that point is on
+  // the surface's free boundary (past its edge) or the facing rule rejects it.
+  std::vector<Found> out(slaves.size());
+  for (size_t i = 0; i < slaves.size(); ++i) {
+    const FacetCandidate& c = search.candidates()[i];
+    Found& f = out[i];
+    f.slaveNormal = slaveNormal(pair, slaves[i], position);
+    if (c.facet < 0) continue;
+    const int g = facets[c.facet];
+    const Eigen::Vector3d xs = position(slaves[i]);
+    f.xi = c.xi;
+    f.viaCorner = c.kind != FacetPointKind::Interior;
+    if (f.viaCorner) {
+      // The nearest boundary point on the facet itself (x(ξ) of the chord
+      // point's reference coordinates) is the projection, and the facet's
+      // normal there the normal: g = n·(x_s − x(ξ)), as the 2-D segments
+      // pair "via corner" with the nearest segment's normal (so an extruded
+      // 2-D model pairs exactly as in 2-D). The slave never loses a convex
+      // edge or corner it presses on.
+      Eigen::Vector3d point, normal;
+      facetPointAndNormal(pair.masterType, facetPositions(pair, g, position), c.xi, point, normal);
+      const Eigen::Vector3d d = xs - point;
+      f.distance = d.norm();
+      f.gap = normal.dot(d);
+      f.normal = normal;
+      // Past the free boundary: the point lies on a side no other facet has
+      // and the slave lies beyond that side, along the facet's outward
+      // in-surface direction m across it, by more than kFreeBoundaryMargin
+      // of the facet's size. A slave beside a convex ridge that ends at the
+      // free boundary (d·m = 0) keeps its pairing, and so does a slave
+      // surface that ends flush with the master surface (two bodies of one
+      // depth): its edge nodes drift across the master's edge by round-off
+      // and Poisson contraction, and would flip in and out of contact.
+      constexpr double kFreeBoundaryMargin = 1e-2;
+      const Eigen::MatrixXd x = facetPositions(pair, g, position);
+      Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+      const int corners = referenceCell(pair.masterType).numCorners;
+      double size = 0.0;
+      for (int a = 0; a < corners; ++a) {
+        centre.head(dim_) += x.row(a).transpose() / corners;
+        for (int b = a + 1; b < corners; ++b) size = std::max(size, (x.row(a) - x.row(b)).norm());
+      }
+      const double onSide = 1e-9 * size;  // round-off: the chord point is computed from these nodes
+      for (const auto& side : pair.freeSides[g]) {
+        // The side's pieces: its chords, or the end node of a segment.
+        const size_t pieces = side.size() == 1 ? 1 : side.size() - 1;
+        for (size_t a = 0; a < pieces && !f.pastFreeEnd; ++a) {
+          const Eigen::Vector3d p = position(side[a]), q = position(side[side.size() == 1 ? a : a + 1]);
+          const Eigen::Vector3d t = q - p;
+          const double s = t.squaredNorm() > 0 ? std::clamp((c.point - p).dot(t) / t.squaredNorm(), 0.0, 1.0) : 0.0;
+          if ((c.point - p - s * t).norm() > onSide) continue;
+          Eigen::Vector3d m = c.point - centre;
+          m -= m.dot(normal) * normal;
+          if (t.squaredNorm() > 0) m -= m.dot(t) / t.squaredNorm() * t;
+          f.pastFreeEnd = m.norm() > 0 && d.dot(m) > kFreeBoundaryMargin * size * m.norm();
+        }
+      }
+    } else {
+      f.gap = c.gap;
+      f.distance = c.distance;
+      f.normal = c.normal;
+    }
+    f.facet = g;
+    if (f.pastFreeEnd) continue;
+    const double limit = kFacingDepthFraction * pair.masterFacets[g].depth;
+    if (facingVerdict(f.slaveNormal, f.normal, f.gap, limit) != ContactRejection::None) f.facet = -1;
+  }
+  return out;
+}
+
+void ContactComponent::replicatedSearch(const std::function<Eigen::Vector3d(int)>& position, bool global,
+                                        std::vector<std::vector<Found>>& found) {
+  found.assign(pairs_.size(), {});
+  for (size_t p = 0; p < pairs_.size(); ++p) {
+    Pair& pair = pairs_[p];
+    if (pair.segments()) {
+      ContactSearch& search = *pair.search;
+      search.update([&](int n) { return Eigen::Vector2d(position(n).head<2>()); }, global);
+      for (const auto& c : search.candidates()) {
+        Found f;
+        f.facet = c.segment;
+        // A slave beyond a free end of the master surface is not in contact
+        // with it (only a convex corner between two segments pairs "via corner").
+        f.pastFreeEnd = c.segment >= 0 && c.viaCorner && search.master().neighbour(c.segment, c.xi < 0.5 ? 0 : 1) < 0;
+        f.viaCorner = c.viaCorner;
+        f.xi[0] = c.xi;
+        f.gap = c.gap;
+        f.distance = c.distance;
+        f.normal << c.normal, 0.0;
+        f.slaveNormal << c.slaveNormal, 0.0;
+        found[p].push_back(f);
+      }
+    } else {
+      std::vector<int> all(pair.masterFacets.size());
+      for (size_t g = 0; g < all.size(); ++g) all[g] = int(g);
+      pair.facetSearch->update(
+          pair.slaves, [&](int n) { return Eigen::VectorXd(position(n).head(dim_)); }, global);
+      found[p] = facetPairing(pair, *pair.facetSearch, all, pair.slaves, position);
+    }
+  }
+}
+
+void ContactComponent::distributedSearch(const Vector& u, std::vector<std::vector<Found>>& found) {
+  if (dim_ == 2)
+    distributedSearchIn<2>(u, found);
+  else
+    distributedSearchIn<3>(u, found);
+}
+
+template <int D>
+void ContactComponent::distributedSearchIn(const Vector& u, std::vector<std::vector<Found>>& found) {
   const MPI_Comm mpi = rawComm(comm_);
   const int me = comm_->getRank(), P = comm_->getSize();
   auto ud = u.getData();
   auto ownedPosition = [&](int n) {
     const int i = index(n);
-    const LO l0 = hostMap_->getLocalElement(dofs_[i][0]), l1 = hostMap_->getLocalElement(dofs_[i][1]);
-    return Eigen::Vector2d(X_[i].x() + ud[l0], X_[i].y() + ud[l1]);
+    Eigen::Vector3d x = X_[i];
+    for (int c = 0; c < D; ++c) x[c] += ud[hostMap_->getLocalElement(dofs_[i][c])];
+    return x;
   };
   auto owner = [&](int n) { return owner_[index(n)]; };
   // 1. Bounding box of this rank's slave nodes, inflated by a margin that
-  //    covers every master segment (and its neighbours) a slave can pair with.
-  double box[4] = {1e300, 1e300, -1e300, -1e300};
+  //    covers every master facet (and its neighbours) a slave can pair with.
+  double box[2 * D];
+  for (int c = 0; c < D; ++c) box[c] = 1e300, box[D + c] = -1e300;
   for (int k : localSlots_) {
-    const Eigen::Vector2d x = ownedPosition(slots_[k].slaveNode);
-    box[0] = std::min(box[0], x.x()), box[1] = std::min(box[1], x.y());
-    box[2] = std::max(box[2], x.x()), box[3] = std::max(box[3], x.y());
+    const Eigen::Vector3d x = ownedPosition(slots_[k].slaveNode);
+    for (int c = 0; c < D; ++c) box[c] = std::min(box[c], x[c]), box[D + c] = std::max(box[D + c], x[c]);
   }
-  std::vector<double> boxes(4 * P);
-  MPI_Allgather(box, 4, MPI_DOUBLE, boxes.data(), 4, MPI_DOUBLE, mpi);
+  std::vector<double> boxes(2 * D * P);
+  MPI_Allgather(box, 2 * D, MPI_DOUBLE, boxes.data(), 2 * D, MPI_DOUBLE, mpi);
   // 2. Each rank sends the current positions of the master-surface nodes it
   //    owns to the ranks whose inflated box contains them.
-  std::vector<std::vector<NodePosition>> send(P);
+  std::vector<std::vector<NodePosition<D>>> send(P);
+  auto record = [](int n, const Eigen::Vector3d& x) {
+    NodePosition<D> r{n, {}};
+    for (int c = 0; c < D; ++c) r.x[c] = x[c];
+    return r;
+  };
   for (int n : masterSurfaceNodes_) {
     if (owner(n) != me) continue;
-    const Eigen::Vector2d x = ownedPosition(n);
+    const Eigen::Vector3d x = ownedPosition(n);
     for (int r = 0; r < P; ++r) {
-      const double* b = &boxes[4 * r];
-      if (x.x() >= b[0] - pairingMargin_ && x.x() <= b[2] + pairingMargin_ && x.y() >= b[1] - pairingMargin_ &&
-          x.y() <= b[3] + pairingMargin_)
-        send[r].push_back({n, x.x(), x.y()});
+      const double* b = &boxes[2 * D * r];
+      bool inside = true;
+      for (int c = 0; c < D; ++c) inside = inside && x[c] >= b[c] - pairingMargin_ && x[c] <= b[D + c] + pairingMargin_;
+      if (inside) send[r].push_back(record(n, x));
     }
   }
   //    With them, the slave-surface neighbours of other ranks' slave nodes
   //    (the facing rule's nodal normals), unless already on the way.
   for (const auto& [node, r] : slaveNeighbourSends_) {
     const int n = node;
-    if (std::any_of(send[r].begin(), send[r].end(), [n](const NodePosition& q) { return q.node == n; })) continue;
-    const Eigen::Vector2d x = ownedPosition(n);
-    send[r].push_back({n, x.x(), x.y()});
+    if (std::any_of(send[r].begin(), send[r].end(), [n](const NodePosition<D>& q) { return q.node == n; })) continue;
+    send[r].push_back(record(n, ownedPosition(n)));
   }
   long bytes = 0;
   for (int r = 0; r < P; ++r)
-    if (r != me) bytes += long(send[r].size() * sizeof(NodePosition));
-  const std::vector<NodePosition> recv = exchangeRecords(mpi, send);
-  std::map<int, Eigen::Vector2d> known;
-  for (const auto& np : recv) known[np.node] = Eigen::Vector2d(np.x, np.y);
+    if (r != me) bytes += long(send[r].size() * sizeof(NodePosition<D>));
+  const std::vector<NodePosition<D>> recv = exchangeRecords(mpi, send);
+  std::map<int, Eigen::Vector3d> known;
+  for (const auto& np : recv) {
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int c = 0; c < D; ++c) x[c] = np.x[c];
+    known[np.node] = x;
+  }
   for (int k : localSlots_) known[slots_[k].slaveNode] = ownedPosition(slots_[k].slaveNode);
   for (const auto& pair : pairs_)  // slave-surface neighbours owned here
-    for (const auto& sg : pair.rule.slaveSegments)
-      for (int n : sg)
-        if (owner(n) == me && !known.count(n)) known[n] = ownedPosition(n);
+    for (const auto& f : pair.slaveFacets)
+      for (int a = 0; a < f.numNodes; ++a)
+        if (owner(f.nodes[a]) == me && !known.count(f.nodes[a])) known[f.nodes[a]] = ownedPosition(f.nodes[a]);
+  auto position = [&](int n) { return known.at(n); };
   // 3. Per pair: the global search for this rank's slaves over the master
-  //    segments whose nodes arrived (kept in their global order, so ties
+  //    facets whose nodes arrived (kept in their global order, so ties
   //    break as in the replicated search).
-  std::vector<std::vector<SlotPairing>> results(P);
+  std::vector<std::vector<SlotPairing<D>>> results(P);
   long queries = 0;
   for (const auto& pair : pairs_) {
-    const MasterSurface& whole = pair.search->master();
     std::vector<int> localSlaves, localSlotIds;
     for (int k : pair.slots)
       if (slotOwner_[k] == me) localSlaves.push_back(slots_[k].slaveNode), localSlotIds.push_back(k);
-    std::vector<std::array<int, 2>> segs;
     std::vector<int> globalIndex;
-    for (int g = 0; g < whole.numSegments(); ++g)
-      if (known.count(whole.segment(g)[0]) && known.count(whole.segment(g)[1]))
-        segs.push_back(whole.segment(g)), globalIndex.push_back(g);
-    std::vector<ContactCandidate> found(localSlaves.size());
-    if (!localSlaves.empty() && !segs.empty()) {
-      // The pair's facing rule on the segments that arrived (same numbers as
-      // the replicated search: the rule needs nothing else).
-      FacingRule rule;
-      rule.slaveSegments = pair.rule.slaveSegments;
-      for (int g : globalIndex) rule.masterDepths.push_back(pair.rule.masterDepths[g]);
-      ContactSearch search(MasterSurface(segs), localSlaves, pair.search->searchRadius(), std::move(rule));
-      search.update([&](int n) { return known.at(n); }, true);
-      found = search.candidates();
-      queries += long(localSlaves.size());
+    for (int g = 0; g < int(pair.masterFacets.size()); ++g) {
+      const FacetRecord& r = pair.masterFacets[g];
+      if (std::all_of(r.nodes.begin(), r.nodes.begin() + r.numNodes, [&](int n) { return known.count(n) > 0; }))
+        globalIndex.push_back(g);
     }
-    for (size_t i = 0; i < found.size(); ++i) {
-      const ContactCandidate& c = found[i];
-      const int g = c.segment >= 0 ? globalIndex[c.segment] : -1;
-      // Past a free end of the whole surface (not of the part that arrived).
-      const int pe = g >= 0 && c.viaCorner && whole.neighbour(g, c.xi < 0.5 ? 0 : 1) < 0;
-      for (int r = 0; r < P; ++r)
-        results[r].push_back({localSlotIds[i], g, pe, int(c.viaCorner), c.xi, c.gap, c.distance, c.normal.x(),
-                              c.normal.y()});
+    std::vector<Found> here(localSlaves.size());
+    if (!localSlaves.empty() && !globalIndex.empty()) {
+      queries += long(localSlaves.size());
+      if (pair.segments()) {
+        // The pair's facing rule on the segments that arrived (same numbers
+        // as the replicated search: the rule needs nothing else).
+        const MasterSurface& whole = pair.search->master();
+        std::vector<std::array<int, 2>> segs;
+        FacingRule rule;
+        rule.slaveSegments = pair.rule.slaveSegments;
+        for (int g : globalIndex) {
+          segs.push_back(whole.segment(g));
+          rule.masterDepths.push_back(pair.rule.masterDepths[g]);
+        }
+        ContactSearch search(MasterSurface(segs), localSlaves, pair.search->searchRadius(), std::move(rule));
+        search.update([&](int n) { return Eigen::Vector2d(known.at(n).head<2>()); }, true);
+        for (size_t i = 0; i < here.size(); ++i) {
+          const ContactCandidate& c = search.candidates()[i];
+          Found& f = here[i];
+          f.facet = c.segment >= 0 ? globalIndex[c.segment] : -1;
+          // Past a free end of the whole surface (not of the part that arrived).
+          f.pastFreeEnd = f.facet >= 0 && c.viaCorner && whole.neighbour(f.facet, c.xi < 0.5 ? 0 : 1) < 0;
+          f.viaCorner = c.viaCorner;
+          f.xi[0] = c.xi;
+          f.gap = c.gap;
+          f.distance = c.distance;
+          f.normal << c.normal, 0.0;
+        }
+      } else {
+        std::vector<std::vector<int>> facets;
+        for (int g : globalIndex) facets.push_back(pair.facetNodes(g));
+        FacetSearch search(pair.masterType, facets, options_.searchRadius);
+        search.update(localSlaves, [&](int n) { return Eigen::VectorXd(known.at(n).head(D)); }, true);
+        here = facetPairing(pair, search, globalIndex, localSlaves, position);
+      }
+    }
+    for (size_t i = 0; i < here.size(); ++i) {
+      const Found& f = here[i];
+      SlotPairing<D> rec{localSlotIds[i], f.facet, int(f.pastFreeEnd), int(f.viaCorner), {}, f.gap, f.distance, {}};
+      for (int a = 0; a < D - 1; ++a) rec.xi[a] = f.xi[a];
+      for (int c = 0; c < D; ++c) rec.n[c] = f.normal[c];
+      for (int r = 0; r < P; ++r) results[r].push_back(rec);
     }
   }
   for (int r = 0; r < P; ++r)
-    if (r != me) bytes += long(results[r].size() * sizeof(SlotPairing));
+    if (r != me) bytes += long(results[r].size() * sizeof(SlotPairing<D>));
   // 4. Every rank learns every slot's pairing (the slots are replicated).
-  const std::vector<SlotPairing> all = exchangeRecords(mpi, results);
-  cands.assign(pairs_.size(), {});
-  pastFreeEnd.assign(pairs_.size(), {});
+  const std::vector<SlotPairing<D>> all = exchangeRecords(mpi, results);
+  found.assign(pairs_.size(), {});
   std::vector<int> indexInPair(slots_.size(), -1);
   for (size_t p = 0; p < pairs_.size(); ++p) {
-    cands[p].assign(pairs_[p].slots.size(), ContactCandidate{});
-    pastFreeEnd[p].assign(pairs_[p].slots.size(), 0);
+    found[p].assign(pairs_[p].slots.size(), Found{});
     for (size_t i = 0; i < pairs_[p].slots.size(); ++i) indexInPair[pairs_[p].slots[i]] = int(i);
   }
   for (const auto& a : all) {
-    const int p = slots_[a.slot].pair, i = indexInPair[a.slot];
-    ContactCandidate& c = cands[p][i];
-    c.segment = a.segment;
-    c.xi = a.xi;
-    c.gap = a.gap;
-    c.distance = a.distance;
-    c.normal = Eigen::Vector2d(a.nx, a.ny);
-    c.viaCorner = a.viaCorner != 0;
-    pastFreeEnd[p][i] = static_cast<char>(a.pastFreeEnd);
+    Found& f = found[slots_[a.slot].pair][indexInPair[a.slot]];
+    f.facet = a.facet;
+    f.pastFreeEnd = a.pastFreeEnd != 0;
+    f.viaCorner = a.viaCorner != 0;
+    for (int c = 0; c < D - 1; ++c) f.xi[c] = a.xi[c];
+    f.gap = a.gap;
+    f.distance = a.distance;
+    for (int c = 0; c < D; ++c) f.normal[c] = a.n[c];
   }
   long total[2] = {bytes, queries}, sum[2];
   MPI_Allreduce(total, sum, 2, MPI_LONG, MPI_SUM, mpi);
@@ -682,10 +1089,10 @@ bool ContactComponent::updatePairing(const Vector& u, bool global, bool freeze, 
   // replicated surface positions.
   const bool distributed = options_.decomposed && global;
   std::vector<double> v;
-  std::vector<std::vector<ContactCandidate>> found;
-  std::vector<std::vector<char>> pastEnd;
+  std::vector<std::vector<Found>> found;
+  auto position = [&](int n) { return currentPosition(n, v); };
   if (distributed) {
-    distributedSearch(u, found, pastEnd);
+    distributedSearch(u, found);
   } else {
     // Positions only: the multipliers are not read here.
     Vector s(surfaceMap_);
@@ -694,78 +1101,91 @@ bool ContactComponent::updatePairing(const Vector& u, bool global, bool freeze, 
     bytesExchanged_ += bytesPerExchange_;
     auto d = s.getData();
     v.assign(d.begin(), d.end());
-    for (auto& pair : pairs_) {
-      ContactSearch& search = *pair.search;
-      search.update([&](int n) { return currentPosition(n, v); }, global);
-      found.push_back(search.candidates());
-      pastEnd.emplace_back();
-      // A slave beyond a free end of the master surface is not in contact
-      // with it (only a convex corner between two segments pairs "via corner").
-      for (const auto& c : found.back())
-        pastEnd.back().push_back(c.segment >= 0 && c.viaCorner &&
-                                 search.master().neighbour(c.segment, c.xi < 0.5 ? 0 : 1) < 0);
-    }
+    replicatedSearch(position, global, found);
   }
   bool changed = false;
   for (size_t p = 0; p < pairs_.size(); ++p) {
-    const ContactSearch& search = *pairs_[p].search;
-    const auto& cands = found[p];
-    for (size_t i = 0; i < cands.size(); ++i) {
-      ContactSlot& s = slots_[pairs_[p].slots[i]];
-      const auto& c = cands[i];
-      int m0 = -1, m1 = -1;
-      const bool pastFreeEnd = pastEnd[p][i] != 0;
-      if (c.segment >= 0 && !pastFreeEnd) {
-        m0 = search.master().segment(c.segment)[0];
-        m1 = search.master().segment(c.segment)[1];
-      }
+    const Pair& pair = pairs_[p];
+    for (size_t i = 0; i < found[p].size(); ++i) {
+      ContactSlot& s = slots_[pair.slots[i]];
+      const Found& c = found[p][i];
+      const bool paired = c.facet >= 0 && !c.pastFreeEnd;
       // Hysteresis (Newton iterations only): a slave whose projection onto
-      // its previous segment lies within kPairingHysteresis of that segment
+      // its previous facet lies within kPairingHysteresis of that facet
       // keeps it. Without it a slave sitting on a master node can flip
-      // between the two adjacent segments every iteration and Newton stalls;
+      // between the two adjacent facets every iteration and Newton stalls;
       // and a slave sitting on the free end of the master surface (two
       // blocks of one width) flips between paired and "past the end" with
       // the round-off of its position (a different summation order on two
       // ranks is enough), which the active-set check reports as cycling.
-      constexpr double kPairingHysteresis = 1e-2;  // fraction of the segment length
-      // The kept segment must pass the facing rule like any pairing.
-      if (!distributed && !global && s.paired() && (m0 >= 0 || pastFreeEnd) &&
-          (m0 != s.master[0] || m1 != s.master[1])) {
-        const Eigen::Vector2d xs = currentPosition(s.slaveNode, v), x1 = currentPosition(s.master[0], v),
-                              x2 = currentPosition(s.master[1], v);
-        const Eigen::Vector2d t = x2 - x1;
-        const double xi = (xs - x1).dot(t) / t.squaredNorm();
-        const Eigen::Vector2d n = Eigen::Vector2d(t.y(), -t.x()).normalized();
-        const double gap = n.dot(xs - x1);
-        if (xi >= -kPairingHysteresis && xi <= 1.0 + kPairingHysteresis &&
-            facingVerdict(c.slaveNormal, n, gap, search.penetrationLimit(s.segment)) == ContactRejection::None) {
-          s.gap = gap;
-          s.normal = n;
-          if (freeze) {
-            s.state.frozenXi = xi;
-            s.state.frozenNormal = s.normal;
+      constexpr double kPairingHysteresis = 1e-2;  // fraction of the facet's reference size
+      // The kept facet must pass the facing rule like any pairing.
+      if (!distributed && !global && s.paired() && (paired ? c.facet != s.segment : c.pastFreeEnd)) {
+        if (pair.segments()) {
+          const Eigen::Vector2d xs = currentPosition(s.slaveNode, v).head<2>(),
+                                x1 = currentPosition(s.master[0], v).head<2>(),
+                                x2 = currentPosition(s.master[1], v).head<2>();
+          const Eigen::Vector2d t = x2 - x1;
+          const double xi = (xs - x1).dot(t) / t.squaredNorm();
+          const Eigen::Vector2d n = Eigen::Vector2d(t.y(), -t.x()).normalized();
+          const double gap = n.dot(xs - x1);
+          if (xi >= -kPairingHysteresis && xi <= 1.0 + kPairingHysteresis &&
+              facingVerdict(Eigen::Vector2d(c.slaveNormal.head<2>()), n, gap,
+                            pair.search->penetrationLimit(s.segment)) == ContactRejection::None) {
+            s.gap = gap;
+            s.normal << n, 0.0;
+            if (freeze) {
+              s.state.frozenXi = xi;
+              s.state.frozenNormal = n;
+            }
+            continue;
           }
-          continue;
+        } else {
+          const FacetProjection pr = projectOntoFacet(pair.masterType, facetPositions(pair, s.segment, position),
+                                                      currentPosition(s.slaveNode, v).head(dim_));
+          const double h = 2.0 * kPairingHysteresis;  // reference facets have sides 1 (simplex) or 2
+          const bool near = pr.converged && (referenceCell(pair.masterType).simplex
+                                                 ? pr.xi[0] >= -h / 2 && pr.xi[1] >= -h / 2 &&
+                                                       pr.xi[0] + pr.xi[1] <= 1 + h / 2
+                                                 : std::abs(pr.xi[0]) <= 1 + h &&
+                                                       (dim_ == 2 || std::abs(pr.xi[1]) <= 1 + h));
+          if (near && facingVerdict(c.slaveNormal, pr.normal, pr.gap,
+                                    kFacingDepthFraction * pair.masterFacets[s.segment].depth) ==
+                          ContactRejection::None) {
+            s.gap = pr.gap;
+            s.normal = pr.normal;
+            if (freeze) s.frozen = {pr.xi, pr.normal};
+            continue;
+          }
         }
       }
-      if (m0 != s.master[0] || m1 != s.master[1]) {
+      const int facet = paired ? c.facet : -1;
+      if (facet != s.segment) {
         changed = true;
-        if (changedSlots) changedSlots->push_back(pairs_[p].slots[i]);
+        if (changedSlots) changedSlots->push_back(pair.slots[i]);
       }
-      s.master[0] = m0;
-      s.master[1] = m1;
-      s.segment = m0 >= 0 ? c.segment : -1;
-      s.masterElement = m0 >= 0 ? pairs_[p].masterFacets[c.segment].element : -1;
-      if (m0 < 0) {
+      s.segment = facet;
+      s.master.fill(-1);
+      s.numMaster = 0;
+      s.masterElement = -1;
+      if (facet < 0) {
         s.active = false;
         s.gap = 0.0;
         continue;
       }
+      const FacetRecord& r = pair.masterFacets[facet];
+      std::copy(r.nodes.begin(), r.nodes.begin() + r.numNodes, s.master.begin());
+      s.numMaster = r.numNodes;
+      s.masterElement = r.element;
       s.gap = c.gap;
       s.normal = c.normal;
       if (freeze) {
-        s.state.frozenXi = c.xi;
-        s.state.frozenNormal = c.normal;
+        if (pair.segments()) {
+          s.state.frozenXi = c.xi[0];
+          s.state.frozenNormal = c.normal.head<2>();
+        } else {
+          s.frozen = {c.xi, c.normal};
+        }
       }
     }
   }
@@ -774,65 +1194,104 @@ bool ContactComponent::updatePairing(const Vector& u, bool global, bool freeze, 
 }
 
 void ContactComponent::checkInitialPenetration(
-    const std::vector<std::function<int(const Eigen::Vector2d&)>>& locate) const {
+    const std::vector<std::function<int(const Eigen::VectorXd&)>>& locate) const {
   // doc/contact.md "Which slave nodes pair": a slave node inside the master
   // body that the search does not pair keeps λ = 0 for ever, so the bodies
   // would silently stay overlapped there. Reference configuration,
   // replicated surfaces and slots: every rank reaches the same verdict.
+  auto reference = [&](int n) { return referencePosition(n); };
   for (size_t p = 0; p < pairs_.size() && p < locate.size(); ++p) {
     if (!locate[p]) continue;
     const Pair& pair = pairs_[p];
     int first = -1, count = 0, element = -1;
     for (int k : pair.slots) {
       if (slots_[k].paired()) continue;
-      const int e = locate[p](referencePosition(slots_[k].slaveNode));
+      const int e = locate[p](Eigen::VectorXd(referencePosition(slots_[k].slaveNode).head(dim_)));
       if (e < 0) continue;
       if (first < 0) first = k, element = e;
       ++count;
     }
     if (first < 0) continue;
-    // Why the first such node is not paired: the pair's search (same radius,
-    // same facing rule) on that node alone.
-    const ContactSearch& whole = *pair.search;
     const int node = slots_[first].slaveNode;
-    auto reference = [&](int n) { return referencePosition(n); };
-    ContactSearch probe(whole.master(), {node}, whole.searchRadius(), pair.rule);
-    probe.update(reference, true);
-    const ContactCandidate& c = probe.candidates()[0];
-    // Depth: distance to the nearest point of the master surface.
-    const Eigen::Vector2d xs = reference(node);
+    const Eigen::Vector3d xs = reference(node);
+    std::ostringstream why, where;
+    where << "(" << xs.x() << ", " << xs.y();
+    if (dim_ == 3) where << ", " << xs.z();
+    where << ")";
     double depth = std::numeric_limits<double>::infinity();
-    for (int g = 0; g < whole.master().numSegments(); ++g) {
-      const Eigen::Vector2d a = reference(whole.master().segment(g)[0]), b = reference(whole.master().segment(g)[1]);
-      const double xi = std::min(1.0, std::max(0.0, (xs - a).dot(b - a) / (b - a).squaredNorm()));
-      depth = std::min(depth, (xs - a - xi * (b - a)).norm());
-    }
-    std::ostringstream why;
-    const int seg = c.rejectedSegment >= 0 ? c.rejectedSegment : c.segment;
-    const auto segNodes = [&](int g) {
-      std::ostringstream o;
-      o << "(nodes " << whole.master().segment(g)[0] << ", " << whole.master().segment(g)[1] << ")";
-      return o.str();
-    };
-    if (c.rejection == ContactRejection::TooDeep) {
-      why << "it lies " << -c.gap << " behind its nearest master segment " << segNodes(seg)
-          << ", not less than half the depth of that segment's element (" << whole.penetrationLimit(seg) << " = "
-          << kFacingDepthFraction << " x " << pair.rule.masterDepths[seg] << ")";
-    } else if (c.rejection == ContactRejection::NotFacing) {
-      why << "its outward normal (" << c.slaveNormal.x() << ", " << c.slaveNormal.y()
-          << ") does not face the outward normal (" << c.normal.x() << ", " << c.normal.y()
-          << ") of its nearest master segment " << segNodes(seg);
-    } else if (c.segment < 0) {
-      why << "it is farther than the search radius (" << whole.searchRadius()
-          << ", Contact/Search Radius) from every master segment";
+    if (pair.segments()) {
+      // Why the first such node is not paired: the pair's search (same
+      // radius, same facing rule) on that node alone.
+      const ContactSearch& whole = *pair.search;
+      auto reference2 = [&](int n) { return Eigen::Vector2d(reference(n).head<2>()); };
+      ContactSearch probe(whole.master(), {node}, whole.searchRadius(), pair.rule);
+      probe.update(reference2, true);
+      const ContactCandidate& c = probe.candidates()[0];
+      // Depth: distance to the nearest point of the master surface.
+      const Eigen::Vector2d x2 = reference2(node);
+      for (int g = 0; g < whole.master().numSegments(); ++g) {
+        const Eigen::Vector2d a = reference2(whole.master().segment(g)[0]), b = reference2(whole.master().segment(g)[1]);
+        const double xi = std::min(1.0, std::max(0.0, (x2 - a).dot(b - a) / (b - a).squaredNorm()));
+        depth = std::min(depth, (x2 - a - xi * (b - a)).norm());
+      }
+      const int seg = c.rejectedSegment >= 0 ? c.rejectedSegment : c.segment;
+      const auto segNodes = [&](int g) {
+        std::ostringstream o;
+        o << "(nodes " << whole.master().segment(g)[0] << ", " << whole.master().segment(g)[1] << ")";
+        return o.str();
+      };
+      if (c.rejection == ContactRejection::TooDeep) {
+        why << "it lies " << -c.gap << " behind its nearest master segment " << segNodes(seg)
+            << ", not less than half the depth of that segment's element (" << whole.penetrationLimit(seg) << " = "
+            << kFacingDepthFraction << " x " << pair.rule.masterDepths[seg] << ")";
+      } else if (c.rejection == ContactRejection::NotFacing) {
+        why << "its outward normal (" << c.slaveNormal.x() << ", " << c.slaveNormal.y()
+            << ") does not face the outward normal (" << c.normal.x() << ", " << c.normal.y()
+            << ") of its nearest master segment " << segNodes(seg);
+      } else if (c.segment < 0) {
+        why << "it is farther than the search radius (" << whole.searchRadius()
+            << ", Contact/Search Radius) from every master segment";
+      } else {
+        // Paired by the search but past a free end of the master surface
+        // (updatePairing()): the only other way a node stays unpaired.
+        why << "it lies beyond a free end of the master surface (nearest segment " << segNodes(seg) << ")";
+      }
     } else {
-      // Paired by the search but past a free end of the master surface
-      // (updatePairing()): the only other way a node stays unpaired.
-      why << "it lies beyond a free end of the master surface (nearest segment " << segNodes(seg) << ")";
+      // The same for facets: the nearest point of the whole surface (all
+      // facets: a diagnostic, once), then the rules on that facet.
+      FacetCandidate nearest;
+      nearest.distance = std::numeric_limits<double>::infinity();
+      for (int g = 0; g < int(pair.masterFacets.size()); ++g) {
+        FacetCandidate c = nearestPoint(pair.masterType, facetPositions(pair, g, reference), xs.head(dim_));
+        c.facet = g;
+        if (c.distance < nearest.distance) nearest = c;
+      }
+      depth = nearest.distance;
+      FacetSearch probe(pair.masterType, {pair.facetNodes(nearest.facet)},
+                        std::max(2.0 * nearest.distance, std::numeric_limits<double>::min()));
+      probe.update({node}, [&](int n) { return Eigen::VectorXd(reference(n).head(dim_)); }, true);
+      const Found f = facetPairing(pair, probe, {nearest.facet}, {node}, reference)[0];
+      const FacetRecord& r = pair.masterFacets[nearest.facet];
+      std::ostringstream facet;
+      facet << "facet " << r.id << " (element " << r.element << ")";
+      const double limit = kFacingDepthFraction * r.depth;
+      if (nearest.distance > options_.searchRadius) {
+        why << "it is farther than the search radius (" << options_.searchRadius
+            << ", Contact/Search Radius) from every master facet";
+      } else if (f.pastFreeEnd) {
+        why << "its nearest point of the master surface is on the surface's free boundary (" << facet.str() << ")";
+      } else if (!(f.slaveNormal.dot(f.normal) < 0.0)) {
+        why << "its outward normal (" << f.slaveNormal.transpose() << ") does not face the normal ("
+            << f.normal.transpose() << ") of its nearest master " << facet.str();
+      } else {
+        why << "it lies " << -f.gap << " behind its nearest master " << facet.str()
+            << ", not less than half the depth of that facet's element (" << limit << " = " << kFacingDepthFraction
+            << " x " << r.depth << ")";
+      }
     }
     DDC_THROW(InputError, "contact pair '"
-                              << pair.path << "': slave node " << node << " at (" << xs.x() << ", " << xs.y()
-                              << ") of the slave side set '" << pair.slaveName
+                              << pair.path << "': slave node " << node << " at " << where.str()
+                              << " of the slave side set '" << pair.slaveName
                               << "' starts inside the master body (element " << element << "), at depth " << depth
                               << " below the master side set '" << pair.masterName
                               << "', and contact cannot push it out: " << why.str()
@@ -847,9 +1306,15 @@ void ContactComponent::checkInitialPenetration(
 std::array<long, 3> ContactComponent::searchCounters() const {
   std::array<long, 3> c{0, 0, distributedQueries_};
   for (const auto& p : pairs_) {
-    c[0] += p.search->counters().trackingCalls;
-    c[1] += p.search->counters().trackingFallbacks;
-    c[2] += p.search->counters().globalSearches;
+    if (p.search) {
+      c[0] += p.search->counters().trackingCalls;
+      c[1] += p.search->counters().trackingFallbacks;
+      c[2] += p.search->counters().globalSearches;
+    } else {
+      c[0] += p.facetSearch->trackingQueries();
+      c[1] += p.facetSearch->trackingFallbacks();
+      c[2] += p.facetSearch->globalQueries();
+    }
   }
   return c;
 }
@@ -857,9 +1322,14 @@ std::array<long, 3> ContactComponent::searchCounters() const {
 bool ContactComponent::fullyPrescribed(int k) const {
   const ContactSlot& s = slots_[k];
   if (!s.paired()) return false;
-  for (int n : {s.slaveNode, s.master[0], s.master[1]})
-    for (int c = 0; c < 2; ++c)
+  auto prescribed = [&](int n) {
+    for (int c = 0; c < dim_; ++c)
       if (!prescribed_[index(n)][c]) return false;
+    return true;
+  };
+  if (!prescribed(s.slaveNode)) return false;
+  for (int a = 0; a < s.numMaster; ++a)
+    if (!prescribed(s.master[a])) return false;
   return true;
 }
 
@@ -871,17 +1341,28 @@ void ContactComponent::activateAllPaired() {
 }
 
 void ContactComponent::refreshSlotGeometry(const std::vector<double>& v) {
-  const size_t base = 2 * nodeIds_.size();
+  const size_t base = size_t(dim_) * nodeIds_.size();
+  auto position = [&](int n) { return currentPosition(n, v); };
   for (size_t k = 0; k < slots_.size(); ++k) {
     ContactSlot& s = slots_[k];
     s.state.multiplier = v[base + k];
     if (!s.paired()) continue;
-    const Eigen::Vector2d xs = currentPosition(s.slaveNode, v);
-    const Eigen::Vector2d x1 = currentPosition(s.master[0], v);
-    const Eigen::Vector2d x2 = currentPosition(s.master[1], v);
-    const Eigen::Vector2d t = x2 - x1;
-    s.normal = Eigen::Vector2d(t.y(), -t.x()) / t.norm();
-    s.gap = s.normal.dot(xs - x1);
+    const Pair& pair = pairs_[s.pair];
+    if (pair.segments()) {
+      const Eigen::Vector2d xs = currentPosition(s.slaveNode, v).head<2>();
+      const Eigen::Vector2d x1 = currentPosition(s.master[0], v).head<2>();
+      const Eigen::Vector2d x2 = currentPosition(s.master[1], v).head<2>();
+      const Eigen::Vector2d t = x2 - x1;
+      const Eigen::Vector2d n = Eigen::Vector2d(t.y(), -t.x()) / t.norm();
+      s.normal << n, 0.0;
+      s.gap = n.dot(xs - x1);
+    } else {
+      // The conventional element's own projection (DDC_NodeToSurface.hpp).
+      const FacetProjection pr = projectOntoFacet(pair.masterType, facetPositions(pair, s.segment, position),
+                                                  position(s.slaveNode).head(dim_));
+      s.normal = pr.normal;
+      s.gap = pr.gap;
+    }
   }
 }
 
@@ -921,7 +1402,10 @@ void ContactComponent::assembleFrozenGaps(const Vector& u, const Vector* multipl
     const LO l = multiplierAllMap_->getLocalElement(lmGid_[k]);
     s.state.multiplier = lam[l];
     if (!s.paired()) continue;
-    s.normal = s.state.frozenNormal;
+    if (pairs_[s.pair].segments())
+      s.normal << s.state.frozenNormal, 0.0;
+    else
+      s.normal = s.frozen.normal;
     s.gap = g[l];
   }
 }
@@ -966,8 +1450,7 @@ ContactSummary ContactComponent::summary() const {
     if (!s.active || !s.paired()) continue;
     ++c.active;
     // The slave feels −λ n (compression: λ < 0 pushes it along +n).
-    c.force[0] -= s.state.multiplier * s.normal.x();
-    c.force[1] -= s.state.multiplier * s.normal.y();
+    for (int d = 0; d < 3; ++d) c.force[d] -= s.state.multiplier * s.normal[d];
   }
   return c;
 }
@@ -976,7 +1459,7 @@ bool ContactComponent::restoreSlots(const std::vector<ContactSlot>& saved) {
   DDC_ASSERT(saved.size() == slots_.size(), "restoreSlots: " << saved.size() << " slots for " << slots_.size());
   bool changed = false;
   for (size_t k = 0; k < slots_.size(); ++k)
-    if (saved[k].master[0] != slots_[k].master[0] || saved[k].master[1] != slots_[k].master[1]) changed = true;
+    if (saved[k].segment != slots_[k].segment) changed = true;
   slots_ = saved;
   if (changed && hasDofs_) buildTopology();
   return changed;
@@ -985,9 +1468,10 @@ bool ContactComponent::restoreSlots(const std::vector<ContactSlot>& saved) {
 std::string ContactComponent::describeSlot(int k) const {
   const ContactSlot& s = slots_[k];
   std::ostringstream os;
-  const Eigen::Vector2d X = referencePosition(s.slaveNode);
-  os << "pair '" << pairs_[s.pair].name << "' slave node " << s.slaveNode << " at (" << X.x() << ", " << X.y()
-     << ")";
+  const Eigen::Vector3d X = referencePosition(s.slaveNode);
+  os << "pair '" << pairs_[s.pair].name << "' slave node " << s.slaveNode << " at (" << X.x() << ", " << X.y();
+  if (dim_ == 3) os << ", " << X.z();
+  os << ")";
   return os.str();
 }
 

@@ -1,5 +1,5 @@
 // Contact as a component a host code drives (doc/embedding.md, "(c) The
-// contact component"): the whole node-to-segment contact lifecycle behind one class,
+// contact component"): the whole node-to-surface contact lifecycle behind one class,
 // in the host's node and DOF numbering, with nothing of a mesh, a partition,
 // FETI-DP or a Newton loop inside. The shape follows LLNL Tribol's interface
 // (register the surfaces, then the fields; update at step ends; read rows,
@@ -28,6 +28,15 @@
 //    multiplier map (partial gaps of the two counterparts summed there), with
 //    no geometry moving (doc/contact.md).
 //
+// Facets. A pair's facets are of one cell type per surface
+// (ContactPairSurfaces::masterFacetType / slaveFacetType): straight 2-node
+// segments (Line2, the 2-D node-to-segment element of DDC_NodeToSegment.hpp
+// and the search of DDC_ContactSearch.hpp) or any other facet type — Line3 in
+// 2-D, Tri3/Tri6/Quad4/Quad8/Quad9 in 3-D — with the node-to-surface elements
+// (DDC_SurfaceContactElement.hpp) and the facet search of DDC_FacetSearch.hpp
+// (doc/contact.md, "Curved facets and 3-D"). Every pair of a component has
+// the same space dimension.
+//
 // Ownership. A surface node belongs to the rank that registers it, and its
 // DOF ids must be owned by that rank in the host's map (setDofs() checks).
 // A slot and its multiplier belong to the owner of its slave node. The
@@ -40,12 +49,17 @@
 #include <Teuchos_Comm.hpp>
 #include <array>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "DDC_ContactElement.hpp"
 #include "DDC_ContactSearch.hpp"
+#include "DDC_DecomposedNodeToSurface.hpp"
+#include "DDC_FacetSearch.hpp"
+#include "DDC_ReferenceCell.hpp"
+#include "DDC_SurfaceContactElement.hpp"
 #include "DDC_TpetraTypes.hpp"
 
 namespace ddc {
@@ -53,16 +67,28 @@ namespace ddc {
 /// One contact slot: a slave node of a pair, its multiplier, and its
 /// current pairing and state. Replicated on every rank.
 struct ContactSlot {
+  /// Most nodes a master facet has (Quad9).
+  static constexpr int kMaxFacetNodes = 9;
   int pair = 0;
   int slaveNode = -1;        ///< host node id
-  int master[2] = {-1, -1};  ///< master segment nodes (host node ids); -1: not paired
-  int segment = -1;          ///< index of that segment in the pair's master surface (-1: not paired)
-  int masterElement = -1;    ///< the host element whose side the master segment is (-1: not paired)
+  /// The master facet's nodes (host node ids, facet node order; the first
+  /// numMaster are used); master[0] = -1: not paired.
+  std::array<int, kMaxFacetNodes> master{{-1, -1, -1, -1, -1, -1, -1, -1, -1}};
+  int numMaster = 0;
+  int segment = -1;          ///< index of that facet in the pair's master surface (-1: not paired)
+  int masterElement = -1;    ///< the host element whose facet it is (-1: not paired)
   bool active = false;
-  ContactPairState state;    ///< multiplier, frozen ξ^p / n^p
+  /// Multiplier; frozen ξ^p / n^p of the 2-D node-to-segment counterparts
+  /// (Line2 master facets).
+  ContactPairState state;
+  /// Frozen ξ^p / n^p of the node-to-surface counterparts (other facet types).
+  FrozenFacetProjection frozen;
   double gap = 0.0;          ///< g_N at the last update
-  Eigen::Vector2d normal = Eigen::Vector2d::Zero();  ///< normal used by the element
-  double tributaryLength = 0.0;  ///< half the reference length of the adjacent slave segments
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< normal used by the element (z = 0 in 2-D)
+  /// The slave node's share of the slave surface in the reference
+  /// configuration: a length in 2-D (half the adjacent slave segments), an
+  /// area in 3-D (doc/contact.md, "Curved facets and 3-D").
+  double tributaryLength = 0.0;
   /// Contact pressure −λ / tributary length (> 0 in compression), 0 when inactive.
   double pressure() const { return active && tributaryLength > 0 ? -state.multiplier / tributaryLength : 0.0; }
   bool paired() const { return master[0] >= 0; }
@@ -71,29 +97,37 @@ struct ContactSlot {
 /// Summary of the contact state for output.
 struct ContactSummary {
   int active = 0;
-  double force[2] = {0.0, 0.0};  ///< resultant contact force on the slave bodies, Σ -λ n
+  double force[3] = {0.0, 0.0, 0.0};  ///< resultant contact force on the slave bodies, Σ -λ n (z = 0 in 2-D)
 };
 
 /// A contact-surface node, registered by the rank that owns its DOFs.
 struct ContactNode {
   int id = -1;                  ///< the host's node id (≥ 0, unique)
-  Eigen::Vector2d X = Eigen::Vector2d::Zero();  ///< reference coordinates
+  Eigen::Vector3d X = Eigen::Vector3d::Zero();  ///< reference coordinates (z = 0 in 2-D)
+  ContactNode() = default;
+  ContactNode(int id_, const Eigen::Vector2d& X2) : id(id_), X(X2.x(), X2.y(), 0.0) {}
+  ContactNode(int id_, const Eigen::Vector3d& X3) : id(id_), X(X3) {}
 };
 
 /// The DOFs of a registered node (setDofs()).
 struct ContactNodeDofs {
   int id = -1;                     ///< a node this rank registered
-  std::array<GO, 2> dofs{{-1, -1}};  ///< host DOF ids of u_x, u_y (owned here in the host's map)
+  /// Host DOF ids of u_x, u_y (, u_z in 3-D), owned here in the host's map;
+  /// entries past the space dimension are not read.
+  std::array<GO, 3> dofs{{-1, -1, -1}};
   /// The DOF is prescribed (a Dirichlet condition): a pair whose DOFs are
   /// all prescribed has a given gap and never becomes active.
-  std::array<bool, 2> prescribed{{false, false}};
+  std::array<bool, 3> prescribed{{false, false, false}};
 };
 
-/// A straight 2-node facet (segment) of a contact surface, registered by
-/// the rank that evaluates its element.
+/// A facet of a contact surface, registered by the rank that evaluates its
+/// element.
 struct ContactFacet {
   long id = -1;  ///< position of the facet in its surface: orders the facets (search tie-breaks), unique per surface
-  std::array<int, 2> nodes{{-1, -1}};  ///< host node ids, oriented with the body on the left of nodes[0] → nodes[1]
+  /// Host node ids in the facet type's node order (DDC_ReferenceCell.hpp),
+  /// oriented outward: in 2-D with the body on the left of nodes[0] →
+  /// nodes[1], in 3-D counter-clockwise seen from outside.
+  std::vector<int> nodes;
   int element = -1;    ///< host element id (messages; ContactSlot::masterElement)
   int subdomain = -1;  ///< host subdomain of the element: the label of the master counterpart's rows
   /// Master facets: depth of the element behind the facet (> 0; the facing
@@ -109,6 +143,8 @@ struct ContactPairSurfaces {
   std::string path;        ///< where the host defined it (e.g. a parameter path), for errors; default: name
   std::string slaveName;   ///< the slave surface, for messages
   std::string masterName;  ///< the master surface, for messages
+  /// Cell types of the facets (Line2, Line3, Tri3, Tri6, Quad4, Quad8, Quad9).
+  CellType slaveFacetType = CellType::Line2, masterFacetType = CellType::Line2;
   std::vector<int> slaveNodes;  ///< candidate slave nodes; nodes on the master surface are skipped
   std::vector<ContactFacet> slaveFacets;   ///< oriented with the slave body on the left
   std::vector<ContactFacet> masterFacets;  ///< with depth
@@ -138,12 +174,20 @@ struct ContactRowEntry {
 /// The contact component (see the top of this file).
 class ContactComponent {
  public:
+  /// Surface contact elements by role and facet type (e.g. from the element
+  /// factory, surfaceContactElementName()).
+  using SurfaceElementSource =
+      std::function<std::shared_ptr<const SurfaceContactElement>(SurfaceContactRole role, CellType facet)>;
   /// \param elements the counterparts {"Decomposed NTS Slave", "Decomposed NTS
   ///        Master"} when options.decomposed, else {"Node-To-Segment"}
-  ///        (any ContactElement with those DOF layouts)
+  ///        (any ContactElement with those DOF layouts): the elements of
+  ///        pairs with Line2 master facets
+  /// \param surfaceElements the elements of the other facet types
+  ///        (default: the built-in ones, makeSurfaceContactElement())
   /// \throws std::invalid_argument if the evaluators do not match the formulation.
   ContactComponent(Teuchos::RCP<const Teuchos::Comm<int>> comm, ContactComponentOptions options,
-                   std::vector<std::shared_ptr<const ContactElement>> elements);
+                   std::vector<std::shared_ptr<const ContactElement>> elements,
+                   SurfaceElementSource surfaceElements = makeSurfaceContactElement);
   ~ContactComponent();
 
   // ---- registration ----------------------------------------------------------
@@ -155,7 +199,11 @@ class ContactComponent {
   /// node, in ascending node id; owner = the slave node's owner) and the
   /// searches. Every node a facet or a slave list names must be registered
   /// by exactly one rank.
-  /// \throws InputError (every rank) naming the pair and the node/facet.
+  /// \throws InputError (every rank) naming the pair and the node/facet, also
+  ///         for a facet with the wrong number of nodes for its type, pairs
+  ///         of different space dimensions, and a surface whose facets are
+  ///         not consistently oriented (two facets running the same way
+  ///         along a shared side: some normals point inwards).
   void commit();
   /// Collective, after commit(): the host DOF ids of the nodes this rank
   /// registered (every one of them) and, optionally, the host DOF id of the
@@ -170,13 +218,13 @@ class ContactComponent {
                const std::vector<GO>& multiplierDofs = {});
 
   // ---- lifecycle -------------------------------------------------------------
-  /// Pair every slave node with a master segment at the state u (host owned
+  /// Pair every slave node with a master facet at the state u (host owned
   /// map; tracking from the previous pairing, a global search when
   /// `global`). With `freeze`, the decomposed element's projection ξ^p and
   /// normal n^p are taken from this configuration. Decomposed + global: the
   /// bounding-box-limited exchange; otherwise the surface positions are
   /// gathered. One counted exchange either way.
-  /// \return true if any slave changed its master segment (new topology);
+  /// \return true if any slave changed its master facet (new topology);
   ///         the slots that did are appended to `changedSlots` when given.
   bool updatePairing(const Vector& u, bool global, bool freeze, std::vector<int>* changedSlots = nullptr);
   /// Activate every paired slot (Initial Contact State = In Contact), except
@@ -227,21 +275,23 @@ class ContactComponent {
   /// Multiplier id of slot k (host DOF id when the host gave them).
   GO multiplierId(int k) const { return lmGid_[k]; }
   /// Host DOF ids of the DOFs of the conventional element of slot k
-  /// ([u_s, u_1, u_2, λ]; [λ] when unpaired) and of the decomposed
-  /// counterparts ([u_s, λ] / [u_1, u_2, λ]).
+  /// ([u_s, u_1, ..., u_m, λ]; [λ] when unpaired) and of the decomposed
+  /// counterparts ([u_s, λ] / [u_1, ..., u_m, λ]).
   std::vector<GO> slotDofs(int k) const;
   std::vector<GO> slaveSideDofs(int k) const;
   std::vector<GO> masterSideDofs(int k) const;
   /// True if slot k is paired and all DOFs of its slave node and master
-  /// segment are prescribed: its gap is given, contact cannot act on it.
+  /// facet are prescribed: its gap is given, contact cannot act on it.
   bool fullyPrescribed(int k) const;
   /// Host node ids of every surface node (slave or master), ascending.
   const std::vector<int>& surfaceNodes() const { return nodeIds_; }
   bool isSurfaceNode(int id) const { return index(id) >= 0; }
-  /// Reference coordinates of a surface node.
-  Eigen::Vector2d referencePosition(int id) const;
+  /// Reference coordinates of a surface node (z = 0 in 2-D).
+  Eigen::Vector3d referencePosition(int id) const;
+  /// Space dimension of the contact surfaces (2 or 3; known after commit()).
+  int dim() const { return dim_; }
   ContactSummary summary() const;
-  /// "pair 'P' slave node n at (x, y)" for messages.
+  /// "pair 'P' slave node n at (x, y[, z])" for messages.
   std::string describeSlot(int k) const;
   /// The pair's registered name (messages).
   const std::string& pairName(int p) const;
@@ -257,20 +307,42 @@ class ContactComponent {
   /// body of its pair and is not paired (farther than the search radius from
   /// the master surface, or rejected by the facing rule) can never be pushed
   /// out. `locate[p]` returns the element of pair p's master body containing
-  /// a reference point, or −1 (e.g. BodyLocator::elementContaining; an empty
-  /// function skips the pair). Replicated data: the same verdict on every rank.
+  /// a reference point (dim() coordinates), or −1 (e.g.
+  /// BodyLocator::elementContaining; an empty function skips the pair).
+  /// Replicated data: the same verdict on every rank.
   /// \throws InputError naming the pair, the node, the depth and why.
-  void checkInitialPenetration(const std::vector<std::function<int(const Eigen::Vector2d&)>>& locate) const;
+  void checkInitialPenetration(const std::vector<std::function<int(const Eigen::VectorXd&)>>& locate) const;
 
  private:
   struct Pair;
   struct Field;
+  struct Found;
   int index(int id) const;
-  Eigen::Vector2d currentPosition(int id, const std::vector<double>& surfaceValues) const;
+  /// Current position of a surface node from gathered surface values (dim_ per node; z = 0 in 2-D).
+  Eigen::Vector3d currentPosition(int id, const std::vector<double>& surfaceValues) const;
   void gatherSurface(const Vector& u, const Vector* multipliers, std::vector<double>& values) const;
   void refreshSlotGeometry(const std::vector<double>& surfaceValues);
-  void distributedSearch(const Vector& u, std::vector<std::vector<ContactCandidate>>& cands,
-                         std::vector<std::vector<char>>& pastFreeEnd);
+  /// Decomposed step-end pairing: the bounding-box-limited exchange and the
+  /// search of the owners of the slave nodes (one exchange).
+  void distributedSearch(const Vector& u, std::vector<std::vector<Found>>& found);
+  template <int D>
+  void distributedSearchIn(const Vector& u, std::vector<std::vector<Found>>& found);
+  /// The surface contact element of `role` on `facet` (commit() fetched it).
+  const SurfaceContactElement& surfaceElement(SurfaceContactRole role, CellType facet) const;
+  /// The pairing of every pair's slaves from replicated positions.
+  void replicatedSearch(const std::function<Eigen::Vector3d(int)>& position, bool global,
+                        std::vector<std::vector<Found>>& found);
+  /// Facet pairs: the pairing of `slaves` over `facets` (indices into the
+  /// pair's master facets) at `position`, with the facing rule and the
+  /// free-boundary rule (doc/contact.md, "Curved facets and 3-D").
+  std::vector<Found> facetPairing(const Pair& pair, FacetSearch& search, const std::vector<int>& facets,
+                                  const std::vector<int>& slaves,
+                                  const std::function<Eigen::Vector3d(int)>& position) const;
+  /// Facet pairs: the slave node's outward normal (normalised sum of its
+  /// slave facets' normals there; zero if they cancel).
+  Eigen::Vector3d slaveNormal(const Pair& pair, int node, const std::function<Eigen::Vector3d(int)>& position) const;
+  /// Node positions of facet f of a pair's master surface (numNodes x dim_).
+  Eigen::MatrixXd facetPositions(const Pair& pair, int f, const std::function<Eigen::Vector3d(int)>& position) const;
   void assembleFrozenGaps(const Vector& u, const Vector* multipliers);
   void buildTopology();
   /// Field values at this rank's counterpart DOFs and multipliers.
@@ -280,20 +352,24 @@ class ContactComponent {
   void requireCommitted(const char* what) const;
   /// Throws std::logic_error unless the host gave multiplier DOFs to setDofs().
   void requireHostMultipliers() const;
+  void appendNodeDofs(int node, std::vector<GO>& dofs) const;
 
   Teuchos::RCP<const Teuchos::Comm<int>> comm_;
   ContactComponentOptions options_;
   std::shared_ptr<const ContactElement> ntsElement_, slaveElement_, masterElement_;
+  SurfaceElementSource surfaceSource_;
+  std::map<std::pair<SurfaceContactRole, CellType>, std::shared_ptr<const SurfaceContactElement>> surfaceElements_;
   bool committed_ = false, hasDofs_ = false, multipliersInHost_ = false;
+  int dim_ = 2;
 
   std::vector<ContactNode> myNodes_;  ///< registered here, before commit()
   std::vector<Pair> pairs_;
   // Surface nodes after commit(), ascending id: replicated.
   std::vector<int> nodeIds_;
-  std::vector<Eigen::Vector2d> X_;
+  std::vector<Eigen::Vector3d> X_;
   std::vector<int> owner_;
-  std::vector<std::array<GO, 2>> dofs_;
-  std::vector<std::array<char, 2>> prescribed_;
+  std::vector<std::array<GO, 3>> dofs_;
+  std::vector<std::array<char, 3>> prescribed_;
 
   std::vector<ContactSlot> slots_;
   std::vector<int> slotOwner_;

@@ -159,6 +159,13 @@ Eigen::Vector2d ContactSearch::slaveNormal(std::size_t i,
 
 ContactRejection facingVerdict(const Eigen::Vector2d& slaveNormal, const Eigen::Vector2d& masterNormal, double gap,
                                double penetrationLimit) {
+  // z = 0 adds exact zeros to the dot product: the same verdict.
+  return facingVerdict(Eigen::Vector3d(slaveNormal.x(), slaveNormal.y(), 0.0),
+                       Eigen::Vector3d(masterNormal.x(), masterNormal.y(), 0.0), gap, penetrationLimit);
+}
+
+ContactRejection facingVerdict(const Eigen::Vector3d& slaveNormal, const Eigen::Vector3d& masterNormal, double gap,
+                               double penetrationLimit) {
   if (!(slaveNormal.dot(masterNormal) < 0.0)) return ContactRejection::NotFacing;
   if (gap < 0.0 && !(-gap < penetrationLimit)) return ContactRejection::TooDeep;
   return ContactRejection::None;

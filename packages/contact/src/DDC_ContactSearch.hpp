@@ -119,6 +119,9 @@ constexpr double kEndTolerance = 1e-10;
 /// keeps a pairing the search did not make, so the rule is one function).
 ContactRejection facingVerdict(const Eigen::Vector2d& slaveNormal, const Eigen::Vector2d& masterNormal, double gap,
                                double penetrationLimit);
+/// The same rule for facets in 3-D (and curved segments in 2-D, z = 0).
+ContactRejection facingVerdict(const Eigen::Vector3d& slaveNormal, const Eigen::Vector3d& masterNormal, double gap,
+                               double penetrationLimit);
 
 /// What the facing rule needs besides the master surface: the slave surface
 /// (for nodal normals) and the depth of each master segment's element.

@@ -71,6 +71,7 @@ FacetCandidate nearestPoint(CellType facet, const Eigen::MatrixXd& nodes, const 
       best = dist;
       c.point = p;
       c.kind = (t > 0.0 && t < 1.0) ? FacetPointKind::Edge : FacetPointKind::Vertex;
+      for (int al = 0; al < 2; ++al) c.xi[al] = (1.0 - t) * ref.nodes[i][al] + t * ref.nodes[j][al];
     }
   }
   c.distance = best;

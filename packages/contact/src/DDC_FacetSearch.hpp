@@ -46,7 +46,10 @@ enum class FacetPointKind { Interior, Edge, Vertex };
 /// The nearest point of one facet to a slave node.
 struct FacetCandidate {
   int facet = -1;           ///< index in the surface, −1: none within the radius
-  std::array<double, 2> xi{{0.0, 0.0}};  ///< Interior: ξ̄ (otherwise the projection's last iterate)
+  /// Interior: ξ̄; Edge/Vertex: the reference coordinates of `point` along
+  /// its chord (exact on straight edges; on a curved edge x(ξ) is the point
+  /// of the edge the chord point maps to, not `point` itself).
+  std::array<double, 2> xi{{0.0, 0.0}};
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   double gap = 0.0;         ///< Interior: n·(x_s − x̄) (signed); Edge/Vertex: the distance

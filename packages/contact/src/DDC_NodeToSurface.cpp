@@ -162,6 +162,20 @@ FacetProjection projectOntoFacet(CellType facet, const Eigen::MatrixXd& x, const
   return out;
 }
 
+bool facetPointAndNormal(CellType facet, const Eigen::MatrixXd& x, const std::array<double, 2>& xi,
+                         Eigen::Vector3d& point, Eigen::Vector3d& normal) {
+  const int dim = facetSpaceDimension(facet);
+  const int m = referenceCell(facet).numNodes;
+  std::vector<double> xn(size_t(m) * dim);
+  for (int i = 0; i < m; ++i)
+    for (int k = 0; k < dim; ++k) xn[size_t(i) * dim + k] = x(i, k);
+  FacetPoint<double> p;
+  const bool ok = evaluate(facet, dim, xn, xi.data(), p);
+  point.setZero(), normal.setZero();
+  for (int k = 0; k < dim; ++k) point[k] = p.x[k], normal[k] = p.n[k];
+  return ok;
+}
+
 NodeToSurfaceElement::NodeToSurfaceElement(CellType facet)
     : facet_(facet), dim_(facetSpaceDimension(facet)), numNodes_(1 + referenceCell(facet).numNodes) {}
 

@@ -63,6 +63,12 @@ int facetSpaceDimension(CellType facet);
 FacetProjection projectOntoFacet(CellType facet, const Eigen::MatrixXd& x, const Eigen::VectorXd& xs,
                                  const std::array<double, 2>* start = nullptr);
 
+/// Position and unit outward normal (z = 0 in 2-D) of a facet at the
+/// reference point ξ. \return false if the facet is degenerate there.
+/// \param x facet node positions, numCellNodes(facet) x dim
+bool facetPointAndNormal(CellType facet, const Eigen::MatrixXd& x, const std::array<double, 2>& xi,
+                         Eigen::Vector3d& point, Eigen::Vector3d& normal);
+
 /// Conventional node-to-surface element on a facet type. Nodes [slave, facet
 /// nodes...]; DOFs [u_s, u_1, ..., u_m, λ] (node-major, dim per node). Not a
 /// ContactElement (whose DOF layout is 2-D): the contact component uses it

@@ -256,4 +256,124 @@ TEST(ContactComponent, MultipliersOfSlotsTheRankDoesNotOwnAreRejected) {
                                          {"multiplier"});
 }
 
+// ---- 3-D: Quad4 facets --------------------------------------------------------
+// The host in 3-D: a master surface z = 0 of two Quad4 facets (nodes 0-5 at
+// x = 0, 1, 2, y = 0, 2; the master body below, corners counter-clockwise
+// seen from +z) and one slave Quad4 facet at z = kGap0 above it (nodes 10-13
+// over (0.5..1.5)^2, counter-clockwise seen from below). Host DOFs: node n's
+// u_x, u_y, u_z are 3·i, 3·i + 1, 3·i + 2 with i its position in kNodes3.
+const int kNodes3[10] = {0, 1, 2, 3, 4, 5, 10, 11, 12, 13};
+const double kX3[10][3] = {{0, 0, 0},   {1, 0, 0},     {2, 0, 0},         {0, 2, 0},         {1, 2, 0},
+                           {2, 2, 0},   {0.5, 0.5, kGap0}, {1.5, 0.5, kGap0}, {1.5, 1.5, kGap0}, {0.5, 1.5, kGap0}};
+
+struct Host3 : Host {
+  bool owns3(int i) const { return i < 6 ? ownsMaster() : ownsSlave(); }
+  Teuchos::RCP<const ddc::Map> map3() const {
+    std::vector<GO> gids;
+    for (int i = 0; i < 10; ++i)
+      if (owns3(i)) gids.insert(gids.end(), {GO(3 * i), GO(3 * i + 1), GO(3 * i + 2)});
+    return Teuchos::rcp(new ddc::Map(30, Teuchos::ArrayView<const GO>(gids), 0, comm));
+  }
+};
+
+std::unique_ptr<ContactComponent> registered3(const Host3& h,
+                                              const std::function<void(ddc::ContactPairSurfaces&)>& tweak = {}) {
+  ddc::ContactComponentOptions o;
+  o.decomposed = true;
+  o.searchRadius = 0.5;
+  o.penetrationTolerance = 1e-12;
+  auto c = std::make_unique<ContactComponent>(h.comm, o, elements(true));
+  std::vector<ddc::ContactNode> nodes;
+  for (int i = 0; i < 10; ++i)
+    if (h.owns3(i)) nodes.push_back({kNodes3[i], Eigen::Vector3d(kX3[i][0], kX3[i][1], kX3[i][2])});
+  ddc::ContactPairSurfaces pair;
+  pair.name = "P3";
+  pair.slaveFacetType = pair.masterFacetType = ddc::CellType::Quad4;
+  if (h.ownsMaster()) {
+    pair.masterFacets.push_back({0, {0, 1, 4, 3}, 100, 0, 1.0});
+    pair.masterFacets.push_back({1, {1, 2, 5, 4}, 101, 0, 1.0});
+  }
+  if (h.ownsSlave()) {
+    pair.slaveFacets.push_back({0, {10, 13, 12, 11}, 200, 1, 0.0});
+    pair.slaveNodes = {10, 11, 12, 13};
+  }
+  if (tweak) tweak(pair);
+  c->registerNodes(nodes);
+  c->registerPair(pair);
+  c->commit();
+  return c;
+}
+
+TEST(ContactComponent3D, DecomposedRowsGapsAndActiveSetOnQuad4Facets) {
+  Host3 h;
+  auto c = registered3(h);
+  EXPECT_EQ(c->dim(), 3);
+  auto map = h.map3();
+  std::vector<ddc::ContactNodeDofs> dofs;
+  for (int i = 0; i < 10; ++i)
+    if (h.owns3(i)) dofs.push_back({kNodes3[i], {{GO(3 * i), GO(3 * i + 1), GO(3 * i + 2)}}, {{false, false, false}}});
+  c->setDofs(map, dofs);
+  ASSERT_EQ(c->slots().size(), 4u);
+  ddc::Vector u(map);
+  c->updatePairing(u, /*global=*/true, /*freeze=*/true);
+  for (int k = 0; k < 4; ++k) {
+    const auto& s = c->slots()[k];
+    ASSERT_TRUE(s.paired()) << c->describeSlot(k);
+    EXPECT_EQ(s.numMaster, 4);
+    EXPECT_NEAR(s.gap, kGap0, kRoundoff);
+    EXPECT_NEAR((s.frozen.normal - Eigen::Vector3d(0, 0, 1)).norm(), 0.0, kRoundoff);
+    // x < 1: the first facet; x > 1: the second.
+    EXPECT_EQ(s.masterElement, c->referencePosition(s.slaveNode).x() < 1 ? 100 : 101);
+    // The tributary area of a corner of the 1 x 1 slave facet: a quarter.
+    EXPECT_NEAR(s.tributaryLength, 0.25, kRoundoff);
+  }
+  // Rows: n^p = (0, 0, 1) on the slave's u_z, −N_i(ξ^p) on the master nodes' u_z.
+  double sums[2] = {0, 0}, total[2];
+  for (const auto& e : c->contactRows()) {
+    EXPECT_EQ(e.dof % 3, 2) << "only u_z: the normal is vertical";
+    sums[e.master] += e.coefficient;
+  }
+  Teuchos::reduceAll(*h.comm, Teuchos::REDUCE_SUM, 2, sums, total);
+  EXPECT_NEAR(total[0], 4.0, kRoundoff) << "four slave rows with coefficient 1";
+  EXPECT_NEAR(total[1], -4.0, kRoundoff) << "four master rows whose shape functions sum to 1";
+  // Push the slave facet through the master surface: all four activate.
+  ddc::Vector lambda(c->multiplierMap());
+  for (int i = 6; i < 10; ++i)
+    if (h.owns3(i)) u.replaceGlobalValue(GO(3 * i + 2), -0.15);
+  EXPECT_EQ(c->updateActiveSet(u, &lambda).size(), 4u);
+  for (const auto& s : c->slots()) EXPECT_NEAR(s.gap, kGap0 - 0.15, kRoundoff);
+}
+
+TEST(ContactComponent3D, AFacetWithAnInwardNormalIsRejected) {
+  Host3 h;
+  ddc::test::expectThrowWith<InputError>(
+      [&] {
+        registered3(h, [&](ddc::ContactPairSurfaces& pair) {
+          if (h.ownsMaster()) pair.masterFacets[1].nodes = {1, 4, 5, 2};  // clockwise seen from +z
+        });
+      },
+      {"contact pair 'P3'", "master surface is not consistently oriented", "facets 0 and 1",
+       "inward normal"});
+}
+
+TEST(ContactComponent3D, SurfacesOfDifferentDimensionsAreRejected) {
+  Host3 h;
+  ddc::test::expectThrowWith<InputError>(
+      [&] {
+        registered3(h, [&](ddc::ContactPairSurfaces& pair) { pair.slaveFacetType = ddc::CellType::Line2; });
+      },
+      {"contact pair 'P3'", "Line2 facets are 2-D", "Quad4 master facets", "one dimension"});
+}
+
+TEST(ContactComponent3D, AFacetWithTheWrongNumberOfNodesIsRejectedOnEveryRank) {
+  Host3 h;
+  ddc::test::expectThrowWith<InputError>(
+      [&] {
+        registered3(h, [&](ddc::ContactPairSurfaces& pair) {
+          if (h.ownsMaster()) pair.masterFacets[0].nodes.pop_back();
+        });
+      },
+      {"contact pair 'P3'", "master facet 0 has 3 nodes; a Quad4 facet has 4"});
+}
+
 }  // namespace
