@@ -97,6 +97,7 @@ class FetiDpStrategy : public SolutionStrategy {
 
   void setUp(std::shared_ptr<Model> model, const std::function<void(const std::string&)>& progress) override {
     model_ = std::move(model);
+    progress_ = progress;
     const Mesh& mesh = model_->mesh();
     std::vector<std::string> report;
     const auto primal = selectPrimalNodes(*model_, &report);
@@ -191,6 +192,9 @@ class FetiDpStrategy : public SolutionStrategy {
     }
     out.solveSeconds = lap();
     out.iterations = info.iterations;
+    if (info.gmresAfterBreakdown)
+      progress_("    FETI-DP: CG broke down on the dual problem (indefinite tangent); GMRES solved it in " +
+                std::to_string(info.iterations) + " iterations in all (Solver/FETI-DP/Belos/GMRES on CG Breakdown)");
     out.feti = {info.localFactorSeconds, info.coarseFactorSeconds, info.dirichletFactorSeconds,
                 info.localSolveSeconds,  info.coarseSolveSeconds,  info.preconditionerSeconds};
     return out;
@@ -210,6 +214,7 @@ class FetiDpStrategy : public SolutionStrategy {
  private:
   std::shared_ptr<Model> model_;
   std::unique_ptr<FetiDpSolver> feti_;
+  std::function<void(const std::string&)> progress_;
   std::vector<SubdomainSystem> subdomains_;  ///< this rank's subdomain problems
   SubdomainSink sink_;
   Teuchos::RCP<Vector> b_;    ///< right-hand side without the multiplier rows

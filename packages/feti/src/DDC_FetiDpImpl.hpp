@@ -180,6 +180,7 @@ struct FetiDpSolver::Impl {
   PrimalConstraints primalChoice = PrimalConstraints::VerticesEdgesAndFaces;
   bool rotations = true;  // "Rotational Constraints"
   std::string belosType = "CG";
+  bool belosGmresOnBreakdown = true;
   double belosTol = 1e-10;
   int belosMaxIt = 500;
   int belosVerbosity = 0;

@@ -100,6 +100,10 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
     belos.set("Convergence Tolerance", 1e-10,
               "Relative residual ||d - F lambda|| / ||d|| at which Belos stops (its implicit residual).",
               between(0.0, 1.0));
+    belos.set("GMRES on CG Breakdown", true,
+              "With Solver Type = CG: when CG breaks down on a non-positive p.F.p (F indefinite: a tangent "
+              "past a limit point, e.g. a twisting contact body), solve the same system again with GMRES "
+              "instead of failing (reported per solve in the solver statistics, and as a progress line).");
     belos.set("Maximum Iterations", 500, "Iteration limit; reaching it without convergence is a SolverError.",
               greaterThan(0));
     belos.set("Verbosity", 0,
@@ -186,6 +190,7 @@ FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramete
     }
   }
   m.belosType = belos.get<std::string>("Solver Type");
+  m.belosGmresOnBreakdown = belos.get<bool>("GMRES on CG Breakdown");
   m.belosTol = belos.get<double>("Convergence Tolerance");
   m.belosMaxIt = belos.get<int>("Maximum Iterations");
   m.belosVerbosity = belos.get<int>("Verbosity");
@@ -351,27 +356,39 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
     bp->set("Verbosity", m.belosVerbosity);
     bp->set("Output Frequency", m.belosOutputFrequency);
     bp->setParameters(m.belosExtra);
-    auto solver = factory.create(m.belosType, bp);
-    auto problem = rcp(new Belos::LinearProblem<Scalar, MultiVector, Operator>(m.fOp, lambda, d));
-    if (!m.mOp.is_null()) problem->setLeftPrec(m.mOp);
-    problem->setProblem();
-    solver->setProblem(problem);
     Belos::ReturnType ret = Belos::Unconverged;
-    std::string failure;
-    try {
-      ret = solver->solve();
-    } catch (const std::exception& e) {
-      failure = e.what();
-    }
-    info.iterations = solver->getNumIters();
-    try {
-      info.relativeResidual = solver->achievedTol();
-    } catch (const std::exception&) {
-      info.relativeResidual = -1.0;
+    std::string failure, type = m.belosType;
+    auto run = [&] {
+      lambda->putScalar(0.0);
+      auto solver = factory.create(type, bp);
+      auto problem = rcp(new Belos::LinearProblem<Scalar, MultiVector, Operator>(m.fOp, lambda, d));
+      if (!m.mOp.is_null()) problem->setLeftPrec(m.mOp);
+      problem->setProblem();
+      solver->setProblem(problem);
+      failure.clear();
+      try {
+        ret = solver->solve();
+      } catch (const std::exception& e) {
+        failure = e.what();
+      }
+      info.iterations += solver->getNumIters();
+      try {
+        info.relativeResidual = solver->achievedTol();
+      } catch (const std::exception&) {
+        info.relativeResidual = -1.0;
+      }
+    };
+    run();
+    // CG needs F positive definite; an indefinite tangent (past a limit
+    // point) makes it break down on p.F.p <= 0. GMRES does not need it.
+    if (type == "CG" && m.belosGmresOnBreakdown && failure.find("non-positive value for p^H*A*p") != std::string::npos) {
+      type = "GMRES";
+      info.gmresAfterBreakdown = true;
+      run();
     }
     if (!failure.empty() || ret != Belos::Converged) {
       std::ostringstream os;
-      os << "FETI-DP: Belos " << m.belosType << " did not converge on F lambda = d (" << m.lmMap->getGlobalNumElements()
+      os << "FETI-DP: Belos " << type << " did not converge on F lambda = d (" << m.lmMap->getGlobalNumElements()
          << " Lagrange multipliers): " << info.iterations << " iterations, achieved relative residual "
          << std::scientific << info.relativeResidual << ", tolerance " << m.belosTol;
       if (!failure.empty()) os << "; Belos reported: " << failure;

@@ -131,6 +131,9 @@ class FetiDpSolver {
   struct Info {
     int iterations = 0;             ///< Belos iterations (0 without interface or for d = 0)
     double relativeResidual = 0.0;  ///< Belos' achieved relative residual ||d - F lambda|| / ||d||
+    /// CG broke down (F indefinite) and GMRES solved the system
+    /// (Belos/GMRES on CG Breakdown); iterations count both.
+    bool gmresAfterBreakdown = false;
     double setupSeconds = 0.0;      ///< the last numeric() (local + coarse + Dirichlet factorisations)
     double solveSeconds = 0.0;      ///< this solve(), all of it
     // breakdown of setupSeconds
