@@ -179,7 +179,8 @@ std::vector<Segment> chainSegments(std::vector<Segment> segs) {
 ///        points that are nodes of some cell become nodes (Hex20 leaves out
 ///        face and cell centres), numbered in grid order.
 /// \param sideNames name of the side set on the grid side index d = 0 (at
-///        2d) and index d = max (at 2d + 1), for d < g.dim. 2-D side sets
+///        2d) and index d = max (at 2d + 1), for d < g.dim; sides with the
+///        same name (3-D) make one side set. 2-D side sets
 ///        are chained (chainSegments), 3-D ones list faces in element order.
 /// \return the node number of every grid point (-1 if it is no node).
 std::vector<int> addStructuredBody(Mesh& mesh, int body, const Grid& g, CellType type, bool reversed,
@@ -217,8 +218,18 @@ std::vector<int> addStructuredBody(Mesh& mesh, int body, const Grid& g, CellType
       }
     }
   }
-  for (std::size_t side = 0; side < sides.size(); ++side)
+  // Grid sides of the same name make one side set (3-D only: the Sphere
+  // Octant's curved surface is three grid sides), in order of first mention.
+  for (std::size_t side = 0; side < sides.size(); ++side) {
+    const auto first = std::find(sideNames.begin(), sideNames.end(), sideNames[side]) - sideNames.begin();
+    if (static_cast<std::size_t>(first) != side) continue;
+    for (std::size_t other = side + 1; other < sides.size(); ++other)
+      if (sideNames[other] == sideNames[side]) {
+        DDC_ASSERT(g.dim == 3, "only 3-D side sets can merge grid sides");
+        sides[side].insert(sides[side].end(), sides[other].begin(), sides[other].end());
+      }
     mesh.addSideSet(body, sideNames[side], g.dim == 2 ? chainSegments(std::move(sides[side])) : std::move(sides[side]));
+  }
   mesh.addNodeSet(body, "all", std::move(all));
   return node;
 }
@@ -586,6 +597,78 @@ int generateCylindricalShellSector(Mesh& mesh, const std::string& bodyName, Cell
   addStructuredBody(mesh, body, g, type, /*reversed=*/s.end < s.start,
                     sectorPoints(g, s, params.get<double>("Origin Z"), params.get<double>("Axial Length")),
                     {"inner", "outer", "start", "end", "back", "front"});
+  return body;
+}
+
+
+// ------------------------------------------------------------ Sphere octant
+
+Teuchos::RCP<const Teuchos::ParameterList> SphereOctantGenerator::getValidParameters() {
+  static Teuchos::RCP<const Teuchos::ParameterList> valid;
+  if (valid.is_null()) {
+    auto pl = Teuchos::rcp(new Teuchos::ParameterList("Sphere Octant"));
+    for (int d = 0; d < 3; ++d)
+      pl->set(std::string("Center ") + kAxisName[d], 0.0, std::string(kAxisLower[d]) + " of the centre of the sphere",
+              finiteNumber());
+    pl->set("Radius", 1.0, "radius of the sphere", greaterThan(0.0));
+    pl->set("Elements", 8, "number of elements along each edge of the mapped cube, before refinement",
+            greaterThan(0));
+    pl->set("Progression", 1.0,
+            "ratio of each element's size to that of its neighbour nearer the pole, along every "
+            "grid direction (1: uniform; > 1 refines towards the pole, where a contact starts); "
+            "with Refinement k the ratio becomes Progression^(1/k), so refining keeps the grading",
+            between(1.0, 2.0));
+    setRefinementParameter(*pl, 3);
+    valid = pl;
+  }
+  return valid;
+}
+
+namespace {
+
+/// Graded parameters 0 = t_0 < t_1 < ... < t_n = 1 with t_{k+1} - t_k = r^k
+/// (t_1 - t_0), on the fine grid of `points` points (m = (points - 1) / n per
+/// cell; a cell's middle point at the mean of its ends).
+std::vector<double> gradedParameters(int n, int m, double r) {
+  std::vector<double> t(static_cast<std::size_t>(n * m + 1), 0.0);
+  double h = 1.0, sum = 0.0;
+  std::vector<double> vertex(n + 1, 0.0);
+  for (int k = 0; k < n; ++k, h *= r) vertex[k + 1] = (sum += h);
+  for (int k = 0; k <= n; ++k) vertex[k] /= sum;
+  vertex[n] = 1.0;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < m; ++j) t[k * m + j] = vertex[k] + (vertex[k + 1] - vertex[k]) * j / m;
+  t[n * m] = 1.0;
+  return t;
+}
+
+}  // namespace
+
+int generateSphereOctant(Mesh& mesh, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
+                         const std::string& path) {
+  validateLevel(params, *SphereOctantGenerator::getValidParameters(), path);
+  const int refinement = params.get<int>("Refinement");
+  const int n = refinedCount(params, "Elements", refinement, path);
+  const Grid g = makeGrid(type, {n, n, n}, "Sphere Octant", path);
+  const double radius = params.get<double>("Radius");
+  const Point c{params.get<double>("Center X"), params.get<double>("Center Y"), params.get<double>("Center Z")};
+  const auto t = gradedParameters(n, g.m, std::pow(params.get<double>("Progression"), 1.0 / refinement));
+  // Cube point p = (a, b, w) in [0,1] x [0,1] x [-1,0], graded towards the
+  // pole (0, 0, -1), mapped to the ball by p (1 - m + m^2/|p|), m = |p|_inf
+  // (see the header): the outer cube faces (m = 1) onto the sphere, the
+  // planes a = 0, b = 0, w = 0 onto themselves.
+  std::vector<Point> x(g.numPoints());
+  g.forEachPoint(1, [&](const Index& p) {
+    const double a = t[p[0]], b = t[p[1]], w = t[p[2]] - 1.0;
+    const double norm = std::sqrt(a * a + b * b + w * w);
+    const double m = std::max({a, b, -w});
+    const double scale = norm > 0.0 ? radius * (1.0 - m + m * m / norm) : 0.0;
+    x[g.index(p)] = {c[0] + scale * a, c[1] + scale * b, c[2] + scale * w};
+  });
+  const int body = mesh.beginBody(bodyName, type);
+  const auto node =
+      addStructuredBody(mesh, body, g, type, /*reversed=*/false, x, {"symmetry x", "sphere", "symmetry y", "sphere", "sphere", "top"});
+  mesh.addNodeSet(body, "pole", {node[g.index({{0, 0, 0}})]});
   return body;
 }
 

@@ -165,6 +165,41 @@ class CylindricalShellSectorGenerator {
   static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
 };
 
+/// One eighth of a ball: the part of the ball of radius Radius about (Center
+/// X, Center Y, Center Z) with x >= Center X, y >= Center Y and z <= Center Z,
+/// i.e. a quarter of a hemisphere with its pole (Center X, Center Y, Center Z
+/// - Radius) at the bottom. With the symmetry planes held it models a whole
+/// sphere or hemisphere pressed at its pole (Hertz contact,
+/// examples/hertz_sphere.xml) at a quarter of the cost.
+///
+/// The grid is the cube [0,1] x [0,1] x [-1,0] with (Elements * Refinement)
+/// cells per direction, graded towards the pole corner (0, 0, -1) by
+/// "Progression" (geometric cell sizes), mapped to the ball by
+/// p -> p (1 - m + m^2/|p|) with m = |p|_inf: each cube shell m = const
+/// onto a surface between that cube (centre) and the sphere of radius m
+/// (outside), so the outer cube faces (m = 1) go onto the sphere by radial
+/// projection and the planes a = 0, b = 0, w = 0 stay in place. Along a ray
+/// p = t q (|q|_inf = 1) the radius grows as t (1 - t + t/|q|), with
+/// derivative 2/|q| - 1 >= 2/sqrt 3 - 1 > 0 at the surface: unlike the
+/// spherified-cube map x = a sqrt(1 - b^2/2 - w^2/2 + b^2 w^2/3), whose
+/// Jacobian is singular at the cube's corners (inverted Hex8 cells there on
+/// graded meshes), no cell degenerates. The map is the identity along the
+/// axis through the pole, where the cells are near cubes.
+/// Every node (quadratic ones too) is mapped, so the surface nodes lie on the
+/// sphere. Hexahedra (Hex8, Hex20, Hex27) or Kuhn tetrahedra (Tet4, Tet10).
+///
+/// Nodes are numbered in grid order (x-like index fastest, from the pole
+/// upwards in the last index).
+///
+/// Sets: side sets "sphere" (the curved surface: the three outer cube faces),
+/// "symmetry x" (on the plane x = Center X), "symmetry y" (y = Center Y) and
+/// "top" (the flat face on z = Center Z), also node sets; node sets "pole"
+/// (one node) and "all".
+class SphereOctantGenerator {
+ public:
+  static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
+};
+
 /// Add a rectangle body named `bodyName` to `mesh`.
 /// \param params the generator's sublist; validated (this level) against
 ///        RectangleGenerator::getValidParameters(), defaults filled in.
@@ -205,5 +240,14 @@ int generateBox(Mesh& mesh, const std::string& bodyName, CellType type, Teuchos:
 ///         Axial Length / Axial Elements or a 2-D cell type.
 int generateCylindricalShellSector(Mesh& mesh, const std::string& bodyName, CellType type,
                                    Teuchos::ParameterList& params, const std::string& path);
+
+/// Add a sphere-octant body named `bodyName` to `mesh`.
+/// \param type Hex8, Hex20, Hex27, Tet4 or Tet10.
+/// \param params validated against SphereOctantGenerator::getValidParameters().
+/// \return the index of the new body.
+/// \throws InputError naming the path for unknown parameters, values out of
+///         range (Progression outside [1, 2]) or a 2-D cell type.
+int generateSphereOctant(Mesh& mesh, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
+                         const std::string& path);
 
 }  // namespace ddc

@@ -231,7 +231,8 @@ TEST(RectangleGenerator, ParameterErrorsNameThePath) {
 TEST(MeshGenerators, ValidParametersAreDocumented) {
   for (auto valid : {ddc::RectangleGenerator::getValidParameters(), ddc::AnnularSectorGenerator::getValidParameters(),
                      ddc::BoxGenerator::getValidParameters(),
-                     ddc::CylindricalShellSectorGenerator::getValidParameters()}) {
+                     ddc::CylindricalShellSectorGenerator::getValidParameters(),
+                     ddc::SphereOctantGenerator::getValidParameters()}) {
     EXPECT_GT(valid->numParams(), 0);
     for (auto it = valid->begin(); it != valid->end(); ++it)
       EXPECT_FALSE(valid->entry(it).docString().empty()) << valid->name(it) << " has no doc string";
@@ -841,4 +842,124 @@ TEST(CylindricalShellSectorGenerator, RefinementAndParameterErrors) {
               HasSubstr("the Cylindrical Shell Sector generator makes a 3-D body, but its element type Quad9 is 2-D"));
   EXPECT_THAT(inputErrorOf([&] { makeSector(CellType::Tet4, Sector{}, 2, 4); }),
               HasSubstr("the Annular Sector generator makes a 2-D body, but its element type Tet4 is 3-D"));
+}
+
+// ------------------------------------------------------------- sphere octant
+
+namespace {
+
+struct Octant {
+  double cx = 0.5, cy = -1.0, cz = 2.0, radius = 1.5;
+  /// Is x strictly inside the octant?
+  bool inside(const Vec3& x) const {
+    const double dx = x[0] - cx, dy = x[1] - cy, dz = x[2] - cz;
+    return dx > 0 && dy > 0 && dz < 0 && dx * dx + dy * dy + dz * dz < radius * radius;
+  }
+};
+
+Mesh makeOctant(CellType t, const Octant& o, int n, double progression, int refinement = 1) {
+  Mesh m;
+  Teuchos::ParameterList p;
+  p.set("Center X", o.cx);
+  p.set("Center Y", o.cy);
+  p.set("Center Z", o.cz);
+  p.set("Radius", o.radius);
+  p.set("Elements", n);
+  p.set("Progression", progression);
+  p.set("Refinement", refinement);
+  ddc::generateSphereOctant(m, "Ball", t, p, "Mesh/Bodies/Ball/Sphere Octant");
+  return m;
+}
+
+const std::vector<std::string> kOctantSides = {"Ball/sphere", "Ball/symmetry x", "Ball/symmetry y", "Ball/top"};
+
+}  // namespace
+
+TEST(SphereOctantGenerator, EveryCellTypeOnTheSphereOutwardConforming) {
+  const Octant o;
+  for (CellType t : k3DTypes)
+    for (double progression : {1.0, 1.4}) {
+      const Mesh m = makeOctant(t, o, 4, progression);
+      EXPECT_NO_THROW(m.check()) << ddc::cellTypeName(t);
+      EXPECT_EQ(m.numElements(), (isTet(t) ? 6 : 1) * 64);
+      EXPECT_EQ(m.numNodes(), boxNodes(t, 4, 4, 4));
+      double minDet;
+      const double volume = totalVolume(m, &minDet);
+      EXPECT_GT(minDet, 0.0) << ddc::cellTypeName(t) << " progression " << progression;
+      // Chords cut the sphere: the volume lies below the octant's, by less
+      // than the coarse 4 x 4 x 4 linear mesh's 4 %.
+      const double exact = kPi * o.radius * o.radius * o.radius / 6.0;
+      EXPECT_LT(volume, exact * (1.0 + ddc::test::kRoundoff)) << ddc::cellTypeName(t);
+      EXPECT_GT(volume, 0.96 * exact) << ddc::cellTypeName(t);
+      const auto r = [&](int nd) {
+        const auto& x = m.coord(nd);
+        return std::sqrt((x[0] - o.cx) * (x[0] - o.cx) + (x[1] - o.cy) * (x[1] - o.cy) + (x[2] - o.cz) * (x[2] - o.cz));
+      };
+      for (int nd : m.nodeSet("Ball/sphere")) EXPECT_NEAR(r(nd), o.radius, ddc::test::kRoundoff);
+      for (int nd : m.nodeSet("Ball/symmetry x")) EXPECT_EQ(m.coord(nd)[0], o.cx);
+      for (int nd : m.nodeSet("Ball/symmetry y")) EXPECT_EQ(m.coord(nd)[1], o.cy);
+      for (int nd : m.nodeSet("Ball/top")) EXPECT_EQ(m.coord(nd)[2], o.cz);
+      for (int nd = 0; nd < m.numNodes(); ++nd) EXPECT_LE(r(nd), o.radius + ddc::test::kRoundoff);
+      ASSERT_EQ(m.nodeSet("Ball/pole").size(), 1u);
+      const auto& pole = m.coord(m.nodeSet("Ball/pole")[0]);
+      EXPECT_EQ(pole[0], o.cx);
+      EXPECT_EQ(pole[1], o.cy);
+      EXPECT_NEAR(pole[2], o.cz - o.radius, ddc::test::kRoundoff);
+      // The three outer cube faces make one side set.
+      EXPECT_EQ(m.sideSet("Ball/sphere").size(), 3u * 16u * facesPerCellFace(t));
+      EXPECT_EQ(m.sideSet("Ball/top").size(), 16u * facesPerCellFace(t));
+      auto inside = [&](const Vec3& x) { return o.inside(x); };
+      for (const auto& name : kOctantSides) expectOutwardFaces(m, name, inside);
+      expectConforming(m, kOctantSides);
+    }
+}
+
+TEST(SphereOctantGenerator, VolumeConvergesAndProgressionGradesTowardsThePole) {
+  const Octant o;
+  const double exact = kPi * o.radius * o.radius * o.radius / 6.0;
+  double previous = 1.0;
+  for (int refinement : {1, 2, 4}) {
+    double minDet;
+    const double error = std::abs(totalVolume(makeOctant(CellType::Hex8, o, 3, 1.0, refinement), &minDet) - exact) / exact;
+    std::printf("[ measured ] Hex8 sphere octant %d^3: relative volume error %.2e\n", 3 * refinement, error);
+    // Chords of a smooth surface: second order, the error at least halves.
+    EXPECT_LT(error, 0.5 * previous);
+    previous = error;
+  }
+  // Graded: the cell at the pole is the smallest; its vertex next to the
+  // pole along x is the cube point (f, 0, -1), f = (r - 1)/(r^n - 1),
+  // projected onto the sphere.
+  const double r = 1.5;
+  const Mesh m = makeOctant(CellType::Hex8, o, 4, r);
+  const auto& pole = m.coord(m.nodeSet("Ball/pole")[0]);
+  double nearest = 1e30;
+  for (int nd : m.nodeSet("Ball/symmetry y")) {
+    const auto& x = m.coord(nd);
+    if (x[0] > o.cx && std::abs(x[1] - o.cy) == 0.0) nearest = std::min(nearest, std::hypot(x[0] - pole[0], x[2] - pole[2]));
+  }
+  const double f = (r - 1.0) / (std::pow(r, 4) - 1.0), len = std::hypot(f, 1.0);
+  EXPECT_NEAR(nearest, o.radius * std::hypot(f / len, 1.0 - 1.0 / len), ddc::test::kRoundoff);
+  // Refinement keeps the grading (Progression^(1/k) over k times the cells)
+  // and every cell valid, also where three cube faces meet on the sphere.
+  for (int refinement : {2, 4}) {
+    const Mesh fine = makeOctant(CellType::Hex8, o, 4, r, refinement);
+    EXPECT_EQ(fine.numElements(), 64 * refinement * refinement * refinement);
+    double minDet;
+    totalVolume(fine, &minDet);
+    EXPECT_GT(minDet, 0.0) << "refinement " << refinement;
+    EXPECT_NO_THROW(fine.check()) << "refinement " << refinement;
+  }
+}
+
+TEST(SphereOctantGenerator, ParameterErrors) {
+  const std::string path = "Mesh/Bodies/Ball/Sphere Octant";
+  EXPECT_THAT(inputErrorOf([&] { makeOctant(CellType::Hex8, Octant{}, 4, 2.5); }),
+              HasSubstr(path + "/Progression"));
+  EXPECT_THAT(inputErrorOf([&] { makeOctant(CellType::Hex8, Octant{}, 0, 1.0); }),
+              HasSubstr(path + "/Elements' must be > 0"));
+  Octant o;
+  o.radius = -1.0;
+  EXPECT_THAT(inputErrorOf([&] { makeOctant(CellType::Hex8, o, 4, 1.0); }), HasSubstr(path + "/Radius' must be > 0"));
+  EXPECT_THAT(inputErrorOf([&] { makeOctant(CellType::Quad4, Octant{}, 4, 1.0); }),
+              HasSubstr("the Sphere Octant generator makes a 3-D body, but its element type Quad4 is 2-D"));
 }
