@@ -35,13 +35,14 @@ namespace {
 using PL = Teuchos::ParameterList;
 
 const std::vector<std::string> kGenerators = {"Rectangle", "Annular Sector", "Box", "Cylindrical Shell Sector",
-                                              "Gmsh"};
+                                              "Sphere Octant", "Gmsh"};
 
 Teuchos::RCP<const PL> generatorValidParameters(const std::string& g) {
   if (g == "Rectangle") return RectangleGenerator::getValidParameters();
   if (g == "Annular Sector") return AnnularSectorGenerator::getValidParameters();
   if (g == "Box") return BoxGenerator::getValidParameters();
   if (g == "Cylindrical Shell Sector") return CylindricalShellSectorGenerator::getValidParameters();
+  if (g == "Sphere Octant") return SphereOctantGenerator::getValidParameters();
   return GmshReader::getValidParameters();
 }
 
@@ -141,6 +142,10 @@ Teuchos::RCP<PL> outputValidParameters() {
   pl->set("VTK Interval", 1, "Write VTK every this many converged steps (the last step is always written).",
           greaterThan(0));
   pl->set("Progress", true, "Print one progress line per converged step on rank 0.");
+  pl->set("Contact Nodes", false,
+          "Write contact_nodes.csv: one row per contact slave node at the last converged step (pair, node, "
+          "reference x y z, gap, multiplier, tributary area, pressure, active), for contact-pressure "
+          "distributions such as Hertz's (doc/contact.md).");
   return pl;
 }
 
@@ -215,6 +220,8 @@ std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const Elemen
       generateBox(*mesh, name, cell, gp, path + "/Box");
     else if (gen == "Cylindrical Shell Sector")
       generateCylindricalShellSector(*mesh, name, cell, gp, path + "/Cylindrical Shell Sector");
+    else if (gen == "Sphere Octant")
+      generateSphereOctant(*mesh, name, cell, gp, path + "/Sphere Octant");
     else
       readGmshBody(*mesh, name, cell, gp, path + "/Gmsh", baseDirectory);
   }
@@ -235,6 +242,11 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
     validateLevel(params.sublist(s), valid->sublist(s), s);
   DDC_INPUT_REQUIRE(params.isSublist("Mesh"), "sublist 'Mesh' is required");
   progressEnabled_ = params.sublist("Output").get<bool>("Progress");
+  DDC_INPUT_REQUIRE(!params.sublist("Output").get<bool>("Contact Nodes") ||
+                        (params.isSublist("Contact") && params.sublist("Contact").isSublist("Pairs") &&
+                         params.sublist("Contact").sublist("Pairs").numParams() > 0),
+                    "parameter 'Output/Contact Nodes' is true, but the deck has no contact pairs "
+                    "(Contact/Pairs): there are no contact nodes to write");
   // Every rank reads the mesh and map files named in the parameters: a file
   // missing or different on some ranks must fail all ranks alike.
   requireSameFilesOnEveryRank(*comm_, namedInputFiles(params, baseDirectory));
@@ -545,6 +557,28 @@ double Analysis::externalWorkIncrement(const Vector& fint0, const Vector& u0, do
   return sum;
 }
 
+void Analysis::writeContactNodes(const std::string& path, const std::vector<ContactSlot>& slots) const {
+  std::string error;
+  if (comm_->getRank() == 0) {
+    std::ostringstream os;
+    os << "pair,node,x,y,z,gap,multiplier,tributary_area,pressure,active\n";
+    os.precision(17);
+    for (const auto& s : slots) {
+      const auto& X = model_->mesh().coord(s.slaveNode);
+      os << s.pair << ',' << s.slaveNode << ',' << X[0] << ',' << X[1] << ',' << (model_->mesh().dim() == 3 ? X[2] : 0.0)
+         << ',' << (s.paired() ? s.gap : 0.0) << ',' << (s.active ? s.state.multiplier : 0.0) << ','
+         << s.tributaryLength << ',' << s.pressure() << ',' << (s.active ? 1 : 0) << '\n';
+    }
+    try {
+      writeFileAtomically(path, os.str());
+    } catch (const OutputError& e) {
+      error = e.what();
+    }
+  }
+  error = firstErrorOnAnyRank(*comm_, error);
+  if (!error.empty()) throw OutputError(error);
+}
+
 void Analysis::run(const std::string& outputDirectory) {
   if (outputDirectory.empty()) {
     runSteps(nullptr);
@@ -594,6 +628,10 @@ void Analysis::runSteps(OutputDirectory* dir) {
     if (!error.empty()) throw OutputError(error);
     if (out.get<bool>("VTK")) vtk = std::make_unique<VtkWriter>(comm_, dir->path(), "solution.pvd");
   }
+  // The contact state of the last converged step, for contact_nodes.csv
+  // (copied before the step-end re-pairing changes the slots).
+  const bool contactNodes = dir && contact && out.get<bool>("Contact Nodes");
+  std::vector<ContactSlot> convergedSlots;
   auto writeVtk = [&](int step, double lambda) {
     if (vtk) writeVtkStep(*vtk, *model_, *u_, step, lambda);
   };
@@ -654,6 +692,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
         // after re-pairing, the decomposed slots hold the next step's normals.
         model_->updateActiveSet(*u_);
         const auto cs = model_->contactSummary();
+        if (contactNodes) convergedSlots = model_->contactSlots();
         model_->updatePairing(*u_, true, decomposed);
         rec.activeContacts = cs.active;
         rec.contactForce[0] = cs.force[0];
@@ -679,6 +718,11 @@ void Analysis::runSteps(OutputDirectory* dir) {
         std::snprintf(buf, sizeof buf, "  contacts %d  force (%.4g, %.4g)", rec.activeContacts, rec.contactForce[0],
                       rec.contactForce[1]);
         line += buf;
+        // z after the 2-D pair, so the line reads the same in 2-D.
+        if (model_->mesh().dim() == 3) {
+          std::snprintf(buf, sizeof buf, " z %.4g", rec.contactForce[2]);
+          line += buf;
+        }
       }
       progress(line);
       const bool last = n == nsteps && lambda >= target - 1e-14 * std::abs(finalLambda);
@@ -694,6 +738,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
        << ", Load Stepping/Final Load Factor = " << finalLambda << "), so there are no results";
     throw SolverError(os.str());
   }
+  if (contactNodes) writeContactNodes(dir->path() + "/contact_nodes.csv", convergedSlots);
   if (contact) {
     const auto c = model_->searchCounters();
     std::ostringstream os;

@@ -94,6 +94,9 @@ class Analysis {
 
  private:
   void runSteps(OutputDirectory* dir);
+  /// contact_nodes.csv (Output/Contact Nodes): one row per slot, written by
+  /// rank 0 from the replicated slots; errors agreed on every rank.
+  void writeContactNodes(const std::string& path, const std::vector<ContactSlot>& slots) const;
   bool solveIncrement(double lambda0, double lambda1, StepRecord& rec);
   double externalWorkIncrement(const Vector& fint0, const Vector& u0, double lambda0, const Vector& fint1,
                                const Vector& u1, double lambda1) const;

@@ -1,0 +1,232 @@
+// ddcontact-hertz: a ddcontact run of a sphere pressed on a block against
+// Hertz's solution (doc/contact.md, "Hertz contact"; Johnson, Contact
+// Mechanics, 1985, section 4.2).
+//
+//   ddcontact-hertz OUT_DIR [--sphere BODY] [--block BODY] [--profile FILE]
+//                   [--tolerance T]
+//
+// It reads OUT_DIR/parameters.xml (the run's validated parameters) and
+// OUT_DIR/contact_nodes.csv (Output/Contact Nodes = true). The sphere body
+// must be a "Sphere Octant" (a quarter of a hemisphere, pole down, with the
+// symmetry planes held: the whole contact force is 4 times the model's); its
+// radius, axis and the two bodies' Young's moduli and Poisson's ratios give
+// the theory for the contact force F the run transmits:
+//
+//   1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2,  a = (3 F R / (4 E*))^(1/3),
+//   p0 = 3 F / (2 pi a^2),  p(r) = p0 sqrt(1 - r^2/a^2).
+//
+// From the run: F = sum of the active multipliers' magnitudes (times 4); p0
+// = the pressure at the slave node on the axis; a from a least-squares fit of
+// p^2 = p0^2 (1 - r^2/a^2) to the active nodes' pressures (r from the axis,
+// reference coordinates), and the bracket [outermost active node, nearest
+// inactive node beyond it]. --profile writes r, p_fe, p_hertz per slave node.
+//
+// Exit status: 0 done, 1 --tolerance given and |a or p0 relative error| > T,
+// 2 bad input (usage, missing / malformed files, a deck that is no Hertz
+// case, no active node on the axis).
+#include <Teuchos_ParameterList.hpp>
+#include <Teuchos_XMLParameterListCoreHelpers.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+const char* kUsage =
+    "usage: ddcontact-hertz OUT_DIR [--sphere BODY] [--block BODY] [--profile FILE] [--tolerance T]\n"
+    "\n"
+    "Compares a ddcontact run of a sphere on a block (examples/hertz_sphere.xml) with Hertz's\n"
+    "solution for the contact force the run transmits (doc/contact.md, \"Hertz contact\").\n"
+    "\n"
+    "  OUT_DIR         the run's output directory: parameters.xml and contact_nodes.csv\n"
+    "                  (Output/Contact Nodes = true)\n"
+    "  --sphere BODY   the sphere body, a Sphere Octant (default: Sphere)\n"
+    "  --block BODY    the block body (default: Block)\n"
+    "  --profile FILE  write r,p_fe,p_hertz for every slave node\n"
+    "  --tolerance T   exit 1 if the contact radius or peak pressure differs from Hertz's by\n"
+    "                  more than T (relative)\n";
+
+struct BadInput : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+constexpr double kPi = 3.14159265358979323846;
+/// The Sphere Octant is a quarter of a hemisphere: the whole sphere's
+/// contact force is 4 times the model's.
+constexpr double kQuarterModel = 4.0;
+/// A slave node "on the axis": within this fraction of the radius of it
+/// (the generator puts the pole node exactly on it).
+constexpr double kOnAxis = 1e-9;
+
+struct Row {
+  double r = 0, multiplier = 0, pressure = 0;
+  bool active = false;
+};
+
+struct Material {
+  double E = 0, nu = 0;
+};
+
+Material materialOf(const Teuchos::ParameterList& deck, const std::string& body, const std::string& file) {
+  const std::string path = "Mesh/Bodies/" + body + "/Element/Material";
+  const auto& bodies = deck.sublist("Mesh").sublist("Bodies");
+  if (!bodies.isSublist(body)) throw BadInput(file + ": no body '" + body + "' (use --sphere / --block)");
+  const auto& m = bodies.sublist(body).sublist("Element").sublist("Material");
+  if (!m.isParameter("Young's Modulus") || !m.isParameter("Poisson's Ratio"))
+    throw BadInput(file + ": '" + path + "' has no Young's Modulus / Poisson's Ratio");
+  return {m.get<double>("Young's Modulus"), m.get<double>("Poisson's Ratio")};
+}
+
+std::vector<Row> readContactNodes(const std::string& file, double cx, double cy) {
+  std::ifstream in(file);
+  if (!in) throw BadInput("cannot read '" + file + "' (run with Output/Contact Nodes = true)");
+  std::string line;
+  std::getline(in, line);
+  const std::string header = "pair,node,x,y,z,gap,multiplier,tributary_area,pressure,active";
+  if (line != header) throw BadInput(file + ": header is not '" + header + "'");
+  std::vector<Row> rows;
+  int lineNo = 1;
+  while (std::getline(in, line)) {
+    ++lineNo;
+    std::istringstream ls(line);
+    std::vector<double> v;
+    std::string cell;
+    while (std::getline(ls, cell, ',')) {
+      char* end = nullptr;
+      const double d = std::strtod(cell.c_str(), &end);
+      if (cell.empty() || *end != '\0') throw BadInput(file + ":" + std::to_string(lineNo) + ": not a number: '" + cell + "'");
+      v.push_back(d);
+    }
+    if (v.size() != 10) throw BadInput(file + ":" + std::to_string(lineNo) + ": expected 10 columns");
+    rows.push_back({std::hypot(v[2] - cx, v[3] - cy), v[6], v[8], v[9] != 0.0});
+  }
+  if (rows.empty()) throw BadInput(file + ": no slave nodes");
+  return rows;
+}
+
+int run(int argc, char** argv) {
+  std::string dir, sphere = "Sphere", block = "Block", profile;
+  double tolerance = -1.0;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw BadInput("option " + a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "-h" || a == "--help") {
+      std::cout << kUsage;
+      return 0;
+    } else if (a == "--sphere") {
+      sphere = value();
+    } else if (a == "--block") {
+      block = value();
+    } else if (a == "--profile") {
+      profile = value();
+    } else if (a == "--tolerance") {
+      const std::string t = value();
+      char* end = nullptr;
+      tolerance = std::strtod(t.c_str(), &end);
+      if (t.empty() || *end != '\0' || !(tolerance > 0)) throw BadInput("--tolerance needs a number > 0, got '" + t + "'");
+    } else if (!a.empty() && a[0] == '-') {
+      throw BadInput("unknown option '" + a + "'");
+    } else if (dir.empty()) {
+      dir = a;
+    } else {
+      throw BadInput("more than one output directory ('" + dir + "', '" + a + "')");
+    }
+  }
+  if (dir.empty()) throw BadInput("no output directory given");
+
+  const std::string xml = dir + "/parameters.xml";
+  if (!std::ifstream(xml)) throw BadInput("cannot read '" + xml + "'");
+  Teuchos::RCP<Teuchos::ParameterList> deck;
+  try {
+    deck = Teuchos::getParametersFromXmlFile(xml);
+  } catch (const std::exception& e) {
+    throw BadInput(xml + ": " + e.what());
+  }
+  const auto& bodies = deck->sublist("Mesh").sublist("Bodies");
+  if (!bodies.isSublist(sphere)) throw BadInput(xml + ": no body '" + sphere + "' (use --sphere)");
+  const auto& sb = bodies.sublist(sphere);
+  if (!sb.isParameter("Generator") || sb.get<std::string>("Generator") != "Sphere Octant")
+    throw BadInput(xml + ": 'Mesh/Bodies/" + sphere + "/Generator' must be 'Sphere Octant'");
+  const auto& oct = sb.sublist("Sphere Octant");
+  const double R = oct.get<double>("Radius"), cx = oct.get<double>("Center X"), cy = oct.get<double>("Center Y");
+  const Material m1 = materialOf(*deck, sphere, xml), m2 = materialOf(*deck, block, xml);
+
+  const auto rows = readContactNodes(dir + "/contact_nodes.csv", cx, cy);
+  double force = 0.0, p0 = -1.0, rActive = 0.0;
+  int active = 0;
+  for (const Row& r : rows)
+    if (r.active) {
+      force += std::abs(r.multiplier);
+      ++active;
+      rActive = std::max(rActive, r.r);
+      if (r.r <= kOnAxis * R) p0 = r.pressure;
+    }
+  if (p0 < 0) throw BadInput(dir + "/contact_nodes.csv: no active slave node on the sphere's axis");
+  double rInactive = std::numeric_limits<double>::infinity();
+  for (const Row& r : rows)
+    if (!r.active && r.r > rActive) rInactive = std::min(rInactive, r.r);
+  // Least squares of p^2 = A + B r^2 over the active nodes.
+  double s1 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (const Row& r : rows)
+    if (r.active) {
+      const double x = r.r * r.r, y = r.pressure * r.pressure;
+      s1 += 1, sx += x, sy += y, sxx += x * x, sxy += x * y;
+    }
+  const double det = s1 * sxx - sx * sx;
+  const double B = det > 0 ? (s1 * sxy - sx * sy) / det : 0.0, A = det > 0 ? (sy - B * sx) / s1 : 0.0;
+  const double aFit = (A > 0 && B < 0) ? std::sqrt(-A / B) : std::nan("");
+
+  force *= kQuarterModel;
+  const double Estar = 1.0 / ((1.0 - m1.nu * m1.nu) / m1.E + (1.0 - m2.nu * m2.nu) / m2.E);
+  const double a = std::cbrt(3.0 * force * R / (4.0 * Estar));
+  const double p0Hertz = 3.0 * force / (2.0 * kPi * a * a);
+  const double errA = (aFit - a) / a, errP = (p0 - p0Hertz) / p0Hertz;
+
+  std::printf("Hertz contact: sphere '%s' R = %g (E = %g, nu = %g) on '%s' (E = %g, nu = %g): E* = %.6g\n",
+              sphere.c_str(), R, m1.E, m1.nu, block.c_str(), m2.E, m2.nu, Estar);
+  std::printf("contact force F = %.6g (4 x the quarter model), %d active slave nodes, a/R = %.4f\n", force, active, a / R);
+  std::printf("%-22s %12s %12s %10s\n", "quantity", "ddcontact", "Hertz", "rel. error");
+  std::printf("%-22s %12.6g %12.6g %+10.4f\n", "contact radius a (fit)", aFit, a, errA);
+  std::printf("%-22s %12.6g %12.6g %+10.4f\n", "peak pressure p0", p0, p0Hertz, errP);
+  std::printf("active nodes reach r = %.6g; the next inactive node is at r = %.6g\n", rActive, rInactive);
+
+  if (!profile.empty()) {
+    std::ofstream out(profile);
+    out << "r,p_fe,p_hertz\n";
+    out.precision(10);
+    for (const Row& r : rows) out << r.r << ',' << r.pressure << ',' << (r.r < a ? p0Hertz * std::sqrt(1 - r.r * r.r / (a * a)) : 0.0) << '\n';
+    if (!out.flush()) throw BadInput("cannot write '" + profile + "'");
+  }
+  if (tolerance > 0) {
+    const bool ok = std::abs(errA) <= tolerance && std::abs(errP) <= tolerance;
+    std::printf("check: |errors| <= %g: %s\n", tolerance, ok ? "passed" : "FAILED");
+    return ok ? 0 : 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const BadInput& e) {
+    std::cerr << "ddcontact-hertz: " << e.what() << "\n" << (argc < 2 ? kUsage : "");
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "ddcontact-hertz: " << e.what() << "\n";
+    return 2;
+  }
+}
