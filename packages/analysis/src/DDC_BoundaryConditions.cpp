@@ -2,13 +2,26 @@
 
 #include <cctype>
 #include <cmath>
+#include <sstream>
 
 #include "DDC_Error.hpp"
 #include "DDC_Parameters.hpp"
 
 namespace ddc {
 
-double DisplacementCondition::prescribed(int c, const std::array<double, 3>& X, double lambda) const {
+double DisplacementCondition::scale(double lambda) const {
+  if (curve.empty()) return lambda;
+  if (lambda <= curve.front()[0]) return curve.front()[1];
+  for (std::size_t i = 1; i < curve.size(); ++i)
+    if (lambda <= curve[i][0]) {
+      const double t = (lambda - curve[i - 1][0]) / (curve[i][0] - curve[i - 1][0]);
+      return (1.0 - t) * curve[i - 1][1] + t * curve[i][1];
+    }
+  return curve.back()[1];
+}
+
+double DisplacementCondition::prescribed(int c, const std::array<double, 3>& X, double loadFactor) const {
+  const double lambda = scale(loadFactor);
   const double d[3] = {X[0] - center[0], X[1] - center[1], X[2] - center[2]};
   double u = lambda * (value[c] + gradient[c][0] * d[0] + gradient[c][1] * d[1] + gradient[c][2] * d[2]);
   if (angleRadians != 0.0) {
@@ -24,6 +37,29 @@ double DisplacementCondition::prescribed(int c, const std::array<double, 3>& X, 
 
 namespace {
 const char* const kAxes[3] = {"X", "Y", "Z"};
+
+/// "λ s, λ s, ..." -> points; at least two, λ strictly increasing, all finite.
+std::vector<std::array<double, 2>> parseLoadCurve(const std::string& text, const std::string& where) {
+  std::vector<std::array<double, 2>> points;
+  std::istringstream all(text);
+  std::string item;
+  const std::string expected = "expected pairs 'load-factor value' separated by commas, e.g. '0 0, 0.25 1, 1 1'";
+  while (std::getline(all, item, ',')) {
+    std::istringstream one(item);
+    std::array<double, 2> p{};
+    std::string rest;
+    DDC_INPUT_REQUIRE((one >> p[0] >> p[1]) && !(one >> rest) && std::isfinite(p[0]) && std::isfinite(p[1]),
+                      "parameter '" << where << "' = '" << text << "': cannot read '" << item << "' ("
+                                    << expected << ")");
+    DDC_INPUT_REQUIRE(points.empty() || p[0] > points.back()[0],
+                      "parameter '" << where << "' = '" << text << "': the load factors must increase strictly ("
+                                    << p[0] << " follows " << points.back()[0] << ")");
+    points.push_back(p);
+  }
+  DDC_INPUT_REQUIRE(points.size() >= 2, "parameter '" << where << "' = '" << text << "': a load curve needs at least "
+                                                         "two points (" << expected << ")");
+  return points;
+}
 }  // namespace
 
 Teuchos::RCP<const Teuchos::ParameterList> BoundaryConditions::getValidParameters() {
@@ -51,6 +87,11 @@ Teuchos::RCP<const Teuchos::ParameterList> BoundaryConditions::getValidParameter
               "Displacement: component of the displacement gradient H at load factor 1 (Gradient XY = "
               "du_x/dY); adds H (X - centre) to the values, for affine fields. Entries with Z: 3-D only.",
               finiteNumber());
+  pl->set("Load Curve", "",
+          "Displacement: piecewise-linear factor s(load factor) of the values, gradient and angle, as "
+          "points 'load-factor value' separated by commas, load factors strictly increasing, constant "
+          "beyond the first and last point; e.g. '0 0, 0.25 1, 1 1' applies the values by load factor "
+          "0.25 and holds them, '0 0, 0.25 0, 1 1' starts them at 0.25. Empty: s = the load factor.");
   pl->set("Rotation Angle", 0.0,
           "Displacement: rigid rotation (degrees, counter-clockwise about the rotation axis) about the centre at "
           "load factor 1, added to the values; the angle grows linearly with the load factor. Needs every "
@@ -126,6 +167,8 @@ BoundaryConditions BoundaryConditions::fromParameters(Teuchos::ParameterList& li
         d.center[c] = p.get<double>(std::string("Center ") + kAxes[c]);
         for (int k = 0; k < 3; ++k) d.gradient[c][k] = p.get<double>(std::string("Gradient ") + kAxes[c] + kAxes[k]);
       }
+      if (!p.get<std::string>("Load Curve").empty())
+        d.curve = parseLoadCurve(p.get<std::string>("Load Curve"), where + "/Load Curve");
       d.angleRadians = p.get<double>("Rotation Angle") * M_PI / 180.0;
       const double ax[3] = {p.get<double>("Rotation Axis X"), p.get<double>("Rotation Axis Y"),
                             p.get<double>("Rotation Axis Z")};
@@ -154,6 +197,9 @@ BoundaryConditions BoundaryConditions::fromParameters(Teuchos::ParameterList& li
         for (const char* b : kAxes) forbid(std::string("Gradient ") + a + b);
       }
       for (const char* key : {"Rotation Angle", "Rotation Axis X", "Rotation Axis Y", "Rotation Axis Z"}) forbid(key);
+      DDC_INPUT_REQUIRE(p.get<std::string>("Load Curve").empty(),
+                        "parameter '" << where << "/Load Curve' does not apply to Type = Traction (tractions "
+                                      << "grow with the load factor)");
       // "XY" was the default in 2-D before "All"; decks that spell it out keep working.
       const std::string comps = p.isParameter("Components") ? p.get<std::string>("Components") : "All";
       DDC_INPUT_REQUIRE(comps == "All" || (dim == 2 && comps == "XY"),

@@ -12,7 +12,12 @@
 namespace ddc {
 
 /// A prescribed displacement on a node set:
-///   u(X, λ) = λ·(v + H (X − c)) + (R(λ·θ, a) − I)(X − c)
+///   u(X, λ) = s·(v + H (X − c)) + (R(s·θ, a) − I)(X − c),  s = s(λ),
+/// with s(λ) = λ, or the piecewise-linear load curve through the points
+/// (λ_i, s_i) of "Load Curve" (constant beyond its first and last point):
+/// e.g. "0 0, 0.25 1, 1 1" applies the whole value by λ = 0.25 and holds it,
+/// "0 0, 0.25 0, 1 1" starts it at λ = 0.25 (a press, then a slide:
+/// examples/ironing_3d.xml).
 /// on the components selected: v the values, H the displacement gradient
 /// (affine fields: patch tests, homogeneous deformations), R(λ·θ, a) a
 /// rigid rotation by the angle λ·θ about the axis a through the centre c
@@ -27,6 +32,10 @@ struct DisplacementCondition {
   double angleRadians = 0.0;
   double axis[3] = {0.0, 0.0, 1.0};  ///< unit rotation axis
   double center[3] = {0.0, 0.0, 0.0};
+  /// Load curve points (λ_i strictly increasing, s_i); empty: s(λ) = λ.
+  std::vector<std::array<double, 2>> curve;
+  /// s(λ): the factor of the values, gradient and angle at load factor λ.
+  double scale(double lambda) const;
   /// Prescribed value of component `c` at reference position X and load factor λ.
   double prescribed(int c, const std::array<double, 3>& X, double lambda) const;
 };

@@ -191,7 +191,11 @@ void Model::buildConstraints() {
           // Two conditions on one DOF must agree (e.g. shared corner of two fixed edges).
           const auto& other = bcs_.displacements[src.first];
           const auto& X = mesh.coord(n);
-          for (double lam : {0.5, 1.0}) {
+          // Sampled at 0.5, 1 and every load-curve point of either.
+          std::vector<double> samples = {0.5, 1.0};
+          for (const auto* d : {&other, &bc})
+            for (const auto& pt : d->curve) samples.push_back(pt[0]);
+          for (double lam : samples) {
             const double a = other.prescribed(c, X, lam), v = bc.prescribed(c, X, lam);
             DDC_INPUT_REQUIRE(std::abs(a - v) <= 1e-12 * (1.0 + std::abs(a) + std::abs(v)),
                               "boundary conditions '" << other.name << "' and '" << bc.name

@@ -134,4 +134,59 @@ TEST(BoundaryConditions, RotationNeedsEveryComponentAndAnAxis) {
   EXPECT_THAT(errorOf(m, r), HasSubstr("'Boundary Conditions/C/Value Z' is set but Components = XY does not prescribe Z"));
 }
 
+// A load curve scales values, gradient and angle by s(λ), piecewise linear
+// through its points and constant beyond them: a press then a slide.
+TEST(BoundaryConditions, LoadCurveScalesTheWholeField) {
+  const auto m = oneCell(CellType::Hex8);
+  PL press;
+  press.set("Components", "Y");
+  press.set("Value Y", -1.4);
+  press.set("Load Curve", "0 0, 0.25 1, 1 1");
+  const auto p = parse(m, press).displacements.at(0);
+  const std::array<double, 3> X{0.5, 0.5, 0.5};
+  EXPECT_NEAR(p.prescribed(1, X, 0.125), -0.7, kRoundoff);
+  EXPECT_NEAR(p.prescribed(1, X, 0.25), -1.4, kRoundoff);
+  EXPECT_NEAR(p.prescribed(1, X, 0.6), -1.4, kRoundoff);
+  EXPECT_NEAR(p.prescribed(1, X, 2.0), -1.4, kRoundoff);  // constant beyond the last point
+  PL slide;
+  slide.set("Components", "X");
+  slide.set("Value X", 4.0);
+  slide.set("Gradient XY", 2.0);
+  slide.set("Load Curve", "0 0,0.25 0,  1 1");
+  const auto s = parse(m, slide).displacements.at(0);
+  EXPECT_EQ(s.prescribed(0, X, 0.2), 0.0);
+  EXPECT_NEAR(s.prescribed(0, X, 0.625), 0.5 * (4.0 + 2.0 * 0.5), kRoundoff);
+  // No curve: s = λ, as before.
+  PL plain;
+  plain.set("Value X", 3.0);
+  EXPECT_NEAR(parse(m, plain).displacements.at(0).prescribed(0, X, 0.3), 0.9, kRoundoff);
+  // The angle too: a quarter turn by λ = 0.5, held.
+  PL turn;
+  turn.set("Rotation Angle", 90.0);
+  turn.set("Load Curve", "0 0, 0.5 1");
+  const auto t = parse(m, turn).displacements.at(0);
+  const std::array<double, 3> e1{1.0, 0.0, 0.0};
+  EXPECT_NEAR(t.prescribed(0, e1, 0.8), -1.0, kRoundoff);
+  EXPECT_NEAR(t.prescribed(1, e1, 0.8), 1.0, kRoundoff);
+}
+
+TEST(BoundaryConditions, LoadCurveErrorsNameThePath) {
+  const auto m = oneCell(CellType::Hex8);
+  auto curve = [&](const std::string& text) {
+    PL p;
+    p.set("Load Curve", text);
+    return errorOf(m, p);
+  };
+  EXPECT_THAT(curve("0 0, 0.5"), HasSubstr("parameter 'Boundary Conditions/C/Load Curve' = '0 0, 0.5': cannot read ' 0.5'"));
+  EXPECT_THAT(curve("0 0, 0.5 1 2"), HasSubstr("cannot read ' 0.5 1 2'"));
+  EXPECT_THAT(curve("0 0, x 1"), HasSubstr("cannot read ' x 1'"));
+  EXPECT_THAT(curve("0 0, 0.5 1, 0.5 2"), HasSubstr("the load factors must increase strictly (0.5 follows 0.5)"));
+  EXPECT_THAT(curve("0 1"), HasSubstr("a load curve needs at least two points"));
+  EXPECT_THAT(curve("0 0, inf 1"), HasSubstr("cannot read ' inf 1'"));
+  PL t;
+  t.set("Type", "Traction");
+  t.set("Load Curve", "0 0, 1 1");
+  EXPECT_THAT(errorOf(m, t), HasSubstr("parameter 'Boundary Conditions/C/Load Curve' does not apply to Type = Traction"));
+}
+
 }  // namespace
