@@ -600,7 +600,6 @@ int generateCylindricalShellSector(Mesh& mesh, const std::string& bodyName, Cell
   return body;
 }
 
-
 // ------------------------------------------------------------ Sphere octant
 
 Teuchos::RCP<const Teuchos::ParameterList> SphereOctantGenerator::getValidParameters() {
@@ -626,9 +625,9 @@ Teuchos::RCP<const Teuchos::ParameterList> SphereOctantGenerator::getValidParame
 
 namespace {
 
-/// Graded parameters 0 = t_0 < t_1 < ... < t_n = 1 with t_{k+1} - t_k = r^k
-/// (t_1 - t_0), on the fine grid of `points` points (m = (points - 1) / n per
-/// cell; a cell's middle point at the mean of its ends).
+/// Graded cell ends 0 = v_0 < v_1 < ... < v_n = 1 with v_{k+1} - v_k =
+/// r^k (v_1 - v_0), returned on the grid of m points per cell (n m + 1
+/// values; for m = 2 a cell's middle point at the mean of its ends).
 std::vector<double> gradedParameters(int n, int m, double r) {
   std::vector<double> t(static_cast<std::size_t>(n * m + 1), 0.0);
   double h = 1.0, sum = 0.0;
