@@ -512,13 +512,23 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
 
   // Contact: the component's contributions (the conventional element of
   // each owned slot, or the decomposed counterparts where they live), in
-  // this model's DOF ids.
-  if (failedElement < 0 && contact_)
-    contact_->assemble(u, nullptr, what, [&](const std::vector<GO>& d, ElementResult& r) {
-      lids.resize(d.size());
-      for (size_t a = 0; a < d.size(); ++a) lids[a] = overlapMap_->getLocalElement(d[a]);
-      scatter(r);
-    });
+  // this model's DOF ids. Every rank enters it, also after a failed element
+  // here: its gather of the contact DOFs is collective, and a rank that
+  // skipped it left the others waiting there for ever. A contact element
+  // that fails (its projection does not converge) is agreed on below.
+  std::string contactFailure;
+  if (contact_) {
+    try {
+      contact_->assemble(u, nullptr, what, [&](const std::vector<GO>& d, ElementResult& r) {
+        if (failedElement >= 0) return;  // the assembly is thrown away below
+        lids.resize(d.size());
+        for (size_t a = 0; a < d.size(); ++a) lids[a] = overlapMap_->getLocalElement(d[a]);
+        scatter(r);
+      });
+    } catch (const InadmissibleDeformation& ex) {
+      contactFailure = ex.what();
+    }
+  }
 
   // Every rank learns whether any element failed, so all take the same path.
   int failedAny = -1;
@@ -527,6 +537,10 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
     DDC_THROW(InadmissibleDeformation, "inadmissible deformation in element " << failedAny << " (body '"
                                            << mesh.body(mesh.elementBody(failedAny)).name << "')"
                                            << (failure.empty() ? "" : ": " + failure));
+  }
+  if (contact_) {
+    contactFailure = firstErrorOnAnyRank(*comm_, contactFailure);
+    if (!contactFailure.empty()) DDC_THROW(InadmissibleDeformation, contactFailure);
   }
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, energy, Teuchos::outArg(result.strainEnergy));
 
