@@ -4,7 +4,7 @@
 #
 #   bash examples/figure4/run_figure4.sh BUILD_OR_INSTALL_DIR [OUT_DIR]
 #
-# runs the five analyses of examples/two_half_rings.xml
+# runs the five analyses of examples/two_half_rings.xml (or of --deck FILE)
 #   decomposed-20/-50/-100  Contact/Formulation = Decomposed Node-To-Segment,
 #                           Solver/Strategy = FETI-DP (--strategy), Partition/Method = By Body (--partition)
 #   monolithic-20/-100      Contact/Formulation = Node-To-Segment, Solver/Strategy = Monolithic
@@ -16,6 +16,9 @@
 # or an install prefix (in bin/). OUT_DIR default: ddcontact-out/figure4.
 #
 # Options (before or after the directories):
+#   --deck FILE         the input deck (default examples/two_half_rings.xml); e.g. the 3-D
+#                       examples/two_half_rings_3d_free.xml (the formulation names
+#                       Node-To-Segment and Node-To-Surface are synonyms)
 #   --np N              MPI ranks per run (default 2)
 #   --strategy S        Solver/Strategy of the decomposed runs: FETI-DP (default) or Monolithic
 #   --partition M       Partition/Method of the decomposed runs (default "By Body": one ring per
@@ -25,6 +28,7 @@
 #   --ddcontact EXE     use this ddcontact instead of the one in BUILD_OR_INSTALL_DIR
 #   --figure4-tool EXE  use this ddcontact-figure4 instead of the one in BUILD_OR_INSTALL_DIR
 #   --check-floor F     passed to ddcontact-figure4 (check only points with U_ref > F max U_ref)
+#   --assert-phases     passed to ddcontact-figure4 (make the phase criterion (b) part of the check)
 #   --strict            exit 1 when the check of the paper's findings fails (default: report it, exit 0)
 #   --skip-runs         reuse the histories already in OUT_DIR/runs (re-analyse and re-plot only)
 # Exit status: 0 done (check result printed), 1 a run, the tool or gnuplot failed (or the check
@@ -34,14 +38,14 @@ set -euo pipefail
 usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; }
 die() { echo "run_figure4.sh: $*" >&2; exit 2; }
 
-np=2 strategy=FETI-DP partition="By Body" subdomains="" check_floor="" strict=0 skip_runs=0
+np=2 strategy=FETI-DP partition="By Body" subdomains="" check_floor="" strict=0 skip_runs=0 deck="" assert_phases=0
 ddc="" fig4=""
 extra=()
 pos=()
 while (($#)); do
   case "$1" in
     -h|--help) usage; exit 0 ;;
-    --np|--strategy|--partition|--subdomains|--set|--ddcontact|--figure4-tool|--check-floor)
+    --np|--strategy|--partition|--subdomains|--set|--ddcontact|--figure4-tool|--check-floor|--deck)
       (($# >= 2)) || die "option $1 needs a value"
       case "$1" in
         --np) np=$2 ;;
@@ -52,9 +56,11 @@ while (($#)); do
         --ddcontact) ddc=$2 ;;
         --figure4-tool) fig4=$2 ;;
         --check-floor) check_floor=$2 ;;
+        --deck) deck=$2 ;;
       esac
       shift 2 ;;
     --strict) strict=1; shift ;;
+    --assert-phases) assert_phases=1; shift ;;
     --skip-runs) skip_runs=1; shift ;;
     -*) die "unknown option '$1' (see --help)" ;;
     *) pos+=("$1"); shift ;;
@@ -67,7 +73,7 @@ out=${pos[1]:-ddcontact-out/figure4}
 [[ -z $subdomains || $subdomains =~ ^[0-9]+$ ]] || die "--subdomains '$subdomains': expected an integer"
 
 here=$(cd "$(dirname "$0")" && pwd)
-deck="$here/../two_half_rings.xml"
+deck=${deck:-$here/../two_half_rings.xml}
 [[ -f $deck ]] || die "input deck not found: $deck"
 [[ -d $prefix ]] || die "BUILD_OR_INSTALL_DIR '$prefix' is not a directory"
 find_exe() {  # find_exe NAME: PREFIX/src/NAME (build tree) or PREFIX/bin/NAME (install)
@@ -93,7 +99,7 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_
 
 mkdir -p "$out/runs" "$out/logs"
 # The runs: label, steps, formulation, strategy.
-# The deck's own partition (METIS, 4 subdomains) is replaced, count included.
+# The deck's own partition (two_half_rings.xml: METIS, 4 subdomains) is replaced, count included.
 decomposed_partition=(--set "Partition/Method=$partition" --set "Partition/Number of Subdomains=${subdomains:-0}")
 run() {  # run LABEL STEPS FORMULATION STRATEGY [extra ddcontact args...]
   local label=$1 steps=$2 formulation=$3 strat=$4
@@ -130,6 +136,7 @@ for l in decomposed-20 decomposed-50 decomposed-100 monolithic-20; do
 done
 tool_args+=(--csv "$out/figure4.csv" --check)
 [[ -n $check_floor ]] && tool_args+=(--check-floor "$check_floor")
+((assert_phases)) && tool_args+=(--assert-phases)
 set +e
 "$fig4" "${tool_args[@]}" 2>&1 | tee "$out/summary.txt"
 status=${PIPESTATUS[0]}
@@ -148,7 +155,7 @@ styles=("decomposed-20:#d62728:7" "decomposed-50:#1f77b4:5" "decomposed-100:#2ca
 set datafile separator ","
 set terminal pngcairo size 900,1100 noenhanced font ",10"
 set output "$out/figure4.png"
-set multiplot layout 2,1 title "Two half-rings (Fang & Izzuddin 2022, Fig. 4): decomposed runs with Solver/Strategy = $strategy, partition $partition${subdomains:+ ($subdomains subdomains)}, $np ranks"
+set multiplot layout 2,1 title "$(basename "$deck") (after Fang & Izzuddin 2022, Fig. 4)\ndecomposed runs with Solver/Strategy = $strategy, partition $partition${subdomains:+ ($subdomains subdomains)}, $np ranks"
 set grid
 set xlabel "load factor"
 set xrange [0:1]

@@ -440,6 +440,9 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
     return a;
   };
   if (contact) seen.push_back(activeSet());
+  // Conventional element, Contact/Pairing Cycles = Freeze: once the pairing
+  // cycles, it is kept for the rest of the increment (doc/contact.md).
+  bool pairingFrozen = false;
   strategy_->beginIncrement();
   for (int it = 0; it < maxIt; ++it) {
     const auto start = std::chrono::steady_clock::now();
@@ -488,7 +491,7 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
     bool pairingChanged = false;
     std::vector<int> changed, repaired;
     if (contact) {
-      if (conventional) pairingChanged = model_->updatePairing(*u, false, false, &repaired);
+      if (conventional && !pairingFrozen) pairingChanged = model_->updatePairing(*u, false, false, &repaired);
       changed = model_->updateActiveSet(*u);
     }
     if (printIt && comm_->getRank() == 0) {
@@ -510,7 +513,16 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
     }
     if (!changed.empty() || pairingChanged) {
       auto a = activeSet();
-      if (std::find(seen.begin(), seen.end(), a) != seen.end()) {
+      const bool repeated = std::find(seen.begin(), seen.end(), a) != seen.end();
+      if (repeated && pairingChanged && model_->contactOptions().freezeCyclingPairing) {
+        pairingFrozen = true;
+        progress("    Newton iteration " + std::to_string(it) + ": the pairing cycles (" +
+                 std::to_string(repaired.size()) + " slave nodes changed master facet); kept for the rest of "
+                 "this increment (Contact/Pairing Cycles = Freeze)");
+        seen.push_back(std::move(a));
+        continue;
+      }
+      if (repeated) {
         std::ostringstream os;
         os << "the contact active set cycles (a set seen before in this increment returned)";
         auto list = [&](const char* what, const std::vector<int>& slots) {

@@ -170,6 +170,14 @@ Teuchos::RCP<const Teuchos::ParameterList> ContactOptions::getValidParameters() 
           "the search radius starts active, as in the paper) or Previous Step (the converged active set of "
           "the previous step).",
           enumValidator({"In Contact", "Previous Step"}, "Initial Contact State"));
+  pl->set("Pairing Cycles", "Freeze",
+          "Conventional formulation only (the decomposed one keeps its pairing over each step anyway): what "
+          "Newton does when a slave node's pairing returns to a facet it left earlier in the same increment, "
+          "as at a facet edge where the closest point jumps between two facets and the gap has a kink. "
+          "Freeze: keep the pairing of that iteration for the rest of the increment (the projection onto "
+          "each paired facet, extended past its edges, stays smooth) and refresh it at the step end. Fail: "
+          "the increment fails as a cycling active set does (bisection).",
+          enumValidator({"Freeze", "Fail"}, "Pairing Cycles"));
   pl->set("Search Radius", 0.0,
           "Slave nodes farther than this from every master facet are not paired. 0: automatic, h = the mean "
           "master facet size: in 2-D the length of a segment from its start to its end node (the chord of a "
@@ -197,6 +205,7 @@ ContactOptions ContactOptions::fromParameters(Teuchos::ParameterList& list, cons
   const std::string formulation = list.get<std::string>("Formulation");
   o.decomposed = formulation == "Decomposed Node-To-Segment" || formulation == "Decomposed Node-To-Surface";
   o.initialInContact = list.get<std::string>("Initial Contact State") == "In Contact";
+  o.freezeCyclingPairing = list.get<std::string>("Pairing Cycles") == "Freeze";
   const auto& validPair = valid->sublist("Pairs").sublist("<Pair Name>");
   auto& pairs = list.sublist("Pairs");
   double sizeSum = 0.0;

@@ -38,6 +38,10 @@ struct ContactOptions {
   bool initialInContact = true;
   double searchRadius = 0.0;          ///< absolute (automatic: h, the file comment)
   double penetrationTolerance = 0.0;  ///< absolute: activate when g_N < -tol (the parameter times h)
+  /// Conventional formulation: when the pairing cycles inside an increment,
+  /// keep it for the rest of the increment (true) or fail the increment
+  /// (false: bisection). "Pairing Cycles", doc/contact.md.
+  bool freezeCyclingPairing = true;
   std::vector<ContactPairDefinition> pairs;
 
   bool enabled() const { return !pairs.empty(); }
