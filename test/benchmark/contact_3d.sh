@@ -34,25 +34,7 @@ scaled() { awk -v n="$1" -v f="$2" 'BEGIN {m = int(n * f + 0.5); print (m < 1 ? 
 run_case() {
   local deck=$1 steps=$2
   shift 2
-  local wall=() setup=() solve=() newton="" dual="" dofs=""
-  for ((r = 0; r < REPS; r++)); do
-    local log="$OUT/run.log"
-    rm -rf "$OUT/o"
-    if ! mpirun -np "$RANKS" "$APP" "$deck" --output-dir "$OUT/o" --set "Load Stepping/Number of Steps=$steps" \
-         --set "Output/VTK=false" "$@" > "$log" 2>&1; then
-      echo "failed"; tail -3 "$log" >&2; return
-    fi
-    local s t
-    read -r dofs s t _ <<< "$(run_stats "$log")"
-    setup+=("$s") solve+=("$t")
-    # history.csv: wall_seconds of the last row / nominal steps; Newton and dual sums
-    local h="$OUT/o/history.csv"
-    wall+=("$(awk -F, -v n="$steps" 'NR>1 {w=$10} END {printf "%.4f", w/n}' "$h")")
-    newton=$(awk -F, -v n="$steps" 'NR>1 {s+=$4} END {printf "%.2f", s/n}' "$h")
-    dual=$(awk -F, 'NR>1 {s+=$5; t+=$4} END {printf "%.1f", (t ? s/t : 0)}' "$h")
-  done
-  echo "$(printf '%s\n' "${wall[@]}" | median) $newton $dual $(printf '%s\n' "${setup[@]}" | median)" \
-       "$(printf '%s\n' "${solve[@]}" | median) $dofs"
+  run_reps "$deck" "$steps" steps "$@"
 }
 
 # row CASE MESH STEPS DECK_DECOMPOSED DECK_CONVENTIONAL MESH_ARGS...: one

@@ -21,25 +21,7 @@ read -r -a FETI <<< "${FETI:-By_Body:0 METIS:4 METIS:8}"
 
 # run_case ARGS... -> "wall/step newton/step dual/newton setup solve dofs" (medians of REPS)
 run_case() {
-  local wall=() setup=() solve=() newton="" dual="" dofs=""
-  for ((r = 0; r < REPS; r++)); do
-    local log="$OUT/run.log"
-    if ! mpirun -np "$RANKS" "$APP" examples/two_half_rings.xml --output-dir "$OUT/o" \
-         --set "Contact/Formulation=Decomposed Node-To-Segment" --set "Load Stepping/Number of Steps=$STEPS" \
-         --set "Output/VTK=false" "$@" > "$log" 2>&1; then
-      echo "failed"; tail -3 "$log" >&2; return
-    fi
-    local s t
-    read -r dofs s t _ <<< "$(run_stats "$log")"
-    setup+=("$s") solve+=("$t")
-    # history.csv: wall_seconds of the last row / rows; Newton and dual sums
-    local h="$OUT/o/history.csv"
-    wall+=("$(awk -F, 'NR>1 {w=$10; n++} END {printf "%.4f", w/n}' "$h")")
-    newton=$(awk -F, 'NR>1 {s+=$4; n++} END {printf "%.2f", s/n}' "$h")
-    dual=$(awk -F, 'NR>1 {s+=$5; t+=$4} END {printf "%.1f", (t ? s/t : 0)}' "$h")
-  done
-  echo "$(printf '%s\n' "${wall[@]}" | median) $newton $dual $(printf '%s\n' "${setup[@]}" | median)" \
-       "$(printf '%s\n' "${solve[@]}" | median) $dofs"
+  run_reps examples/two_half_rings.xml "$STEPS" rows --set "Contact/Formulation=Decomposed Node-To-Segment" "$@"
 }
 
 echo "Two half-rings, decomposed NTS, $STEPS steps, $RANKS ranks, median of $REPS runs"
