@@ -31,6 +31,13 @@ run_stats() {
        "$(sed -n 's/.*peak memory per rank \([0-9.]*\) MiB.*/\1/p' <<< "$t")"
 }
 
+# feti_phases LOG -> "local coarse dirichlet | local_solves coarse_solves
+# preconditioner" seconds of the run's FETI-DP line (max over ranks), or ""
+# for another strategy.
+feti_phases() {
+  grep '^FETI-DP (max' "$1" | tr -c '0-9.\n' ' ' | awk '{print $1, $2, $3, "|", $4, $5, $6}'
+}
+
 # first_solve_iterations LOG -> dual/Krylov iterations of the first Newton
 # solve (needs Newton/Print Iterations = true; 0 for a direct solve).
 first_solve_iterations() {

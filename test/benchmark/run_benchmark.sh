@@ -12,16 +12,23 @@
 #   bash test/benchmark/run_benchmark.sh [BUILD_DIR]   # default build
 # Environment: RANKS (2), REPS (3), SIZES (refinements, "10 20 40"),
 #              SUBDOMAINS (FETI-DP subdomains per size, "16 32 64"), TABLE2 (1),
-#              PRIMAL (Solver/FETI-DP/Primal Constraints, "Vertices, Edges and Faces").
+#              PRIMAL (Solver/FETI-DP/Primal Constraints; empty: the default),
+#              STRATEGIES ("MUMPS Belos-MueLu Belos-FROSch FETI-DP").
 # Each elastic-block run is 1 load step = 2 Newton solves of the same
-# matrix (the second checks convergence); times are summed over both.
+# matrix (the second checks convergence); times are summed over both. The
+# FETI-DP rows are followed by their phase breakdown (last run).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 # shellcheck source=common.sh
 . test/benchmark/common.sh "${1:-build}"
 read -r -a SIZES <<< "${SIZES:-10 20 40}"
 read -r -a SUBS <<< "${SUBDOMAINS:-16 32 64}"
-PRIMAL=${PRIMAL:-Vertices, Edges and Faces}
+PRIMAL=${PRIMAL:-}
+read -r -a STRATEGIES <<< "${STRATEGIES:-MUMPS Belos-MueLu Belos-FROSch FETI-DP}"
+PRIMAL_ARGS=()
+[[ -z $PRIMAL ]] || PRIMAL_ARGS=(--set "Solver/FETI-DP/Primal Constraints=$PRIMAL")
+FETI_PHASES=()   # phase rows of the FETI-DP cases
+LAST_PHASES=""   # run_case: the phases of its last run
 
 # run_case LABEL ARGS... -> prints "setup solve iterations memory dofs" (medians) or "failed"
 run_case() {
@@ -35,6 +42,7 @@ run_case() {
     read -r dofs s t i m <<< "$(run_stats "$log")"
     setup+=("$s") solve+=("$t") iters+=("$i") mem+=("$m")
   done
+  LAST_PHASES="| $dofs | $(feti_phases "$log" | tr -d '|' | awk '{$1 = $1; gsub(/ /, " | "); print}') |"
   echo "$(printf '%s\n' "${setup[@]}" | median) $(printf '%s\n' "${solve[@]}" | median)" \
        "$(printf '%s\n' "${iters[@]}" | median) $(printf '%s\n' "${mem[@]}" | median) $dofs"
 }
@@ -48,16 +56,18 @@ for i in "${!SIZES[@]}"; do
   nsub=${SUBS[$i]:-${SUBS[-1]}}
   base=(examples/elastic_block.xml --set "Mesh/Bodies/Block/Rectangle/Refinement=$ref" --set "Output/VTK=false"
         --set "Output/Progress=true")
-  for strat in MUMPS Belos-MueLu Belos-FROSch FETI-DP; do
+  for strat in "${STRATEGIES[@]}"; do
     if [ "$strat" = FETI-DP ]; then
       args=("${base[@]}" --set "Solver/Strategy=FETI-DP" --set "Partition/Number of Subdomains=$nsub"
-            --set "Solver/FETI-DP/Primal Constraints=$PRIMAL")
+            "${PRIMAL_ARGS[@]}")
       subs=$nsub
     else
       args=("${base[@]}" --set "Solver/Linear Solver/Type=$strat")
       subs=$RANKS
     fi
-    read -r s t it m d <<< "$(run_case "${args[@]}")" || true
+    run_case "${args[@]}" > "$OUT/case" || true
+    read -r s t it m d < "$OUT/case"
+    if [ "$strat" = FETI-DP ] && [ "$s" != failed ]; then FETI_PHASES+=("$LAST_PHASES"); fi
     if [ "$s" = failed ]; then
       echo "| ? | $subs | $strat | failed | | | |"
     else
@@ -65,15 +75,23 @@ for i in "${!SIZES[@]}"; do
       [ "$strat" = MUMPS ] && label="MUMPS (direct)"
       [ "$strat" = Belos-MueLu ] && label="Belos CG + MueLu SA"
       [ "$strat" = Belos-FROSch ] && label="Belos GMRES + FROSch GDSW"
-      [ "$strat" = FETI-DP ] && label="FETI-DP ($PRIMAL, Dirichlet, MUMPS local/coarse, CG)"
+      [ "$strat" = FETI-DP ] && label="FETI-DP (${PRIMAL:-default constraints}, Dirichlet, MUMPS local/coarse, CG)"
       echo "| $d | $subs | $label | $s | $t | $it | $m |"
     fi
   done
 done
+if ((${#FETI_PHASES[@]})); then
+  echo
+  echo "FETI-DP phases (last run, seconds, max over ranks):"
+  echo
+  echo "| DOFs | local factorisation | coarse factorisation | Dirichlet factorisation | local solves | coarse solves | preconditioner |"
+  echo "| ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+  printf '%s\n' "${FETI_PHASES[@]}"
+fi
 
 if [ "${TABLE2:-1}" = 1 ]; then
   echo
-  echo "FETI-DP ($PRIMAL) dual iterations to relative residual 1e-8 (Belos CG), unit square, Box Grid N x N subdomains, one linear solve:"
+  echo "FETI-DP (${PRIMAL:-default constraints}) dual iterations to relative residual 1e-8 (Belos CG), unit square, Box Grid N x N subdomains, one linear solve:"
   echo
   echo "| subdomains | H/h | Dirichlet | Lumped |"
   echo "| ---: | ---: | ---: | ---: |"
@@ -87,7 +105,7 @@ if [ "${TABLE2:-1}" = 1 ]; then
             --set "Mesh/Bodies/Square/Rectangle/Refinement=$ref" --set "Solver/Strategy=FETI-DP" \
             --set "Partition/Method=Box Grid" --set "Partition/Box Grid X=$n" --set "Partition/Box Grid Y=$n" \
             --set "Solver/FETI-DP/Preconditioner=$pre" --set "Solver/FETI-DP/Belos/Convergence Tolerance=1e-8" \
-            --set "Solver/FETI-DP/Primal Constraints=$PRIMAL" \
+            "${PRIMAL_ARGS[@]}" \
             > "$log" 2>&1; then
           # the first Newton solve (the second only confirms convergence)
           row="$row $(first_solve_iterations "$log") |"

@@ -5,17 +5,18 @@
 # 1075275) on RANKS ranks with MUMPS (monolithic direct), Belos CG + MueLu
 # and FETI-DP (primal constraints PRIMAL, Dirichlet preconditioner, METIS
 # subdomains of about SUB_DOFS DOFs each: 840, the fastest of 16 ... 512
-# subdomains at 107k DOFs with PRIMAL = Vertices). Prints one markdown table: median
-# over REPS runs of linear set-up and solve seconds, dual/Krylov iterations
-# (summed over the 2 Newton solves of the one load step, and of the first
-# solve alone) and peak memory per rank.
+# subdomains at 107k DOFs with PRIMAL = Vertices). Prints a markdown table:
+# median over REPS runs of linear set-up and solve seconds, dual/Krylov
+# iterations (summed over the 2 Newton solves of the one load step, and of
+# the first solve alone) and peak memory per rank; then the FETI-DP phase
+# breakdown of each FETI-DP case (its last run).
 #
 #   bash test/benchmark/run_benchmark_3d.sh [BUILD_DIR]   # default: build
 # Environment: RANKS (2), REPS (3), SIZES (refinements run with every
 #   strategy, "5 8 11"), MUMPS_SIZES (refinements run with MUMPS only, to find
 #   the largest that fits, "9 10"), SUBDOMAINS (FETI-DP subdomains per entry
 #   of SIZES; default DOFs / SUB_DOFS rounded), SUB_DOFS (840), PRIMAL
-#   (Solver/FETI-DP/Primal Constraints, "Vertices, Edges and Faces"),
+#   (Solver/FETI-DP/Primal Constraints; empty: the default),
 #   MEM_FRACTION (0.9: share of MemAvailable the ranks may use together),
 #   TIMEOUT (3600: seconds one run may take).
 #
@@ -35,7 +36,10 @@ cd "$(dirname "$0")/../.."
 # shellcheck source=common.sh
 . test/benchmark/common.sh "${1:-build}"
 SUB_DOFS=${SUB_DOFS:-840}
-PRIMAL=${PRIMAL:-Vertices, Edges and Faces}
+PRIMAL=${PRIMAL:-}
+PRIMAL_ARGS=()
+[[ -z $PRIMAL ]] || PRIMAL_ARGS=(--set "Solver/FETI-DP/Primal Constraints=$PRIMAL")
+FETI_PHASES=()
 MEM_FRACTION=${MEM_FRACTION:-0.9}
 TIMEOUT=${TIMEOUT:-3600}
 read -r -a SIZES <<< "${SIZES:-5 8 11}"
@@ -116,6 +120,7 @@ run_case() {
     read -r dofs s t i m <<< "$(run_stats "$log")"
     setup+=("$s") solve+=("$t") iters+=("$i") mem+=("$m") first+=("$(first_solve_iterations "$log")")
   done
+  feti_phases "$log" > "$OUT/phases"
   echo "ok $dofs $(printf '%s\n' "${setup[@]}" | median) $(printf '%s\n' "${solve[@]}" | median)" \
        "$(printf '%s\n' "${iters[@]}" | median) $(printf '%s\n' "${first[@]}" | median)" \
        "$(printf '%s\n' "${mem[@]}" | median)"
@@ -144,9 +149,9 @@ for ref in "${ALL[@]}"; do
         args=("${base[@]}" --set "Solver/Strategy=Monolithic" --set "Solver/Linear Solver/Type=MUMPS") ;;
       Belos-MueLu) label="Belos CG + MueLu SA" subs=$RANKS
         args=("${base[@]}" --set "Solver/Strategy=Monolithic" --set "Solver/Linear Solver/Type=Belos-MueLu") ;;
-      FETI-DP) label="FETI-DP ($PRIMAL, Dirichlet, MUMPS local/coarse, CG)" subs=$nsub
+      FETI-DP) label="FETI-DP (${PRIMAL:-default constraints}, Dirichlet, MUMPS local/coarse, CG)" subs=$nsub
         args=("${base[@]}" --set "Solver/Strategy=FETI-DP" --set "Partition/Number of Subdomains=$nsub"
-              --set "Solver/FETI-DP/Primal Constraints=$PRIMAL" --set "Solver/FETI-DP/Belos/Maximum Iterations=5000") ;;
+              "${PRIMAL_ARGS[@]}" --set "Solver/FETI-DP/Belos/Maximum Iterations=5000") ;;
     esac
     est=$(estimate_mib "$strat" "$n")
     avail=$(budget_mib)
@@ -158,10 +163,21 @@ for ref in "${ALL[@]}"; do
     read -r status d s t it first m <<< "$result"
     case $status in
       ok) echo "| $d | $subs | $label$note | $s | $t | $it | $first | $m |"
-          MEASURED[$strat]="${MEASURED[$strat]:-} $d:$m" ;;
+          MEASURED[$strat]="${MEASURED[$strat]:-} $d:$m"
+          if [[ $strat == FETI-DP ]]; then
+            FETI_PHASES+=("| $d | $subs | $(tr -d '|' < "$OUT/phases" | awk '{$1 = $1; gsub(/ /, " | "); print}') |")
+          fi ;;
       oom) echo "| $n | $subs | $label$note | out of memory (limit $(gib "$d") GiB per rank) | | | | |" ;;
       timeout) echo "| $n | $subs | $label | timed out (> $TIMEOUT s) | | | | |" ;;
       *) echo "| $n | $subs | $label | ${result//|/\\|} | | | | |" ;;
     esac
   done
 done
+if ((${#FETI_PHASES[@]})); then
+  echo
+  echo "FETI-DP phases (last run, seconds, max over ranks):"
+  echo
+  echo "| DOFs | subdomains | local factorisation | coarse factorisation | Dirichlet factorisation | local solves | coarse solves | preconditioner |"
+  echo "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+  printf '%s\n' "${FETI_PHASES[@]}"
+fi

@@ -100,6 +100,22 @@ Teuchos::RCP<PL> newtonValidParameters() {
   pl->set("Energy Tolerance", 1e-16,
           "and the energy norm |du . r| <= tol * |du_0 . r_0| (both criteria must hold).", atLeast(0.0));
   pl->set("Print Iterations", false, "Print the residual and energy norm of every Newton iteration.");
+  pl->set("Forcing Term", "Eisenstat-Walker",
+          "Relative tolerance of each iterative linear solve (FETI-DP's dual solve, Belos back ends; a direct "
+          "solve is exact anyway). Constant: the solver's own Convergence Tolerance every time. "
+          "Eisenstat-Walker (inexact Newton): the first solve of a step uses that tolerance; solve k > 0 "
+          "eta_k = 0.9 (||r_k|| / ||r_k-1||)^2 (Eisenstat & Walker 1996, choice 2, safeguarded by "
+          "0.9 eta_k-1^2), and no solve is asked for less than 'Forcing Term Floor' times the Newton target "
+          "max(Residual Tolerance ||r_0||, Absolute Residual Tolerance) over ||r_k||; always between the "
+          "solver's tolerance and 'Maximum Forcing Term'. The converged result meets the same Newton "
+          "criteria either way.",
+          enumValidator({"Eisenstat-Walker", "Constant"}, "Forcing Term"));
+  pl->set("Maximum Forcing Term", 0.1, "Loosest relative tolerance of a linear solve with Forcing Term = "
+          "Eisenstat-Walker.", between(0.0, 1.0, Interval::Open));
+  pl->set("Forcing Term Floor", 0.1,
+          "With Forcing Term = Eisenstat-Walker, a linear solve need not reduce the residual below this "
+          "fraction of the Newton target (the absolute floor of the forcing term).",
+          between(0.0, 1.0, Interval::LeftOpen));
   return pl;
 }
 
@@ -418,6 +434,15 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
   const double atol = nw.get<double>("Absolute Residual Tolerance");
   const double etol = nw.get<double>("Energy Tolerance");
   const bool printIt = nw.get<bool>("Print Iterations");
+  // Inexact Newton (doc/user-guide.md "Newton"): only iterative solves have
+  // a tolerance to set.
+  const double linTol = strategy_->linearTolerance();
+  const bool forcing = linTol > 0.0 && nw.get<std::string>("Forcing Term") == "Eisenstat-Walker";
+  const double etaMax = std::max(nw.get<double>("Maximum Forcing Term"), linTol);
+  const double etaFloor = nw.get<double>("Forcing Term Floor");
+  // eta: the wanted reduction of the Newton residual; solveTol: the
+  // tolerance asked of the solver for it (eta / mismatch).
+  double eta = linTol, solveTol = linTol, mismatch = 1.0, rPrev = 0.0;
   const bool contact = model_->hasContact();
   const bool conventional = contact && !model_->decomposedContact();
 
@@ -468,6 +493,31 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
     if (it == 0) r0 = rnorm;
     const bool residualOk = it > 0 && rnorm <= std::max(rtol * r0, atol);
 
+    if (forcing) {
+      if (it > 0) {
+        // How much less the last solve reduced the Newton residual than its
+        // tolerance promised (FETI-DP's tolerance is on the dual residual,
+        // an interface jump, not on the force residual); nonlinearity and
+        // contact changes count too, which errs towards tighter solves.
+        mismatch = std::max(1.0, rnorm / (solveTol * rPrev));
+        if (rnorm > rPrev) {
+          eta = linTol;  // the residual grew: solve tightly again
+        } else {
+          // Eisenstat & Walker (1996), choice 2 (gamma 0.9, alpha 2), with
+          // their safeguard against a sudden tightening; not with contact,
+          // whose active-set decisions need accurate multipliers.
+          const double safeguard = 0.9 * eta * eta;
+          eta = contact ? 0.0 : 0.9 * (rnorm / rPrev) * (rnorm / rPrev);
+          if (!contact && safeguard > 0.1) eta = std::max(eta, safeguard);
+          // No need to go below a fraction of what Newton asks for.
+          if (rnorm > 0.0) eta = std::max(eta, etaFloor * std::max(rtol * r0, atol) / rnorm);
+          eta = std::min(eta, etaMax);
+        }
+      }
+      solveTol = std::min(std::max(eta / mismatch, linTol), etaMax);
+      strategy_->setSolveTolerance(solveTol);
+      rPrev = rnorm;
+    }
     r->scale(-1.0);
     const StrategySolveInfo info = strategy_->solve(*r, *du);
     timing_.linearSetup += info.setupSeconds;
@@ -499,6 +549,11 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
       std::snprintf(buf, sizeof buf, "    iter %2d  |r| = %.3e  |du.r| = %.3e", it, rnorm, energy);
       std::string line = buf;
       if (solveIterations > 0) line += "  dual/Krylov " + std::to_string(solveIterations);
+      if (forcing) {
+        char tol[40];
+        std::snprintf(tol, sizeof tol, " (tol %.1e)", solveTol);
+        line += tol;
+      }
       if (contact)
         line += "  active " + std::to_string(model_->contactSummary().active) + " (" +
                 std::to_string(changed.size()) + " changed" + (pairingChanged ? ", new pairing" : "") + ")";

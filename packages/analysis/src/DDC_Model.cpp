@@ -743,4 +743,11 @@ std::string Model::describeNonFinite(const Vector& v) const {
   return os.str();
 }
 
+bool Model::tangentIsConstant() const {
+  if (hasContact()) return false;
+  for (const auto& e : elements_)
+    if (e && !e->tangentIsConstant()) return false;
+  return true;
+}
+
 }  // namespace ddc

@@ -104,6 +104,10 @@ class Model {
 
   // ---- contact (the ContactComponent, driven in the model's DOF numbering) -----
   bool hasContact() const { return contact_ != nullptr; }
+  /// The tangent does not depend on u: no contact and every body's element
+  /// has Element::tangentIsConstant() (linear elasticity). The strategies
+  /// then factorise once per analysis.
+  bool tangentIsConstant() const;
   /// Decomposed contact in use: Contact/Formulation = Decomposed
   /// Node-To-Segment *and* at least one pair. With no pairs the formulation
   /// is moot and the model is a plain one (no multiplier maps exist); test

@@ -61,6 +61,13 @@ class SolutionStrategy {
   /// multipliers included).
   /// \throws SolverError from the back end.
   virtual StrategySolveInfo solve(const Vector& b, Vector& du) = 0;
+  /// The configured relative tolerance of an iterative linear solve (FETI-DP's
+  /// dual Krylov solve, a Belos back end); 0 for a direct solve.
+  virtual double linearTolerance() const = 0;
+  /// The relative tolerance of the next solve()s, in [linearTolerance(), 1)
+  /// (the inexact Newton forcing term of ddc::Analysis); ignored by a direct
+  /// solve.
+  virtual void setSolveTolerance(double tol) = 0;
   /// A line for the end-of-run timing report (empty: none), from the
   /// accumulated breakdown of solve() (max over ranks, collective).
   virtual std::string timingReport(const std::array<double, 6>& breakdown) const {

@@ -3,6 +3,7 @@
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
@@ -49,9 +50,28 @@ bool rigidModesFixed(const Model& model, const std::vector<int>& anchors, const 
   return eig.eigenvalues()[0] > kRankTolerance * eig.eigenvalues()[5];
 }
 
+/// Index in `candidates` (not empty) of the node farthest from the nearest
+/// of `anchors` (from candidates[0] when there are none); the first on ties.
+size_t farthestFrom(const Mesh& mesh, const std::vector<int>& candidates, const std::vector<int>& anchors) {
+  auto dist2 = [&](int a, int b) {
+    double d2 = 0.0;
+    for (int c = 0; c < mesh.dim(); ++c) d2 += (mesh.coord(a)[c] - mesh.coord(b)[c]) * (mesh.coord(a)[c] - mesh.coord(b)[c]);
+    return d2;
+  };
+  size_t best = 0;
+  double bestD = -1;
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    double d = 1e300;
+    if (anchors.empty()) d = dist2(candidates[i], candidates[0]);
+    for (int a : anchors) d = std::min(d, dist2(candidates[i], a));
+    if (d > bestD) bestD = d, best = i;
+  }
+  return best;
+}
+
 }  // namespace
 
-std::vector<char> selectPrimalNodes(const Model& model, std::vector<std::string>* report) {
+std::vector<char> selectPrimalNodes(const Model& model, std::vector<std::string>* report, VertexRule rule) {
   const Mesh& mesh = model.mesh();
   const auto& part = model.partition();
   const int numNodes = mesh.numNodes();
@@ -103,7 +123,95 @@ std::vector<char> selectPrimalNodes(const Model& model, std::vector<std::string>
         }
       }
     }
-    for (int n = 0; n < numNodes; ++n) primal[n] = candidate[n] && !dominated[n];
+    if (rule == VertexRule::EdgeEnds) {
+      // With edge averages the inside of an edge needs no primal nodes: the
+      // edge nodes (place ≥ 3) fall into classes, connected through
+      // elements and sharing one place. A one-node class is a vertex (the
+      // vertices of Klawonn & Widlund 2006, where edges meet); a class that
+      // touches no such vertex (an edge running into the mesh boundary, a
+      // line where an interface meets it) gets its two ends: the node
+      // farthest from the class centroid and the node farthest from that.
+      std::vector<int> root(numNodes);
+      for (int n = 0; n < numNodes; ++n) root[n] = n;
+      std::function<int(int)> find = [&](int n) { return root[n] == n ? n : root[n] = find(root[n]); };
+      for (int e = 0; e < mesh.numElements(); ++e) {
+        const int* en = mesh.elementNodes(e);
+        for (int i = 0; i < mesh.elementNumNodes(e); ++i)
+          for (int j = i + 1; j < mesh.elementNumNodes(e); ++j)
+            if (candidate[en[i]] && candidate[en[j]] && place[en[i]] == place[en[j]]) {
+              const int a = find(en[i]), b = find(en[j]);
+              if (a != b) root[std::max(a, b)] = std::min(a, b);
+            }
+      }
+      std::map<int, std::vector<int>> classes;
+      for (int n = 0; n < numNodes; ++n)
+        if (candidate[n]) classes[find(n)].push_back(n);
+      auto dist2 = [&](const Eigen::Vector3d& x, int n) { return (Eigen::Vector3d(mesh.coord(n).data()) - x).squaredNorm(); };
+      auto farthest = [&](const std::vector<int>& members, const Eigen::Vector3d& x) {
+        int best = members[0];
+        for (int n : members)
+          if (dist2(x, n) > dist2(x, best)) best = n;
+        return best;
+      };
+      for (const auto& kv : classes)
+        if (kv.second.size() == 1) primal[kv.second[0]] = 1;
+      // On contact surfaces the rule of EdgeNodes stays: the contact rows
+      // couple subdomains there, and without these primal nodes the dual
+      // iterations of the ironing example (a stiff die on a soft slab)
+      // exceeded 500 in its first step.
+      for (int n = 0; n < numNodes; ++n)
+        if (candidate[n] && model.isContactSurfaceNode(n) && !dominated[n]) primal[n] = 1;
+      std::vector<char> touches(numNodes, 0);  // per class root: an element links it to a vertex
+      for (int e = 0; e < mesh.numElements(); ++e) {
+        const int* en = mesh.elementNodes(e);
+        bool vertex = false;
+        for (int i = 0; i < mesh.elementNumNodes(e); ++i) vertex = vertex || primal[en[i]];
+        if (vertex)
+          for (int i = 0; i < mesh.elementNumNodes(e); ++i)
+            if (candidate[en[i]]) touches[find(en[i])] = 1;
+      }
+      for (const auto& kv : classes) {
+        if (kv.second.size() == 1 || touches[kv.first]) continue;
+        Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+        for (int n : kv.second) centre += Eigen::Vector3d(mesh.coord(n).data());
+        centre /= double(kv.second.size());
+        const int a = farthest(kv.second, centre);
+        primal[a] = 1;
+        primal[farthest(kv.second, Eigen::Vector3d(mesh.coord(a).data()))] = 1;
+      }
+    } else {
+      for (int n = 0; n < numNodes; ++n) primal[n] = candidate[n] && !dominated[n];
+    }
+  }
+
+  // Rule 2b (3-D, EdgeEnds): the edge ends alone may join two subdomains
+  // that share a face at two points only, a hinge; the subassembled
+  // problem then has a mechanism (a chain of METIS slabs has no edges at
+  // all). Each face gets primal nodes until the relative rigid modes of
+  // its two subdomains are fixed (three nodes not on one line), the
+  // farthest from the existing ones first.
+  if (dim == 3 && rule == VertexRule::EdgeEnds) {
+    std::map<std::pair<int, int>, std::vector<int>> shared;
+    for (int n = 0; n < numNodes; ++n)
+      for (size_t i = 0; i < nodeSubs[n].size(); ++i)
+        for (size_t j = 0; j < nodeSubs[n].size(); ++j)
+          if (nodeSubs[n][i] < nodeSubs[n][j]) shared[{nodeSubs[n][i], nodeSubs[n][j]}].push_back(n);
+    std::vector<char> all(numNodes, 0);
+    for (auto& kv : shared) {
+      // A face, not an edge or a point: its nodes do not lie on one line.
+      for (int n : kv.second) all[n] = 1;
+      const bool face = rigidModesFixed(model, kv.second, all);
+      for (int n : kv.second) all[n] = 0;
+      if (!face) continue;
+      std::vector<int> anchors, rest;
+      for (int n : kv.second) (primal[n] ? anchors : rest).push_back(n);
+      while (!rigidModesFixed(model, anchors, primal) && !rest.empty()) {
+        const size_t best = farthestFrom(mesh, rest, anchors);
+        primal[rest[best]] = 1;
+        anchors.push_back(rest[best]);
+        rest.erase(rest.begin() + long(best));
+      }
+    }
   }
 
   // Rule 3: anchor every subdomain.
@@ -141,21 +249,7 @@ std::vector<char> selectPrimalNodes(const Model& model, std::vector<std::string>
               "neighbours (Partition/Method)";
         throw InputError(os.str());
       }
-      // The interface node farthest from the current anchors (or from the
-      // first interface node when there are none).
-      auto dist2 = [&](int a, int b) {
-        double d2 = 0.0;
-        for (int c = 0; c < dim; ++c) d2 += (mesh.coord(a)[c] - mesh.coord(b)[c]) * (mesh.coord(a)[c] - mesh.coord(b)[c]);
-        return d2;
-      };
-      int best = -1;
-      double bestD = -1;
-      for (size_t i = 0; i < interface.size(); ++i) {
-        double d = 1e300;
-        if (anchors.empty()) d = dist2(interface[i], interface[0]);
-        for (int a : anchors) d = std::min(d, dist2(interface[i], a));
-        if (d > bestD) bestD = d, best = static_cast<int>(i);
-      }
+      const int best = static_cast<int>(farthestFrom(mesh, interface, anchors));
       const int n = interface[best];
       interface.erase(interface.begin() + best);
       primal[n] = 1;

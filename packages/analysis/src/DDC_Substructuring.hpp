@@ -14,14 +14,29 @@ namespace ddc {
 
 class Model;
 
+/// Which 3-D interface nodes are vertices (doc/feti-dp.md, "In 3-D").
+enum class VertexRule {
+  /// Every node of a subdomain edge except those next to an edge end (the
+  /// strong coarse space for FETI-DP with vertex constraints only).
+  EdgeNodes,
+  /// The edge ends only: nodes of an edge whose place no node of their
+  /// elements shares. For use with edge averages
+  /// (FetiDpSolver "Primal Constraints" with Edges), which constrain the
+  /// rest of each edge.
+  EdgeEnds
+};
+
 /// Primal node selection (doc/feti-dp.md, "Primal nodes"). In 2-D:
 ///  1. interface nodes shared by ≥ 3 subdomains (cross points);
 ///  2. interface nodes on the mesh boundary (the ends of a subdomain–
 ///     subdomain interface that reaches the boundary);
-/// in 3-D, the vertices: interface nodes whose set of subdomains (the mesh
-/// boundary counted as one more) has ≥ 3 members and is not strictly
-/// contained in that of a node of one of their elements (the ends of the
-/// subdomain edges);
+/// in 3-D, the vertices. With VertexRule::EdgeNodes: interface nodes whose
+/// set of subdomains (the mesh boundary counted as one more) has ≥ 3 members
+/// and is not strictly contained in that of a node of one of their elements
+/// (in effect every edge node but those next to an edge end). With
+/// VertexRule::EdgeEnds: of each class of edge nodes (connected, one set),
+/// the node itself if it is alone, else its two ends when no one-node class
+/// touches it; on contact surfaces the EdgeNodes rule;
 ///  3. every subdomain must be fixed against its rigid modes. 2-D: it needs
 ///     two distinct "anchor" nodes (primal, or carrying a prescribed DOF)
 ///     and prescribed DOFs in both directions unless it has two primal
@@ -36,7 +51,8 @@ class Model;
 /// \throws InputError for a floating subdomain without interface nodes
 ///         (e.g. a body that is its own subdomain and has no boundary
 ///         conditions): no choice of corners can fix it.
-std::vector<char> selectPrimalNodes(const Model& model, std::vector<std::string>* report = nullptr);
+std::vector<char> selectPrimalNodes(const Model& model, std::vector<std::string>* report = nullptr,
+                                    VertexRule rule = VertexRule::EdgeNodes);
 
 /// One subdomain's problem: its free DOFs (global ids, sorted), which are
 /// primal, the local stiffness (MPI_COMM_SELF, local numbering) and, for

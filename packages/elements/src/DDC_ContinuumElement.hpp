@@ -52,6 +52,9 @@ class ContinuumElement : public Element {
 
   const Material& material() const { return *material_; }
   std::shared_ptr<const Material> materialPtr() const { return material_; }
+  /// The small-strain law (Material::isGeometricallyLinear()) gives a
+  /// constant tangent.
+  bool tangentIsConstant() const override { return material_->isGeometricallyLinear(); }
 
  protected:
   std::shared_ptr<const Material> material_;

@@ -77,6 +77,10 @@ class Element {
   /// Smallest det J of the reference map over the quadrature points and
   /// corners (<= 0 means an inverted or degenerate element).
   virtual double minReferenceJacobian(const NodalArray& X) const = 0;
+  /// True if the tangent does not depend on u (a geometrically and
+  /// materially linear element): a solver may then keep its factorisation
+  /// across Newton iterations and load steps. Default false.
+  virtual bool tangentIsConstant() const { return false; }
 };
 
 }  // namespace ddc

@@ -55,6 +55,14 @@ class DirectSolver {
   /// Iterations of the last solve(): Belos iterations for iterative back
   /// ends, 0 for direct solvers (the "dual_iterations" of history.csv).
   virtual int lastIterations() const { return 0; }
+  /// The configured relative tolerance of an iterative back end (its
+  /// "Convergence Tolerance"); 0 for a direct solver, which solves to
+  /// round-off and has no tolerance to relax.
+  virtual double relativeTolerance() const { return 0.0; }
+  /// Optional hook: the relative tolerance of the next solve()s, in
+  /// [relativeTolerance(), 1) (an inexact Newton method's forcing term,
+  /// doc/user-guide.md "Newton"). Direct solvers ignore it.
+  virtual void setSolveTolerance(double /*tol*/) {}
 };
 
 /// Names -> direct-solver creators. Built-ins: "MUMPS", "Amesos2".

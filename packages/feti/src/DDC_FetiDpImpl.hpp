@@ -178,10 +178,12 @@ struct FetiDpSolver::Impl {
   bool stiffnessScaling = false;
   double singularityThreshold = 1e13;
   PrimalConstraints primalChoice = PrimalConstraints::VerticesEdgesAndFaces;
+  bool automaticPrimal = false;  ///< "Primal Constraints" = Automatic: resolved in setTopology()
   bool rotations = true;  // "Rotational Constraints"
   std::string belosType = "CG";
   bool belosGmresOnBreakdown = true;
-  double belosTol = 1e-10;
+  double belosTol = 1e-10;  ///< "Belos/Convergence Tolerance"
+  double solveTol = 1e-10;  ///< the next solve()'s (setSolveTolerance())
   int belosMaxIt = 500;
   int belosVerbosity = 0;
   int belosOutputFrequency = -1;

@@ -153,6 +153,15 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
     auto c = cOv.getData();
     for (size_t l = 0; l < ovMult.size(); ++l) ovMult[l] = static_cast<int>(std::lround(c[l]));
   }
+  if (automaticPrimal) {
+    // Automatic: faces too when extra rows (contact) will couple the
+    // subdomains; their dual problems need the richer coarse space
+    // (doc/performance.md, "FETI-DP levers").
+    int local = 0, any = 0;
+    for (const Sub& s : subs) local = local || std::count(s.constrainable.begin(), s.constrainable.end(), char(1)) > 0;
+    MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, mpi);
+    primalChoice = any ? PrimalConstraints::VerticesEdgesAndFaces : PrimalConstraints::VerticesAndEdges;
+  }
   addEdgeFaceConstraints(components, coords, dims);
 
   // 4. Per-subdomain splits: remainder / primal, and for the Dirichlet

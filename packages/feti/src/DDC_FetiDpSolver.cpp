@@ -73,14 +73,21 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
             "by 1/m_j, m_j = number of subdomains sharing j) or Stiffness (rho-scaling from diagonal entries: by "
             "K^t_jj / sum_k K^k_jj; better for jumping coefficients).",
             enumValidator(scalingNames(), "Scaling"));
-    pl->set("Primal Constraints", std::string("Vertices, Edges and Faces"),
-            "Primal (coarse) constraints besides the caller's vertex DOFs: Vertices (none), Vertices and Edges "
+    pl->set("Primal Constraints", std::string("Automatic"),
+            "Primal (coarse) constraints besides the caller's vertex DOFs: Automatic (Vertices, Edges and Faces "
+            "if any subdomain marks constrainable DOFs, i.e. extra rows such as contact will couple the "
+            "subdomains, else Vertices and Edges: measured in doc/performance.md), Vertices (none), Vertices and Edges "
             "(plus the average of each displacement component over each edge: in 2-D a subdomain-subdomain "
             "interface, in 3-D the interface DOFs shared by >= 3 subdomains), Vertices, Edges and Faces (plus "
             "the averages over the 3-D faces, DOFs shared by exactly 2 subdomains; in 2-D the same as Vertices "
-            "and Edges). The constraint values (averages; rotations: 'Rotational Constraints') enter by a change of "
+            "and Edges; in 3-D they cost more set-up and memory than the iterations they save, doc/performance.md). "
+            "The constraint values (averages; rotations: 'Rotational Constraints') enter by a change of "
             "basis (doc/feti-dp.md, 'Primal constraints').",
-            enumValidator(primalConstraintNames(), "Primal Constraints"));
+            enumValidator([] {
+              auto names = primalConstraintNames();
+              names.insert(names.begin(), "Automatic");
+              return names;
+            }(), "Primal Constraints"));
     pl->set("Rotational Constraints", true,
             "With edges / faces: besides the average of each displacement component, make the rigid rotations of "
             "each edge / face primal (the rigid-body modes restricted to it, orthogonalised against the "
@@ -153,7 +160,9 @@ FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramete
   m.prec = prec == "Dirichlet" ? Impl::Prec::Dirichlet : prec == "Lumped" ? Impl::Prec::Lumped : Impl::Prec::None;
   m.stiffnessScaling = params.get<std::string>("Scaling") == "Stiffness";
   m.singularityThreshold = params.get<double>("Local Singularity Threshold");
-  m.primalChoice = primalConstraintsFromName(params.get<std::string>("Primal Constraints"));
+  m.automaticPrimal = params.get<std::string>("Primal Constraints") == "Automatic";
+  m.primalChoice = m.automaticPrimal ? PrimalConstraints::VerticesAndEdges
+                                     : primalConstraintsFromName(params.get<std::string>("Primal Constraints"));
   m.rotations = params.get<bool>("Rotational Constraints");
   // Belos: the entries documented here are validated with their ranges;
   // any other entry must be a parameter of the chosen Belos solver (its
@@ -191,7 +200,7 @@ FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramete
   }
   m.belosType = belos.get<std::string>("Solver Type");
   m.belosGmresOnBreakdown = belos.get<bool>("GMRES on CG Breakdown");
-  m.belosTol = belos.get<double>("Convergence Tolerance");
+  m.belosTol = m.solveTol = belos.get<double>("Convergence Tolerance");
   m.belosMaxIt = belos.get<int>("Maximum Iterations");
   m.belosVerbosity = belos.get<int>("Verbosity");
   m.belosOutputFrequency = belos.get<int>("Output Frequency");
@@ -274,6 +283,16 @@ void FetiDpSolver::numeric() {
   m.factored = true;
 }
 
+double FetiDpSolver::convergenceTolerance() const { return impl_->belosTol; }
+
+void FetiDpSolver::setSolveTolerance(double tol) {
+  if (!(tol >= impl_->belosTol && tol < 1.0))
+    throw std::invalid_argument("FetiDpSolver::setSolveTolerance(" + std::to_string(tol) + "): expected a value in [" +
+                                std::to_string(impl_->belosTol) + " (" + impl_->param("Belos/Convergence Tolerance") +
+                                "), 1)");
+  impl_->solveTol = tol;
+}
+
 FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
   Impl& m = *impl_;
   if (!m.factored) throw std::logic_error("FetiDpSolver::solve() called without a successful numeric()");
@@ -351,7 +370,7 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
   if (m.lmMap->getGlobalNumElements() > 0 && dNorm > 0.0) {
     Belos::SolverFactory<Scalar, MultiVector, Operator> factory;
     auto bp = Teuchos::parameterList();
-    bp->set("Convergence Tolerance", m.belosTol);
+    bp->set("Convergence Tolerance", m.solveTol);
     bp->set("Maximum Iterations", m.belosMaxIt);
     bp->set("Verbosity", m.belosVerbosity);
     bp->set("Output Frequency", m.belosOutputFrequency);
@@ -390,7 +409,7 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
       std::ostringstream os;
       os << "FETI-DP: Belos " << type << " did not converge on F lambda = d (" << m.lmMap->getGlobalNumElements()
          << " Lagrange multipliers): " << info.iterations << " iterations, achieved relative residual "
-         << std::scientific << info.relativeResidual << ", tolerance " << m.belosTol;
+         << std::scientific << info.relativeResidual << ", tolerance " << m.solveTol;
       if (!failure.empty()) os << "; Belos reported: " << failure;
       os << ". Raise '" << m.param("Belos/Maximum Iterations") << "' (" << m.belosMaxIt << "), loosen '"
          << m.param("Belos/Convergence Tolerance") << "', or change '" << m.param("Preconditioner") << "' / '"

@@ -152,9 +152,11 @@ class FetiDpSolver {
   /// Every parameter with its default and doc string:
   ///  - "Preconditioner": "Dirichlet" (default) | "Lumped" | "None";
   ///  - "Scaling": "Multiplicity" (default) | "Stiffness";
-  ///  - "Primal Constraints": "Vertices" | "Vertices and Edges" |
-  ///    "Vertices, Edges and Faces" (default; in 2-D there are no faces, so
-  ///    it equals "Vertices and Edges");
+  ///  - "Primal Constraints": "Automatic" (default: "Vertices, Edges and
+  ///    Faces" if any FetiSubdomain::constrainable flag is set, else
+  ///    "Vertices and Edges") | "Vertices" | "Vertices and Edges" |
+  ///    "Vertices, Edges and Faces" (in 2-D there are no faces, so it
+  ///    equals "Vertices and Edges");
   ///  - "Rotational Constraints": bool (true): the rotations of each edge /
   ///    face too (needs FetiSubdomain::coordinates);
   ///  - "Local Singularity Threshold": double (1e13);
@@ -228,6 +230,16 @@ class FetiDpSolver {
   /// \throws SolverError if Belos does not converge (message: iterations,
   ///         achieved residual, tolerance, the parameter paths to change).
   Info solve(const Vector& b, Vector& u);
+
+  /// "Belos/Convergence Tolerance", the tightest relative residual a solve()
+  /// is asked for.
+  double convergenceTolerance() const;
+  /// The relative tolerance ||d - F lambda|| / ||d|| of the next solve()s,
+  /// in [convergenceTolerance(), 1): an inexact Newton method loosens it
+  /// when the Newton residual does not need more (doc/user-guide.md
+  /// "Newton"). Not collective, but every rank must set the same value.
+  /// \throws std::invalid_argument outside that range.
+  void setSolveTolerance(double tol);
 
   /// Collective. Replace the extra constraint rows (e.g. the contact rows of
   /// one load step). Call after setTopology(); numeric() must follow (the

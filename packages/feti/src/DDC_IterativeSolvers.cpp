@@ -90,7 +90,8 @@ int coordinateDimension(const MultiVector& coords, const std::string& who) {
 }  // namespace
 
 struct IterativeSolver::Impl {
-  double tol = 1e-10;
+  double tol = 1e-10;       // "Convergence Tolerance"
+  double solveTol = 1e-10;  // this solve's (setSolveTolerance())
   int maxIters = 1000;
   std::string belosSolver;  // "CG" or "GMRES"
   bool rigidBodyModes = true;
@@ -129,7 +130,7 @@ IterativeSolver::IterativeSolver(const Teuchos::ParameterList& params, const std
     : type_(type), impl_(std::make_unique<Impl>()) {
   // `params` was validated by the subclass (validateLevel filled the defaults).
   impl_->belosSolver = belosSolver;
-  impl_->tol = params.get<double>("Convergence Tolerance");
+  impl_->tol = impl_->solveTol = params.get<double>("Convergence Tolerance");
   impl_->maxIters = params.get<int>("Maximum Iterations");
   verbosity_ = params.get<int>("Verbosity");
   impl_->rigidBodyModes = params.get<std::string>("Null Space") == kRigidBodyModes;
@@ -166,6 +167,13 @@ void IterativeSolver::setDofsPerNode(int d) {
 int IterativeSolver::dofsPerNode() const { return impl_->dim; }
 
 int IterativeSolver::lastIterations() const { return impl_->iterations; }
+double IterativeSolver::relativeTolerance() const { return impl_->tol; }
+void IterativeSolver::setSolveTolerance(double tol) {
+  if (!(tol >= impl_->tol && tol < 1.0))
+    throw std::invalid_argument(type_ + " setSolveTolerance(" + std::to_string(tol) + "): expected a value in [" +
+                                std::to_string(impl_->tol) + " (Convergence Tolerance), 1)");
+  impl_->solveTol = tol;
+}
 double IterativeSolver::lastResidual() const { return impl_->residual; }
 int IterativeSolver::numNumeric() const { return impl_->nNumeric; }
 
@@ -294,7 +302,7 @@ void IterativeSolver::solve(const MultiVector& b, MultiVector& x) {
   problem->setProblem();
 
   auto pl = Teuchos::rcp(new Teuchos::ParameterList);
-  pl->set("Convergence Tolerance", m.tol);
+  pl->set("Convergence Tolerance", m.solveTol);
   pl->set("Maximum Iterations", m.maxIters);
   int verb = Belos::Errors;
   if (verbosity_ >= 1) verb += Belos::Warnings + Belos::FinalSummary;
@@ -339,10 +347,10 @@ void IterativeSolver::solve(const MultiVector& b, MultiVector& x) {
   // recursive residual met the tolerance but its explicit one did not quite:
   // round-off, accepted within the slack above.
   const bool belosDone = ret == Belos::Converged || solver->isLOADetected();
-  if (!belosDone || !(m.residual <= kExplicitResidualSlack * m.tol)) {
+  if (!belosDone || !(m.residual <= kExplicitResidualSlack * m.solveTol)) {
     DDC_THROW(SolverError,
               name() << " did not converge: " << m.iterations << " " << m.belosSolver << " iterations, relative "
-                     << "residual ||b - A x|| / ||b|| = " << m.residual << " (wanted " << m.tol << ", Belos "
+                     << "residual ||b - A x|| / ||b|| = " << m.residual << " (wanted " << m.solveTol << ", Belos "
                      << (belosDone ? "reported convergence of its recursive residual: the tolerance may be "
                                      "below the round-off level of this matrix"
                                    : "reached the iteration limit")

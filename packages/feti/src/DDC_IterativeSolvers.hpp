@@ -103,6 +103,11 @@ class IterativeSolver : public DirectSolver {
   void solve(const MultiVector& b, MultiVector& x) override;
   /// Belos iterations of the last solve().
   int lastIterations() const override;
+  /// "Convergence Tolerance".
+  double relativeTolerance() const override;
+  /// Tolerance of the next solve()s (>= "Convergence Tolerance", < 1).
+  /// \throws std::invalid_argument outside that range.
+  void setSolveTolerance(double tol) override;
   /// max over columns of ||b - A x|| / ||b|| of the last solve(), computed
   /// explicitly with A (not Belos's recursive residual).
   double lastResidual() const;

@@ -1058,7 +1058,11 @@ TEST(FetiDpErrors, MisspeltParametersNameThePath) {
   FetiDpSolver f(worldComm(), p, "FETI-DP");
   EXPECT_EQ(p.get<std::string>("Preconditioner"), "Dirichlet");
   EXPECT_EQ(p.get<std::string>("Scaling"), "Multiplicity");
-  EXPECT_EQ(p.get<std::string>("Primal Constraints"), "Vertices, Edges and Faces");
+  EXPECT_EQ(p.get<std::string>("Primal Constraints"), "Automatic");
+  EXPECT_EQ(f.convergenceTolerance(), 1e-10);
+  EXPECT_NO_THROW(f.setSolveTolerance(1e-3));
+  EXPECT_THROW(f.setSolveTolerance(1.0), std::invalid_argument);
+  EXPECT_THROW(f.setSolveTolerance(1e-11), std::invalid_argument);
   EXPECT_TRUE(p.get<bool>("Rotational Constraints"));
   EXPECT_EQ(p.sublist("Belos").get<std::string>("Solver Type"), "CG");
   EXPECT_EQ(p.sublist("Belos").get<int>("Maximum Iterations"), 500);

@@ -524,7 +524,9 @@ TEST(IterativeSolver, DirectSolversIgnoreTheHooks) {
   s->setCoordinates(problem().coords);
   s->setDofsPerNode(3);
   s->setDofsPerNode(7);  // ignored, like everything here
+  s->setSolveTolerance(0.5);
   EXPECT_EQ(s->lastIterations(), 0);
+  EXPECT_EQ(s->relativeTolerance(), 0.0);  // exact: no forcing term applies
 }
 
 // ---- both types on the cantilever -------------------------------------------
@@ -581,6 +583,32 @@ TEST_P(IterativeSolverTest, CantileverMatchesMumps) {
   auto* it = dynamic_cast<ddc::IterativeSolver*>(s.get());
   ASSERT_NE(it, nullptr);
   EXPECT_NEAR(it->lastResidual(), res, 1e-3 * res + 1e-300);
+}
+
+TEST_P(IterativeSolverTest, LooserSolveToleranceStopsEarlier) {
+  // An inexact Newton step (doc/user-guide.md "Newton"): setSolveTolerance()
+  // loosens the next solves, within [Convergence Tolerance, 1).
+  const Problem& p = problem();
+  auto s = make(GetParam());
+  s->setCoordinates(p.coords);
+  s->symbolic(p.A);
+  s->numeric();
+  EXPECT_EQ(s->relativeTolerance(), 1e-10);  // the default Convergence Tolerance
+  MultiVector x(p.map, p.b->getNumVectors());
+  s->solve(*p.b, x);
+  const int full = s->lastIterations();
+  constexpr double kLoose = 1e-3;
+  s->setSolveTolerance(kLoose);
+  s->solve(*p.b, x);
+  const int loose = s->lastIterations();
+  report(tag("iterations to 1e-10 / to 1e-3"), std::to_string(full) + " / " + std::to_string(loose));
+  EXPECT_LE(loose, full);
+  // FROSch on one rank is one exact subdomain solve (2 iterations either
+  // way); a solve that takes more must stop earlier at 1e-3.
+  if (full >= 5) EXPECT_LT(loose, full);
+  EXPECT_LT(relResidual(*p.A, x, *p.b), 10 * kLoose);  // the slack of solve()'s own check
+  EXPECT_THROW(s->setSolveTolerance(1.0), std::invalid_argument);
+  EXPECT_THROW(s->setSolveTolerance(1e-12), std::invalid_argument);  // tighter than Convergence Tolerance
 }
 
 TEST_P(IterativeSolverTest, NewValuesSamePattern) {
