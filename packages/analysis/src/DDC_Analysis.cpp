@@ -105,10 +105,12 @@ Teuchos::RCP<PL> newtonValidParameters() {
           "solve is exact anyway). Constant: the solver's own Convergence Tolerance every time. "
           "Eisenstat-Walker (inexact Newton): the first solve of a step uses that tolerance; solve k > 0 "
           "eta_k = 0.9 (||r_k|| / ||r_k-1||)^2 (Eisenstat & Walker 1996, choice 2, safeguarded by "
-          "0.9 eta_k-1^2), and no solve is asked for less than 'Forcing Term Floor' times the Newton target "
-          "max(Residual Tolerance ||r_0||, Absolute Residual Tolerance) over ||r_k||; always between the "
-          "solver's tolerance and 'Maximum Forcing Term'. The converged result meets the same Newton "
-          "criteria either way.",
+          "0.9 eta_k-1^2; left out with contact), and no solve is asked for less than 'Forcing Term Floor' "
+          "times the Newton target max(Residual Tolerance ||r_0||, Absolute Residual Tolerance) over "
+          "||r_k||; divided by how much less the previous solve reduced ||r|| than its tolerance promised; "
+          "the full tolerance again after ||r|| grew; always between the solver's tolerance and 'Maximum "
+          "Forcing Term' (doc/user-guide.md, 'Solution method'). The converged result meets the same "
+          "Newton criteria either way.",
           enumValidator({"Eisenstat-Walker", "Constant"}, "Forcing Term"));
   pl->set("Maximum Forcing Term", 0.1, "Loosest relative tolerance of a linear solve with Forcing Term = "
           "Eisenstat-Walker.", between(0.0, 1.0, Interval::Open));
@@ -434,7 +436,7 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
   const double atol = nw.get<double>("Absolute Residual Tolerance");
   const double etol = nw.get<double>("Energy Tolerance");
   const bool printIt = nw.get<bool>("Print Iterations");
-  // Inexact Newton (doc/user-guide.md "Newton"): only iterative solves have
+  // Inexact Newton (doc/user-guide.md "Solution method"): only iterative solves have
   // a tolerance to set.
   const double linTol = strategy_->linearTolerance();
   const bool forcing = linTol > 0.0 && nw.get<std::string>("Forcing Term") == "Eisenstat-Walker";

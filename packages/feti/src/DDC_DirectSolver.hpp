@@ -61,7 +61,7 @@ class DirectSolver {
   virtual double relativeTolerance() const { return 0.0; }
   /// Optional hook: the relative tolerance of the next solve()s, in
   /// [relativeTolerance(), 1) (an inexact Newton method's forcing term,
-  /// doc/user-guide.md "Newton"). Direct solvers ignore it.
+  /// doc/user-guide.md "Solution method"). Direct solvers ignore it.
   virtual void setSolveTolerance(double /*tol*/) {}
 };
 

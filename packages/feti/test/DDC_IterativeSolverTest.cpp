@@ -586,7 +586,7 @@ TEST_P(IterativeSolverTest, CantileverMatchesMumps) {
 }
 
 TEST_P(IterativeSolverTest, LooserSolveToleranceStopsEarlier) {
-  // An inexact Newton step (doc/user-guide.md "Newton"): setSolveTolerance()
+  // An inexact Newton step (doc/user-guide.md "Solution method"): setSolveTolerance()
   // loosens the next solves, within [Convergence Tolerance, 1).
   const Problem& p = problem();
   auto s = make(GetParam());
