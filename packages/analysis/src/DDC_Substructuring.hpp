@@ -36,7 +36,10 @@ enum class VertexRule {
 /// (in effect every edge node but those next to an edge end). With
 /// VertexRule::EdgeEnds: of each class of edge nodes (connected, one set),
 /// the node itself if it is alone, else its two ends when no one-node class
-/// touches it; on contact surfaces the EdgeNodes rule;
+/// touches it; on contact surfaces the EdgeNodes rule; and (rule 2b) each
+/// face, the nodes two subdomains share when they do not lie on one line,
+/// gets primal nodes until the two subdomains' relative rigid modes are
+/// fixed (no hinge through two edge ends);
 ///  3. every subdomain must be fixed against its rigid modes. 2-D: it needs
 ///     two distinct "anchor" nodes (primal, or carrying a prescribed DOF)
 ///     and prescribed DOFs in both directions unless it has two primal
