@@ -4,8 +4,9 @@
 # Refinement N, 3 (16N+1)(4N+1)^2 DOFs: N = 5, 8, 11 -> 107163, 421443,
 # 1075275) on RANKS ranks with MUMPS (monolithic direct), Belos CG + MueLu
 # and FETI-DP (primal constraints PRIMAL, Dirichlet preconditioner, METIS
-# subdomains of about SUB_DOFS DOFs each: 840, the fastest of 16 ... 512
-# subdomains at 107k DOFs with PRIMAL = Vertices). Prints a markdown table:
+# subdomains of about SUB_DOFS DOFs each: 1650, the fastest of 64 ... 502
+# subdomains at 421k DOFs with the default constraints and the Schur
+# complement path, doc/performance.md). Prints a markdown table:
 # median over REPS runs of linear set-up and solve seconds, dual/Krylov
 # iterations (summed over the 2 Newton solves of the one load step, and of
 # the first solve alone) and peak memory per rank; then the FETI-DP phase
@@ -15,7 +16,7 @@
 # Environment: RANKS (2), REPS (3), SIZES (refinements run with every
 #   strategy, "5 8 11"), MUMPS_SIZES (refinements run with MUMPS only, to find
 #   the largest that fits, "9 10"), SUBDOMAINS (FETI-DP subdomains per entry
-#   of SIZES; default DOFs / SUB_DOFS rounded), SUB_DOFS (840), PRIMAL
+#   of SIZES; default DOFs / SUB_DOFS rounded), SUB_DOFS (1650), PRIMAL
 #   (Solver/FETI-DP/Primal Constraints; empty: the default),
 #   MEM_FRACTION (0.9: share of MemAvailable the ranks may use together),
 #   TIMEOUT (3600: seconds one run may take).
@@ -35,7 +36,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 # shellcheck source=common.sh
 . test/benchmark/common.sh "${1:-build}"
-SUB_DOFS=${SUB_DOFS:-840}
+SUB_DOFS=${SUB_DOFS:-1650}
 PRIMAL=${PRIMAL:-}
 PRIMAL_ARGS=()
 [[ -z $PRIMAL ]] || PRIMAL_ARGS=(--set "Solver/FETI-DP/Primal Constraints=$PRIMAL")

@@ -12,6 +12,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,36 @@ class DirectSolver {
   /// [relativeTolerance(), 1) (an inexact Newton method's forcing term,
   /// doc/user-guide.md "Solution method"). Direct solvers ignore it.
   virtual void setSolveTolerance(double /*tol*/) {}
+
+  /// \name Optional capability: Schur complement and condensed solves
+  /// A partial factorisation that eliminates every row except the Schur rows
+  /// s, so that A = [A_ii A_is; A_si A_ss] yields S = A_ss - A_si A_ii^{-1}
+  /// A_is, and right-hand sides are condensed onto s and expanded back (MUMPS
+  /// ICNTL(19) and ICNTL(26); FETI-DP's subdomain condensation on the primal
+  /// DOFs, doc/feti-dp.md "Dual problem"). Only for matrices on one process.
+  /// While Schur rows are set, solve() solves the interior problem A_ii x_i =
+  /// b_i and returns x_s = 0.
+  ///@{
+  /// Set the Schur rows (local row indices, distinct), before symbolic();
+  /// an empty list switches the capability off. Returns false, and changes
+  /// nothing, if the back end cannot.
+  virtual bool setSchurIndices(const std::vector<LO>& /*rows*/) { return false; }
+  /// After numeric(): S, dense, column-major, |s| x |s|, rows and columns in
+  /// the order of setSchurIndices(). \throws std::logic_error if unsupported.
+  virtual void schurComplement(std::vector<double>& /*S*/) const {
+    throw std::logic_error(name() + ": no Schur complement support");
+  }
+  /// Condensation: g = b_s - A_si A_ii^{-1} b_i for b with one value per row
+  /// (g: |s| values). Keeps b for the next expand().
+  virtual void condense(const double* /*b*/, double* /*g*/) {
+    throw std::logic_error(name() + ": no Schur complement support");
+  }
+  /// Expansion after condense(b): x_i = A_ii^{-1} (b_i - A_is x_s) for the
+  /// given x_s (|s| values); x gets one value per row, x_s included.
+  virtual void expand(const double* /*xs*/, double* /*x*/) {
+    throw std::logic_error(name() + ": no Schur complement support");
+  }
+  ///@}
 };
 
 /// Names -> direct-solver creators. Built-ins: "MUMPS", "Amesos2".

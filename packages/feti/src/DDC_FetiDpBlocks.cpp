@@ -20,12 +20,26 @@
 
 namespace ddc {
 
-/// Patterns of K_rr and K_II (CrsMatrix on MPI_COMM_SELF) and the solvers.
+/// Patterns of K_rr (unless the local solver condenses K^s on the primal
+/// DOFs itself, Sub::schur) and K_II (CrsMatrix on MPI_COMM_SELF), and the
+/// solvers.
 void FetiDpSolver::Impl::buildBlocks(Sub& s) {
   const auto selfComm = s.K->getComm();
+  s.rSolver.reset();
+  s.iSolver.reset();
+  s.schur = false;
+  if (s.nr > 0) {
+    Teuchos::ParameterList p(localSolverParams);
+    s.rSolver = factory.create(p, param("Local Solver"));
+    s.schur = localSchur && s.np > 0 && s.rSolver->setSchurIndices(s.pDof);
+  }
+  if (prec == Prec::Dirichlet && s.ni > 0 && s.nd > 0) {
+    Teuchos::ParameterList p(localSolverParams);
+    s.iSolver = factory.create(p, param("Local Solver"));
+  }
   const auto& rowMap = *s.K->getRowMap();
   const auto& colMap = *s.K->getColMap();
-  std::vector<size_t> rCount(s.nr, 0), iCount(s.ni, 0);
+  std::vector<size_t> rCount(s.schur ? 0 : s.nr, 0), iCount(s.ni, 0);
   CrsMatrix::local_inds_host_view_type inds;
   CrsMatrix::values_host_view_type vals;
   for (LO lr = 0; lr < s.n; ++lr) {
@@ -35,14 +49,19 @@ void FetiDpSolver::Impl::buildBlocks(Sub& s) {
       const LO col = static_cast<LO>(colMap.getGlobalElement(inds(e)));
       const LO rr = s.rIdx[row], rc = s.rIdx[col];
       if (rr == kNone || rc == kNone) continue;
-      ++rCount[rr];
+      if (!s.schur) ++rCount[rr];
       if (s.iIdx[rr] != kNone && s.iIdx[rc] != kNone) ++iCount[s.iIdx[rr]];
     }
   }
-  s.rMap = rcp(new Map(static_cast<Tpetra::global_size_t>(s.nr), 0, selfComm));
   s.iMap = rcp(new Map(static_cast<Tpetra::global_size_t>(s.ni), 0, selfComm));
-  s.Krr = rcp(new CrsMatrix(s.rMap, Teuchos::ArrayView<const size_t>(rCount.data(), rCount.size())));
   s.Kii = rcp(new CrsMatrix(s.iMap, Teuchos::ArrayView<const size_t>(iCount.data(), iCount.size())));
+  if (s.schur) {
+    s.rMap = s.K->getRowMap();  // the solver's rows: every local DOF
+    s.Krr = Teuchos::null;
+  } else {
+    s.rMap = rcp(new Map(static_cast<Tpetra::global_size_t>(s.nr), 0, selfComm));
+    s.Krr = rcp(new CrsMatrix(s.rMap, Teuchos::ArrayView<const size_t>(rCount.data(), rCount.size())));
+  }
   std::vector<GO> rc, ic;
   std::vector<double> rv, iv;
   for (LO lr = 0; lr < s.n; ++lr) {
@@ -58,24 +77,15 @@ void FetiDpSolver::Impl::buildBlocks(Sub& s) {
       rc.push_back(c), rv.push_back(vals(e));
       if (s.iIdx[rr] != kNone && s.iIdx[c] != kNone) ic.push_back(s.iIdx[c]), iv.push_back(vals(e));
     }
-    s.Krr->insertGlobalValues(rr, Teuchos::ArrayView<const GO>(rc.data(), rc.size()),
-                              Teuchos::ArrayView<const double>(rv.data(), rv.size()));
+    if (!s.schur)
+      s.Krr->insertGlobalValues(rr, Teuchos::ArrayView<const GO>(rc.data(), rc.size()),
+                                Teuchos::ArrayView<const double>(rv.data(), rv.size()));
     if (s.iIdx[rr] != kNone)
       s.Kii->insertGlobalValues(s.iIdx[rr], Teuchos::ArrayView<const GO>(ic.data(), ic.size()),
                                 Teuchos::ArrayView<const double>(iv.data(), iv.size()));
   }
-  s.Krr->fillComplete(s.rMap, s.rMap);
+  if (!s.schur) s.Krr->fillComplete(s.rMap, s.rMap);
   s.Kii->fillComplete(s.iMap, s.iMap);
-  s.rSolver.reset();
-  s.iSolver.reset();
-  if (s.nr > 0) {
-    Teuchos::ParameterList p(localSolverParams);
-    s.rSolver = factory.create(p, param("Local Solver"));
-  }
-  if (prec == Prec::Dirichlet && s.ni > 0 && s.nd > 0) {
-    Teuchos::ParameterList p(localSolverParams);
-    s.iSolver = factory.create(p, param("Local Solver"));
-  }
   s.rB = rcp(new MultiVector(s.rMap, 1));
   s.rX = rcp(new MultiVector(s.rMap, 1));
   s.iB = rcp(new MultiVector(s.iMap, 1));
@@ -86,6 +96,8 @@ void FetiDpSolver::Impl::buildBlocks(Sub& s) {
   s.up.assign(s.np, 0.0);
   s.vd.assign(s.nd, 0.0);
   s.wd.assign(s.nd, 0.0);
+  s.bn.assign(s.schur ? s.n : 0, 0.0);
+  s.xn.assign(s.schur ? s.n : 0, 0.0);
 }
 
 
@@ -98,12 +110,14 @@ void FetiDpSolver::Impl::refreshBlocks(Sub& s) {
   if (s.cob.active()) s.cob.update(*s.Kuser);
   const auto& rowMap = *s.K->getRowMap();
   const auto& colMap = *s.K->getColMap();
-  s.Krr->resumeFill();
-  s.Krr->setAllToScalar(0.0);
+  if (!s.schur) {
+    s.Krr->resumeFill();
+    s.Krr->setAllToScalar(0.0);
+  }
   s.Kii->resumeFill();
   s.Kii->setAllToScalar(0.0);
   s.KrP.clear(), s.KPr.clear(), s.KID.clear(), s.KDI.clear(), s.KDD.clear();
-  s.KPP.assign(size_t(s.np) * s.np, 0.0);
+  s.KPP.assign(s.schur ? 0 : size_t(s.np) * s.np, 0.0);
   s.diag.assign(s.n, 0.0);
   std::vector<double> colSum(s.nr, 0.0);
   CrsMatrix::local_inds_host_view_type inds;
@@ -122,13 +136,15 @@ void FetiDpSolver::Impl::refreshBlocks(Sub& s) {
       if (col == row) s.diag[row] += v;
       const LO rcIdx = s.rIdx[col], pc = s.pIdx[col];
       if (rr != kNone && rcIdx != kNone) {
-        rc.push_back(rcIdx), rv.push_back(v);
+        if (!s.schur) rc.push_back(rcIdx), rv.push_back(v);
         colSum[rcIdx] += std::abs(v);
         const LO ir = s.iIdx[rr], ic2 = s.iIdx[rcIdx], dr = s.dIdx[rr], dc = s.dIdx[rcIdx];
         if (ir != kNone && ic2 != kNone) ic.push_back(ic2), iv.push_back(v);
         else if (ir != kNone) s.KID.push_back(Triplet{ir, dc, v});
         else if (ic2 != kNone) s.KDI.push_back(Triplet{dr, ic2, v});
         else s.KDD.push_back(Triplet{dr, dc, v});
+      } else if (s.schur) {
+        continue;  // the primal blocks stay inside the solver's Schur complement
       } else if (rr != kNone) {
         s.KrP.push_back(Triplet{rr, pc, v});
       } else if (rcIdx != kNone) {
@@ -138,13 +154,15 @@ void FetiDpSolver::Impl::refreshBlocks(Sub& s) {
       }
     }
     if (rr != kNone) {
-      patternOk = patternOk && s.Krr->sumIntoGlobalValues(rr, LO(rc.size()), rv.data(), rc.data()) == LO(rc.size());
+      if (!s.schur)
+        patternOk =
+            patternOk && s.Krr->sumIntoGlobalValues(rr, LO(rc.size()), rv.data(), rc.data()) == LO(rc.size());
       if (s.iIdx[rr] != kNone)
         patternOk =
             patternOk && s.Kii->sumIntoGlobalValues(s.iIdx[rr], LO(ic.size()), iv.data(), ic.data()) == LO(ic.size());
     }
   }
-  s.Krr->fillComplete(s.rMap, s.rMap);
+  if (!s.schur) s.Krr->fillComplete(s.rMap, s.rMap);
   s.Kii->fillComplete(s.iMap, s.iMap);
   if (!patternOk)
     throw std::logic_error("the sparsity pattern of K changed since setTopology(); call setTopology() again");
@@ -164,41 +182,49 @@ std::string FetiDpSolver::Impl::factorSub(Sub& s) {
   } catch (const std::exception& e) {
     return who + ": " + e.what();
   }
-  s.Phi.assign(size_t(s.nr) * s.np, 0.0);
+  s.Phi.assign(s.schur ? 0 : size_t(s.nr) * s.np, 0.0);
   if (s.nr > 0) {
     try {
-      if (!analysed) s.rSolver->symbolic(s.Krr);
+      if (!analysed) s.rSolver->symbolic(s.schur ? RCP<const CrsMatrix>(s.K) : RCP<const CrsMatrix>(s.Krr));
       s.rSolver->numeric();
+      if (s.schur) s.rSolver->schurComplement(s.S);  // S_PiPi^s, in primal order
     } catch (const SolverError& e) {
       return who + fix + " [" + e.what() + "]";
     }
-    // One multi-RHS solve: the np columns of K_rPi, plus a pseudo-random
-    // column z for a condition estimate ||K||_1 ||K^{-1} z||_1 / ||z||_1 (one
-    // step of inverse iteration). A singular K_rr that the factorisation did
-    // not flag (tiny instead of zero pivots, as LDL^T of a floating
-    // subdomain gives) shows up as an estimate near 1/eps.
-    MultiVector R(s.rMap, size_t(s.np) + 1), X(s.rMap, size_t(s.np) + 1);
+    // A condition estimate ||K_rr||_1 ||K_rr^{-1} z||_1 / ||z||_1 (one step
+    // of inverse iteration) with a pseudo-random column z: a singular K_rr
+    // that the factorisation did not flag (tiny instead of zero pivots, as
+    // LDL^T of a floating subdomain gives) shows up as an estimate near
+    // 1/eps. Without the Schur capability the same multi-RHS solve gives the
+    // np columns of Phi = K_rr^{-1} K_rPi. (With it, solve() solves the
+    // interior problem K_rr alone.)
+    const size_t nPhi = s.schur ? 0 : size_t(s.np);
+    MultiVector R(s.rMap, nPhi + 1), X(s.rMap, nPhi + 1);
     for (const Triplet& t : s.KrP) R.sumIntoLocalValue(t.i, size_t(t.j), t.v);
+    // Row of remainder index r in R / X.
+    auto at = [&s](LO r) { return s.schur ? s.rDof[r] : r; };
     {
       std::mt19937 gen(12345u + static_cast<unsigned>(s.id));
       std::uniform_real_distribution<double> u(-1.0, 1.0);
-      auto z = R.getDataNonConst(size_t(s.np));
-      for (LO r = 0; r < s.nr; ++r) z[r] = u(gen);
+      auto z = R.getDataNonConst(nPhi);
+      for (LO r = 0; r < s.nr; ++r) z[at(r)] = u(gen);
     }
     s.rSolver->solve(R, X);
-    for (LO p = 0; p < s.np; ++p) {
-      auto x = X.getData(size_t(p));
-      std::copy(x.begin(), x.end(), s.Phi.begin() + size_t(p) * s.nr);
+    for (size_t p = 0; p < nPhi; ++p) {
+      auto x = X.getData(p);
+      std::copy(x.begin(), x.end(), s.Phi.begin() + p * s.nr);
     }
     double zn = 0.0, yn = 0.0;
     {
-      auto z = R.getData(size_t(s.np));
-      auto y = X.getData(size_t(s.np));
-      for (LO r = 0; r < s.nr; ++r) zn += std::abs(z[r]), yn += std::abs(y[r]);
+      auto z = R.getData(nPhi);
+      auto y = X.getData(nPhi);
+      for (LO r = 0; r < s.nr; ++r) zn += std::abs(z[at(r)]), yn += std::abs(y[at(r)]);
     }
     const double est = s.krrNorm1 * yn / zn;
     bool finitePhi = std::isfinite(est);
     for (double v : s.Phi) finitePhi = finitePhi && std::isfinite(v);
+    if (s.schur)
+      for (double v : s.S) finitePhi = finitePhi && std::isfinite(v);
     if (!finitePhi || (singularityThreshold > 0.0 && est > singularityThreshold)) {
       std::ostringstream os;
       os << who << fix << " [condition estimate of K_rr " << std::scientific << est << " > '"
@@ -206,6 +232,7 @@ std::string FetiDpSolver::Impl::factorSub(Sub& s) {
       return os.str();
     }
   }
+  if (s.schur) return "";
   // S_PiPi^s = K_PiPi - K_Pir Phi
   s.S = s.KPP;
   for (const Triplet& t : s.KPr)

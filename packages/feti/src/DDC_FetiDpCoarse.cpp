@@ -118,18 +118,30 @@ void FetiDpSolver::Impl::buildCoarse() {
 }
 
 
-/// Sum the S_PiPi^s blocks into the distributed coarse matrix (entries sent
-/// to the owners of their rows).
+/// Sum the S_PiPi^s blocks into the distributed coarse matrix: rows this
+/// rank owns directly, the others as records sent to their owners (so the
+/// records, 24 bytes per entry, cover only the rows shared with other ranks).
 void FetiDpSolver::Impl::assembleCoarse() {
-  std::vector<std::vector<CoarseRecord>> send(size);
-  for (const Sub& s : subs)
-    for (LO p = 0; p < s.np; ++p)
-      for (LO q = 0; q < s.np; ++q)
-        send[s.coarseOwner[p]].push_back(
-            CoarseRecord{s.coarseGid[p], s.coarseGid[q], s.S[size_t(p) + size_t(q) * s.np]});
-  std::vector<CoarseRecord> recv = exchangeRecords(mpi, send);
   coarse->resumeFill();
   coarse->setAllToScalar(0.0);
+  std::vector<std::vector<CoarseRecord>> send(size);
+  std::vector<double> row;
+  for (Sub& s : subs) {
+    row.resize(s.np);
+    for (LO p = 0; p < s.np; ++p) {
+      // row p of S^s (stored column-major)
+      for (LO q = 0; q < s.np; ++q) row[q] = s.S[size_t(p) + size_t(q) * s.np];
+      const int owner = s.coarseOwner[p];
+      if (owner == rank) {
+        coarse->sumIntoGlobalValues(s.coarseGid[p], s.np, row.data(), s.coarseGid.data());
+      } else {
+        for (LO q = 0; q < s.np; ++q) send[owner].push_back(CoarseRecord{s.coarseGid[p], s.coarseGid[q], row[q]});
+      }
+    }
+    std::vector<double>().swap(s.S);  // needed again only after the next factorisation
+  }
+  std::vector<CoarseRecord> recv = exchangeRecords(mpi, send);
+  for (auto& v : send) std::vector<CoarseRecord>().swap(v);
   for (const auto& r : recv) coarse->sumIntoGlobalValues(r.row, 1, &r.v, &r.col);
   coarse->fillComplete(coarseMap, coarseMap);
 }

@@ -147,6 +147,11 @@ struct FetiDpSolver::Impl {
     std::vector<int> coarseOwner; // primal index -> owning rank of the coarse row
 
     // blocks (values refreshed by numeric())
+    /// K_rr is not formed: rSolver factorises K^s itself with the primal
+    /// DOFs as Schur rows, giving S_PiPi^s directly, and applies K~^{-1} by
+    /// condensation / expansion ("Local Schur Complement"); no Phi, K_rPi,
+    /// K_Pir or K_PiPi are kept.
+    bool schur = false;
     RCP<const Map> rMap, iMap;
     RCP<CrsMatrix> Krr, Kii;
     std::unique_ptr<DirectSolver> rSolver, iSolver;
@@ -155,7 +160,7 @@ struct FetiDpSolver::Impl {
     std::vector<Triplet> KID, KDI, KDD;  // (I, Delta), (Delta, I), (Delta, Delta)
     std::vector<double> diag;       // K^s_jj per local DOF
     double krrNorm1 = 0.0;
-    std::vector<double> Phi;        // nr x np, column-major
+    std::vector<double> Phi;        // nr x np, column-major (without schur)
     std::vector<double> S;          // np x np, column-major
 
     std::vector<BEntry> B;            // all rows (LIDs in lmOvMap), sorted by (lm, dof)
@@ -167,6 +172,7 @@ struct FetiDpSolver::Impl {
     RCP<MultiVector> rB, rX, iB, iX;
     std::vector<double> fr, xr, fp, up;
     std::vector<double> vd, wd;
+    std::vector<double> bn, xn;  // one value per local DOF (schur: condense / expand)
   };
 
   // configuration
@@ -177,6 +183,7 @@ struct FetiDpSolver::Impl {
   Prec prec = Prec::Dirichlet;
   bool stiffnessScaling = false;
   double singularityThreshold = 1e13;
+  bool localSchur = true;  ///< "Local Schur Complement"
   PrimalConstraints primalChoice = PrimalConstraints::VerticesEdgesAndFaces;
   bool automaticPrimal = false;  ///< "Primal Constraints" = Automatic: resolved in setTopology()
   bool rotations = true;  // "Rotational Constraints"

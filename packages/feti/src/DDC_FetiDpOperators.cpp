@@ -109,24 +109,39 @@ void FetiDpSolver::Impl::scatterBt(const Vector& lambda, double sign) {
 /// (u_r^s, u_Pi) = K~^{-1} (f_r^s, f_Pi) where f_Pi = sum_s R^T f_Pi^s +
 /// fPiAssembled (the latter on coarseMap, may be null). Inputs in s.fr,
 /// s.fp; outputs in s.xr (= u_r^s), s.up (= u_Pi^s) and coarseSol.
+///
+/// Per subdomain, the coarse right-hand side is f_Pi^s - K_Pir K_rr^{-1}
+/// f_r^s and the back-substitution u_r = K_rr^{-1} (f_r - K_rPi u_Pi): with
+/// the Schur capability one condensation and one expansion (a forward and a
+/// backward sweep), otherwise a K_rr solve and the stored Phi.
 void FetiDpSolver::Impl::applyKtildeInv(const Vector* fPiAssembled) {
   for (Sub& s : subs)
-    if (s.nr > 0) localSolve(*s.rSolver, *s.rB, *s.rX, s.fr, s.xr, tLocalSolve);
+    if (s.nr > 0 && !s.schur) localSolve(*s.rSolver, *s.rB, *s.rX, s.fr, s.xr, tLocalSolve);
   if (nCoarse == 0) {
     for (Sub& s : subs) std::fill(s.up.begin(), s.up.end(), 0.0);
     return;
   }
-  const double t0 = MPI_Wtime();
-  // g_Pi = f_Pi - sum_s R_Pi^T K_Pir x_r
+  // g_Pi = f_Pi - sum_s R_Pi^T K_Pir K_rr^{-1} f_r
   coarseOvWork->putScalar(0.0);
   {
     auto g = coarseOvWork->getDataNonConst();
+    std::vector<double> gp;
     for (Sub& s : subs) {
-      std::vector<double> gp(s.fp);
-      for (const Triplet& t : s.KPr) gp[t.i] -= t.v * s.xr[t.j];
+      if (s.schur) {
+        const double t0 = MPI_Wtime();
+        for (LO r = 0; r < s.nr; ++r) s.bn[s.rDof[r]] = s.fr[r];
+        for (LO p = 0; p < s.np; ++p) s.bn[s.pDof[p]] = s.fp[p];
+        gp.resize(s.np);
+        s.rSolver->condense(s.bn.data(), gp.data());
+        tLocalSolve += MPI_Wtime() - t0;
+      } else {
+        gp = s.fp;
+        for (const Triplet& t : s.KPr) gp[t.i] -= t.v * s.xr[t.j];
+      }
       for (LO p = 0; p < s.np; ++p) g[s.coarseOvLid[p]] += gp[p];
     }
   }
+  const double t0 = MPI_Wtime();
   coarseWork->putScalar(0.0);
   coarseWork->doExport(*coarseOvWork, *coarseExport, Tpetra::ADD);
   if (fPiAssembled) coarseWork->update(1.0, *fPiAssembled, 1.0);
@@ -136,6 +151,13 @@ void FetiDpSolver::Impl::applyKtildeInv(const Vector* fPiAssembled) {
   auto u = coarseOvWork->getData();
   for (Sub& s : subs) {
     for (LO p = 0; p < s.np; ++p) s.up[p] = u[s.coarseOvLid[p]];
+    if (s.schur) {
+      const double t1 = MPI_Wtime();
+      s.rSolver->expand(s.up.data(), s.xn.data());
+      for (LO r = 0; r < s.nr; ++r) s.xr[r] = s.xn[s.rDof[r]];
+      tLocalSolve += MPI_Wtime() - t1;
+      continue;
+    }
     // u_r = x_r - Phi u_Pi^s
     for (LO q = 0; q < s.np; ++q) {
       const double uq = s.up[q];

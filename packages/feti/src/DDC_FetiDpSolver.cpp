@@ -98,6 +98,12 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
             "with a pseudo-random vector) exceeds this is reported singular (insufficient primal DOFs); a direct "
             "solver may factorise a singular matrix with tiny pivots instead of failing. 0 disables the check.",
             atLeast(0.0));
+    pl->set("Local Schur Complement", true,
+            "Compute each S_PiPi^s as the Schur complement of a partial factorisation of K^s on its primal DOFs "
+            "(MUMPS ICNTL(19)) and apply K~^{-1} by condensing onto and expanding from them (ICNTL(26)); "
+            "otherwise factorise K_rr^s alone and store Phi^s = K_rr^{-1} K_rPi (a dense remainder x primal "
+            "block per subdomain, np solves to build). Local solvers without a Schur capability (Amesos2) use "
+            "Phi^s either way (doc/feti-dp.md, 'Dual problem').");
     Teuchos::ParameterList belos("Belos");
     belos.set("Solver Type", std::string("CG"),
               "Belos solver for F lambda = d (Belos::SolverFactory names): CG (symmetric tangents, the "
@@ -160,6 +166,7 @@ FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramete
   m.prec = prec == "Dirichlet" ? Impl::Prec::Dirichlet : prec == "Lumped" ? Impl::Prec::Lumped : Impl::Prec::None;
   m.stiffnessScaling = params.get<std::string>("Scaling") == "Stiffness";
   m.singularityThreshold = params.get<double>("Local Singularity Threshold");
+  m.localSchur = params.get<bool>("Local Schur Complement");
   m.automaticPrimal = params.get<std::string>("Primal Constraints") == "Automatic";
   m.primalChoice = m.automaticPrimal ? PrimalConstraints::VerticesAndEdges
                                      : primalConstraintsFromName(params.get<std::string>("Primal Constraints"));

@@ -137,12 +137,12 @@ class FetiDpSolver {
     double setupSeconds = 0.0;      ///< the last numeric() (local + coarse + Dirichlet factorisations)
     double solveSeconds = 0.0;      ///< this solve(), all of it
     // breakdown of setupSeconds
-    double localFactorSeconds = 0.0;      ///< K_rr^s factorisations, Phi^s and S_PiPi^s (this rank's subdomains)
+    double localFactorSeconds = 0.0;      ///< K_rr^s (or K^s with Schur rows) factorisations, Phi^s and S_PiPi^s (this rank's subdomains)
     double coarseFactorSeconds = 0.0;     ///< coarse assembly + factorisation
     double dirichletFactorSeconds = 0.0;  ///< K_II^s factorisations (Dirichlet preconditioner)
     // breakdown of solveSeconds
     double belosSeconds = 0.0;           ///< the Belos iterations (incl. F and M^{-1} applications)
-    double localSolveSeconds = 0.0;      ///< K_rr^{-1} solves (F applications and setup/recovery of solve())
+    double localSolveSeconds = 0.0;      ///< K_rr^{-1} solves or condense / expand pairs (F applications and setup/recovery of solve())
     double coarseSolveSeconds = 0.0;     ///< coarse solves incl. their communication, whole solve()
     double preconditionerSeconds = 0.0;  ///< M^{-1} applications (includes the K_II^{-1} solves)
     int operatorApplications = 0;        ///< F applications by Belos
@@ -160,6 +160,10 @@ class FetiDpSolver {
   ///  - "Rotational Constraints": bool (true): the rotations of each edge /
   ///    face too (needs FetiSubdomain::coordinates);
   ///  - "Local Singularity Threshold": double (1e13);
+  ///  - "Local Schur Complement": bool (true): S_PiPi^s from a partial
+  ///    factorisation of K^s and K~^{-1} by condensation / expansion, where
+  ///    the local solver can (DirectSolver::setSchurIndices(), MUMPS);
+  ///    otherwise K_rr^s and the dense Phi^s;
   ///  - "Belos": {"Solver Type": "CG" | "GMRES" | "MINRES", "Convergence
   ///    Tolerance" (1e-10), "Maximum Iterations" (500), "Verbosity" (0),
   ///    "Output Frequency" (-1)}, and any other parameter of the chosen

@@ -359,10 +359,18 @@ void ChangeOfBasis::multiply(const CrsMatrix& K, bool values) {
     row.reserve(touched.size());
     for (LO b : touched) row.emplace_back(b, acc[b]), acc[b] = 0.0, mark[b] = 0;
   }
-  // K̂ row a = sum_i T(i, a) KT(i, :).
+  // K̂ row a = sum_i T(i, a) KT(i, :). The values pass reads K̂'s columns
+  // from its own graph (row map = column map: local column = DOF).
   if (!values) hatCols_.assign(size_t(n_), {});
   std::vector<double> h;
-  if (values) h.assign(hatOffsets_.back(), 0.0);
+  std::vector<size_t> off;
+  CrsMatrix::local_inds_host_view_type hInds;
+  CrsMatrix::values_host_view_type hVals;
+  if (values) {
+    off.assign(size_t(n_) + 1, 0);
+    for (LO a = 0; a < n_; ++a) off[a + 1] = off[a] + hat_->getNumEntriesInLocalRow(a);
+    h.assign(off.back(), 0.0);
+  }
   for (LO a = 0; a < n_; ++a) {
     tCol(a, t);
     touched.clear();
@@ -375,15 +383,17 @@ void ChangeOfBasis::multiply(const CrsMatrix& K, bool values) {
       hatCols_[a] = touched;
       std::sort(hatCols_[a].begin(), hatCols_[a].end());
     } else {
-      for (size_t q = 0; q < hatCols_[a].size(); ++q) h[hatOffsets_[a] + q] = acc[hatCols_[a][q]];
+      hat_->getLocalRowView(a, hInds, hVals);
+      for (size_t q = 0; q < hInds.extent(0); ++q) h[off[a] + q] = acc[hInds(q)];
     }
     for (LO b : touched) acc[b] = 0.0, mark[b] = 0;
   }
   if (!values) return;
   hat_->resumeFill();
-  for (LO a = 0; a < n_; ++a)
-    hat_->replaceLocalValues(a, Teuchos::ArrayView<const LO>(hatCols_[a]),
-                             Teuchos::ArrayView<const double>(h.data() + hatOffsets_[a], hatCols_[a].size()));
+  for (LO a = 0; a < n_; ++a) {
+    hat_->getLocalRowView(a, hInds, hVals);
+    hat_->replaceLocalValues(a, LO(hInds.extent(0)), h.data() + off[a], hInds.data());
+  }
   hat_->fillComplete(hat_->getDomainMap(), hat_->getRangeMap());
 }
 
@@ -392,15 +402,12 @@ Teuchos::RCP<CrsMatrix> ChangeOfBasis::setPattern(const CrsMatrix& K) {
   // K may change, its pattern may not).
   multiply(K, false);
   kNnz_ = K.getNodeNumEntries();
-  hatOffsets_.assign(size_t(n_) + 1, 0);
   Teuchos::Array<size_t> nnz(n_);
-  for (LO a = 0; a < n_; ++a) {
-    nnz[a] = hatCols_[a].size();
-    hatOffsets_[a + 1] = hatOffsets_[a] + hatCols_[a].size();
-  }
+  for (LO a = 0; a < n_; ++a) nnz[a] = hatCols_[a].size();
   auto map = Teuchos::rcp(new Map(static_cast<Tpetra::global_size_t>(n_), 0, K.getComm()));
   auto graph = Teuchos::rcp(new CrsGraph(map, map, nnz()));
   for (LO a = 0; a < n_; ++a) graph->insertLocalIndices(a, Teuchos::ArrayView<const LO>(hatCols_[a]));
+  std::vector<std::vector<LO>>().swap(hatCols_);  // the graph holds the pattern now
   graph->fillComplete(map, map);
   hat_ = Teuchos::rcp(new CrsMatrix(graph));
   hat_->fillComplete(map, map);

@@ -132,8 +132,8 @@ class ChangeOfBasis {
   /// Row i / column a of T as (index, coefficient) pairs.
   void tRow(LO i, std::vector<std::pair<LO, double>>& out) const;
   void tCol(LO a, std::vector<std::pair<LO, double>>& out) const;
-  /// K̂ = T^T K T: the pattern (values = false, into hatCols_) or the values
-  /// (into hat_).
+  /// K̂ = T^T K T: the pattern (values = false, into hatCols_, which
+  /// setPattern() frees once the graph holds it) or the values (into hat_).
   void multiply(const CrsMatrix& K, bool values);
 
   LO n_ = 0;
@@ -142,7 +142,6 @@ class ChangeOfBasis {
   std::vector<LO> rep_;    // per local DOF: its index in its group's R, or -1
   std::vector<LO> other_;  // per local DOF: its index in its group's O, or -1
   size_t kNnz_ = 0;        // entries of K at setPattern()
-  std::vector<size_t> hatOffsets_;
   std::vector<std::vector<LO>> hatCols_;
   Teuchos::RCP<CrsMatrix> hat_;
 };

@@ -78,7 +78,13 @@ struct MumpsSolver::Impl {
   std::vector<MUMPS_INT> irn, jcn;
   std::vector<double> a;
   std::vector<int> rowCounts, rowFirst;  // per rank: owned rows, first GID (gather layout)
-  std::vector<double> rhs;               // centralised RHS / solution on rank 0
+  std::vector<double> rhs;               // centralised RHS / solution on rank 0 (one column)
+
+  // Schur complement (setSchurIndices): 1-based rows, S (column-major), and
+  // the RHS / reduced RHS kept from condense() for expand()
+  std::vector<MUMPS_INT> schurRows;
+  std::vector<double> schur, condRhs, redRhs;
+  bool condensed = false;
 
   bool analysed = false;
   bool factored = false;
@@ -276,6 +282,32 @@ void MumpsSolver::symbolic(const Teuchos::RCP<const CrsMatrix>& A) {
   id.irn_loc = m.irn.data();
   id.jcn_loc = m.jcn.data();
   id.a_loc = m.a.data();
+  if (!m.schurRows.empty()) {
+    if (m.size != 1)
+      throw std::invalid_argument("MUMPS symbolic(): a Schur complement needs a matrix on one process");
+    for (MUMPS_INT r : m.schurRows)
+      if (r < 1 || r > m.n)
+        throw std::invalid_argument("MUMPS symbolic(): Schur row " + std::to_string(r - 1) + " outside 0.." +
+                                    std::to_string(m.n - 1));
+    const MUMPS_INT ns = static_cast<MUMPS_INT>(m.schurRows.size());
+    icntl(id, 19) = 3;  // "distributed" Schur, whole matrix, on a 1 x 1 grid: plain column-major
+    id.size_schur = ns;
+    id.listvar_schur = m.schurRows.data();
+    id.nprow = id.npcol = 1;
+    id.mblock = id.nblock = 100;
+    id.schur_lld = ns;
+    m.schur.assign(size_t(ns) * size_t(ns), 0.0);
+    id.schur = m.schur.data();
+    m.condRhs.assign(size_t(m.n), 0.0);
+    m.redRhs.assign(size_t(ns), 0.0);
+  } else {
+    icntl(id, 19) = 0;
+    id.size_schur = 0;
+    id.listvar_schur = nullptr;
+    id.schur = nullptr;
+  }
+  icntl(id, 26) = 0;
+  m.condensed = false;
   m.analysed = m.factored = false;
   m.run(1, "analysis (JOB=1)");
   m.analysed = true;
@@ -285,7 +317,7 @@ void MumpsSolver::symbolic(const Teuchos::RCP<const CrsMatrix>& A) {
 void MumpsSolver::numeric() {
   Impl& m = *impl_;
   if (!m.analysed) throw std::logic_error("MUMPS numeric() called before symbolic()");
-  m.factored = false;
+  m.factored = m.condensed = false;
   const bool changed = !m.collect(false);
   if (anyRank(m.comm, changed))
     throw std::logic_error(
@@ -317,8 +349,12 @@ void MumpsSolver::solve(const MultiVector& b, MultiVector& x) {
                                 "same number of columns");
   if (k == 0) return;
   const size_t n = static_cast<size_t>(m.n);
-  if (m.rank == 0) m.rhs.assign(n * k, 0.0);
-  double* root = m.rank == 0 ? m.rhs.data() : nullptr;
+  // One column is kept between calls; a block of columns (FETI-DP's Phi) is
+  // a temporary, so that it does not stay allocated per subdomain.
+  std::vector<double> block;
+  std::vector<double>& buf = k == 1 ? m.rhs : block;
+  if (m.rank == 0) buf.assign(n * k, 0.0);
+  double* root = m.rank == 0 ? buf.data() : nullptr;
   for (size_t j = 0; j < k; ++j) {
     auto bj = b.getData(j);
     MPI_Gatherv(bj.getRawPtr(), m.nLocal, MPI_DOUBLE, root ? root + j * n : nullptr, m.rowCounts.data(),
@@ -328,12 +364,71 @@ void MumpsSolver::solve(const MultiVector& b, MultiVector& x) {
   id.rhs = root;
   id.nrhs = static_cast<MUMPS_INT>(k);
   id.lrhs = m.n;
+  icntl(id, 26) = 0;  // with a Schur complement: the interior problem only
+  m.condensed = false;
   m.run(3, "solve (JOB=3)");
   for (size_t j = 0; j < k; ++j) {
     auto xj = x.getDataNonConst(j);
     MPI_Scatterv(root ? root + j * n : nullptr, m.rowCounts.data(), m.rowFirst.data(), MPI_DOUBLE,
                  xj.getRawPtr(), m.nLocal, MPI_DOUBLE, 0, m.comm);
   }
+}
+
+bool MumpsSolver::setSchurIndices(const std::vector<LO>& rows) {
+  Impl& m = *impl_;
+  m.schurRows.clear();
+  std::vector<LO> sorted(rows);
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+    throw std::invalid_argument("MUMPS setSchurIndices(): repeated row");
+  for (LO r : rows) m.schurRows.push_back(static_cast<MUMPS_INT>(r) + 1);
+  m.analysed = m.factored = false;  // the analysis depends on them
+  return true;
+}
+
+void MumpsSolver::schurComplement(std::vector<double>& S) const {
+  const Impl& m = *impl_;
+  if (!m.factored || m.schurRows.empty())
+    throw std::logic_error("MUMPS schurComplement(): needs setSchurIndices(), symbolic() and numeric()");
+  S = m.schur;
+}
+
+void MumpsSolver::condense(const double* b, double* g) {
+  Impl& m = *impl_;
+  if (!m.factored || m.schurRows.empty())
+    throw std::logic_error("MUMPS condense(): needs setSchurIndices(), symbolic() and numeric()");
+  DMUMPS_STRUC_C& id = m.id;
+  std::copy(b, b + m.n, m.condRhs.begin());
+  id.rhs = m.condRhs.data();
+  id.nrhs = 1;
+  id.lrhs = m.n;
+  id.redrhs = m.redRhs.data();
+  id.lredrhs = static_cast<MUMPS_INT>(m.schurRows.size());
+  icntl(id, 26) = 1;  // condensation: forward elimination, reduced RHS in REDRHS
+  m.condensed = false;
+  m.run(3, "condensation (JOB=3, ICNTL(26)=1)");
+  icntl(id, 26) = 0;
+  m.condensed = true;
+  std::copy(m.redRhs.begin(), m.redRhs.end(), g);
+}
+
+void MumpsSolver::expand(const double* xs, double* x) {
+  Impl& m = *impl_;
+  if (!m.condensed) throw std::logic_error("MUMPS expand(): call condense() first");
+  DMUMPS_STRUC_C& id = m.id;
+  const size_t ns = m.schurRows.size();
+  std::copy(xs, xs + ns, m.redRhs.begin());
+  id.rhs = m.condRhs.data();  // as condense() left it
+  id.nrhs = 1;
+  id.lrhs = m.n;
+  id.redrhs = m.redRhs.data();
+  id.lredrhs = static_cast<MUMPS_INT>(ns);
+  icntl(id, 26) = 2;  // expansion: backward substitution with x_s given
+  m.condensed = false;
+  m.run(3, "expansion (JOB=3, ICNTL(26)=2)");
+  icntl(id, 26) = 0;
+  std::copy(m.condRhs.begin(), m.condRhs.end(), x);
+  for (size_t q = 0; q < ns; ++q) x[m.schurRows[q] - 1] = xs[q];
 }
 
 int MumpsSolver::numSymbolic() const { return impl_->nSymbolic; }

@@ -54,6 +54,14 @@ class MumpsSolver : public DirectSolver {
   void solve(const MultiVector& b, MultiVector& x) override;
   std::string name() const override { return "MUMPS"; }
 
+  /// Schur complement (ICNTL(19) = 3 on a 1 x 1 process grid: the whole S,
+  /// column-major) and condensed solves (ICNTL(26) = 1, 2). Needs a matrix
+  /// on one process (symbolic() throws std::invalid_argument otherwise).
+  bool setSchurIndices(const std::vector<LO>& rows) override;
+  void schurComplement(std::vector<double>& S) const override;
+  void condense(const double* b, double* g) override;
+  void expand(const double* xs, double* x) override;
+
   /// Number of MUMPS analyses (JOB=1) so far: stays 1 while only numeric()
   /// is called again (symbolic reuse).
   int numSymbolic() const;

@@ -9,7 +9,11 @@
 #include <mpi.h>
 
 #include <Teuchos_DefaultMpiComm.hpp>
+#include <Teuchos_SerialDenseMatrix.hpp>
+#include <Teuchos_SerialDenseSolver.hpp>
+#include <Teuchos_SerialDenseVector.hpp>
 #include <Tpetra_Core.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <functional>
 
@@ -365,6 +369,90 @@ TEST(MumpsSolver, MemoryRelaxationRetry) {
   EXPECT_TRUE(s.memoryRelaxationPercent() == 0 || s.memoryRelaxationPercent() == 20);
 }
 
+// The Schur capability, checked against A itself (Tpetra's apply), never
+// against a second factorisation: with b = 0 and x_s = e_j, expand() gives
+// x_i = -A_ii^{-1} A_is e_j, so (A x)_s is column j of S = A_ss - A_si
+// A_ii^{-1} A_is and (A x)_i = 0; with b random, condense() / a dense solve
+// with S / expand() solve A x = b. Interior rows (A x)_i = b_i, Schur rows
+// agree with S up to round-off in the entries of S (|S_ij| <= 4).
+TEST(MumpsSolver, SchurComplementAndCondensedSolves) {
+  for (const bool symmetric : {true, false}) {
+    auto A = laplacian(selfComm(), 7, 6, symmetric ? 0.0 : 0.3);
+    const LO n = LO(A->getNodeNumRows());
+    const std::vector<LO> rows{29, 3, 17, 10, 41};  // deliberately unsorted
+    const size_t ns = rows.size();
+    Teuchos::ParameterList p;
+    p.set("Symmetric", symmetric);
+    ddc::MumpsSolver s(p);
+    ASSERT_TRUE(s.setSchurIndices(rows));
+    s.symbolic(A);
+    s.numeric();
+    std::vector<double> S;
+    s.schurComplement(S);
+    ASSERT_EQ(S.size(), ns * ns);
+    MultiVector x(A->getRowMap(), 1), ax(A->getRowMap(), 1);
+    const size_t nn = static_cast<size_t>(n);
+    std::vector<double> zero(nn, 0.0), g(ns), xs(ns), xv(nn);
+    for (size_t j = 0; j < ns; ++j) {
+      s.condense(zero.data(), g.data());
+      for (double v : g) EXPECT_EQ(v, 0.0);
+      std::fill(xs.begin(), xs.end(), 0.0);
+      xs[j] = 1.0;
+      s.expand(xs.data(), xv.data());
+      {
+        auto xd = x.getDataNonConst(0);
+        std::copy(xv.begin(), xv.end(), xd.begin());
+      }
+      A->apply(x, ax);
+      auto a = ax.getData(0);
+      for (size_t i = 0; i < ns; ++i)
+        EXPECT_NEAR(a[rows[i]], S[i + j * ns], kDirectSolveResidual) << "S(" << i << ", " << j << ")";
+      for (LO r = 0; r < n; ++r)
+        if (std::find(rows.begin(), rows.end(), r) == rows.end()) EXPECT_NEAR(a[r], 0.0, kDirectSolveResidual);
+    }
+    // A full solve through the condensed system.
+    MultiVector b(A->getRowMap(), 1);
+    b.randomize();
+    std::vector<double> bv(nn);
+    {
+      auto bd = b.getData(0);
+      std::copy(bd.begin(), bd.end(), bv.begin());
+    }
+    s.condense(bv.data(), g.data());
+    const int m = static_cast<int>(ns);
+    Teuchos::SerialDenseMatrix<int, double> Sd(m, m);
+    Teuchos::SerialDenseVector<int, double> gd(m), xd(m);
+    for (size_t i = 0; i < ns; ++i) {
+      gd(int(i)) = g[i];
+      for (size_t j = 0; j < ns; ++j) Sd(int(i), int(j)) = S[i + j * ns];
+    }
+    Teuchos::SerialDenseSolver<int, double> dense;
+    dense.setMatrix(Teuchos::rcpFromRef(Sd));
+    dense.setVectors(Teuchos::rcpFromRef(xd), Teuchos::rcpFromRef(gd));
+    ASSERT_EQ(dense.solve(), 0);
+    for (size_t i = 0; i < ns; ++i) xs[i] = xd(int(i));
+    s.expand(xs.data(), xv.data());
+    {
+      auto xdv = x.getDataNonConst(0);
+      std::copy(xv.begin(), xv.end(), xdv.begin());
+    }
+    const double res = relResidual(*A, x, b);
+    report(std::string("MUMPS condense / expand, ") + (symmetric ? "SYM=2" : "SYM=0"), res);
+    EXPECT_LT(res, kDirectSolveResidual);
+    // solve() with Schur rows: the interior problem, x_s = 0.
+    s.solve(b, x);
+    A->apply(x, ax);
+    auto a = ax.getData(0);
+    auto bd = b.getData(0);
+    auto xd2 = x.getData(0);
+    for (LO r = 0; r < n; ++r) {
+      if (std::find(rows.begin(), rows.end(), r) == rows.end()) EXPECT_NEAR(a[r], bd[r], kDirectSolveResidual);
+      else EXPECT_EQ(xd2[r], 0.0);
+    }
+    EXPECT_THROW(s.expand(xs.data(), xv.data()), std::logic_error);  // solve() ended the condensed pair
+  }
+}
+
 TEST(Amesos2Solver, GathersOnlyWhenDistributed) {
   ddc::Amesos2Solver s;
   auto A = laplacian(worldComm(), 10, 10);
@@ -374,6 +462,9 @@ TEST(Amesos2Solver, GathersOnlyWhenDistributed) {
   EXPECT_LT(solveResidual(s, B), kDirectSolveResidual);
   EXPECT_FALSE(s.gathersToRoot());
   EXPECT_EQ(s.name(), "Amesos2/KLU2");
+  EXPECT_FALSE(s.setSchurIndices({0}));  // no Schur capability: FETI-DP falls back to explicit Phi
+  std::vector<double> S;
+  EXPECT_THROW(s.schurComplement(S), std::logic_error);
 }
 
 TEST(Amesos2Solver, AcceptsAnyGlobalNumbering) {

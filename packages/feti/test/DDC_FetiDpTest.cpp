@@ -352,6 +352,27 @@ TEST_P(FetiDpAccuracy, MatchesDirectSolveWithEdgeConstraints) {
   }
 }
 
+/// The explicit Phi^s = K_rr^{-1} K_rPi path ("Local Schur Complement" =
+/// false; what local solvers without a Schur capability use) against the
+/// direct solve and against MUMPS' Schur complement path: the same
+/// iteration count (F and M^{-1} are the same operators), solutions within
+/// the FETI-vs-direct tolerance.
+TEST_P(FetiDpAccuracy, ExplicitPhiMatchesSchurComplement) {
+  const Layout L = GetParam();
+  Spec s;
+  s.Sx = L.Sx, s.Sy = L.Sy, s.dpn = L.dpn, s.H = 4, s.blockwise = L.blockwise;
+  for (const char* primal : {"Vertices", "Vertices and Edges"}) {
+    auto p = fetiParams("Dirichlet", "Multiplicity", "CG", ddc::test::kTightBelos, primal);
+    const FetiRun schur = runFeti(s, p);
+    p.set("Local Schur Complement", false);
+    const FetiRun phi = runFeti(s, p);
+    report(std::string("explicit Phi, ") + primal, phi);
+    EXPECT_LT(phi.error, ddc::test::kFetiVsDirect) << primal;
+    EXPECT_LT(schur.error, ddc::test::kFetiVsDirect) << primal;
+    EXPECT_LE(std::abs(phi.info.iterations - schur.info.iterations), 1) << primal;
+  }
+}
+
 // 1x1: no interface, no LM (must work); 2x1, 3x3, 4x4 contain floating
 // subdomains (a > 0: not touching the fixed left edge); 3x3 and 4x4 put
 // several subdomains on each rank.
