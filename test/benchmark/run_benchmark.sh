@@ -11,7 +11,8 @@
 #
 #   bash test/benchmark/run_benchmark.sh [BUILD_DIR]   # default build
 # Environment: RANKS (2), REPS (3), SIZES (refinements, "10 20 40"),
-#              SUBDOMAINS (FETI-DP subdomains per size, "16 32 64"), TABLE2 (1),
+#              SUBDOMAINS (FETI-DP subdomains per size, "16 64 256": about
+#              3200 DOFs each, the automatic count's size in 2-D), TABLE2 (1),
 #              PRIMAL (Solver/FETI-DP/Primal Constraints; empty: the default),
 #              STRATEGIES ("MUMPS Belos-MueLu Belos-FROSch FETI-DP").
 # Each elastic-block run is 1 load step = 2 Newton solves of the same
@@ -22,7 +23,7 @@ cd "$(dirname "$0")/../.."
 # shellcheck source=common.sh
 . test/benchmark/common.sh "${1:-build}"
 read -r -a SIZES <<< "${SIZES:-10 20 40}"
-read -r -a SUBS <<< "${SUBDOMAINS:-16 32 64}"
+read -r -a SUBS <<< "${SUBDOMAINS:-16 64 256}"
 PRIMAL=${PRIMAL:-}
 read -r -a STRATEGIES <<< "${STRATEGIES:-MUMPS Belos-MueLu Belos-FROSch FETI-DP}"
 PRIMAL_ARGS=()

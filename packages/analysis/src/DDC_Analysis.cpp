@@ -139,7 +139,14 @@ Teuchos::RCP<PL> solverValidParameters() {
 
 Teuchos::RCP<PL> partitionValidParameters() {
   auto pl = Teuchos::rcp(new PL("Partition"));
-  pl->set("Number of Subdomains", 0, "Number of subdomains; 0 means one per MPI rank.", atLeast(0));
+  pl->set("Number of Subdomains", 0,
+          "Number of subdomains; 0: automatic, i.e. with Solver/Strategy = FETI-DP and Method = METIS about one "
+          "per 'Subdomain Size' DOFs (at least one per MPI rank), otherwise one per MPI rank.",
+          atLeast(0));
+  pl->set("Subdomain Size", 0,
+          "Target DOFs per subdomain of the automatic count (Number of Subdomains = 0, FETI-DP, METIS); 0: "
+          "the measured optimum of this machine, 1650 in 3-D and 3200 in 2-D (doc/performance.md).",
+          atLeast(0));
   pl->set("Method", "METIS",
           "METIS: METIS_PartMeshDual over all bodies. By Body: each body one subdomain. Box Grid: a regular "
           "grid of boxes over the mesh's bounding box (Box Grid X x Box Grid Y (x Box Grid Z in 3-D) "
@@ -152,6 +159,19 @@ Teuchos::RCP<PL> partitionValidParameters() {
           "Element Map File: file with one subdomain id per element (mesh element order, whitespace "
           "separated, '#' comments); relative to the input deck's directory.");
   return pl;
+}
+
+int automaticSubdomainCount(const Mesh& mesh, const PL& partition, const std::string& strategy, int ranks) {
+  if (strategy != "FETI-DP" || partition.get<std::string>("Method") != "METIS") return ranks;
+  // Measured on block_3d at 421k DOFs (1650 DOFs per subdomain against 840
+  // and 3300) and the 2-D elastic block at 822k (doc/performance.md): local
+  // factorisations grow faster than linearly in the subdomain size, the
+  // coarse problem with the number of subdomains.
+  int size = partition.get<int>("Subdomain Size");
+  if (size == 0) size = mesh.dim() == 3 ? 1650 : 3200;
+  const double dofs = double(mesh.numNodes()) * mesh.dim();
+  const double count = std::min(std::round(dofs / size), double(std::max(mesh.numElements(), 1)));
+  return std::max(ranks, int(count));
 }
 
 Teuchos::RCP<PL> outputValidParameters() {
@@ -371,7 +391,8 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
 
   const PL& part = params.sublist("Partition");
   int nsub = part.get<int>("Number of Subdomains");
-  if (nsub == 0) nsub = comm_->getSize();
+  if (nsub == 0) nsub = automaticSubdomainCount(*mesh, part, params.sublist("Solver").get<std::string>("Strategy"),
+                                                comm_->getSize());
   Partition partition;
   const std::string method = part.get<std::string>("Method");
   auto requireCount = [&](int count) {
