@@ -102,8 +102,10 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
             "Compute each S_PiPi^s as the Schur complement of a partial factorisation of K^s on its primal DOFs "
             "(MUMPS ICNTL(19)) and apply K~^{-1} by condensing onto and expanding from them (ICNTL(26)); "
             "otherwise factorise K_rr^s alone and store Phi^s = K_rr^{-1} K_rPi (a dense remainder x primal "
-            "block per subdomain, np solves to build). Local solvers without a Schur capability (Amesos2) use "
-            "Phi^s either way (doc/feti-dp.md, 'Dual problem').");
+            "block per subdomain, np solves to build). The Schur path sets up faster in less memory, but each dual "
+            "iteration makes two local-solver calls per subdomain instead of one, so a run dominated by dual "
+            "iterations on small subdomains is faster with false (doc/performance.md). Local solvers without a "
+            "Schur capability (Amesos2) use Phi^s either way (doc/feti-dp.md, 'Dual problem').");
     Teuchos::ParameterList belos("Belos");
     belos.set("Solver Type", std::string("CG"),
               "Belos solver for F lambda = d (Belos::SolverFactory names): CG (symmetric tangents, the "
