@@ -18,6 +18,7 @@ packages=(
   openmpi-bin libopenmpi-dev
   trilinos-all-dev libptscotch-dev      # Trilinos 13.2 (its CMake config needs PT-Scotch)
   libmumps-dev libmetis-dev libeigen3-dev
+  libsuitesparse-dev                    # CHOLMOD (FETI-DP local solver)
   libopenblas0-serial libopenblas-dev   # 2.7x faster MUMPS than reference BLAS
   libgtest-dev libgmock-dev                # GoogleTest + GoogleMock matchers
   gnuplot-nox                           # plots in doc/

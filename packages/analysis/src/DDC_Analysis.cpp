@@ -572,6 +572,11 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
       std::snprintf(buf, sizeof buf, "    iter %2d  |r| = %.3e  |du.r| = %.3e", it, rnorm, energy);
       std::string line = buf;
       if (solveIterations > 0) line += "  dual/Krylov " + std::to_string(solveIterations);
+      if (info.conditionEstimate > 0.0) {
+        char kappa[40];
+        std::snprintf(kappa, sizeof kappa, " (condition ~%.3g)", info.conditionEstimate);
+        line += kappa;
+      }
       if (forcing) {
         char tol[40];
         std::snprintf(tol, sizeof tol, " (tol %.1e)", solveTol);

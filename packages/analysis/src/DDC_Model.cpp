@@ -743,8 +743,9 @@ std::string Model::describeNonFinite(const Vector& v) const {
   return os.str();
 }
 
-bool Model::tangentIsConstant() const {
-  if (hasContact()) return false;
+bool Model::tangentIsConstant() const { return !hasContact() && elementTangentsAreConstant(); }
+
+bool Model::elementTangentsAreConstant() const {
   for (const auto& e : elements_)
     if (e && !e->tangentIsConstant()) return false;
   return true;

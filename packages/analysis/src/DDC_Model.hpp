@@ -108,6 +108,12 @@ class Model {
   /// has Element::tangentIsConstant() (linear elasticity). The strategies
   /// then factorise once per analysis.
   bool tangentIsConstant() const;
+  /// Every body's element has Element::tangentIsConstant(), contact aside:
+  /// the subdomain matrices of FETI-DP hold the element tangents only (the
+  /// decomposed contact element enters as constraint rows), so with a
+  /// linear material they are factorised once per analysis even with
+  /// contact (doc/feti-dp.md "Extra rows").
+  bool elementTangentsAreConstant() const;
   /// Decomposed contact in use: Contact/Formulation = Decomposed
   /// Node-To-Segment *and* at least one pair. With no pairs the formulation
   /// is moot and the model is a plain one (no multiplier maps exist); test

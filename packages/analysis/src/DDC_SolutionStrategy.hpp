@@ -32,6 +32,9 @@ namespace ddc {
 /// What one linear solve of a strategy cost.
 struct StrategySolveInfo {
   int iterations = 0;         ///< Krylov / dual iterations (0 for a direct solve)
+  /// Condition estimate of the preconditioned dual operator from the CG
+  /// coefficients (FETI-DP with "Belos/Estimate Condition Number"); -1: none.
+  double conditionEstimate = -1.0;
   double setupSeconds = 0.0;  ///< factorisation / preconditioner set-up
   double solveSeconds = 0.0;  ///< the solve itself
   /// FETI-DP breakdown: local, coarse, Dirichlet factorisation; local

@@ -35,7 +35,7 @@ class DirectSolver {
   virtual void numeric() = 0;
   /// Solve A x = b (b, x distributed like A's row map; several columns ok).
   virtual void solve(const MultiVector& b, MultiVector& x) = 0;
-  /// Back-end name for messages ("MUMPS", "Amesos2/KLU2").
+  /// Back-end name for messages ("MUMPS", "Amesos2/KLU2", "CHOLMOD").
   virtual std::string name() const = 0;
 
   /// Optional hook: nodal coordinates, for back ends that build a near-null
@@ -96,7 +96,8 @@ class DirectSolver {
   ///@}
 };
 
-/// Names -> direct-solver creators. Built-ins: "MUMPS", "Amesos2".
+/// Names -> direct-solver creators. Built-ins: "MUMPS", "Amesos2", "CHOLMOD"
+/// (serial: matrices on one process only).
 ///
 /// The {Type, ...} sublist has one sublist per back end, named like its Type:
 /// {"Type": "MUMPS", "MUMPS": {...}, "Amesos2": {...}}; only the chosen back

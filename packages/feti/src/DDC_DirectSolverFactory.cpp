@@ -20,6 +20,7 @@
 #include <sstream>
 
 #include "DDC_Amesos2Solver.hpp"
+#include "DDC_CholmodSolver.hpp"
 #include "DDC_DirectSolver.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_IterativeSolvers.hpp"
@@ -30,7 +31,7 @@ namespace ddc {
 
 namespace {
 
-/// The registered type names for messages and doc strings: "'MUMPS', 'Amesos2'".
+/// The registered type names for messages and doc strings: "'Amesos2', 'CHOLMOD', 'MUMPS'".
 std::string knownNames(const std::vector<std::string>& names) { return quotedNames(names, "(none registered)"); }
 
 }  // namespace
@@ -47,6 +48,12 @@ DirectSolverFactory DirectSolverFactory::withBuiltins() {
                          },
                          Amesos2Solver::getValidParameters(),
                          "Amesos2 (KLU2 by default); a distributed matrix is gathered to rank 0"});
+  f.add("CHOLMOD", Entry{[](const Teuchos::ParameterList& p) -> std::unique_ptr<DirectSolver> {
+                           return std::make_unique<CholmodSolver>(p);
+                         },
+                         CholmodSolver::getValidParameters(),
+                         "SuiteSparse CHOLMOD: supernodal Cholesky LL^T of a symmetric positive definite matrix "
+                         "on one process, e.g. the FETI-DP Local Solver, falling back to MUMPS if indefinite"});
   return f;
 }
 

@@ -167,6 +167,19 @@ void FetiDpSolver::Impl::refreshBlocks(Sub& s) {
   if (!patternOk)
     throw std::logic_error("the sparsity pattern of K changed since setTopology(); call setTopology() again");
   s.krrNorm1 = colSum.empty() ? 0.0 : *std::max_element(colSum.begin(), colSum.end());
+  if (!s.cob.active()) {
+    s.diagUser = s.diag;
+  } else {
+    s.diagUser.assign(s.n, 0.0);
+    const auto& uRow = *s.Kuser->getRowMap();
+    const auto& uCol = *s.Kuser->getColMap();
+    for (LO lr = 0; lr < s.n; ++lr) {
+      s.Kuser->getLocalRowView(lr, inds, vals);
+      const GO row = uRow.getGlobalElement(lr);
+      for (size_t e = 0; e < inds.extent(0); ++e)
+        if (uCol.getGlobalElement(inds(e)) == row) s.diagUser[row] += vals(e);
+    }
+  }
 }
 
 /// Factorise K_rr^s, compute Phi^s, S_PiPi^s and check K_rr^s for

@@ -34,6 +34,7 @@
 
 #include <Tpetra_Export.hpp>
 #include <Tpetra_Import.hpp>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -89,6 +90,29 @@ struct LmRecord {
   double coef;
 };
 
+/// An extra-row entry on a shared dual DOF, sent to the DOF's owner, which
+/// forwards it to every copy (SplitEntry).
+struct SplitRequest {
+  GO lm;       ///< row GID in lmMap
+  GO gid;      ///< the DOF
+  double full; ///< the caller's coefficient (in the new basis)
+  int side;    ///< the caller's subdomain id (the side of the row it belongs to)
+};
+
+/// One copy of a split extra-row entry, for local subdomain `localSub`.
+struct SplitEntry {
+  GO lm;
+  int localSub;
+  LO dof;
+  double full;
+  int side;
+};
+
+/// A (row, side) key and the value that goes with it (scaling exchange).
+struct KeyRecord {
+  GO key;
+};
+
 /// One coarse-matrix entry sent to the owner of its row.
 struct CoarseRecord {
   GO row, col;
@@ -105,6 +129,7 @@ using namespace feti_internal;
 
 struct FetiDpSolver::Impl {
   enum class Prec { Dirichlet, Lumped, None };
+  enum class Scaling { Automatic, Multiplicity, Stiffness };
 
   /// One entry of a constraint row: coefficient `coef` of local DOF `dof` of
   /// this subdomain in LM row `lm` (LID in lmOvMap). General: `dof` may be a
@@ -116,6 +141,12 @@ struct FetiDpSolver::Impl {
     double coef;
     double scaled;
     bool extra;  ///< a row from setConstraintRows() (not a compatibility row)
+    /// Extra rows: the caller's coefficient before the split over the copies
+    /// of a shared dual DOF (coef = full * omega_k), and the LID of the
+    /// row's side (the caller's subdomain of the entry) in sideOvMap.
+    double full = 0.0;
+    LO sideKey = -1;
+    bool split = false;
   };
 
   /// A constraint entry before the LM maps exist: LM row by its GID in lmMap.
@@ -123,10 +154,14 @@ struct FetiDpSolver::Impl {
     GO lm;
     LO dof;
     double coef;
+    double full = 0.0;  ///< extra rows: see BEntry
+    int side = -1;      ///< extra rows: the caller's subdomain id of the entry
+    bool split = false;
   };
 
   struct Sub {
     int id = -1;
+    int index = -1;  ///< rank of id among all subdomain ids (0..sideSpan-1)
     std::vector<GO> dofs;
     std::vector<char> primal;
     RCP<CrsMatrix> K;      // the matrix FETI-DP works on: K^s, or T^T K^s T with edge/face constraints
@@ -160,12 +195,15 @@ struct FetiDpSolver::Impl {
     std::vector<Triplet> KID, KDI, KDD;  // (I, Delta), (Delta, I), (Delta, Delta)
     std::vector<double> diag;       // K^s_jj per local DOF
     double krrNorm1 = 0.0;
+    int factorizations = 0;         // of K_rr (or K^s with Schur rows) since setTopology()
     std::vector<double> Phi;        // nr x np, column-major (without schur)
     std::vector<double> S;          // np x np, column-major
 
     std::vector<BEntry> B;            // all rows (LIDs in lmOvMap), sorted by (lm, dof)
     std::vector<GidEntry> compatB;    // compatibility rows (GIDs), from setTopology()
     std::vector<GidEntry> extraB;     // rows from setConstraintRows() (GIDs)
+    std::vector<GidEntry> extraUserB; // the same rows in the caller's basis (before T)
+    std::vector<double> diagUser;     // K^s_jj of the caller's K^s per local DOF
     std::vector<char> constrainable;  // per local DOF: extra rows may touch it
 
     // work
@@ -181,11 +219,10 @@ struct FetiDpSolver::Impl {
   int rank = 0, size = 1;
   std::string path;
   Prec prec = Prec::Dirichlet;
-  bool stiffnessScaling = false;
+  Scaling scaling = Scaling::Automatic;
   double singularityThreshold = 1e13;
   bool localSchur = true;  ///< "Local Schur Complement"
   PrimalConstraints primalChoice = PrimalConstraints::VerticesEdgesAndFaces;
-  bool automaticPrimal = false;  ///< "Primal Constraints" = Automatic: resolved in setTopology()
   bool rotations = true;  // "Rotational Constraints"
   std::string belosType = "CG";
   bool belosGmresOnBreakdown = true;
@@ -200,6 +237,7 @@ struct FetiDpSolver::Impl {
 
   // topology
   bool haveTopology = false, analysed = false, factored = false;
+  bool scalingCurrent = false;  ///< B_D matches the rows and the last factorised values
   std::vector<Sub> subs;
   RCP<const Map> ownedMap, dofOvMap;
   RCP<Import> dofImport;  // ownedMap -> dofOvMap
@@ -213,6 +251,16 @@ struct FetiDpSolver::Impl {
   // extra rows (setConstraintRows): GIDs nCompat + extraOffset + (LID in extraRowMap)
   RCP<const Map> extraRowMap;
   GO extraOffset = 0;
+  /// On the owner of each shared dual DOF (ownedMap): every copy of it
+  /// (subdomain id, rank, local subdomain, local DOF), for splitting extra
+  /// rows over the copies (doc/feti-dp.md "Extra rows").
+  std::map<GO, std::vector<ShareRecord>> sharers;
+  /// Keys (row GID * sideSpan + side subdomain id) of the extra rows' sides:
+  /// owned by the row's owner (sideMap), and those of this rank's entries.
+  GO sideSpan = 1;
+  RCP<const Map> sideMap, sideOvMap;
+  RCP<Import> sideImport;
+  RCP<Export> sideExport;
   RCP<Vector> mask;        // on lmMap: 1 = row in the problem, 0 = restrained to zero (null: all rows)
   RCP<Vector> rhs;         // c on lmMap (B u = c); zero on compatibility rows
   RCP<Vector> rowEntries;  // number of entries of each row (on lmMap)
@@ -245,6 +293,9 @@ struct FetiDpSolver::Impl {
                               const std::vector<std::vector<double>>& coords, const std::vector<int>& dims);
   void buildConstraints();
   void finalizeLm();
+  /// Extra rows in the new basis -> Sub::extraB, entries on shared dual
+  /// DOFs split over all copies (collective).
+  std::string distributeExtraRows(const std::vector<std::vector<GidEntry>>& rows);
   void applyMask(Vector& v) const;
   void buildCoarse();
   void buildBlocks(Sub& s);

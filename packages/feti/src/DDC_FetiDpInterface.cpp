@@ -91,6 +91,9 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
     if (dup != all.end())
       throw std::invalid_argument("FetiDpSolver::setTopology: subdomain id " + std::to_string(*dup) +
                                   " is used twice");
+    // The sides of extra rows are numbered by the rank of the id among all.
+    sideSpan = std::max<GO>(1, GO(all.size()));
+    for (Sub& s : subs) s.index = int(std::lower_bound(all.begin(), all.end(), s.id) - all.begin());
   }
 
   // 2. Overlapped DOF map of this rank's subdomains; all DOFs in ownedMap.
@@ -153,14 +156,21 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
     auto c = cOv.getData();
     for (size_t l = 0; l < ovMult.size(); ++l) ovMult[l] = static_cast<int>(std::lround(c[l]));
   }
-  if (automaticPrimal) {
-    // Automatic: faces too when extra rows (contact) will couple the
-    // subdomains; their dual problems need the richer coarse space
-    // (doc/performance.md, "FETI-DP levers").
-    int local = 0, any = 0;
-    for (const Sub& s : subs) local = local || std::count(s.constrainable.begin(), s.constrainable.end(), char(1)) > 0;
-    MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, mpi);
-    primalChoice = any ? PrimalConstraints::VerticesEdgesAndFaces : PrimalConstraints::VerticesAndEdges;
+  {
+    // A DOF is constrainable in every subdomain having it if it is in one:
+    // the change of basis must choose the same representatives everywhere.
+    Vector fOv(dofOvMap), fOwned(ownedMap);
+    {
+      auto f = fOv.getDataNonConst();
+      for (const Sub& s : subs)
+        for (LO k = 0; k < s.n; ++k)
+          if (s.constrainable[k]) f[s.ovLid[k]] = 1.0;
+    }
+    fOwned.doExport(fOv, *dofExport, Tpetra::ADD);
+    fOv.doImport(fOwned, *dofImport, Tpetra::INSERT);
+    auto f = fOv.getData();
+    for (Sub& s : subs)
+      for (LO k = 0; k < s.n; ++k) s.constrainable[k] = f[s.ovLid[k]] > 0.0 ? 1 : 0;
   }
   addEdgeFaceConstraints(components, coords, dims);
 
@@ -266,7 +276,7 @@ void FetiDpSolver::Impl::addEdgeFaceConstraints(const std::vector<std::vector<in
     Sub& s = subs[ls];
     if (groups[ls].empty()) continue;
     try {
-      s.cob = ChangeOfBasis(s.n, groups[ls]);
+      s.cob = ChangeOfBasis(s.n, groups[ls], s.constrainable);
       for (LO k = 0; k < s.n; ++k)
         if (s.cob.holdsConstraint(k)) s.primal[k] = 1;
       s.Kuser = s.K;
@@ -324,9 +334,11 @@ void FetiDpSolver::Impl::buildConstraints() {
 
   std::vector<std::vector<LmRecord>> reply(size);
   GO next = offset;
+  sharers.clear();
   for (size_t a = 0; a < recv.size();) {
     size_t b = a;
     while (b < recv.size() && recv[b].gid == recv[a].gid) ++b;
+    if (b - a >= 2) sharers[recv[a].gid].assign(recv.begin() + long(a), recv.begin() + long(b));
     for (size_t i = a; i < b; ++i)
       for (size_t j = i + 1; j < b; ++j) {
         reply[recv[i].rank].push_back(LmRecord{next, recv[i].localSub, recv[i].dof, +1.0});
@@ -366,10 +378,40 @@ void FetiDpSolver::Impl::finalizeLm() {
   lmOvMap = makeMap(lmGids, 0, comm);
   lmImport = rcp(new Import(lmMap, lmOvMap));
   lmExport = rcp(new Export(lmOvMap, lmMap));
+  // Side keys of the extra rows: this rank's (entries and the caller's
+  // entries in the caller's basis), owned by the row's owner in lmMap.
+  {
+    std::vector<GO> keys;
+    for (const Sub& s : subs) {
+      for (const auto& e : s.extraB) keys.push_back(e.lm * sideSpan + e.side);
+      for (const auto& e : s.extraUserB) keys.push_back(e.lm * sideSpan + s.index);
+    }
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    std::vector<GO> rowsOfKeys(keys.size());
+    for (size_t k = 0; k < keys.size(); ++k) rowsOfKeys[k] = keys[k] / sideSpan;
+    std::vector<int> pids;
+    std::vector<LO> lids;
+    owners(*lmMap, rowsOfKeys, pids, lids);
+    std::vector<std::vector<KeyRecord>> send(size);
+    for (size_t k = 0; k < keys.size(); ++k)
+      if (pids[k] >= 0) send[pids[k]].push_back(KeyRecord{keys[k]});
+    std::vector<KeyRecord> recv = exchangeRecords(mpi, send);
+    std::vector<GO> owned;
+    for (const auto& r : recv) owned.push_back(r.key);
+    std::sort(owned.begin(), owned.end());
+    owned.erase(std::unique(owned.begin(), owned.end()), owned.end());
+    sideMap = makeMap(owned, 0, comm);
+    sideOvMap = makeMap(keys, 0, comm);
+    sideImport = rcp(new Import(sideMap, sideOvMap));
+    sideExport = rcp(new Export(sideOvMap, sideMap));
+  }
   for (Sub& s : subs) {
     s.B.clear();
     for (const auto& e : s.compatB) s.B.push_back(BEntry{lmOvMap->getLocalElement(e.lm), e.dof, e.coef, e.coef, false});
-    for (const auto& e : s.extraB) s.B.push_back(BEntry{lmOvMap->getLocalElement(e.lm), e.dof, e.coef, e.coef, true});
+    for (const auto& e : s.extraB)
+      s.B.push_back(BEntry{lmOvMap->getLocalElement(e.lm), e.dof, e.coef, e.coef, true, e.full,
+                           sideOvMap->getLocalElement(e.lm * sideSpan + e.side), e.split});
     // Deterministic order within a subdomain (by LM, then DOF).
     std::sort(s.B.begin(), s.B.end(),
               [](const BEntry& a, const BEntry& b) { return a.lm != b.lm ? a.lm < b.lm : a.dof < b.dof; });
@@ -387,6 +429,76 @@ void FetiDpSolver::Impl::finalizeLm() {
   }
   rowEntries = rcp(new Vector(lmMap));
   rowEntries->doExport(countOv, *lmExport, Tpetra::ADD);
+}
+
+/// The extra rows of each local subdomain (new basis, LM GIDs) into
+/// Sub::extraB. An entry on a dual DOF shared by several subdomains is
+/// split over all its copies: coefficient c omega_k on copy k (omega = the
+/// compatibility scaling weights, a partition of unity; set by
+/// computeScaling(), 1/m_j until then), so that with B_D = D_side c on every
+/// copy the product B B_D^T is the identity on the extra rows as on the
+/// compatibility rows. The continuity of the copies makes the constraint
+/// the same: sum_k c omega_k u_j^k = c u_j. Entries on other DOFs stay where
+/// the caller put them. Returns an error message or "" (collective).
+std::string FetiDpSolver::Impl::distributeExtraRows(const std::vector<std::vector<GidEntry>>& rows) {
+  std::string msg;
+  std::vector<std::vector<SplitRequest>> send(size);
+  std::vector<GO> gids;
+  std::vector<std::pair<size_t, size_t>> where;
+  for (size_t ls = 0; ls < subs.size(); ++ls) {
+    Sub& s = subs[ls];
+    s.extraB.clear();
+    for (size_t i = 0; i < rows[ls].size(); ++i) {
+      const GidEntry& e = rows[ls][i];
+      if (s.rIdx[e.dof] != kNone && s.invMult[e.dof] < 1.0) {
+        gids.push_back(s.dofs[e.dof]);
+        where.emplace_back(ls, i);
+      } else {
+        s.extraB.push_back(GidEntry{e.lm, e.dof, e.coef, e.coef, s.index, false});
+      }
+    }
+  }
+  std::vector<int> pids;
+  std::vector<LO> lids;
+  owners(*ownedMap, gids, pids, lids);
+  for (size_t k = 0; k < gids.size(); ++k) {
+    const GidEntry& e = rows[where[k].first][where[k].second];
+    send[pids[k]].push_back(SplitRequest{e.lm, gids[k], e.coef, subs[where[k].first].index});
+  }
+  std::vector<SplitRequest> requests = exchangeRecords(mpi, send);
+  std::vector<std::vector<SplitEntry>> forward(size);
+  for (const auto& r : requests) {
+    const auto it = sharers.find(r.gid);
+    if (it == sharers.end()) {
+      if (msg.empty())
+        msg = "FetiDpSolver::setConstraintRows: DOF " + std::to_string(r.gid) + " has no copies on record";
+      continue;
+    }
+    for (const auto& c : it->second) forward[c.rank].push_back(SplitEntry{r.lm, c.localSub, c.dof, r.full, r.side});
+  }
+  for (const auto& e : exchangeRecords(mpi, forward)) {
+    Sub& s = subs[e.localSub];
+    s.extraB.push_back(GidEntry{e.lm, e.dof, e.full * s.invMult[e.dof], e.full, e.side, true});
+  }
+  // One entry per (row, DOF, side): a caller may have put a row's entry on
+  // two copies of one DOF; their shares add up.
+  for (Sub& s : subs) {
+    std::sort(s.extraB.begin(), s.extraB.end(), [](const GidEntry& a, const GidEntry& b) {
+      return a.lm != b.lm ? a.lm < b.lm : a.dof != b.dof ? a.dof < b.dof : a.side < b.side;
+    });
+    std::vector<GidEntry> merged;
+    for (const auto& e : s.extraB) {
+      if (!merged.empty() && merged.back().lm == e.lm && merged.back().dof == e.dof && merged.back().side == e.side) {
+        merged.back().coef += e.coef;
+        merged.back().full += e.full;
+        merged.back().split = merged.back().split || e.split;
+      } else {
+        merged.push_back(e);
+      }
+    }
+    s.extraB.swap(merged);
+  }
+  return msg;
 }
 
 }  // namespace ddc

@@ -1,4 +1,4 @@
-// FETI-DP, scaling (doc/feti-dp.md "Preconditioners and scalings"): the
+// FETI-DP, scaling (doc/feti-dp.md "Preconditioner and scaling"): the
 // weights of B_D in the preconditioner. See DDC_FetiDpImpl.hpp.
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_Export.hpp>
@@ -17,12 +17,32 @@
 
 namespace ddc {
 
-/// Scaling weights of B_D: the entry of subdomain s in the row between s and
-/// t at DOF j is multiplied by w_t(j) / sum_k w_k(j), with w = 1
-/// ("Multiplicity": 1/m_j) or w = K^k_jj ("Stiffness", rho-scaling). The
+/// Scaling weights of B_D.
+///
+/// Compatibility rows: the entry of subdomain s in the row between s and t
+/// at DOF j is multiplied by w_t(j) / sum_k w_k(j), with w = 1
+/// (multiplicity: 1/m_j) or w = K^k_jj (stiffness, rho-scaling). The
 /// partner's weight is the row sum of the weights minus the own one.
+///
+/// Extra rows (contact): a row joins the subdomains it has entries in, in
+/// general two different bodies. Each subdomain k sees the row with the
+/// stiffness rho_k = sum over its entries of c_j^2 |K^k_jj| (the caller's
+/// basis: the diagonal of B^k K^k B^kT); the entries of k are weighted by
+///     D_k = (rho - rho_k) / ((m - 1) rho),   rho = sum_k rho_k,
+/// over the m subdomains (D = 1 for m = 1; 1/m with multiplicity scaling).
+/// For two sides this is rho-scaling, D_1 = rho_2 / (rho_1 + rho_2): the
+/// preconditioner's diagonal D_1^2 rho_1 + D_2^2 rho_2 = rho_1 rho_2 /
+/// (rho_1 + rho_2) is then the inverse of the row's flexibility 1/rho_1 +
+/// 1/rho_2, whatever the stiffness ratio of the two bodies. Equal weights
+/// 1/2 instead give (rho_1 + rho_2)/4: with a body 1000 times stiffer than
+/// the other, the contact rows' preconditioner was ~250 times too stiff and
+/// the dual iterations grew tenfold (doc/feti-dp.md, "Extra rows").
 void FetiDpSolver::Impl::computeScaling() {
-  auto weight = [&](const Sub& s, LO dof) { return stiffnessScaling ? std::abs(s.diag[dof]) : 1.0; };
+  const bool stiffCompat = scaling == Scaling::Stiffness;
+  const bool stiffExtra = scaling != Scaling::Multiplicity;
+  auto weight = [&](const Sub& s, LO dof) { return stiffCompat ? std::abs(s.diag[dof]) : 1.0; };
+  // Compatibility weights: w per copy, summed over the copies (wOv) and per
+  // row (rowOv).
   Vector wOv(dofOvMap), wOwned(ownedMap), rowOv(lmOvMap), row(lmMap);
   {
     auto w = wOv.getDataNonConst();
@@ -40,12 +60,61 @@ void FetiDpSolver::Impl::computeScaling() {
   rowOv.doImport(row, *lmImport, Tpetra::INSERT);
   auto w = wOv.getData();
   auto rs = rowOv.getData();
-  for (Sub& s : subs)
+
+  // Extra rows: the stiffness of each side (key), rho = sum over the
+  // caller's entries of c^2 times the DOF's diagonal assembled over its
+  // copies (the caller's basis), summed at the row's owner, who turns the
+  // sides of a row into their weights D.
+  Vector dOv(dofOvMap), dOwned(ownedMap);
+  {
+    auto d = dOv.getDataNonConst();
+    for (const Sub& s : subs)
+      for (LO k = 0; k < s.n; ++k) d[s.ovLid[k]] += std::abs(s.diagUser[k]);
+  }
+  dOwned.doExport(dOv, *dofExport, Tpetra::ADD);
+  dOv.doImport(dOwned, *dofImport, Tpetra::INSERT);
+  Vector rhoOv(sideOvMap), rho(sideMap);
+  {
+    auto d = dOv.getData();
+    auto r = rhoOv.getDataNonConst();
+    for (const Sub& s : subs)
+      for (const GidEntry& e : s.extraUserB) {
+        const LO key = sideOvMap->getLocalElement(e.lm * sideSpan + s.index);
+        if (key != Teuchos::OrdinalTraits<LO>::invalid()) r[key] += e.coef * e.coef * d[s.ovLid[e.dof]];
+      }
+  }
+  rho.doExport(rhoOv, *sideExport, Tpetra::ADD);
+  {
+    // Owned keys of a row are contiguous (sorted by row, then side).
+    auto r = rho.getDataNonConst();
+    const LO n = LO(sideMap->getNodeNumElements());
+    std::vector<double> D(size_t(n), 1.0);
+    for (LO a = 0; a < n;) {
+      const GO rowGid = sideMap->getGlobalElement(a) / sideSpan;
+      LO b = a;
+      double total = 0.0;
+      while (b < n && sideMap->getGlobalElement(b) / sideSpan == rowGid) total += r[b++];
+      const double m = double(b - a);
+      for (LO k = a; k < b; ++k)
+        if (m >= 2.0) D[k] = stiffExtra && total > 0.0 ? (total - r[k]) / ((m - 1.0) * total) : 1.0 / m;
+      a = b;
+    }
+    for (LO k = 0; k < n; ++k) r[k] = D[k];
+  }
+  rhoOv.doImport(rho, *sideImport, Tpetra::INSERT);
+  auto D = rhoOv.getData();
+
+
+  for (size_t ls = 0; ls < subs.size(); ++ls) {
+    Sub& s = subs[ls];
     for (BEntry& e : s.B) {
       if (e.extra) {
-        // An extra (contact) row joins two sides (slave and master), like a
-        // compatibility row between two copies: weight 1/2 on each side.
-        e.scaled = 0.5 * e.coef;
+        if (e.split) {
+          // omega_k: this copy's share in the compatibility weights.
+          const double sum = w[s.ovLid[e.dof]];
+          e.coef = e.full * (sum > 0.0 ? weight(s, e.dof) / sum : s.invMult[e.dof]);
+        }
+        e.scaled = (e.sideKey >= 0 ? D[e.sideKey] : 1.0) * e.full;
         continue;
       }
       const double sum = w[s.ovLid[e.dof]];
@@ -53,6 +122,8 @@ void FetiDpSolver::Impl::computeScaling() {
       // A zero diagonal (degenerate input) falls back to multiplicity.
       e.scaled = sum > 0.0 && other >= 0.0 ? e.coef * other / sum : e.coef * s.invMult[e.dof];
     }
+  }
+  scalingCurrent = true;
 }
 
 }  // namespace ddc

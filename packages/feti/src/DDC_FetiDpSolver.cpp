@@ -17,6 +17,7 @@
 #include "DDC_FetiDpSolver.hpp"
 
 #include <BelosLinearProblem.hpp>
+#include <BelosPseudoBlockCGSolMgr.hpp>
 #include <BelosSolverFactory.hpp>
 #include <BelosTpetraAdapter.hpp>
 #include <Teuchos_DefaultMpiComm.hpp>
@@ -46,9 +47,12 @@ const std::vector<std::string>& preconditionerNames() {
   return n;
 }
 const std::vector<std::string>& scalingNames() {
-  static const std::vector<std::string> n{"Multiplicity", "Stiffness"};
+  static const std::vector<std::string> n{"Automatic", "Multiplicity", "Stiffness"};
   return n;
 }
+/// "Local Solver/Type" by default (measured in doc/performance.md).
+constexpr const char* kDefaultLocalSolver = "CHOLMOD";
+
 const std::vector<std::string>& belosSolverNames() {
   static const std::vector<std::string> n{"CG", "GMRES", "MINRES"};
   return n;
@@ -68,15 +72,18 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
             "K_II^{-1} K_ID, the Schur complement on the subdomain's dual interface DOFs with its primal DOFs fixed; "
             "one more factorisation per subdomain), Lumped (S^s ~ K_DD, cheaper, more iterations), None.",
             enumValidator(preconditionerNames(), "Preconditioner"));
-    pl->set("Scaling", std::string("Multiplicity"),
-            "Weights of B_D: Multiplicity (the entry of subdomain s in the row between s and t at DOF j is scaled "
-            "by 1/m_j, m_j = number of subdomains sharing j) or Stiffness (rho-scaling from diagonal entries: by "
-            "K^t_jj / sum_k K^k_jj; better for jumping coefficients).",
+    pl->set("Scaling", std::string("Automatic"),
+            "Weights of B_D (doc/feti-dp.md, 'Preconditioner and scaling'). Compatibility rows: the entry of "
+            "subdomain s in the row between s and t at DOF j is scaled by 1/m_j (m_j = number of subdomains "
+            "sharing j) with Multiplicity and Automatic, by K^t_jj / sum_k K^k_jj with Stiffness (rho-scaling "
+            "from diagonal entries, for coefficients that jump inside a body). Extra rows (contact), which join "
+            "different bodies: Automatic and Stiffness weight each side by the other sides' share of the row's "
+            "stiffness sum_j c_j^2 K_jj (robust to a stiff body against a soft one); Multiplicity by 1/m, m = "
+            "number of subdomains the row touches.",
             enumValidator(scalingNames(), "Scaling"));
     pl->set("Primal Constraints", std::string("Automatic"),
-            "Primal (coarse) constraints besides the caller's vertex DOFs: Automatic (Vertices, Edges and Faces "
-            "if any subdomain marks constrainable DOFs, i.e. extra rows such as contact will couple the "
-            "subdomains, else Vertices and Edges: measured in doc/performance.md), Vertices (none), Vertices and Edges "
+            "Primal (coarse) constraints besides the caller's vertex DOFs: Automatic (Vertices and Edges, with "
+            "or without contact rows: measured in doc/performance.md), Vertices (none), Vertices and Edges "
             "(plus the average of each displacement component over each edge: in 2-D a subdomain-subdomain "
             "interface, in 3-D the interface DOFs shared by >= 3 subdomains), Vertices, Edges and Faces (plus "
             "the averages over the 3-D faces, DOFs shared by exactly 2 subdomains; in 2-D the same as Vertices "
@@ -104,8 +111,8 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
             "otherwise factorise K_rr^s alone and store Phi^s = K_rr^{-1} K_rPi (a dense remainder x primal "
             "block per subdomain, np solves to build). The Schur path sets up faster in less memory, but each dual "
             "iteration makes two local-solver calls per subdomain instead of one, so a run dominated by dual "
-            "iterations on small subdomains is faster with false (doc/performance.md). Local solvers without a "
-            "Schur capability (Amesos2) use Phi^s either way (doc/feti-dp.md, 'Dual problem').");
+            "iterations on small subdomains is faster with false (doc/performance.md). Only MUMPS can: CHOLMOD (the "
+            "default Local Solver) and Amesos2 use Phi^s either way (doc/feti-dp.md, 'Dual problem').");
     Teuchos::ParameterList belos("Belos");
     belos.set("Solver Type", std::string("CG"),
               "Belos solver for F lambda = d (Belos::SolverFactory names): CG (symmetric tangents, the "
@@ -134,9 +141,17 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
                 "parameter of the chosen Belos solver (e.g. 'Num Blocks' or 'Orthogonalization' for GMRES) is "
                 "accepted with the type Belos gives it and passed through.")
         .setParameters(belos);
-    pl->sublist("Local Solver", false,
-                "Direct solver {Type, ...} for the subdomain matrices K_rr and K_II (on MPI_COMM_SELF).")
-        .setParameters(*DirectSolverFactory::getValidParameters());
+    {
+      Teuchos::ParameterList local = *DirectSolverFactory::getValidParameters();
+      const Teuchos::ParameterEntry type = local.getEntry("Type");
+      local.set("Type", std::string(kDefaultLocalSolver), type.docString(), type.validator());
+      pl->sublist("Local Solver", false,
+                  "Direct solver {Type, ...} for the subdomain matrices K_rr (or K^s with a Schur complement) and "
+                  "K_II (on MPI_COMM_SELF). CHOLMOD by default: its solves cost a third of MUMPS' on subdomains "
+                  "of a few thousand DOFs, where a FETI-DP run spends its time (doc/performance.md); an "
+                  "indefinite subdomain matrix falls back to MUMPS.")
+          .setParameters(local);
+    }
     pl->sublist("Coarse Solver", false,
                 "Direct solver {Type, ...} for the coarse matrix S_PiPi, distributed over all ranks (MUMPS "
                 "factorises it in parallel; Amesos2 gathers it to rank 0, because KLU2 is wrong on distributed "
@@ -166,11 +181,15 @@ FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramete
   validateLevel(params, *valid, path);
   const std::string prec = params.get<std::string>("Preconditioner");
   m.prec = prec == "Dirichlet" ? Impl::Prec::Dirichlet : prec == "Lumped" ? Impl::Prec::Lumped : Impl::Prec::None;
-  m.stiffnessScaling = params.get<std::string>("Scaling") == "Stiffness";
+  {
+    const std::string sc = params.get<std::string>("Scaling");
+    m.scaling = sc == "Stiffness" ? Impl::Scaling::Stiffness
+                : sc == "Multiplicity" ? Impl::Scaling::Multiplicity : Impl::Scaling::Automatic;
+  }
   m.singularityThreshold = params.get<double>("Local Singularity Threshold");
   m.localSchur = params.get<bool>("Local Schur Complement");
-  m.automaticPrimal = params.get<std::string>("Primal Constraints") == "Automatic";
-  m.primalChoice = m.automaticPrimal ? PrimalConstraints::VerticesAndEdges
+  const bool automaticPrimal = params.get<std::string>("Primal Constraints") == "Automatic";
+  m.primalChoice = automaticPrimal ? PrimalConstraints::VerticesAndEdges
                                      : primalConstraintsFromName(params.get<std::string>("Primal Constraints"));
   m.rotations = params.get<bool>("Rotational Constraints");
   // Belos: the entries documented here are validated with their ranges;
@@ -214,7 +233,14 @@ FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramete
   m.belosVerbosity = belos.get<int>("Verbosity");
   m.belosOutputFrequency = belos.get<int>("Output Frequency");
   // Creating a solver validates the sublist (unknown Type, misspelt options)
-  // now rather than at the first numeric().
+  // now rather than at the first numeric(). A host's own factory without
+  // CHOLMOD keeps the factory's default.
+  {
+    Teuchos::ParameterList& local = params.sublist("Local Solver");
+    const auto known = m.factory.names();
+    if (!local.isParameter("Type") && std::count(known.begin(), known.end(), kDefaultLocalSolver))
+      local.set("Type", std::string(kDefaultLocalSolver));
+  }
   m.factory.create(params.sublist("Local Solver"), joinPath(path, "Local Solver"));
   m.factory.create(params.sublist("Coarse Solver"), joinPath(path, "Coarse Solver"));
   m.localSolverParams = params.sublist("Local Solver");
@@ -239,10 +265,19 @@ void FetiDpSolver::numeric() {
   for (auto& s : m.subs) {
     msg = m.factorSub(s);
     if (!msg.empty()) break;
+    ++s.factorizations;
   }
   const double t1 = MPI_Wtime();
   st.localFactorSeconds = t1 - t0;
   raiseCollectively<SolverError>(m.mpi, msg);
+  {
+    int mm[2] = {INT_MAX, 0};  // min, -max
+    for (const auto& s : m.subs) mm[0] = std::min(mm[0], s.factorizations), mm[1] = std::min(mm[1], -s.factorizations);
+    int g[2];
+    MPI_Allreduce(mm, g, 2, MPI_INT, MPI_MIN, m.mpi);
+    st.minLocalFactorizations = g[0] == INT_MAX ? 0 : g[0];
+    st.maxLocalFactorizations = -g[1];
+  }
 
   m.computeScaling();
 
@@ -309,6 +344,7 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
   m.tLocalSolve = m.tCoarseSolve = m.tPrec = m.tDirichletSolve = 0.0;
   m.nApplyF = m.nApplyM = 0;
   Info info = m.setup;
+  if (!m.scalingCurrent) m.computeScaling();
 
   const bool sameMaps = b.getMap()->isSameAs(*m.ownedMap) && u.getMap()->isSameAs(*m.ownedMap);
   if (!sameMaps) throw std::invalid_argument("FetiDpSolver::solve: b and u must be on the owned DOF map");
@@ -400,6 +436,8 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
         failure = e.what();
       }
       info.iterations += solver->getNumIters();
+      if (auto cg = Teuchos::rcp_dynamic_cast<Belos::PseudoBlockCGSolMgr<Scalar, MultiVector, Operator>>(solver))
+        info.conditionEstimate = cg->getConditionEstimate();
       try {
         info.relativeResidual = solver->achievedTol();
       } catch (const std::exception&) {
@@ -538,25 +576,46 @@ void FetiDpSolver::setConstraintRows(Teuchos::RCP<const Map> rowMap,
   std::vector<int> pids;
   std::vector<LO> lids;
   owners(*rowMap, rows, pids, lids);
+  {
+    std::vector<GO> userRows;
+    for (const auto& list : entries)
+      for (const auto& e : list) userRows.push_back(e.row);
+    std::vector<int> upids;
+    std::vector<LO> ulids;
+    owners(*rowMap, userRows, upids, ulids);
+    size_t k = 0;
+    for (size_t ls = 0; ls < entries.size(); ++ls) {
+      m.subs[ls].extraUserB.clear();
+      for (const auto& e : entries[ls]) {
+        if (upids[k] >= 0)
+          m.subs[ls].extraUserB.push_back(Impl::GidEntry{m.nCompat + offsets[upids[k]] + ulids[k], e.dof, e.coef});
+        ++k;
+      }
+    }
+  }
+  std::vector<std::vector<Impl::GidEntry>> rowsNew(use->size());
   size_t k = 0;
   for (size_t ls = 0; ls < use->size(); ++ls) {
-    auto& s = m.subs[ls];
-    s.extraB.clear();
     for (size_t i = 0; i < (*use)[ls].size(); ++i, ++k) {
       const ConstraintEntry& e = (*use)[ls][i];
       if (pids[k] < 0) {
         if (msg.empty()) msg = "FetiDpSolver::setConstraintRows: row " + std::to_string(e.row) + " (subdomain " +
-                               std::to_string(s.id) + ") is not in the row map";
+                               std::to_string(m.subs[ls].id) + ") is not in the row map";
         continue;
       }
-      s.extraB.push_back(Impl::GidEntry{m.nCompat + offsets[pids[k]] + lids[k], e.dof, e.coef});
+      rowsNew[ls].push_back(Impl::GidEntry{m.nCompat + offsets[pids[k]] + lids[k], e.dof, e.coef});
     }
   }
+  raiseCollectively<std::invalid_argument>(m.mpi, msg);
+  msg = m.distributeExtraRows(rowsNew);
   raiseCollectively<std::invalid_argument>(m.mpi, msg);
   m.extraRowMap = rowMap;
   m.extraOffset = offsets[m.rank];
   m.finalizeLm();
-  m.factored = false;  // the scaling of B_D is recomputed by numeric()
+  // The rows are constraint rows only: the factorisations stay valid (a
+  // linear material is factorised once per analysis, doc/feti-dp.md "Extra
+  // rows"); the weights of B_D are recomputed by the next solve().
+  m.scalingCurrent = false;
 }
 
 void FetiDpSolver::setConstraintState(const std::vector<char>& active, const std::vector<double>& rhs) {

@@ -134,6 +134,10 @@ class FetiDpSolver {
     /// CG broke down (F indefinite) and GMRES solved the system
     /// (Belos/GMRES on CG Breakdown); iterations count both.
     bool gmresAfterBreakdown = false;
+    /// Lanczos estimate of the condition number of the preconditioned F from
+    /// the CG coefficients (Belos "Estimate Condition Number" = true with
+    /// Solver Type CG); -1 otherwise.
+    double conditionEstimate = -1.0;
     double setupSeconds = 0.0;      ///< the last numeric() (local + coarse + Dirichlet factorisations)
     double solveSeconds = 0.0;      ///< this solve(), all of it
     // breakdown of setupSeconds
@@ -147,14 +151,20 @@ class FetiDpSolver {
     double preconditionerSeconds = 0.0;  ///< M^{-1} applications (includes the K_II^{-1} solves)
     int operatorApplications = 0;        ///< F applications by Belos
     int preconditionerApplications = 0;  ///< M^{-1} applications by Belos
+    /// Factorisations of the subdomain matrices since setTopology(): the
+    /// fewest and the most of any subdomain (all ranks). A linear material
+    /// with contact rows is factorised once per analysis (1 and 1).
+    int minLocalFactorizations = 0;
+    int maxLocalFactorizations = 0;
   };
 
   /// Every parameter with its default and doc string:
   ///  - "Preconditioner": "Dirichlet" (default) | "Lumped" | "None";
-  ///  - "Scaling": "Multiplicity" (default) | "Stiffness";
-  ///  - "Primal Constraints": "Automatic" (default: "Vertices, Edges and
-  ///    Faces" if any FetiSubdomain::constrainable flag is set, else
-  ///    "Vertices and Edges") | "Vertices" | "Vertices and Edges" |
+  ///  - "Scaling": "Automatic" (default: multiplicity on compatibility
+  ///    rows, stiffness weights on extra rows) | "Multiplicity" |
+  ///    "Stiffness" (computeScaling() in DDC_FetiDpScaling.cpp);
+  ///  - "Primal Constraints": "Automatic" (default: "Vertices and
+  ///    Edges") | "Vertices" | "Vertices and Edges" |
   ///    "Vertices, Edges and Faces" (in 2-D there are no faces, so it
   ///    equals "Vertices and Edges");
   ///  - "Rotational Constraints": bool (true): the rotations of each edge /
@@ -246,9 +256,11 @@ class FetiDpSolver {
   void setSolveTolerance(double tol);
 
   /// Collective. Replace the extra constraint rows (e.g. the contact rows of
-  /// one load step). Call after setTopology(); numeric() must follow (the
-  /// scaling of the rows in the preconditioner is computed there). The LM
-  /// map is rebuilt: compatibility rows, then this rank's extra rows.
+  /// one load step). Call after setTopology(). The factorisations of the
+  /// last numeric() stay valid (the rows do not change the subdomain
+  /// matrices); the next solve() recomputes the rows' weights in the
+  /// preconditioner. The LM map is rebuilt: compatibility rows, then this
+  /// rank's extra rows.
   /// \param rowMap one-to-one distributed map of the rows (any GIDs); a row
   ///        is owned by the rank that sets its state and reads its
   ///        multiplier. The rows of this rank are rowMap's local elements.

@@ -209,8 +209,11 @@ std::vector<std::vector<PrimalGroup>> findEdgeFaceConstraints(MPI_Comm comm, con
 // ChangeOfBasis
 // ---------------------------------------------------------------------------
 
-ChangeOfBasis::ChangeOfBasis(LO n, const std::vector<PrimalGroup>& groups)
+ChangeOfBasis::ChangeOfBasis(LO n, const std::vector<PrimalGroup>& groups, const std::vector<char>& avoid)
     : n_(n), group_(size_t(n), -1), rep_(size_t(n), -1), other_(size_t(n), -1) {
+  if (!avoid.empty() && avoid.size() != size_t(n))
+    throw std::invalid_argument("ChangeOfBasis: " + std::to_string(avoid.size()) + " avoid flags for " +
+                                std::to_string(n) + " DOFs");
   std::vector<char> seen(size_t(n), 0);
   for (const PrimalGroup& in : groups) {
     const size_t m = in.dofs.size(), k = in.rows.size();
@@ -224,18 +227,26 @@ ChangeOfBasis::ChangeOfBasis(LO n, const std::vector<PrimalGroup>& groups)
     for (const auto& row : in.rows)
       if (row.size() != m) throw std::invalid_argument("ChangeOfBasis: a constraint row of the wrong length");
     // Representatives: Gaussian elimination on the rows with the largest
-    // remaining entry as pivot (column pivoting).
+    // remaining entry as pivot (column pivoting), among the DOFs not to
+    // avoid while one of them has an entry of at least a tenth of the
+    // largest (a pivot that small still keeps C_R well conditioned).
     std::vector<std::vector<double>> A = in.rows;
     std::vector<char> used(m, 0);
     std::vector<size_t> pivots;
     double scale = 0.0;
     for (const auto& row : in.rows)
       for (double v : row) scale = std::max(scale, std::abs(v));
+    constexpr double kPreferredPivotRatio = 0.1;
     for (size_t j = 0; j < k; ++j) {
-      size_t p = m;
-      double best = 0.0;
-      for (size_t c = 0; c < m; ++c)
-        if (!used[c] && std::abs(A[j][c]) > best) best = std::abs(A[j][c]), p = c;
+      size_t p = m, q = m;
+      double best = 0.0, bestPreferred = 0.0;
+      for (size_t c = 0; c < m; ++c) {
+        if (used[c]) continue;
+        const double a = std::abs(A[j][c]);
+        if (a > best) best = a, p = c;
+        if ((avoid.empty() || !avoid[in.dofs[c]]) && a > bestPreferred) bestPreferred = a, q = c;
+      }
+      if (q != m && bestPreferred >= kPreferredPivotRatio * best) p = q;
       if (p == m || best <= 1e-12 * scale)
         throw std::invalid_argument("ChangeOfBasis: linearly dependent constraint rows in a group");
       used[p] = 1;

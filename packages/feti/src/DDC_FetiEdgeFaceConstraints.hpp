@@ -95,7 +95,12 @@ class ChangeOfBasis {
   /// \param n number of local DOFs; \param groups as from findEdgeFaceConstraints().
   /// \throws std::invalid_argument for DOFs out of range or in two groups,
   ///         or rows that are linearly dependent.
-  ChangeOfBasis(LO n, const std::vector<PrimalGroup>& groups);
+  /// \param avoid optional, per local DOF: 1 = do not make it a
+  ///        representative unless the group leaves no other choice (the
+  ///        DOFs that extra constraint rows touch: a row on an O DOF stays
+  ///        as it is in the new basis, a row on an R DOF spreads over the
+  ///        whole group). Must be the same in every subdomain sharing a group.
+  ChangeOfBasis(LO n, const std::vector<PrimalGroup>& groups, const std::vector<char>& avoid = {});
 
   /// True if there is at least one group (otherwise T = I).
   bool active() const { return !groups_.empty(); }

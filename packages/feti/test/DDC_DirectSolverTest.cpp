@@ -4,7 +4,9 @@
 // ||b - A x|| / ||b|| computed with Tpetra's apply (never against the solver
 // itself: doc/trilinos-notes.md records a wrong KLU2 solution on 2 ranks). Also:
 // refactorisation with the same pattern (symbolic reuse), singular matrices,
-// several right-hand sides, coexisting instances, factory errors.
+// several right-hand sides, coexisting instances, factory errors. The serial
+// CHOLMOD back end has its own tests (SPD matrices on one process, compared
+// with MUMPS; the MUMPS fallback for indefinite matrices).
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -19,6 +21,7 @@
 
 #include "DDC_TestErrors.hpp"
 #include "DDC_Amesos2Solver.hpp"
+#include "DDC_CholmodSolver.hpp"
 #include "DDC_DirectSolver.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_MumpsSolver.hpp"
@@ -31,6 +34,12 @@ namespace ddc::test {
 /// factor 100 for pivot growth. A wrong solve (the KLU2-on-2-ranks pitfall)
 /// has a residual of O(1).
 constexpr double kDirectSolveResidual = 1e-10;
+/// Relative difference ||x_1 - x_2|| / ||x_2|| accepted between two direct
+/// solvers (or between a block and a single-column solve) on the same SPD
+/// matrix: each is backward stable, so they differ by ~ u * cond(A) * growth;
+/// the SPD test matrices have cond(A) <= 1e4 (Cholesky has no pivot growth),
+/// so 1e-16 * 1e4 = 1e-12 with a factor 100 to spare.
+constexpr double kDirectSolverAgreement = 1e-10;
 }  // namespace ddc::test
 
 namespace {
@@ -43,6 +52,7 @@ using ddc::LO;
 using ddc::Map;
 using ddc::MultiVector;
 using ddc::test::kDirectSolveResidual;
+using ddc::test::kDirectSolverAgreement;
 using Teuchos::RCP;
 using Teuchos::rcp;
 using Comm = Teuchos::Comm<int>;
@@ -108,6 +118,54 @@ RCP<CrsMatrix> saddlePoint(const RCP<const Comm>& comm, int nx, int ny, int m) {
   }
   A->fillComplete();
   return A;
+}
+
+/// 3-D elasticity-like SPD matrix on an nx x ny x nz node grid, 3 DOFs per
+/// node (node-major, DOF 3 a + c), 27-point coupling: (L + D) (x) M, with L
+/// the graph Laplacian of the 27-point stencil, D = 1 on the nodes of the
+/// bottom layer (z = 0, "supported") and M a 3 x 3 SPD coupling of the
+/// components; a Kronecker product of SPD matrices is SPD. `shift` is added
+/// to every diagonal entry (a negative one makes the matrix indefinite).
+RCP<CrsMatrix> elasticity3d(const RCP<const Comm>& comm, int nx, int ny, int nz, double shift = 0.0) {
+  const double M[3][3] = {{2.0, 0.5, 0.25}, {0.5, 2.0, 0.5}, {0.25, 0.5, 2.0}};
+  const GO n = 3 * GO(nx) * ny * nz;
+  auto map = rcp(new Map(n, 0, comm));
+  auto A = rcp(new CrsMatrix(map, 81));
+  for (LO lr = 0; lr < LO(map->getNodeNumElements()); ++lr) {
+    const GO g = map->getGlobalElement(lr);
+    const GO a = g / 3;
+    const int c = int(g % 3), i = int(a % nx), j = int((a / nx) % ny), k = int(a / (GO(nx) * ny));
+    std::vector<GO> cols;
+    std::vector<double> vals;
+    int degree = 0;
+    for (int dk = -1; dk <= 1; ++dk)
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) {
+          const int ii = i + di, jj = j + dj, kk = k + dk;
+          if ((di == 0 && dj == 0 && dk == 0) || ii < 0 || jj < 0 || kk < 0 || ii >= nx || jj >= ny || kk >= nz)
+            continue;
+          ++degree;
+          const GO b = (GO(kk) * ny + jj) * nx + ii;
+          for (int d = 0; d < 3; ++d) cols.push_back(3 * b + d), vals.push_back(-M[c][d]);
+        }
+    const double lii = degree + (k == 0 ? 1.0 : 0.0);
+    for (int d = 0; d < 3; ++d) cols.push_back(3 * a + d), vals.push_back(lii * M[c][d] + (d == c ? shift : 0.0));
+    A->insertGlobalValues(g, LO(cols.size()), vals.data(), cols.data());
+  }
+  A->fillComplete();
+  return A;
+}
+
+/// max over columns of ||x - y|| / ||y||.
+double relDifference(const MultiVector& x, const MultiVector& y) {
+  MultiVector d(y, Teuchos::Copy);
+  d.update(1.0, x, -1.0);
+  std::vector<double> dn(y.getNumVectors()), yn(y.getNumVectors());
+  d.norm2(Teuchos::ArrayView<double>(dn));
+  y.norm2(Teuchos::ArrayView<double>(yn));
+  double worst = 0.0;
+  for (size_t j = 0; j < dn.size(); ++j) worst = std::max(worst, dn[j] / yn[j]);
+  return worst;
 }
 
 /// Replace every value a_ij by f(i, j, a_ij) keeping the pattern.
@@ -474,6 +532,286 @@ TEST(Amesos2Solver, AcceptsAnyGlobalNumbering) {
   EXPECT_LT(res, kDirectSolveResidual);
 }
 
+// CHOLMOD: serial, SPD. Every matrix here lives on MPI_COMM_SELF (a
+// different one per rank, as FETI-DP's subdomains) unless a test says so.
+
+/// Solve with MUMPS for comparison.
+MultiVector mumpsSolution(const RCP<const CrsMatrix>& A, const MultiVector& b) {
+  ddc::MumpsSolver mumps;
+  MultiVector x(A->getRowMap(), b.getNumVectors());
+  mumps.symbolic(A);
+  mumps.numeric();
+  mumps.solve(b, x);
+  return x;
+}
+
+TEST(CholmodSolver, SolvesSpdLikeMumps) {
+  for (const auto& [nx, nz] : {std::make_pair(5, 4), std::make_pair(7, 6)}) {
+    auto A = elasticity3d(selfComm(), nx, nx + worldRank(), nz);
+    ddc::CholmodSolver s;
+    EXPECT_FALSE(s.setSchurIndices({0}));  // no Schur capability: FETI-DP uses Phi
+    MultiVector b(A->getRowMap(), 1), x(A->getRowMap(), 1);
+    b.randomize();
+    s.symbolic(A);
+    s.numeric();
+    s.solve(b, x);
+    const double res = relResidual(*A, x, b), diff = relDifference(x, mumpsSolution(A, b));
+    EXPECT_LT(res, kDirectSolveResidual);
+    EXPECT_LT(diff, kDirectSolverAgreement);
+    EXPECT_EQ(s.name(), "CHOLMOD");
+    EXPECT_FALSE(s.usingFallback());
+    EXPECT_EQ(s.orderingUsed(), "METIS");
+    EXPECT_GT(s.factorNonzeros(), 0.0);
+    const std::string n = std::to_string(A->getGlobalNumRows());
+    report("CHOLMOD elasticity " + n + " residual", res);
+    report("CHOLMOD elasticity " + n + " vs MUMPS", diff);
+  }
+}
+
+TEST(CholmodSolver, EveryOrderingSolves) {
+  auto A = elasticity3d(selfComm(), 6, 5, 5);
+  for (const std::string ordering : {"METIS", "AMD", "NESDIS", "Auto"}) {
+    Teuchos::ParameterList p;
+    p.set("Ordering", ordering);
+    ddc::CholmodSolver s(p);
+    EXPECT_LT(solveResidual(s, A), kDirectSolveResidual) << ordering;
+    if (ordering == "Auto") {
+      EXPECT_TRUE(s.orderingUsed() == "AMD" || s.orderingUsed() == "METIS") << s.orderingUsed();
+    } else {
+      EXPECT_EQ(s.orderingUsed(), ordering);
+    }
+  }
+}
+
+TEST(CholmodSolver, SeveralColumnsInOneSolve) {
+  // 1 column, kept blocks (3, 8, 3 again: the block workspaces are resized)
+  // and a block wider than kKeptBlockColumns (temporary workspaces), each
+  // column checked against a single-column solve.
+  auto A = elasticity3d(selfComm(), 6, 6, 4);
+  ddc::CholmodSolver s;
+  s.symbolic(A);
+  s.numeric();
+  for (const size_t k : {size_t(1), size_t(3), size_t(8), size_t(3), ddc::CholmodSolver::kKeptBlockColumns + 9}) {
+    MultiVector b(A->getRowMap(), k), x(A->getRowMap(), k), xj(A->getRowMap(), k);
+    b.randomize();
+    s.solve(b, x);
+    EXPECT_LT(relResidual(*A, x, b), kDirectSolveResidual) << k << " columns";
+    for (size_t j = 0; j < k; ++j) {
+      auto bj = b.getVector(j);
+      auto xjj = xj.getVectorNonConst(j);
+      s.solve(*bj, *xjj);
+    }
+    EXPECT_LT(relDifference(x, xj), kDirectSolverAgreement) << k << " columns";
+  }
+  // x may be b itself.
+  MultiVector b(A->getRowMap(), 2), x(A->getRowMap(), 2);
+  b.randomize();
+  s.solve(b, x);
+  s.solve(b, b);
+  EXPECT_LT(relDifference(b, x), kDirectSolverAgreement);
+}
+
+TEST(CholmodSolver, RefactorisationReusesSymbolic) {
+  auto A = elasticity3d(selfComm(), 5, 6, 5);
+  ddc::CholmodSolver s;
+  MultiVector b(A->getRowMap(), 2), x(A->getRowMap(), 2), xOld(A->getRowMap(), 2);
+  b.randomize();
+  s.symbolic(A);
+  s.numeric();
+  s.solve(b, xOld);
+  EXPECT_LT(relResidual(*A, xOld, b), kDirectSolveResidual);
+  // New values, same pattern (a Newton iteration), still SPD: 2 A + 1.5 I.
+  modifyValues(*A, [](GO i, GO j, double a) { return i == j ? 2.0 * a + 1.5 : 2.0 * a; });
+  s.numeric();  // no symbolic(): the analysis is reused
+  s.solve(b, x);
+  EXPECT_LT(relResidual(*A, x, b), kDirectSolveResidual);
+  EXPECT_GT(relResidual(*A, xOld, b), 1e-2);  // the new values were used
+  EXPECT_LT(relDifference(x, mumpsSolution(A, b)), kDirectSolverAgreement);
+  EXPECT_EQ(s.numSymbolic(), 1);
+  EXPECT_EQ(s.numNumeric(), 2);
+  // A new pattern: symbolic() again.
+  auto A2 = laplacian(selfComm(), 11, 9);
+  EXPECT_LT(solveResidual(s, A2), kDirectSolveResidual);
+  EXPECT_EQ(s.numSymbolic(), 2);
+  EXPECT_EQ(s.numNumeric(), 3);
+}
+
+TEST(CholmodSolver, PatternChangeIsLogicError) {
+  // A copy of the Laplacian with room for one more entry per row (storage
+  // not optimised by fillComplete), so that entries can be added later.
+  const int nx = 8;
+  auto L = laplacian(selfComm(), nx, 6);
+  auto A = rcp(new CrsMatrix(L->getRowMap(), 6));
+  for (LO lr = 0; lr < LO(L->getNodeNumRows()); ++lr) {
+    CrsMatrix::local_inds_host_view_type inds;
+    CrsMatrix::values_host_view_type v;
+    L->getLocalRowView(lr, inds, v);
+    for (size_t e = 0; e < inds.extent(0); ++e) {
+      const GO c = L->getColMap()->getGlobalElement(inds(e));
+      const double a = v(e);
+      A->insertGlobalValues(L->getRowMap()->getGlobalElement(lr), 1, &a, &c);
+    }
+  }
+  auto keepRoom = Teuchos::parameterList();
+  keepRoom->set("Optimize Storage", false);
+  A->fillComplete(keepRoom);
+  ddc::CholmodSolver s;
+  s.symbolic(A);
+  s.numeric();
+  // Couple the grid corners 0 and nx - 1, symmetrically.
+  A->resumeFill();
+  const auto& rows = *A->getRowMap();
+  const auto& cols = *A->getColMap();
+  const LO r0 = rows.getLocalElement(0), r1 = rows.getLocalElement(nx - 1);
+  const LO c0 = cols.getLocalElement(0), c1 = cols.getLocalElement(nx - 1);
+  const double v = -0.5;
+  A->insertLocalValues(r0, 1, &v, &c1);
+  A->insertLocalValues(r1, 1, &v, &c0);
+  A->fillComplete(keepRoom);
+  expectThrowWith<std::logic_error>([&] { s.numeric(); }, {"CHOLMOD", "pattern", "symbolic()"});
+  MultiVector b(A->getRowMap(), 1), x(A->getRowMap(), 1);
+  EXPECT_THROW(s.solve(b, x), std::logic_error);
+  s.symbolic(A);  // the new pattern
+  EXPECT_LT(solveResidual(s, A), kDirectSolveResidual);
+}
+
+TEST(CholmodSolver, IndefiniteFallsBackToMumps) {
+  // A saddle-point matrix [K B^T; B 0] and a "tangent past a limit point"
+  // (an SPD matrix shifted below its smallest eigenvalues): symmetric,
+  // indefinite, nonsingular.
+  std::vector<std::pair<std::string, RCP<CrsMatrix>>> cases{
+      {"saddle point", saddlePoint(selfComm(), 10, 8 + worldRank(), 12)},
+      {"shifted elasticity", elasticity3d(selfComm(), 5, 5, 4, -0.35)}};
+  for (auto& [what, A] : cases) {
+    ddc::CholmodSolver s;
+    MultiVector b(A->getRowMap(), 3), x(A->getRowMap(), 3);
+    b.randomize();
+    s.symbolic(A);
+    s.numeric();
+    EXPECT_TRUE(s.usingFallback()) << what;
+    EXPECT_EQ(s.name(), "CHOLMOD (indefinite: MUMPS)");
+    s.solve(b, x);
+    EXPECT_LT(relResidual(*A, x, b), kDirectSolveResidual) << what;
+    // Refactorisation stays with MUMPS until the next symbolic().
+    modifyValues(*A, [](GO, GO, double a) { return 1.5 * a; });
+    s.numeric();
+    s.solve(b, x);
+    EXPECT_LT(relResidual(*A, x, b), kDirectSolveResidual) << what;
+    EXPECT_TRUE(s.usingFallback());
+    EXPECT_EQ(s.numNumeric(), 2);
+    EXPECT_EQ(s.numSymbolic(), 1);
+    auto spd = elasticity3d(selfComm(), 4, 4, 3);
+    EXPECT_LT(solveResidual(s, spd), kDirectSolveResidual);
+    EXPECT_FALSE(s.usingFallback()) << what;
+    EXPECT_EQ(s.name(), "CHOLMOD");
+  }
+  // Rows numbered 1..N (not MUMPS' 0..N-1): the fallback factorises a
+  // renumbered copy, refreshed by every numeric().
+  auto A = laplacian(selfComm(), 9, 7, 0.0, /*base=*/1);
+  modifyValues(*A, [](GO i, GO j, double a) { return i == j && i == 30 ? -a : a; });
+  ddc::CholmodSolver s;
+  EXPECT_LT(solveResidual(s, A), kDirectSolveResidual);
+  EXPECT_TRUE(s.usingFallback());
+  modifyValues(*A, [](GO i, GO j, double a) { return i == j ? a + 0.25 : a; });
+  s.numeric();
+  MultiVector b(A->getRowMap(), 1), x(A->getRowMap(), 1);
+  b.randomize();
+  s.solve(b, x);
+  EXPECT_LT(relResidual(*A, x, b), kDirectSolveResidual);
+}
+
+TEST(CholmodSolver, IndefiniteWithoutFallbackThrows) {
+  auto A = elasticity3d(selfComm(), 5, 5, 4, -0.35);
+  Teuchos::ParameterList p;
+  p.set("Indefinite Fallback", false);
+  ddc::CholmodSolver s(p);
+  s.symbolic(A);
+  expectThrowWith<ddc::SolverError>([&] { s.numeric(); },
+                                    {"CHOLMOD", "not positive definite", "column", "'Indefinite Fallback'"});
+  EXPECT_FALSE(s.usingFallback());
+  MultiVector b(A->getRowMap(), 1), x(A->getRowMap(), 1);
+  EXPECT_THROW(s.solve(b, x), std::logic_error);
+}
+
+TEST(CholmodSolver, SingularAndNonFiniteMatricesThrowSolverError) {
+  for (const bool fallback : {true, false}) {
+    // Zero the row and column of one DOF (entries kept, values 0): a zero pivot.
+    auto A = laplacian(selfComm(), 10, 10);
+    const GO dead = 57;
+    modifyValues(*A, [dead](GO i, GO j, double a) { return (i == dead || j == dead) ? 0.0 : a; });
+    Teuchos::ParameterList p;
+    p.set("Indefinite Fallback", fallback);
+    ddc::CholmodSolver s(p);
+    s.symbolic(A);
+    if (fallback) {  // MUMPS finds it singular too
+      expectThrowWith<ddc::SolverError>([&] { s.numeric(); }, {"CHOLMOD", "MUMPS", "INFOG(1) = -10"});
+    } else {
+      expectThrowWith<ddc::SolverError>([&] { s.numeric(); }, {"CHOLMOD", "column 57", "Indefinite Fallback"});
+    }
+    MultiVector b(A->getRowMap(), 1), x(A->getRowMap(), 1);
+    EXPECT_THROW(s.solve(b, x), std::logic_error);
+  }
+  auto A = laplacian(selfComm(), 6, 6);
+  modifyValues(*A, [](GO i, GO j, double a) { return i == 7 && j == 7 ? std::nan("") : a; });
+  ddc::CholmodSolver s;
+  s.symbolic(A);
+  expectThrowWith<ddc::SolverError>([&] { s.numeric(); }, {"CHOLMOD", "entry (7, 7)", "nan"});
+}
+
+TEST(CholmodSolver, TinyMatrices) {
+  // n = 0 (an empty block, e.g. a subdomain without interior DOFs), 1, 2.
+  for (const int n : {0, 1, 2}) {
+    auto A = laplacian(selfComm(), n, 1);
+    ddc::CholmodSolver s;
+    MultiVector b(A->getRowMap(), 2), x(A->getRowMap(), 2);
+    b.randomize();
+    s.symbolic(A);
+    s.numeric();
+    s.solve(b, x);
+    if (n > 0) EXPECT_LT(relResidual(*A, x, b), kDirectSolveResidual) << "n = " << n;
+    EXPECT_EQ(s.numNumeric(), 1);
+    EXPECT_FALSE(s.usingFallback());
+  }
+}
+
+TEST(CholmodSolver, DistributedMatrixIsInvalidArgument) {
+  auto A = laplacian(worldComm(), 12, 10);
+  ddc::CholmodSolver s;
+  if (worldComm()->getSize() == 1) {
+    // One rank: the world communicator is a serial one (a monolithic run on one rank).
+    EXPECT_LT(solveResidual(s, A), kDirectSolveResidual);
+  } else {
+    expectThrowWith<std::invalid_argument>([&] { s.symbolic(A); },
+                                           {"CHOLMOD", "serial", "MUMPS", "Solver/FETI-DP/Local Solver/Type"});
+  }
+}
+
+TEST(CholmodSolver, CoexistingInstances) {
+  // One solver per subdomain, used in interleaved order, with a MUMPS one.
+  auto A1 = elasticity3d(selfComm(), 4, 5, 3 + worldRank());
+  auto A2 = laplacian(selfComm(), 9, 8);
+  auto A3 = saddlePoint(selfComm(), 7, 6, 8);
+  ddc::CholmodSolver s1, s2, s3;
+  ddc::MumpsSolver m;
+  s1.symbolic(A1);
+  s2.symbolic(A2);
+  m.symbolic(A2);
+  s3.symbolic(A3);
+  s2.numeric();
+  s3.numeric();
+  m.numeric();
+  s1.numeric();
+  for (int round = 0; round < 2; ++round) {
+    for (auto [s, A] : {std::make_pair<DirectSolver*>(&s3, A3), std::make_pair<DirectSolver*>(&s1, A1),
+                        std::make_pair<DirectSolver*>(&m, A2), std::make_pair<DirectSolver*>(&s2, A2)}) {
+      MultiVector b(A->getRowMap(), 1), x(A->getRowMap(), 1);
+      b.randomize();
+      s->solve(b, x);
+      EXPECT_LT(relResidual(*A, x, b), kDirectSolveResidual) << s->name();
+    }
+  }
+}
+
 // ---- factory -----------------------------------------------------------------
 
 TEST(DirectSolverFactory, DefaultsToMumpsAndFillsDefaults) {
@@ -487,12 +825,33 @@ TEST(DirectSolverFactory, DefaultsToMumpsAndFillsDefaults) {
   EXPECT_TRUE(p.sublist("MUMPS").get<bool>("Symmetric"));
 }
 
+TEST(DirectSolverFactory, CreatesCholmodAndFillsDefaults) {
+  Teuchos::ParameterList p;
+  p.set("Type", "CHOLMOD");
+  auto s = DirectSolverFactory::withBuiltins().create(p, "Solver/FETI-DP/Local Solver");
+  ASSERT_NE(dynamic_cast<ddc::CholmodSolver*>(s.get()), nullptr);
+  EXPECT_EQ(s->name(), "CHOLMOD");
+  ASSERT_TRUE(p.isSublist("CHOLMOD"));
+  EXPECT_EQ(p.sublist("CHOLMOD").get<std::string>("Ordering"), "METIS");
+  EXPECT_TRUE(p.sublist("CHOLMOD").get<bool>("Indefinite Fallback"));
+  auto A = elasticity3d(selfComm(), 4, 4, 4);
+  EXPECT_LT(solveResidual(*s, A), kDirectSolveResidual);
+  // The options reach the solver: without the fallback an indefinite matrix is an error.
+  Teuchos::ParameterList q;
+  q.set("Type", "CHOLMOD");
+  q.sublist("CHOLMOD").set("Indefinite Fallback", false);
+  auto t = DirectSolverFactory::withBuiltins().create(q, "S");
+  auto B = saddlePoint(selfComm(), 6, 5, 4);
+  t->symbolic(B);
+  EXPECT_THROW(t->numeric(), ddc::SolverError);
+}
+
 TEST(DirectSolverFactory, UnknownTypeNamesPathAndKnownTypes) {
   Teuchos::ParameterList p;
   p.set("Type", "Pardiso");
   expectThrowWith<ddc::InputError>(
       [&] { DirectSolverFactory::withBuiltins().create(p, "Solver/Linear Solver"); },
-      {"Pardiso", "Solver/Linear Solver/Type", "'MUMPS'", "'Amesos2'"});
+      {"Pardiso", "Solver/Linear Solver/Type", "'MUMPS'", "'Amesos2'", "'CHOLMOD'"});
 }
 
 TEST(DirectSolverFactory, MisspeltParametersNamePath) {
@@ -530,6 +889,19 @@ TEST(DirectSolverFactory, MisspeltParametersNamePath) {
   }
   {
     Teuchos::ParameterList p;
+    p.set("Type", "MUMPS");
+    p.sublist("CHOLMOD").set("Indefinite Fallbak", false);
+    expectThrowWith<ddc::InputError>([&] { f.create(p, "Solver/FETI-DP/Local Solver"); },
+                                     {"Solver/FETI-DP/Local Solver/CHOLMOD/Indefinite Fallbak", "Indefinite Fallback"});
+  }
+  {
+    Teuchos::ParameterList p;
+    p.set("Type", "CHOLMOD");
+    p.sublist("CHOLMOD").set("Ordering", "COLAMD");
+    expectThrowWith<ddc::InputError>([&] { f.create(p, "S"); }, {"S/CHOLMOD/Ordering", "COLAMD", "METIS", "AMD"});
+  }
+  {
+    Teuchos::ParameterList p;
     p.set("Type", "Amesos2");
     p.sublist("Amesos2").set("Solver Name", "SuperLU");
     expectThrowWith<ddc::InputError>([&] { f.create(p, "S"); }, {"S/Amesos2/Solver Name", "SuperLU", "KLU2"});
@@ -540,7 +912,7 @@ TEST(DirectSolverFactory, ValidParametersAreDocumented) {
   const auto valid = DirectSolverFactory::getValidParameters();
   ASSERT_TRUE(valid->isParameter("Type"));
   EXPECT_EQ(valid->get<std::string>("Type"), "MUMPS");
-  for (const std::string back : {"MUMPS", "Amesos2"}) {
+  for (const std::string back : {"MUMPS", "Amesos2", "CHOLMOD"}) {
     ASSERT_TRUE(valid->isSublist(back)) << back;
     const auto& sub = valid->sublist(back);
     EXPECT_GT(sub.numParams(), 0);
@@ -566,7 +938,7 @@ TEST(DirectSolverFactory, HostCodesRegisterTheirOwn) {
   p.set("Type", "Mine");
   auto s = f.create(p, "X");
   EXPECT_EQ(seen, 1e-8);
-  EXPECT_EQ(f.names().size(), 3u);
+  EXPECT_EQ(f.names().size(), 4u);
   EXPECT_THROW(f.add("Mine", f.entry("MUMPS")), std::invalid_argument);
   DirectSolverFactory empty;
   Teuchos::ParameterList q;

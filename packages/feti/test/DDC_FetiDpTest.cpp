@@ -388,6 +388,29 @@ INSTANTIATE_TEST_SUITE_P(Layouts, FetiDpAccuracy,
                                   std::to_string(L.Sy) + (L.blockwise ? "Blockwise" : "RoundRobin");
                          });
 
+/// CHOLMOD as the local solver (K_rr^s and K_II^s: SPD here; no Schur
+/// capability, so the explicit Phi path): the same answer and iteration
+/// count as MUMPS, with vertices and with edge constraints.
+TEST(FetiDp, CholmodLocalSolverMatchesMumps) {
+  for (const Layout L : {Layout{3, 3, 2, false}, Layout{4, 4, 1, true}}) {
+    Spec s;
+    s.Sx = L.Sx, s.Sy = L.Sy, s.dpn = L.dpn, s.H = 4, s.blockwise = L.blockwise;
+    for (const char* primal : {"Vertices", "Vertices and Edges"}) {
+      auto p = fetiParams("Dirichlet", "Multiplicity", "CG", ddc::test::kTightBelos, primal);
+      const FetiRun mumps = runFeti(s, p);
+      p.sublist("Local Solver").set("Type", std::string("CHOLMOD"));
+      const FetiRun cholmod = runFeti(s, p);
+      char name[96];
+      std::snprintf(name, sizeof name, "CHOLMOD local, %s %dx%d, %s", L.dpn == 1 ? "Laplace" : "elasticity", L.Sx,
+                    L.Sy, primal);
+      report(name, cholmod);
+      EXPECT_LT(cholmod.error, ddc::test::kFetiVsDirect) << name;
+      EXPECT_LE(cholmod.info.relativeResidual, ddc::test::kTightBelos) << name;
+      EXPECT_LE(std::abs(cholmod.info.iterations - mumps.info.iterations), 1) << name;
+    }
+  }
+}
+
 TEST(FetiDp, OtherKrylovSolversConverge) {
   Spec s;
   s.Sx = 3, s.Sy = 3, s.dpn = 2, s.H = 4;
@@ -556,6 +579,78 @@ std::vector<ExtraRow> extraRows() {
   };
 }
 
+/// One row of the reference saddle-point system: entries (global DOF,
+/// coefficient), right-hand side, active (inactive: identity row, mu = 0).
+struct ReferenceRow {
+  std::vector<std::pair<GO, double>> entries;
+  double c;
+  bool active;
+};
+
+/// [K B^T; B 0] [u; mu] = [b; c] solved by MUMPS (checked by its residual),
+/// the multiplier of row r at n + r (n = K's size); returned on every rank
+/// (a replicated map), to compare with a solution in any layout.
+Vector saddlePointReference(const CrsMatrix& K, const Vector& b, const std::vector<ReferenceRow>& rows) {
+  const int me = worldRank();
+  const GO n = GO(K.getRowMap()->getGlobalNumElements());
+  const GO N = n + GO(rows.size());
+  auto bigMap = rcp(new Map(N, 0, worldComm()));
+  auto A = rcp(new CrsMatrix(bigMap, 24));
+  CrsMatrix::local_inds_host_view_type inds;
+  CrsMatrix::values_host_view_type vals;
+  for (LO l = 0; l < LO(K.getNodeNumRows()); ++l) {
+    K.getLocalRowView(l, inds, vals);
+    std::vector<GO> cols;
+    std::vector<double> v;
+    for (size_t e = 0; e < inds.extent(0); ++e) cols.push_back(K.getColMap()->getGlobalElement(inds(e))), v.push_back(vals(e));
+    A->insertGlobalValues(K.getRowMap()->getGlobalElement(l), Teuchos::ArrayView<const GO>(cols),
+                          Teuchos::ArrayView<const double>(v));
+  }
+  auto bigB = rcp(new Vector(bigMap));
+  if (me == 0)
+    for (size_t r = 0; r < rows.size(); ++r) {
+      const GO row = n + GO(r);
+      if (!rows[r].active) {
+        const double one = 1.0;
+        A->insertGlobalValues(row, 1, &one, &row);
+        continue;
+      }
+      for (const auto& [d, v] : rows[r].entries) {
+        A->insertGlobalValues(row, 1, &v, &d);
+        A->insertGlobalValues(d, 1, &v, &row);
+      }
+    }
+  A->fillComplete();
+  {
+    // b on the saddle-point map (a different distribution): moved by an Export.
+    Tpetra::Export<LO, GO, ddc::Node> toBig(b.getMap(), bigMap);
+    bigB->doExport(b, toBig, Tpetra::INSERT);
+    for (size_t r = 0; r < rows.size(); ++r)
+      if (bigMap->isNodeGlobalElement(n + GO(r))) bigB->replaceGlobalValue(n + GO(r), rows[r].active ? rows[r].c : 0.0);
+  }
+  Teuchos::ParameterList dp;
+  dp.set("Type", std::string("MUMPS"));
+  auto direct = ddc::DirectSolverFactory::withBuiltins().create(dp, "Reference");
+  direct->symbolic(A);
+  direct->numeric();
+  Vector x(bigMap);
+  direct->solve(*bigB, x);
+  {
+    Vector r(bigMap);
+    A->apply(x, r);
+    r.update(1.0, *bigB, -1.0);
+    EXPECT_LT(r.norm2() / bigB->norm2(), 1e-10) << "reference saddle-point solve";
+  }
+  std::vector<GO> every(N);
+  for (GO k = 0; k < N; ++k) every[k] = k;
+  auto allMap = rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                            Teuchos::ArrayView<const GO>(every), 0, worldComm()));
+  Tpetra::Import<LO, GO, ddc::Node> toAll(bigMap, allMap);
+  Vector xAll(allMap);
+  xAll.doImport(x, toAll, Tpetra::INSERT);
+  return xAll;
+}
+
 /// K u + B_c^T mu = b, B_c u = c on the active rows, mu = 0 on the
 /// inactive one: FETI-DP with setConstraintRows()/setConstraintState()
 /// against MUMPS on the assembled saddle-point matrix.
@@ -612,60 +707,16 @@ void checkExtraRows(const std::string& primal) {
   ASSERT_FALSE(mu.is_null());
 
   // Reference: [K B^T; B 0] (identity row for the inactive multiplier).
-  const GO N = n + GO(rows.size());
-  auto bigMap = rcp(new Map(N, 0, worldComm()));
-  auto A = rcp(new CrsMatrix(bigMap, 24));
-  auto K = pb.globalK();
-  CrsMatrix::local_inds_host_view_type inds;
-  CrsMatrix::values_host_view_type vals;
-  for (LO l = 0; l < LO(K->getNodeNumRows()); ++l) {
-    K->getLocalRowView(l, inds, vals);
-    std::vector<GO> cols;
-    std::vector<double> v;
-    for (size_t e = 0; e < inds.extent(0); ++e) cols.push_back(K->getColMap()->getGlobalElement(inds(e))), v.push_back(vals(e));
-    A->insertGlobalValues(K->getRowMap()->getGlobalElement(l), Teuchos::ArrayView<const GO>(cols),
-                          Teuchos::ArrayView<const double>(v));
-  }
-  auto bigB = rcp(new Vector(bigMap));
-  if (me == 0)
-    for (size_t r = 0; r < rows.size(); ++r) {
-      const GO row = n + GO(r);
-      if (!rows[r].active) {
-        const double one = 1.0;
-        A->insertGlobalValues(row, 1, &one, &row);
-        continue;
-      }
-      for (size_t k = 0; k < rows[r].at.size(); ++k) {
-        const auto [i, j, cc] = rows[r].at[k];
-        const GO d = pb.dof(i, j, cc);
-        const double v = rows[r].coef[k];
-        A->insertGlobalValues(row, 1, &v, &d);
-        A->insertGlobalValues(d, 1, &v, &row);
-      }
+  std::vector<ReferenceRow> refRows;
+  for (const auto& row : rows) {
+    ReferenceRow rr{{}, row.c, row.active};
+    for (size_t k = 0; k < row.at.size(); ++k) {
+      const auto [i, j, cc] = row.at[k];
+      rr.entries.emplace_back(pb.dof(i, j, cc), row.coef[k]);
     }
-  A->fillComplete();
-  {
-    // b on the saddle-point map (a different distribution): moved by an Export.
-    Tpetra::Export<LO, GO, ddc::Node> toBig(pb.ownedMap(), bigMap);
-    bigB->doExport(*b, toBig, Tpetra::INSERT);
-    for (size_t r = 0; r < rows.size(); ++r)
-      if (bigMap->isNodeGlobalElement(n + GO(r))) bigB->replaceGlobalValue(n + GO(r), rows[r].active ? rows[r].c : 0.0);
+    refRows.push_back(rr);
   }
-  Teuchos::ParameterList dp;
-  dp.set("Type", std::string("MUMPS"));
-  auto direct = ddc::DirectSolverFactory::withBuiltins().create(dp, "Reference");
-  direct->symbolic(A);
-  direct->numeric();
-  Vector x(bigMap);
-  direct->solve(*bigB, x);
-  // The reference on every rank (replicated map) to compare with the owned u and mu.
-  std::vector<GO> every(N);
-  for (GO k = 0; k < N; ++k) every[k] = k;
-  auto allMap = rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
-                            Teuchos::ArrayView<const GO>(every), 0, worldComm()));
-  Tpetra::Import<LO, GO, ddc::Node> toAll(bigMap, allMap);
-  Vector xAll(toAll.getTargetMap());
-  xAll.doImport(x, toAll, Tpetra::INSERT);
+  Vector xAll = saddlePointReference(*pb.globalK(), *b, refRows);
   auto xa = xAll.getData();
   double du = 0.0, un = 0.0;
   {
@@ -711,6 +762,154 @@ TEST(FetiDp, ExtraRowsMatchTheSaddlePointSolve) { checkExtraRows("Vertices"); }
 /// Contact rows keep working with edge constraints: rows on edge DOFs are
 /// transformed with the change of basis (ChangeOfBasis::rowToNew).
 TEST(FetiDp, ExtraRowsMatchTheSaddlePointSolveWithEdgeConstraints) { checkExtraRows("Vertices and Edges"); }
+
+// ---- extra rows between bodies of different stiffness ---------------------------
+
+/// Body A (coefficient 1) and body B (coefficient `ratio`), each a grid of
+/// Sx x Sy subdomains with its left edge fixed, coupled only by extra rows
+/// u_A(H, j, 1) - u_B(H, j, 1) = c at every other node (odd j) of the line
+/// i = H, an interface between subdomains in both bodies: the entries sit
+/// on dual DOFs shared by two subdomains (A's in its lower-id copy, B's in
+/// its higher-id copy), like slave nodes and master facets on METIS cuts,
+/// and the edge constraints find representatives off the rows' DOFs. Solves with the given
+/// Scaling; checks FETI-DP = MUMPS on the saddle-point system; returns the
+/// dual iterations and CG's condition estimate.
+std::pair<int, double> twoBodiesAcrossAStiffnessJump(double ratio, const std::string& scaling) {
+  Spec sa;
+  sa.Sx = 2, sa.Sy = 2, sa.H = 6, sa.dpn = 2;
+  Spec sb = sa;
+  sb.coef = [ratio](int, int) { return ratio; };
+  const Problem A(sa), B(sb);
+  const GO nA = GO(A.ownedMap()->getGlobalNumElements()), nB = GO(B.ownedMap()->getGlobalNumElements());
+  const int idB = A.numSubdomains();
+  auto owned = rcp(new Map(nA + nB, 0, worldComm()));
+  auto subs = A.subdomains();
+  const size_t nLocalA = subs.size();
+  for (auto sd : B.subdomains()) {
+    for (GO& g : sd.dofs) g += nA;
+    sd.id += idB;
+    subs.push_back(std::move(sd));
+  }
+  // The rows: one per node (H, j) off the subdomain corners.
+  std::vector<ReferenceRow> rows;
+  std::vector<std::pair<int, int>> at;  // (j, row)
+  for (int j = 1; j < sa.Sy * sa.H; j += 2) {
+    rows.push_back(ReferenceRow{{{A.dof(sa.H, j, 1), 1.0}, {nA + B.dof(sa.H, j, 1), -1.0}}, 0.01, true});
+    at.emplace_back(j, int(rows.size()) - 1);
+  }
+  const int P = worldSize(), me = worldRank();
+  std::vector<GO> mine;
+  for (size_t r = 0; r < rows.size(); ++r)
+    if (int(r) % P == me) mine.push_back(GO(r));
+  auto rowMap = rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                            Teuchos::ArrayView<const GO>(mine), 0, worldComm()));
+  std::vector<std::vector<ddc::ConstraintEntry>> entries(subs.size());
+  for (size_t ls = 0; ls < subs.size(); ++ls) {
+    const bool inA = ls < nLocalA;
+    const int local = inA ? subs[ls].id : subs[ls].id - idB;
+    const int a = local % sa.Sx, b = local / sa.Sx;
+    subs[ls].constrainable.assign(subs[ls].dofs.size(), 0);
+    for (const auto& [j, r] : at) {
+      // A's entry in the copy of subdomain column 0, B's in column 1.
+      if (a != (inA ? 0 : 1) || j < b * sa.H || j > (b + 1) * sa.H) continue;
+      const GO g = inA ? A.dof(sa.H, j, 1) : nA + B.dof(sa.H, j, 1);
+      const auto it = std::find(subs[ls].dofs.begin(), subs[ls].dofs.end(), g);
+      if (it == subs[ls].dofs.end()) continue;
+      const LO l = LO(it - subs[ls].dofs.begin());
+      entries[ls].push_back({GO(r), l, inA ? 1.0 : -1.0});
+      subs[ls].constrainable[l] = 1;
+    }
+  }
+  // Every copy of a constrained node is constrainable (the solver would unify them anyway).
+  for (size_t ls = 0; ls < subs.size(); ++ls)
+    for (size_t k = 0; k < subs[ls].dofs.size(); ++k)
+      for (const auto& row : rows)
+        for (const auto& [g, c] : row.entries)
+          if (subs[ls].dofs[k] == g) subs[ls].constrainable[k] = 1;
+  auto params = fetiParams("Dirichlet", scaling, "CG", ddc::test::kTightBelos, "Automatic");
+  params.sublist("Belos").set("Maximum Iterations", 2000);
+  params.sublist("Belos").set("Estimate Condition Number", true);
+  FetiDpSolver feti(worldComm(), params, "FETI-DP");
+  feti.setTopology(subs, owned);
+  feti.setConstraintRows(rowMap, entries);
+  feti.setConstraintState(std::vector<char>(mine.size(), 1), std::vector<double>(mine.size(), 0.01));
+  feti.numeric();
+  Vector b(owned);
+  {
+    auto v = b.getDataNonConst();
+    for (LO l = 0; l < LO(v.size()); ++l) v[l] = std::sin(0.37 * double(owned->getGlobalElement(l)) + 0.1) + 0.5;
+  }
+  Vector u(owned);
+  const auto info = feti.solve(b, u);
+
+  // Reference: the block-diagonal K of the two bodies.
+  auto K = rcp(new CrsMatrix(owned, 24));
+  for (const auto& [pb, shift] : {std::make_pair(&A, GO(0)), std::make_pair(&B, nA)}) {
+    auto Kb = pb->globalK();
+    CrsMatrix::local_inds_host_view_type inds;
+    CrsMatrix::values_host_view_type vals;
+    for (LO l = 0; l < LO(Kb->getNodeNumRows()); ++l) {
+      Kb->getLocalRowView(l, inds, vals);
+      std::vector<GO> cols;
+      std::vector<double> v;
+      for (size_t e = 0; e < inds.extent(0); ++e)
+        cols.push_back(Kb->getColMap()->getGlobalElement(inds(e)) + shift), v.push_back(vals(e));
+      K->insertGlobalValues(Kb->getRowMap()->getGlobalElement(l) + shift, Teuchos::ArrayView<const GO>(cols),
+                            Teuchos::ArrayView<const double>(v));
+    }
+  }
+  K->fillComplete();
+  Vector xAll = saddlePointReference(*K, b, rows);
+  auto xa = xAll.getData();
+  const GO n = nA + nB;
+  double g[4] = {0, 0, 0, 0}, G[4];
+  {
+    auto uv = u.getData();
+    for (LO l = 0; l < LO(uv.size()); ++l) {
+      const GO gid = owned->getGlobalElement(l);
+      g[0] = std::max(g[0], std::abs(uv[l] - xa[gid]));
+      g[1] = std::max(g[1], std::abs(xa[gid]));
+    }
+    auto mu = feti.constraintMultipliers()->getData();
+    for (size_t k = 0; k < mine.size(); ++k) {
+      g[2] = std::max(g[2], std::abs(mu[k] - xa[n + mine[k]]));
+      g[3] = std::max(g[3], std::abs(xa[n + mine[k]]));
+    }
+  }
+  MPI_Allreduce(g, G, 4, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  if (me == 0)
+    std::printf("[ feti-dp  ] two bodies 1:%g, %zu rows, Scaling %s: it %d, condition ~%.3g, max |u - u_ref| / "
+                "max|u_ref| %.2e, multipliers %.2e\n",
+                ratio, rows.size(), scaling.c_str(), info.iterations, info.conditionEstimate, G[0] / G[1],
+                G[2] / G[3]);
+  EXPECT_GT(G[3], 0.0) << "the reference multipliers vanish: the rows do nothing";
+  EXPECT_LT(G[0] / G[1], ddc::test::kFetiVsDirect);
+  EXPECT_LT(G[2] / G[3], ddc::test::kFetiVsDirect);
+  return {info.iterations, info.conditionEstimate};
+}
+
+/// How much a 1:1000 stiffness jump between the bodies may raise the
+/// condition estimate with stiffness-weighted contact rows (measured: not at
+/// all), and how much it must raise it with equal weights to show what the
+/// weights are for (measured: 250 times).
+constexpr double kJumpConditionGrowth = 1.5;
+constexpr double kEqualWeightsConditionGrowth = 10.0;
+
+TEST(FetiDp, ExtraRowsAcrossAStiffnessJumpArePreconditioned) {
+  // Contact rows join bodies of different stiffness: weighted by the
+  // stiffness of their two sides (Scaling = Automatic) the condition of the
+  // preconditioned dual operator does not depend on the ratio; with equal
+  // weights (Multiplicity, 1/2 each side) the rows' preconditioner is ~250
+  // times too stiff at 1:1000 (doc/feti-dp.md "Extra rows"). Measured on 1
+  // and 2 ranks: condition ~112 (1:1) and ~112 (1:1000) against 2.8e4, 13-15
+  // iterations against 23-24.
+  const auto same = twoBodiesAcrossAStiffnessJump(1.0, "Automatic");
+  const auto jump = twoBodiesAcrossAStiffnessJump(1000.0, "Automatic");
+  const auto equal = twoBodiesAcrossAStiffnessJump(1000.0, "Multiplicity");
+  EXPECT_LE(jump.second, kJumpConditionGrowth * same.second) << "the 1:1000 jump raised the condition";
+  EXPECT_GT(equal.second, kEqualWeightsConditionGrowth * same.second) << "equal weights did not suffer from the jump";
+  EXPECT_LE(jump.first, same.first + 2);
+}
 
 TEST(FetiDp, ExtraRowErrorsAreCollective) {
   Spec s;
@@ -1078,7 +1277,7 @@ TEST(FetiDpErrors, MisspeltParametersNameThePath) {
   Teuchos::ParameterList p;
   FetiDpSolver f(worldComm(), p, "FETI-DP");
   EXPECT_EQ(p.get<std::string>("Preconditioner"), "Dirichlet");
-  EXPECT_EQ(p.get<std::string>("Scaling"), "Multiplicity");
+  EXPECT_EQ(p.get<std::string>("Scaling"), "Automatic");
   EXPECT_EQ(p.get<std::string>("Primal Constraints"), "Automatic");
   EXPECT_EQ(f.convergenceTolerance(), 1e-10);
   EXPECT_NO_THROW(f.setSolveTolerance(1e-3));
@@ -1087,7 +1286,7 @@ TEST(FetiDpErrors, MisspeltParametersNameThePath) {
   EXPECT_TRUE(p.get<bool>("Rotational Constraints"));
   EXPECT_EQ(p.sublist("Belos").get<std::string>("Solver Type"), "CG");
   EXPECT_EQ(p.sublist("Belos").get<int>("Maximum Iterations"), 500);
-  EXPECT_EQ(p.sublist("Local Solver").get<std::string>("Type"), "MUMPS");
+  EXPECT_EQ(p.sublist("Local Solver").get<std::string>("Type"), "CHOLMOD");
   EXPECT_EQ(p.sublist("Coarse Solver").get<std::string>("Type"), "MUMPS");
   for (auto it = FetiDpSolver::getValidParameters()->begin(); it != FetiDpSolver::getValidParameters()->end(); ++it)
     EXPECT_FALSE(FetiDpSolver::getValidParameters()->entry(it).docString().empty())
@@ -1168,6 +1367,32 @@ TEST(FetiDpErrors, SingularSubdomainNamesIt) {
     } catch (const ddc::SolverError& e) {
       const std::string what = e.what();
       if (worldRank() == 0) std::printf("[ feti-dp  ] dpn %d: %s\n", dpn, what.c_str());
+      for (const std::string n : {"subdomain 1", "the corner rule could not fix this subdomain's rigid modes"})
+        EXPECT_NE(what.find(n), std::string::npos) << "'" << n << "' not in: " << what;
+    }
+  }
+}
+
+/// The same floating subdomain with CHOLMOD as the local solver: its
+/// singular K_rr either breaks the Cholesky factorisation (a pivot <= 0,
+/// then MUMPS, the fallback, finds it singular) or factorises with a tiny
+/// positive pivot (what happens here), which FETI-DP's condition estimate
+/// reports; either way the same error naming the subdomain.
+TEST(FetiDpErrors, SingularSubdomainWithCholmod) {
+  for (int dpn : {1, 2}) {
+    Spec s;
+    s.Sx = 2, s.Sy = 1, s.H = 4, s.dpn = dpn, s.primal = false;
+    Problem pb(s);
+    auto params = fetiParams();
+    params.sublist("Local Solver").set("Type", std::string("CHOLMOD"));
+    FetiDpSolver feti(worldComm(), params, "FETI-DP");
+    feti.setTopology(pb.subdomains(), pb.ownedMap());
+    try {
+      feti.numeric();
+      ADD_FAILURE() << "singular subdomain not detected";
+    } catch (const ddc::SolverError& e) {
+      const std::string what = e.what();
+      if (worldRank() == 0) std::printf("[ feti-dp  ] CHOLMOD, dpn %d: %s\n", dpn, what.c_str());
       for (const std::string n : {"subdomain 1", "the corner rule could not fix this subdomain's rigid modes"})
         EXPECT_NE(what.find(n), std::string::npos) << "'" << n << "' not in: " << what;
     }
