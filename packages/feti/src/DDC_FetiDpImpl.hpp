@@ -1,32 +1,37 @@
-// Internal to the feti package: the state of FetiDpSolver (its Impl) and the
-// helpers its units share. Not part of the API (host codes use
-// DDC_FetiDpSolver.hpp); installed only because every header of a package is.
+// Internal to the feti package: the state of FetiDpSolver and the units
+// that own it. Not part of the API (host codes use DDC_FetiDpSolver.hpp);
+// installed only because every header of a package is.
 //
-// The solver is split into units a reader can hold one at a time
-// (doc/feti-dp.md):
-//   DDC_FetiDpInterface.cpp  interface classification, the jump operator B~
-//                            (compatibility rows) and the LM maps;
-//   DDC_FetiEdgeFaceConstraints.cpp  primal edge/face constraints, change of basis;
-//   DDC_FetiDpBlocks.cpp     subdomain blocks K_rr, K_rPi, K_PiPi, K_II, ... and
-//                            their factorisations, Phi and S_PiPi;
-//   DDC_FetiDpCoarse.cpp     the primal (coarse) map, matrix and solver;
-//   DDC_FetiDpScaling.cpp    the scaling weights of B_D;
-//   DDC_FetiDpOperators.cpp  F = B K~^{-1} B^T and the preconditioner M^{-1};
-//   DDC_FetiDpSolver.cpp     parameters and the solve driver (setTopology,
-//                            numeric, solve, constraint rows).
+// The solver is split as PETSc's PCBDDC is (its graph, scaling, coarse and
+// FETI-DP operator contexts): each unit owns its state and reads the others'
+// through the arguments of its methods (doc/feti-dp.md):
+//   Context, Subdomain             the communicator, the DOF maps, and per
+//                                  subdomain its DOFs and their roles
+//                                  (DDC_FetiDpInterface.cpp, setTopology());
+//   JumpOperator                   B~ and B_D: compatibility and extra rows,
+//                                  the LM maps, mask and right-hand side
+//                                  (DDC_FetiDpInterface.cpp), the scaling
+//                                  weights (DDC_FetiDpScaling.cpp);
+//   CoarseProblem                  the primal map, S_PiPi and its solver
+//                                  (DDC_FetiDpCoarse.cpp);
+//   DualOperator                   K~^{-1} by the subdomain factorisations
+//                                  and the coarse problem, and F = B K~^{-1}
+//                                  B^T (DDC_FetiDpBlocks.cpp: factorisations,
+//                                  Phi, S_PiPi^s; DDC_FetiDpOperators.cpp);
+//   Preconditioner                 M^{-1} = sum_s B_D^s S^s B_D^sT, the
+//                                  Dirichlet blocks K_II, K_ID, K_DD
+//                                  (DDC_FetiDpPreconditioner.cpp);
+//   FetiDpSolver::Impl             the parameters and the driver
+//                                  (DDC_FetiDpSolver.cpp), with the
+//                                  edge/face change of basis
+//                                  (DDC_FetiEdgeFaceConstraints.cpp).
 //
-// Data layout on each rank:
-//  - per subdomain (Sub): the split of K^s into remainder (r) / primal (Pi)
-//    blocks, K_rr^s as a CrsMatrix on MPI_COMM_SELF with its direct solver,
-//    Phi^s = K_rr^{-1} K_rPi (dense, column-major), S_PiPi^s (dense), the
-//    Dirichlet split of the remainder into interior (I) / dual (Delta) DOFs,
-//    and the constraint entries (LM, local DOF, coefficient) of B^s;
-//  - overlapped ("Ov") maps: the DOFs, LMs and coarse DOFs touched by this
-//    rank's subdomains, with Import/Export to the one-to-one owned maps, so
-//    that every assembly is one Export(ADD) and every distribution one Import.
-//
-// Every exchange whose pattern is not a Tpetra map (who shares which DOF,
-// the coarse matrix entries) goes through exchangeRecords(), a variable-size
+// Data layout on each rank: per subdomain, blocks on MPI_COMM_SELF;
+// overlapped ("Ov") maps of the DOFs, LMs and coarse DOFs this rank's
+// subdomains touch, with Import/Export to the one-to-one owned maps, so that
+// every assembly is one Export(ADD) and every distribution one Import. Every
+// exchange whose pattern is not a Tpetra map (who shares which DOF, the
+// coarse matrix entries) goes through exchangeRecords(), a variable-size
 // MPI_Alltoallv, to the owner of the DOF in the owned map.
 #pragma once
 
@@ -93,10 +98,10 @@ struct LmRecord {
 /// An extra-row entry on a shared dual DOF, sent to the DOF's owner, which
 /// forwards it to every copy (SplitEntry).
 struct SplitRequest {
-  GO lm;       ///< row GID in lmMap
-  GO gid;      ///< the DOF
-  double full; ///< the caller's coefficient (in the new basis)
-  int side;    ///< the caller's subdomain id (the side of the row it belongs to)
+  GO lm;        ///< row GID in lmMap
+  GO gid;       ///< the DOF
+  double full;  ///< the caller's coefficient (in the new basis)
+  int side;     ///< Subdomain::index of the caller's subdomain (the row's side)
 };
 
 /// One copy of a split extra-row entry, for local subdomain `localSub`.
@@ -108,7 +113,7 @@ struct SplitEntry {
   int side;
 };
 
-/// A (row, side) key and the value that goes with it (scaling exchange).
+/// A (row, side) key sent to the row's owner.
 struct KeyRecord {
   GO key;
 };
@@ -119,31 +124,110 @@ struct CoarseRecord {
   double v;
 };
 
-}  // namespace feti_internal
+/// What every unit reads: the communicator, the parameter path for messages
+/// and the DOF maps (owned, and overlapped by this rank's subdomains).
+struct Context {
+  RCP<const Teuchos::Comm<int>> comm;
+  MPI_Comm mpi = MPI_COMM_NULL;
+  int rank = 0, size = 1;
+  std::string path;
+  RCP<const Map> ownedMap, dofOvMap;
+  RCP<Import> dofImport;       ///< ownedMap -> dofOvMap
+  RCP<Export> dofExport;       ///< dofOvMap -> ownedMap
+  std::vector<int> ownedMult;  ///< per owned LID: the number of subdomains having it
+  std::string param(const std::string& name) const { return joinPath(path, name); }
+};
 
-using namespace feti_internal;
+/// One subdomain as setTopology() leaves it: its DOFs and their roles, the
+/// matrix FETI-DP works on, and the diagonals numeric() refreshes.
+struct Subdomain {
+  int id = -1;
+  int index = -1;  ///< rank of id among all subdomain ids (0..number of subdomains - 1)
+  std::vector<GO> dofs;
+  std::vector<char> primal;
+  std::vector<char> constrainable;  ///< per local DOF: extra rows may touch it
+  RCP<CrsMatrix> K;      ///< the matrix FETI-DP works on: K^s, or T^T K^s T with edge/face constraints
+  RCP<CrsMatrix> Kuser;  ///< the caller's K^s when K is transformed
+  ChangeOfBasis cob;     ///< edge/face constraints (identity without)
+  LO n = 0;
+  // splits (per local DOF -> block index, or kNone)
+  std::vector<LO> rIdx, pIdx;  ///< remainder / primal index
+  std::vector<LO> rDof, pDof;  ///< block index -> local DOF
+  std::vector<LO> dIdx, iIdx;  ///< per remainder index: dual (Delta) / interior index
+  std::vector<LO> iR;          ///< interior index -> remainder index
+  LO nr = 0, np = 0, nd = 0, ni = 0;
+  std::vector<LO> ovLid;        ///< local DOF -> LID in Context::dofOvMap
+  std::vector<double> invMult;  ///< local DOF -> 1 / multiplicity
+  // values of the last numeric()
+  std::vector<double> diag;      ///< K_jj per local DOF (K as FETI-DP works on it)
+  std::vector<double> diagUser;  ///< the caller's K^s_jj per local DOF
+  int factorizations = 0;        ///< of K_rr (or K^s with Schur rows) since setTopology()
 
-// ---------------------------------------------------------------------------
-// Impl
-// ---------------------------------------------------------------------------
+  /// A dual DOF: remainder and shared with another subdomain or touched by
+  /// extra rows (the Dirichlet preconditioner's interface).
+  bool isDual(LO dof) const { return rIdx[dof] != kNone && dIdx[rIdx[dof]] != kNone; }
+};
 
-struct FetiDpSolver::Impl {
-  enum class Prec { Dirichlet, Lumped, None };
+/// A sparse block by rows (CSR): stored row k is LM row `row[k]` (LID in the
+/// LM overlapped map) with columns col[ptr[k] .. ptr[k+1]) in the block's
+/// local index (remainder, primal or dual index of the subdomain).
+struct SparseRows {
+  std::vector<LO> row;
+  std::vector<size_t> ptr{0};
+  std::vector<LO> col;
+  std::vector<double> val;
+  void clear() {
+    row.clear(), col.clear(), val.clear();
+    ptr.assign(1, 0);
+  }
+  /// Append entry (lm, c, v); entries must come sorted by lm.
+  void push(LO lm, LO c, double v) {
+    if (row.empty() || row.back() != lm) {
+      row.push_back(lm);
+      ptr.push_back(ptr.back());
+    }
+    col.push_back(c);
+    val.push_back(v);
+    ++ptr.back();
+  }
+  /// y[col] += a * sum over rows of val * x[row]  (B^T x)
+  void addTransposed(const double* x, double a, double* y) const {
+    for (size_t k = 0; k < row.size(); ++k) {
+      const double xk = a * x[row[k]];
+      for (size_t e = ptr[k]; e < ptr[k + 1]; ++e) y[col[e]] += val[e] * xk;
+    }
+  }
+  /// y[row] += sum over entries of val * x[col]  (B x)
+  void add(const double* x, double* y) const {
+    for (size_t k = 0; k < row.size(); ++k) {
+      double s = 0.0;
+      for (size_t e = ptr[k]; e < ptr[k + 1]; ++e) s += val[e] * x[col[e]];
+      y[row[k]] += s;
+    }
+  }
+};
+
+/// B~ and its weighted B_D: the compatibility rows (one per pair of
+/// subdomains sharing a non-primal DOF, +1 / -1), the caller's extra rows,
+/// the distributed LM maps, the mask of restrained rows, the right-hand
+/// side c, and the scaling weights (doc/feti-dp.md "The jump operator B",
+/// "Preconditioner and scaling", "Extra rows").
+class JumpOperator {
+ public:
   enum class Scaling { Automatic, Multiplicity, Stiffness };
 
-  /// One entry of a constraint row: coefficient `coef` of local DOF `dof` of
-  /// this subdomain in LM row `lm` (LID in lmOvMap). General: `dof` may be a
-  /// remainder or a primal DOF. `scaled` = coef times the scaling weight
-  /// (B_D of the preconditioner).
-  struct BEntry {
+  /// One entry of a constraint row: coefficient `coef` of local DOF `dof` in
+  /// LM row `lm` (LID in lmOvMap); `dof` may be a remainder or a primal
+  /// DOF; `scaled` = its entry in B_D.
+  struct Entry {
     LO lm;
     LO dof;
     double coef;
     double scaled;
     bool extra;  ///< a row from setConstraintRows() (not a compatibility row)
     /// Extra rows: the caller's coefficient before the split over the copies
-    /// of a shared dual DOF (coef = full * omega_k), and the LID of the
-    /// row's side (the caller's subdomain of the entry) in sideOvMap.
+    /// of a shared dual DOF (coef = full * omega_k), and the LID of the row's
+    /// side (the caller's subdomain of the entry) in sideOvMap.
     double full = 0.0;
     LO sideKey = -1;
     bool split = false;
@@ -154,76 +238,204 @@ struct FetiDpSolver::Impl {
     GO lm;
     LO dof;
     double coef;
-    double full = 0.0;  ///< extra rows: see BEntry
-    int side = -1;      ///< extra rows: the caller's subdomain id of the entry
+    double full = 0.0;  ///< extra rows: see Entry
+    int side = -1;      ///< extra rows: Subdomain::index of the caller's subdomain
     bool split = false;
   };
 
-  struct Sub {
-    int id = -1;
-    int index = -1;  ///< rank of id among all subdomain ids (0..sideSpan-1)
-    std::vector<GO> dofs;
-    std::vector<char> primal;
-    RCP<CrsMatrix> K;      // the matrix FETI-DP works on: K^s, or T^T K^s T with edge/face constraints
-    RCP<CrsMatrix> Kuser;  // the caller's K^s when K is transformed
-    ChangeOfBasis cob;     // edge/face constraints (identity without)
-    LO n = 0;
-
-    // splits (per local DOF -> block index, or kNone)
-    std::vector<LO> rIdx, pIdx;   // remainder / primal index
-    std::vector<LO> rDof, pDof;   // block index -> local DOF
-    std::vector<LO> dIdx, iIdx;   // per remainder index: dual (Delta) / interior index
-    std::vector<LO> iR;           // interior index -> remainder index
-    LO nr = 0, np = 0, nd = 0, ni = 0;
-    std::vector<LO> ovLid;        // local DOF -> LID in dofOvMap
-    std::vector<double> invMult;  // local DOF -> 1 / multiplicity
-    std::vector<LO> coarseOvLid;  // primal index -> LID in coarseOvMap
-    std::vector<GO> coarseGid;    // primal index -> GID in coarseMap
-    std::vector<int> coarseOwner; // primal index -> owning rank of the coarse row
-
-    // blocks (values refreshed by numeric())
-    /// K_rr is not formed: rSolver factorises K^s itself with the primal
-    /// DOFs as Schur rows, giving S_PiPi^s directly, and applies K~^{-1} by
-    /// condensation / expansion ("Local Schur Complement"); no Phi, K_rPi,
-    /// K_Pir or K_PiPi are kept.
-    bool schur = false;
-    RCP<const Map> rMap, iMap;
-    RCP<CrsMatrix> Krr, Kii;
-    std::unique_ptr<DirectSolver> rSolver, iSolver;
-    std::vector<Triplet> KrP, KPr;  // (r, p) and (p, r)
-    std::vector<double> KPP;        // dense np x np, column-major
-    std::vector<Triplet> KID, KDI, KDD;  // (I, Delta), (Delta, I), (Delta, Delta)
-    std::vector<double> diag;       // K^s_jj per local DOF
-    double krrNorm1 = 0.0;
-    int factorizations = 0;         // of K_rr (or K^s with Schur rows) since setTopology()
-    std::vector<double> Phi;        // nr x np, column-major (without schur)
-    std::vector<double> S;          // np x np, column-major
-
-    std::vector<BEntry> B;            // all rows (LIDs in lmOvMap), sorted by (lm, dof)
-    std::vector<GidEntry> compatB;    // compatibility rows (GIDs), from setTopology()
-    std::vector<GidEntry> extraB;     // rows from setConstraintRows() (GIDs)
-    std::vector<GidEntry> extraUserB; // the same rows in the caller's basis (before T)
-    std::vector<double> diagUser;     // K^s_jj of the caller's K^s per local DOF
-    std::vector<char> constrainable;  // per local DOF: extra rows may touch it
-
-    // work
-    RCP<MultiVector> rB, rX, iB, iX;
-    std::vector<double> fr, xr, fp, up;
-    std::vector<double> vd, wd;
-    std::vector<double> bn, xn;  // one value per local DOF (schur: condense / expand)
+  /// The rows of one subdomain: the entries as built, and the sparse blocks
+  /// the operators apply (rebuilt by computeWeights()).
+  struct Rows {
+    std::vector<GidEntry> compat;     ///< compatibility rows (GIDs), from setTopology()
+    std::vector<GidEntry> extra;      ///< extra rows in the new basis, split over copies (GIDs)
+    std::vector<GidEntry> extraUser;  ///< the caller's extra rows in its basis (GIDs), for the weights
+    std::vector<Entry> entries;       ///< all rows (LIDs in lmOvMap), sorted by (lm, dof)
+    SparseRows Br, Bp;                ///< B on the remainder / primal DOFs (remainder / primal index)
+    SparseRows BDd;                   ///< B_D on the dual DOFs (dual index)
+    SparseRows lumped;                ///< extra rows elsewhere: (lm, lm, scaled^2 |K_jj|), a diagonal
   };
 
-  // configuration
-  RCP<const Teuchos::Comm<int>> comm;
-  MPI_Comm mpi = MPI_COMM_NULL;
-  int rank = 0, size = 1;
-  std::string path;
-  Prec prec = Prec::Dirichlet;
   Scaling scaling = Scaling::Automatic;
+  std::vector<Rows> rows;  ///< per local subdomain
+  RCP<const Map> lmMap, lmOvMap;
+  RCP<Import> lmImport;
+  RCP<Export> lmExport;
+  /// Compatibility rows: GIDs [0, nCompat), this rank's [compatOffset, compatOffset + nCompatOwned).
+  GO nCompat = 0, compatOffset = 0, nCompatOwned = 0;
+  GO nDual = 0;  ///< non-primal DOFs shared by >= 2 subdomains
+  /// Extra rows (setConstraintRows()): GIDs nCompat + extraOffset + (LID in extraRowMap).
+  RCP<const Map> extraRowMap;
+  GO extraOffset = 0;
+  /// On the owner of each shared dual DOF (ownedMap): every copy of it, for
+  /// splitting extra rows over the copies.
+  std::map<GO, std::vector<ShareRecord>> sharers;
+  /// Keys (row GID * sideSpan + side) of the extra rows' sides: owned by the
+  /// row's owner (sideMap), and those of this rank's entries (sideOvMap).
+  GO sideSpan = 1;
+  RCP<const Map> sideMap, sideOvMap;
+  RCP<Import> sideImport;
+  RCP<Export> sideExport;
+  RCP<Vector> mask;        ///< on lmMap: 1 = row in the problem, 0 = restrained to zero (null: all rows)
+  RCP<Vector> rhs;         ///< c on lmMap (B u = c); zero on compatibility rows
+  RCP<Vector> rowEntries;  ///< number of entries of each row (on lmMap)
+  RCP<Vector> lastLambda;  ///< multipliers of the last solve() (on lmMap)
+  RCP<Vector> ovWork, work;
+  bool weightsCurrent = false;  ///< B_D matches the rows and the last factorised values
+
+  /// The compatibility rows and the LM maps (collective, setTopology()).
+  void buildCompatibility(const Context& ctx, const std::vector<Subdomain>& subs);
+  /// Extra rows (new basis, LM GIDs) of each local subdomain into
+  /// Rows::extra, entries on shared dual DOFs split over all copies.
+  /// Returns an error message or "" (collective).
+  std::string distributeExtra(const Context& ctx, const std::vector<Subdomain>& subs,
+                              const std::vector<std::vector<GidEntry>>& rowsNew);
+  /// The LM maps, the entries with LIDs, the side maps, mask, right-hand side
+  /// and row counts, from Rows::compat and Rows::extra (collective).
+  void finalize(const Context& ctx, const std::vector<Subdomain>& subs);
+  /// The weights of B_D and of the split entries, and the sparse blocks
+  /// (collective; DDC_FetiDpScaling.cpp).
+  void computeWeights(const Context& ctx, const std::vector<Subdomain>& subs);
+  /// v <- P v (restrained rows to zero).
+  void applyMask(Vector& v) const;
+
+ private:
+  /// Rows::Br and Bp from the entries, and with `weights` BDd and lumped.
+  void assembleBlocks(const std::vector<Subdomain>& subs, bool weights);
+};
+
+/// The primal (coarse) problem: the primal DOF map, S_PiPi = sum_s R^T
+/// S_PiPi^s R assembled over it, and its distributed direct solver
+/// (DDC_FetiDpCoarse.cpp).
+class CoarseProblem {
+ public:
+  /// Where the primal DOFs of one subdomain go.
+  struct Indices {
+    std::vector<LO> ovLid;   ///< primal index -> LID in ovMap
+    std::vector<GO> gid;     ///< primal index -> GID in map
+    std::vector<int> owner;  ///< primal index -> rank owning the coarse row
+  };
+  RCP<const Map> primalMap;  ///< GIDs = DOF ids, owned by the DOF's owner
+  RCP<const Map> map;        ///< the same layout numbered 0..n-1 (MUMPS wants that)
+  RCP<const Map> ovMap;      ///< the coarse DOFs this rank's subdomains touch
+  RCP<Import> import;
+  RCP<Export> exporter;
+  std::vector<Indices> sub;     ///< per local subdomain
+  std::vector<LO> ownedLid;     ///< coarse LID -> ownedMap LID
+  std::vector<char> isEdgeFace; ///< coarse LID -> an edge/face constraint value (not a vertex DOF)
+  GO n = 0, nEdgeFace = 0;
+  RCP<CrsMatrix> matrix;
+  std::unique_ptr<DirectSolver> solver;
+  RCP<Vector> ovWork, work, sol;
+  double tSolve = 0.0;
+
+  /// Maps, the pattern of S_PiPi and the solver (collective).
+  void build(const Context& ctx, const std::vector<Subdomain>& subs, const DirectSolverFactory& factory,
+             const Teuchos::ParameterList& params);
+  /// Sum the S_PiPi^s blocks (dense, column-major, one per local subdomain;
+  /// freed afterwards) into the matrix and factorise it (collective).
+  /// \throws SolverError if it cannot be factorised.
+  void assembleAndFactor(const Context& ctx, std::vector<std::vector<double>>& S, bool analysed);
+  /// sol = S_PiPi^{-1} (export of ovWork + fPi), then ovWork = sol on ovMap
+  /// (collective).
+  void solve(const Vector* fPi);
+};
+
+/// The local part of K~^{-1} in one subdomain: the factorisation of K_rr
+/// (or of K^s with its primal DOFs as Schur rows, `schur`), Phi^s =
+/// K_rr^{-1} K_rPi or the condensation, S_PiPi^s, and work vectors.
+struct LocalProblem {
+  /// K_rr is not formed: the solver factorises K^s with the primal DOFs as
+  /// Schur rows, giving S_PiPi^s directly, and applies K~^{-1} by
+  /// condensation / expansion ("Local Schur Complement"); no Phi, K_rPi,
+  /// K_Pir or K_PiPi are kept.
+  bool schur = false;
+  RCP<const Map> rMap;
+  RCP<CrsMatrix> Krr;
+  std::unique_ptr<DirectSolver> solver;
+  std::vector<Triplet> KrP, KPr;  ///< (r, p) and (p, r)
+  std::vector<double> KPP;        ///< dense np x np, column-major
+  std::vector<double> Phi;        ///< nr x np, column-major (without schur)
+  std::vector<double> S;          ///< S_PiPi^s, np x np, column-major (until the coarse assembly)
+  double krrNorm1 = 0.0;
+  RCP<MultiVector> rB, rX;
+  std::vector<double> fr, xr, fp, up;  ///< remainder / primal right-hand side and solution
+  std::vector<double> bn, xn;          ///< one value per local DOF (schur: condense / expand)
+};
+
+/// K~^{-1} and F = B K~^{-1} B^T: the subdomain factorisations, the coarse
+/// problem they feed, and the jump operator around them
+/// (DDC_FetiDpBlocks.cpp, DDC_FetiDpOperators.cpp).
+class DualOperator {
+ public:
+  std::vector<LocalProblem> local;  ///< per local subdomain
+  bool localSchur = true;           ///< "Local Schur Complement"
   double singularityThreshold = 1e13;
-  bool localSchur = true;  ///< "Local Schur Complement"
-  PrimalConstraints primalChoice = PrimalConstraints::VerticesEdgesAndFaces;
-  bool rotations = true;  // "Rotational Constraints"
+  double tLocalSolve = 0.0;
+  int nApply = 0;
+
+  /// The patterns of K_rr and the local solvers.
+  void build(const std::vector<Subdomain>& subs, const DirectSolverFactory& factory,
+             const Teuchos::ParameterList& localParams, const std::string& where);
+  /// Refresh the values of subdomain `ls` from its K (and the diagonals of
+  /// Subdomain), factorise, compute Phi^s and S_PiPi^s, check K_rr for
+  /// singularity. Returns an error message or "".
+  std::string factor(const Context& ctx, Subdomain& s, size_t ls, bool analysed);
+  /// (u_r^s, u_Pi) = K~^{-1} (f_r^s, f_Pi), f_Pi = sum_s R^T f_Pi^s + fPi
+  /// (fPi on the coarse map, may be null). In: local[].fr, fp; out:
+  /// local[].xr, up and coarse.sol.
+  void applyKtildeInv(const std::vector<Subdomain>& subs, CoarseProblem& coarse, const Vector* fPi);
+  /// f^s (+)= sign B^sT lambda into local[].fr, fp.
+  void scatterBt(const JumpOperator& jump, const Vector& lambda, double sign);
+  /// y = B u, u = (local[].xr, up).
+  void gatherB(const JumpOperator& jump, Vector& y);
+  /// y = P F P x.
+  void apply(const std::vector<Subdomain>& subs, JumpOperator& jump, CoarseProblem& coarse, const Vector& x,
+             Vector& y);
+};
+
+/// The preconditioner M^{-1} = sum_s B_D^s S^s B_D^sT (doc/feti-dp.md
+/// "Preconditioner and scaling"): Dirichlet, S^s = K_DD - K_DI K_II^{-1}
+/// K_ID; lumped, S^s = K_DD; or none (DDC_FetiDpPreconditioner.cpp).
+class Preconditioner {
+ public:
+  enum class Kind { Dirichlet, Lumped, None };
+  /// The blocks of one subdomain.
+  struct Blocks {
+    RCP<const Map> iMap;
+    RCP<CrsMatrix> Kii;
+    std::unique_ptr<DirectSolver> solver;  ///< K_II (Dirichlet only)
+    std::vector<Triplet> KID, KDI, KDD;    ///< (I, Delta), (Delta, I), (Delta, Delta)
+    RCP<MultiVector> iB, iX;
+    std::vector<double> vd, wd, vi, wi;
+  };
+  Kind kind = Kind::Dirichlet;
+  std::vector<Blocks> blocks;  ///< per local subdomain
+  double tApply = 0.0, tDirichletSolve = 0.0;
+  int nApply = 0;
+
+  /// The patterns of K_II and the solvers.
+  void build(const std::vector<Subdomain>& subs, const DirectSolverFactory& factory,
+             const Teuchos::ParameterList& localParams, const std::string& where);
+  /// Refresh the blocks' values from each K and factorise K_II (collective
+  /// error). \throws SolverError naming the subdomain.
+  void factor(const Context& ctx, const std::vector<Subdomain>& subs, bool analysed);
+  /// y = P M^{-1} P x.
+  void apply(const std::vector<Subdomain>& subs, const JumpOperator& jump, const Vector& x, Vector& y);
+};
+
+}  // namespace feti_internal
+
+using namespace feti_internal;
+
+// ---------------------------------------------------------------------------
+// Impl: the parameters, the units, and what solve() reports
+// ---------------------------------------------------------------------------
+
+struct FetiDpSolver::Impl {
+  Context ctx;
+  // configuration
+  PrimalConstraints primalChoice = PrimalConstraints::VerticesAndEdges;
+  bool rotations = true;  ///< "Rotational Constraints"
   std::string belosType = "CG";
   bool belosGmresOnBreakdown = true;
   double belosTol = 1e-10;  ///< "Belos/Convergence Tolerance"
@@ -231,86 +443,28 @@ struct FetiDpSolver::Impl {
   int belosMaxIt = 500;
   int belosVerbosity = 0;
   int belosOutputFrequency = -1;
-  Teuchos::ParameterList belosExtra;  // other Belos parameters, passed through
+  Teuchos::ParameterList belosExtra;  ///< other Belos parameters, passed through
   Teuchos::ParameterList localSolverParams, coarseSolverParams;
   DirectSolverFactory factory = DirectSolverFactory::withBuiltins();
 
-  // topology
+  // state
   bool haveTopology = false, analysed = false, factored = false;
-  bool scalingCurrent = false;  ///< B_D matches the rows and the last factorised values
-  std::vector<Sub> subs;
-  RCP<const Map> ownedMap, dofOvMap;
-  RCP<Import> dofImport;  // ownedMap -> dofOvMap
-  RCP<Export> dofExport;  // dofOvMap -> ownedMap
-  std::vector<int> ownedMult;  // per owned LID
-  RCP<const Map> lmMap, lmOvMap;
-  RCP<Import> lmImport;
-  RCP<Export> lmExport;
-  // compatibility rows: GIDs [0, nCompat), this rank's [compatOffset, compatOffset + nCompatOwned)
-  GO nCompat = 0, compatOffset = 0, nCompatOwned = 0;
-  // extra rows (setConstraintRows): GIDs nCompat + extraOffset + (LID in extraRowMap)
-  RCP<const Map> extraRowMap;
-  GO extraOffset = 0;
-  /// On the owner of each shared dual DOF (ownedMap): every copy of it
-  /// (subdomain id, rank, local subdomain, local DOF), for splitting extra
-  /// rows over the copies (doc/feti-dp.md "Extra rows").
-  std::map<GO, std::vector<ShareRecord>> sharers;
-  /// Keys (row GID * sideSpan + side subdomain id) of the extra rows' sides:
-  /// owned by the row's owner (sideMap), and those of this rank's entries.
-  GO sideSpan = 1;
-  RCP<const Map> sideMap, sideOvMap;
-  RCP<Import> sideImport;
-  RCP<Export> sideExport;
-  RCP<Vector> mask;        // on lmMap: 1 = row in the problem, 0 = restrained to zero (null: all rows)
-  RCP<Vector> rhs;         // c on lmMap (B u = c); zero on compatibility rows
-  RCP<Vector> rowEntries;  // number of entries of each row (on lmMap)
-  RCP<Vector> lastLambda;  // multipliers of the last solve() (on lmMap)
-  RCP<const Map> primalMap, coarseMap, coarseOvMap;
-  RCP<Import> coarseImport;
-  RCP<Export> coarseExport;
-  std::vector<LO> coarseOwnedLid;  // coarse LID -> ownedMap LID
-  std::vector<char> coarseIsEdgeFace;  // coarse LID -> an edge/face constraint value (not a vertex DOF)
-  GO nDual = 0, nCoarse = 0, nEdgeFace = 0;
-  RCP<CrsMatrix> coarse;
-  std::unique_ptr<DirectSolver> coarseSolver;
-
-  // work vectors
-  RCP<Vector> lmOvWork, lmWork, coarseOvWork, coarseWork, coarseSol, dofOvWork;
-
-  // timings
+  std::vector<Subdomain> subs;
+  JumpOperator jump;
+  CoarseProblem coarse;
+  DualOperator dual;
+  Preconditioner prec;
+  RCP<Vector> dofOvWork;
   Info setup;
-  mutable double tLocalSolve = 0, tCoarseSolve = 0, tPrec = 0, tDirichletSolve = 0;
-  mutable int nApplyF = 0, nApplyM = 0;
-
   RCP<Operator> fOp, mOp;
 
-  // ---- helpers -------------------------------------------------------------
+  std::string param(const std::string& name) const { return ctx.param(name); }
 
-  std::string param(const std::string& name) const { return joinPath(path, name); }
-
+  /// setTopology() (DDC_FetiDpInterface.cpp).
   void buildTopology(std::vector<FetiSubdomain> local, RCP<const Map> owned);
+  /// Edge/face constraints by change of basis (DDC_FetiDpInterface.cpp).
   void addEdgeFaceConstraints(const std::vector<std::vector<int>>& components,
                               const std::vector<std::vector<double>>& coords, const std::vector<int>& dims);
-  void buildConstraints();
-  void finalizeLm();
-  /// Extra rows in the new basis -> Sub::extraB, entries on shared dual
-  /// DOFs split over all copies (collective).
-  std::string distributeExtraRows(const std::vector<std::vector<GidEntry>>& rows);
-  void applyMask(Vector& v) const;
-  void buildCoarse();
-  void buildBlocks(Sub& s);
-  void refreshBlocks(Sub& s);
-  std::string factorSub(Sub& s);
-  void computeScaling();
-  void assembleCoarse();
-
-  void scatterBt(const Vector& lambda, double sign);
-  void applyKtildeInv(const Vector* fPiAssembled);
-  void gatherB(Vector& y);
-  void applyF(const Vector& x, Vector& y);
-  void applyM(const Vector& x, Vector& y);
-  void localSolve(DirectSolver& solver, MultiVector& B, MultiVector& X, const std::vector<double>& in,
-                  std::vector<double>& out, double& timer) const;
   /// fOp and mOp (DDC_FetiDpOperators.cpp).
   void makeOperators();
 };

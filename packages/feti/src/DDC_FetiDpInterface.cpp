@@ -1,7 +1,9 @@
-// FETI-DP, interface (doc/feti-dp.md "Unknowns", "Jump operator"): the
-// checks of the caller's subdomains, DOF multiplicities, which DOFs are
-// primal / dual, the compatibility rows of B~ (one per pair of subdomains
-// sharing a non-primal DOF) and the LM maps. See DDC_FetiDpImpl.hpp.
+// FETI-DP, interface (doc/feti-dp.md "Unknowns", "The jump operator B",
+// "Extra rows"): the checks of the caller's subdomains, DOF multiplicities,
+// which DOFs are primal / dual (setTopology()), and the JumpOperator's rows:
+// the compatibility rows of B~ (one per pair of subdomains sharing a
+// non-primal DOF), the caller's extra rows split over the copies of shared
+// dual DOFs, and the LM maps. See DDC_FetiDpImpl.hpp.
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_Export.hpp>
 #include <Tpetra_Import.hpp>
@@ -26,10 +28,13 @@ namespace ddc {
 void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<const Map> owned) {
   haveTopology = analysed = factored = false;
   subs.clear();
-  extraRowMap = Teuchos::null;
-  extraOffset = 0;
+  {
+    const auto scaling = jump.scaling;
+    jump = JumpOperator();
+    jump.scaling = scaling;
+  }
   if (owned.is_null()) throw std::invalid_argument("FetiDpSolver::setTopology: null owned DOF map");
-  ownedMap = owned;
+  ctx.ownedMap = owned;
 
   // 1. Per-subdomain sanity (local checks, raised collectively).
   std::ostringstream err;
@@ -39,7 +44,7 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
   std::vector<int> dims(local.size());
   for (size_t ls = 0; ls < local.size() && err.str().empty(); ++ls) {
     FetiSubdomain& in = local[ls];
-    Sub& s = subs[ls];
+    Subdomain& s = subs[ls];
     s.id = in.id;
     s.n = static_cast<LO>(in.dofs.size());
     s.dofs = std::move(in.dofs);
@@ -73,18 +78,18 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
       if (dup != sorted.end()) err << "subdomain " << s.id << ": DOF " << *dup << " appears twice";
     }
   }
-  raiseCollectively<std::invalid_argument>(mpi, err.str().empty() ? "" : "FetiDpSolver::setTopology: " + err.str());
+  raiseCollectively<std::invalid_argument>(ctx.mpi, err.str().empty() ? "" : "FetiDpSolver::setTopology: " + err.str());
 
   // Subdomain ids unique across ranks.
   {
     int nLocal = static_cast<int>(subs.size());
-    std::vector<int> counts(size), displs(size, 0);
-    MPI_Allgather(&nLocal, 1, MPI_INT, counts.data(), 1, MPI_INT, mpi);
-    for (int r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
-    std::vector<int> ids(subs.size()), all(displs[size - 1] + counts[size - 1] + 1);
+    std::vector<int> counts(ctx.size), displs(ctx.size, 0);
+    MPI_Allgather(&nLocal, 1, MPI_INT, counts.data(), 1, MPI_INT, ctx.mpi);
+    for (int r = 1; r < ctx.size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+    std::vector<int> ids(subs.size()), all(displs[ctx.size - 1] + counts[ctx.size - 1] + 1);
     for (size_t i = 0; i < subs.size(); ++i) ids[i] = subs[i].id;
     MPI_Allgatherv(ids.empty() ? all.data() : ids.data(), nLocal, MPI_INT, all.data(), counts.data(),
-                   displs.data(), MPI_INT, mpi);
+                   displs.data(), MPI_INT, ctx.mpi);
     all.pop_back();
     std::sort(all.begin(), all.end());
     auto dup = std::adjacent_find(all.begin(), all.end());
@@ -92,84 +97,84 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
       throw std::invalid_argument("FetiDpSolver::setTopology: subdomain id " + std::to_string(*dup) +
                                   " is used twice");
     // The sides of extra rows are numbered by the rank of the id among all.
-    sideSpan = std::max<GO>(1, GO(all.size()));
-    for (Sub& s : subs) s.index = int(std::lower_bound(all.begin(), all.end(), s.id) - all.begin());
+    jump.sideSpan = std::max<GO>(1, GO(all.size()));
+    for (Subdomain& s : subs) s.index = int(std::lower_bound(all.begin(), all.end(), s.id) - all.begin());
   }
 
-  // 2. Overlapped DOF map of this rank's subdomains; all DOFs in ownedMap.
+  // 2. Overlapped DOF map of this rank's subdomains; all DOFs in the owned map.
   {
     std::vector<GO> gids;
-    for (const Sub& s : subs) gids.insert(gids.end(), s.dofs.begin(), s.dofs.end());
+    for (const Subdomain& s : subs) gids.insert(gids.end(), s.dofs.begin(), s.dofs.end());
     std::sort(gids.begin(), gids.end());
     gids.erase(std::unique(gids.begin(), gids.end()), gids.end());
-    dofOvMap = makeMap(gids, ownedMap->getIndexBase(), comm);
+    ctx.dofOvMap = makeMap(gids, ctx.ownedMap->getIndexBase(), ctx.comm);
     std::vector<int> pids;
     std::vector<LO> lids;
-    owners(*ownedMap, gids, pids, lids);
+    owners(*ctx.ownedMap, gids, pids, lids);
     std::string msg;
     for (size_t k = 0; k < gids.size(); ++k)
       if (pids[k] < 0) {
         msg = "FetiDpSolver::setTopology: DOF " + std::to_string(gids[k]) + " of a subdomain on rank " +
-              std::to_string(rank) + " is not in the owned DOF map";
+              std::to_string(ctx.rank) + " is not in the owned DOF map";
         break;
       }
-    raiseCollectively<std::invalid_argument>(mpi, msg);
-    dofImport = rcp(new Import(ownedMap, dofOvMap));
-    dofExport = rcp(new Export(dofOvMap, ownedMap));
-    for (Sub& s : subs) {
+    raiseCollectively<std::invalid_argument>(ctx.mpi, msg);
+    ctx.dofImport = rcp(new Import(ctx.ownedMap, ctx.dofOvMap));
+    ctx.dofExport = rcp(new Export(ctx.dofOvMap, ctx.ownedMap));
+    for (Subdomain& s : subs) {
       s.ovLid.resize(s.n);
-      for (LO k = 0; k < s.n; ++k) s.ovLid[k] = dofOvMap->getLocalElement(s.dofs[k]);
+      for (LO k = 0; k < s.n; ++k) s.ovLid[k] = ctx.dofOvMap->getLocalElement(s.dofs[k]);
     }
   }
 
   // 3. Multiplicity and primal consistency: counts summed at the owner.
-  std::vector<int> ovMult(dofOvMap->getNodeNumElements());
+  std::vector<int> ovMult(ctx.dofOvMap->getNodeNumElements());
   {
-    Vector cOv(dofOvMap), pOv(dofOvMap), cOwned(ownedMap), pOwned(ownedMap);
+    Vector cOv(ctx.dofOvMap), pOv(ctx.dofOvMap), cOwned(ctx.ownedMap), pOwned(ctx.ownedMap);
     {
       auto c = cOv.getDataNonConst();
       auto p = pOv.getDataNonConst();
-      for (const Sub& s : subs)
+      for (const Subdomain& s : subs)
         for (LO k = 0; k < s.n; ++k) {
           c[s.ovLid[k]] += 1.0;
           if (s.primal[k]) p[s.ovLid[k]] += 1.0;
         }
     }
-    cOwned.doExport(cOv, *dofExport, Tpetra::ADD);
-    pOwned.doExport(pOv, *dofExport, Tpetra::ADD);
+    cOwned.doExport(cOv, *ctx.dofExport, Tpetra::ADD);
+    pOwned.doExport(pOv, *ctx.dofExport, Tpetra::ADD);
     std::string msg;
     {
       auto c = cOwned.getData();
       auto p = pOwned.getData();
-      ownedMult.assign(c.size(), 0);
+      ctx.ownedMult.assign(c.size(), 0);
       for (LO l = 0; l < LO(c.size()); ++l) {
-        ownedMult[l] = static_cast<int>(std::lround(c[l]));
+        ctx.ownedMult[l] = static_cast<int>(std::lround(c[l]));
         const long np = std::lround(p[l]);
-        if (np != 0 && np != ownedMult[l] && msg.empty())
-          msg = "FetiDpSolver::setTopology: DOF " + std::to_string(ownedMap->getGlobalElement(l)) +
-                " is primal in " + std::to_string(np) + " of the " + std::to_string(ownedMult[l]) +
+        if (np != 0 && np != ctx.ownedMult[l] && msg.empty())
+          msg = "FetiDpSolver::setTopology: DOF " + std::to_string(ctx.ownedMap->getGlobalElement(l)) +
+                " is primal in " + std::to_string(np) + " of the " + std::to_string(ctx.ownedMult[l]) +
                 " subdomains sharing it; a DOF must be primal in all of them or in none";
       }
     }
-    raiseCollectively<std::invalid_argument>(mpi, msg);
-    cOv.doImport(cOwned, *dofImport, Tpetra::INSERT);
+    raiseCollectively<std::invalid_argument>(ctx.mpi, msg);
+    cOv.doImport(cOwned, *ctx.dofImport, Tpetra::INSERT);
     auto c = cOv.getData();
     for (size_t l = 0; l < ovMult.size(); ++l) ovMult[l] = static_cast<int>(std::lround(c[l]));
   }
   {
     // A DOF is constrainable in every subdomain having it if it is in one:
     // the change of basis must choose the same representatives everywhere.
-    Vector fOv(dofOvMap), fOwned(ownedMap);
+    Vector fOv(ctx.dofOvMap), fOwned(ctx.ownedMap);
     {
       auto f = fOv.getDataNonConst();
-      for (const Sub& s : subs)
+      for (const Subdomain& s : subs)
         for (LO k = 0; k < s.n; ++k)
           if (s.constrainable[k]) f[s.ovLid[k]] = 1.0;
     }
-    fOwned.doExport(fOv, *dofExport, Tpetra::ADD);
-    fOv.doImport(fOwned, *dofImport, Tpetra::INSERT);
+    fOwned.doExport(fOv, *ctx.dofExport, Tpetra::ADD);
+    fOv.doImport(fOwned, *ctx.dofImport, Tpetra::INSERT);
     auto f = fOv.getData();
-    for (Sub& s : subs)
+    for (Subdomain& s : subs)
       for (LO k = 0; k < s.n; ++k) s.constrainable[k] = f[s.ovLid[k]] > 0.0 ? 1 : 0;
   }
   addEdgeFaceConstraints(components, coords, dims);
@@ -177,7 +182,7 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
   // 4. Per-subdomain splits: remainder / primal, and for the Dirichlet
   //    preconditioner the remainder into dual interface (Delta: shared,
   //    non-primal) and interior (I) DOFs.
-  for (Sub& s : subs) {
+  for (Subdomain& s : subs) {
     s.rIdx.assign(s.n, kNone);
     s.pIdx.assign(s.n, kNone);
     s.invMult.assign(s.n, 1.0);
@@ -212,23 +217,17 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
     s.ni = LO(s.iR.size());
   }
 
-  buildConstraints();
-  buildCoarse();
+  jump.buildCompatibility(ctx, subs);
+  coarse.build(ctx, subs, factory, coarseSolverParams);
   std::string msg;
-  for (Sub& s : subs) {
-    try {
-      buildBlocks(s);
-    } catch (const std::exception& e) {
-      msg = "FetiDpSolver::setTopology: subdomain " + std::to_string(s.id) + ": " + e.what();
-      break;
-    }
+  try {
+    dual.build(subs, factory, localSolverParams, param("Local Solver"));
+    prec.build(subs, factory, localSolverParams, param("Local Solver"));
+  } catch (const std::exception& e) {
+    msg = std::string("FetiDpSolver::setTopology: ") + e.what();
   }
-  raiseCollectively<std::invalid_argument>(mpi, msg);
-
-  coarseOvWork = rcp(new Vector(coarseOvMap));
-  coarseWork = rcp(new Vector(coarseMap));
-  coarseSol = rcp(new Vector(coarseMap));
-  dofOvWork = rcp(new Vector(dofOvMap));
+  raiseCollectively<std::invalid_argument>(ctx.mpi, msg);
+  dofOvWork = rcp(new Vector(ctx.dofOvMap));
   makeOperators();
   haveTopology = true;
 }
@@ -240,7 +239,7 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
 void FetiDpSolver::Impl::addEdgeFaceConstraints(const std::vector<std::vector<int>>& components,
                                                 const std::vector<std::vector<double>>& coords,
                                                 const std::vector<int>& dims) {
-  nEdgeFace = 0;
+  coarse.nEdgeFace = 0;
   if (primalChoice == PrimalConstraints::Vertices) return;
   const std::string choice = primalConstraintNames()[size_t(primalChoice)];
   std::string msg;
@@ -260,9 +259,9 @@ void FetiDpSolver::Impl::addEdgeFaceConstraints(const std::vector<std::vector<in
             std::to_string(dims[ls]) + " per DOF, got " + std::to_string(coords[ls].size()) + " for " +
             std::to_string(subs[ls].dofs.size()) + " DOFs); or set it to false";
   }
-  raiseCollectively<std::invalid_argument>(mpi, msg);
+  raiseCollectively<std::invalid_argument>(ctx.mpi, msg);
   int loc[2] = {dmin == INT_MAX ? INT_MIN : -dmin, dmax}, glob[2];
-  MPI_Allreduce(loc, glob, 2, MPI_INT, MPI_MAX, mpi);
+  MPI_Allreduce(loc, glob, 2, MPI_INT, MPI_MAX, ctx.mpi);
   if (glob[1] == INT_MIN) return;  // no subdomains at all
   if (-glob[0] != glob[1])
     throw std::invalid_argument("FetiDpSolver::setTopology: the subdomains disagree on FetiSubdomain::dim (" +
@@ -271,9 +270,9 @@ void FetiDpSolver::Impl::addEdgeFaceConstraints(const std::vector<std::vector<in
   for (size_t ls = 0; ls < subs.size(); ++ls)
     in[ls] = EdgeFaceInput{subs[ls].id, subs[ls].dofs, subs[ls].primal, components[ls],
                            rotations ? coords[ls] : std::vector<double>()};
-  const auto groups = findEdgeFaceConstraints(mpi, *ownedMap, in, glob[1], primalChoice, rotations);
+  const auto groups = findEdgeFaceConstraints(ctx.mpi, *ctx.ownedMap, in, glob[1], primalChoice, rotations);
   for (size_t ls = 0; ls < subs.size() && msg.empty(); ++ls) {
-    Sub& s = subs[ls];
+    Subdomain& s = subs[ls];
     if (groups[ls].empty()) continue;
     try {
       s.cob = ChangeOfBasis(s.n, groups[ls], s.constrainable);
@@ -285,34 +284,40 @@ void FetiDpSolver::Impl::addEdgeFaceConstraints(const std::vector<std::vector<in
       msg = "FetiDpSolver::setTopology: subdomain " + std::to_string(s.id) + ": change of basis: " + e.what();
     }
   }
-  raiseCollectively<std::invalid_argument>(mpi, msg);
+  raiseCollectively<std::invalid_argument>(ctx.mpi, msg);
 }
+
+// ---------------------------------------------------------------------------
+// JumpOperator: the rows
+// ---------------------------------------------------------------------------
 
 /// Compatibility constraints: the owner of each shared non-primal DOF
 /// receives (DOF, subdomain id, rank, local subdomain, local DOF) from every
 /// subdomain having it, creates one row per pair of them (+1 for the smaller
-/// id, -1 for the other) and returns the entries to the subdomains' ranks.
-void FetiDpSolver::Impl::buildConstraints() {
+/// id, -1 for the other), keeps the list of copies (sharers, for splitting
+/// extra rows) and returns the entries to the subdomains' ranks.
+void JumpOperator::buildCompatibility(const Context& ctx, const std::vector<Subdomain>& subs) {
+  rows.assign(subs.size(), Rows());
   std::vector<int> pids;
   std::vector<LO> lids;
-  std::vector<std::vector<ShareRecord>> send(size);
+  std::vector<std::vector<ShareRecord>> send(ctx.size);
   {
     // Owners of the shared non-primal DOFs of this rank's subdomains.
     std::vector<GO> gids;
     std::vector<std::pair<int, LO>> who;  // (local subdomain, local DOF)
     for (size_t ls = 0; ls < subs.size(); ++ls) {
-      const Sub& s = subs[ls];
+      const Subdomain& s = subs[ls];
       for (LO r = 0; r < s.nr; ++r)
         if (s.dIdx[r] != kNone && s.invMult[s.rDof[r]] < 1.0) {
           gids.push_back(s.dofs[s.rDof[r]]);
           who.emplace_back(int(ls), s.rDof[r]);
         }
     }
-    owners(*ownedMap, gids, pids, lids);
+    owners(*ctx.ownedMap, gids, pids, lids);
     for (size_t k = 0; k < gids.size(); ++k)
-      send[pids[k]].push_back(ShareRecord{gids[k], subs[who[k].first].id, rank, who[k].first, who[k].second});
+      send[pids[k]].push_back(ShareRecord{gids[k], subs[who[k].first].id, ctx.rank, who[k].first, who[k].second});
   }
-  std::vector<ShareRecord> recv = exchangeRecords(mpi, send);
+  std::vector<ShareRecord> recv = exchangeRecords(ctx.mpi, send);
   std::sort(recv.begin(), recv.end(), [](const ShareRecord& a, const ShareRecord& b) {
     return a.gid != b.gid ? a.gid < b.gid : a.subId < b.subId;
   });
@@ -328,11 +333,11 @@ void FetiDpSolver::Impl::buildConstraints() {
     a = b;
   }
   long long myRows = nRows, offset = 0;
-  MPI_Exscan(&myRows, &offset, 1, MPI_LONG_LONG, MPI_SUM, mpi);
-  if (rank == 0) offset = 0;
-  nDual = sumAll(mpi, nGroups);
+  MPI_Exscan(&myRows, &offset, 1, MPI_LONG_LONG, MPI_SUM, ctx.mpi);
+  if (ctx.rank == 0) offset = 0;
+  nDual = sumAll(ctx.mpi, nGroups);
 
-  std::vector<std::vector<LmRecord>> reply(size);
+  std::vector<std::vector<LmRecord>> reply(ctx.size);
   GO next = offset;
   sharers.clear();
   for (size_t a = 0; a < recv.size();) {
@@ -347,126 +352,52 @@ void FetiDpSolver::Impl::buildConstraints() {
       }
     a = b;
   }
-  nCompat = sumAll(mpi, nRows);
+  nCompat = sumAll(ctx.mpi, nRows);
   compatOffset = offset;
   nCompatOwned = nRows;
 
-  std::vector<LmRecord> entries = exchangeRecords(mpi, reply);
-  for (Sub& s : subs) s.compatB.clear();
-  for (const auto& e : entries) subs[e.localSub].compatB.push_back(GidEntry{e.lm, e.dof, e.coef});
-  finalizeLm();
-}
-
-/// The LM maps from the compatibility rows and the extra rows: lmMap owns
-/// this rank's compatibility rows and its extra rows (those of its part of
-/// extraRowMap); lmOvMap has every row this rank's subdomains touch. Also
-/// the per-subdomain B (LIDs), the work vectors, the mask (all rows in) and
-/// the row entry counts.
-void FetiDpSolver::Impl::finalizeLm() {
-  std::vector<GO> owned;
-  for (GO k = 0; k < nCompatOwned; ++k) owned.push_back(compatOffset + k);
-  const GO nExtraOwned = extraRowMap.is_null() ? 0 : GO(extraRowMap->getNodeNumElements());
-  for (GO k = 0; k < nExtraOwned; ++k) owned.push_back(nCompat + extraOffset + k);
-  lmMap = makeMap(owned, 0, comm);
-  std::vector<GO> lmGids;
-  for (const Sub& s : subs) {
-    for (const auto& e : s.compatB) lmGids.push_back(e.lm);
-    for (const auto& e : s.extraB) lmGids.push_back(e.lm);
-  }
-  std::sort(lmGids.begin(), lmGids.end());
-  lmGids.erase(std::unique(lmGids.begin(), lmGids.end()), lmGids.end());
-  lmOvMap = makeMap(lmGids, 0, comm);
-  lmImport = rcp(new Import(lmMap, lmOvMap));
-  lmExport = rcp(new Export(lmOvMap, lmMap));
-  // Side keys of the extra rows: this rank's (entries and the caller's
-  // entries in the caller's basis), owned by the row's owner in lmMap.
-  {
-    std::vector<GO> keys;
-    for (const Sub& s : subs) {
-      for (const auto& e : s.extraB) keys.push_back(e.lm * sideSpan + e.side);
-      for (const auto& e : s.extraUserB) keys.push_back(e.lm * sideSpan + s.index);
-    }
-    std::sort(keys.begin(), keys.end());
-    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-    std::vector<GO> rowsOfKeys(keys.size());
-    for (size_t k = 0; k < keys.size(); ++k) rowsOfKeys[k] = keys[k] / sideSpan;
-    std::vector<int> pids;
-    std::vector<LO> lids;
-    owners(*lmMap, rowsOfKeys, pids, lids);
-    std::vector<std::vector<KeyRecord>> send(size);
-    for (size_t k = 0; k < keys.size(); ++k)
-      if (pids[k] >= 0) send[pids[k]].push_back(KeyRecord{keys[k]});
-    std::vector<KeyRecord> recv = exchangeRecords(mpi, send);
-    std::vector<GO> owned;
-    for (const auto& r : recv) owned.push_back(r.key);
-    std::sort(owned.begin(), owned.end());
-    owned.erase(std::unique(owned.begin(), owned.end()), owned.end());
-    sideMap = makeMap(owned, 0, comm);
-    sideOvMap = makeMap(keys, 0, comm);
-    sideImport = rcp(new Import(sideMap, sideOvMap));
-    sideExport = rcp(new Export(sideOvMap, sideMap));
-  }
-  for (Sub& s : subs) {
-    s.B.clear();
-    for (const auto& e : s.compatB) s.B.push_back(BEntry{lmOvMap->getLocalElement(e.lm), e.dof, e.coef, e.coef, false});
-    for (const auto& e : s.extraB)
-      s.B.push_back(BEntry{lmOvMap->getLocalElement(e.lm), e.dof, e.coef, e.coef, true, e.full,
-                           sideOvMap->getLocalElement(e.lm * sideSpan + e.side), e.split});
-    // Deterministic order within a subdomain (by LM, then DOF).
-    std::sort(s.B.begin(), s.B.end(),
-              [](const BEntry& a, const BEntry& b) { return a.lm != b.lm ? a.lm < b.lm : a.dof < b.dof; });
-  }
-  lmOvWork = rcp(new Vector(lmOvMap));
-  lmWork = rcp(new Vector(lmMap));
-  rhs = rcp(new Vector(lmMap));
-  lastLambda = rcp(new Vector(lmMap));
-  mask = Teuchos::null;
-  Vector countOv(lmOvMap);
-  {
-    auto c = countOv.getDataNonConst();
-    for (const Sub& s : subs)
-      for (const BEntry& e : s.B) c[e.lm] += 1.0;
-  }
-  rowEntries = rcp(new Vector(lmMap));
-  rowEntries->doExport(countOv, *lmExport, Tpetra::ADD);
+  std::vector<LmRecord> entries = exchangeRecords(ctx.mpi, reply);
+  for (const auto& e : entries) rows[e.localSub].compat.push_back(GidEntry{e.lm, e.dof, e.coef});
+  finalize(ctx, subs);
 }
 
 /// The extra rows of each local subdomain (new basis, LM GIDs) into
-/// Sub::extraB. An entry on a dual DOF shared by several subdomains is
+/// Rows::extra. An entry on a dual DOF shared by several subdomains is
 /// split over all its copies: coefficient c omega_k on copy k (omega = the
 /// compatibility scaling weights, a partition of unity; set by
-/// computeScaling(), 1/m_j until then), so that with B_D = D_side c on every
+/// computeWeights(), 1/m_j until then), so that with B_D = D_side c on every
 /// copy the product B B_D^T is the identity on the extra rows as on the
 /// compatibility rows. The continuity of the copies makes the constraint
 /// the same: sum_k c omega_k u_j^k = c u_j. Entries on other DOFs stay where
-/// the caller put them. Returns an error message or "" (collective).
-std::string FetiDpSolver::Impl::distributeExtraRows(const std::vector<std::vector<GidEntry>>& rows) {
+/// the caller put them.
+std::string JumpOperator::distributeExtra(const Context& ctx, const std::vector<Subdomain>& subs,
+                                          const std::vector<std::vector<GidEntry>>& rowsNew) {
   std::string msg;
-  std::vector<std::vector<SplitRequest>> send(size);
+  std::vector<std::vector<SplitRequest>> send(ctx.size);
   std::vector<GO> gids;
   std::vector<std::pair<size_t, size_t>> where;
   for (size_t ls = 0; ls < subs.size(); ++ls) {
-    Sub& s = subs[ls];
-    s.extraB.clear();
-    for (size_t i = 0; i < rows[ls].size(); ++i) {
-      const GidEntry& e = rows[ls][i];
+    const Subdomain& s = subs[ls];
+    rows[ls].extra.clear();
+    for (size_t i = 0; i < rowsNew[ls].size(); ++i) {
+      const GidEntry& e = rowsNew[ls][i];
       if (s.rIdx[e.dof] != kNone && s.invMult[e.dof] < 1.0) {
         gids.push_back(s.dofs[e.dof]);
         where.emplace_back(ls, i);
       } else {
-        s.extraB.push_back(GidEntry{e.lm, e.dof, e.coef, e.coef, s.index, false});
+        rows[ls].extra.push_back(GidEntry{e.lm, e.dof, e.coef, e.coef, s.index, false});
       }
     }
   }
   std::vector<int> pids;
   std::vector<LO> lids;
-  owners(*ownedMap, gids, pids, lids);
+  owners(*ctx.ownedMap, gids, pids, lids);
   for (size_t k = 0; k < gids.size(); ++k) {
-    const GidEntry& e = rows[where[k].first][where[k].second];
+    const GidEntry& e = rowsNew[where[k].first][where[k].second];
     send[pids[k]].push_back(SplitRequest{e.lm, gids[k], e.coef, subs[where[k].first].index});
   }
-  std::vector<SplitRequest> requests = exchangeRecords(mpi, send);
-  std::vector<std::vector<SplitEntry>> forward(size);
+  std::vector<SplitRequest> requests = exchangeRecords(ctx.mpi, send);
+  std::vector<std::vector<SplitEntry>> forward(ctx.size);
   for (const auto& r : requests) {
     const auto it = sharers.find(r.gid);
     if (it == sharers.end()) {
@@ -476,18 +407,19 @@ std::string FetiDpSolver::Impl::distributeExtraRows(const std::vector<std::vecto
     }
     for (const auto& c : it->second) forward[c.rank].push_back(SplitEntry{r.lm, c.localSub, c.dof, r.full, r.side});
   }
-  for (const auto& e : exchangeRecords(mpi, forward)) {
-    Sub& s = subs[e.localSub];
-    s.extraB.push_back(GidEntry{e.lm, e.dof, e.full * s.invMult[e.dof], e.full, e.side, true});
+  for (const auto& e : exchangeRecords(ctx.mpi, forward)) {
+    const Subdomain& s = subs[e.localSub];
+    rows[e.localSub].extra.push_back(GidEntry{e.lm, e.dof, e.full * s.invMult[e.dof], e.full, e.side, true});
   }
   // One entry per (row, DOF, side): a caller may have put a row's entry on
   // two copies of one DOF; their shares add up.
-  for (Sub& s : subs) {
-    std::sort(s.extraB.begin(), s.extraB.end(), [](const GidEntry& a, const GidEntry& b) {
+  for (Rows& rw : rows) {
+    auto& extra = rw.extra;
+    std::sort(extra.begin(), extra.end(), [](const GidEntry& a, const GidEntry& b) {
       return a.lm != b.lm ? a.lm < b.lm : a.dof != b.dof ? a.dof < b.dof : a.side < b.side;
     });
     std::vector<GidEntry> merged;
-    for (const auto& e : s.extraB) {
+    for (const auto& e : extra) {
       if (!merged.empty() && merged.back().lm == e.lm && merged.back().dof == e.dof && merged.back().side == e.side) {
         merged.back().coef += e.coef;
         merged.back().full += e.full;
@@ -496,9 +428,88 @@ std::string FetiDpSolver::Impl::distributeExtraRows(const std::vector<std::vecto
         merged.push_back(e);
       }
     }
-    s.extraB.swap(merged);
+    extra.swap(merged);
   }
   return msg;
+}
+
+/// The LM maps from the compatibility rows and the extra rows: lmMap owns
+/// this rank's compatibility rows and its extra rows (those of its part of
+/// extraRowMap); lmOvMap has every row this rank's subdomains touch. Also
+/// the side maps, the entries (LIDs), the work vectors, the mask (all rows
+/// in) and the row entry counts. The weights follow in computeWeights().
+void JumpOperator::finalize(const Context& ctx, const std::vector<Subdomain>& subs) {
+  std::vector<GO> owned;
+  for (GO k = 0; k < nCompatOwned; ++k) owned.push_back(compatOffset + k);
+  const GO nExtraOwned = extraRowMap.is_null() ? 0 : GO(extraRowMap->getNodeNumElements());
+  for (GO k = 0; k < nExtraOwned; ++k) owned.push_back(nCompat + extraOffset + k);
+  lmMap = makeMap(owned, 0, ctx.comm);
+  std::vector<GO> lmGids;
+  for (const Rows& rw : rows) {
+    for (const auto& e : rw.compat) lmGids.push_back(e.lm);
+    for (const auto& e : rw.extra) lmGids.push_back(e.lm);
+  }
+  std::sort(lmGids.begin(), lmGids.end());
+  lmGids.erase(std::unique(lmGids.begin(), lmGids.end()), lmGids.end());
+  lmOvMap = makeMap(lmGids, 0, ctx.comm);
+  lmImport = rcp(new Import(lmMap, lmOvMap));
+  lmExport = rcp(new Export(lmOvMap, lmMap));
+  // Side keys of the extra rows: this rank's (entries and the caller's
+  // entries in the caller's basis), owned by the row's owner in lmMap.
+  {
+    std::vector<GO> keys;
+    for (size_t ls = 0; ls < rows.size(); ++ls) {
+      for (const auto& e : rows[ls].extra) keys.push_back(e.lm * sideSpan + e.side);
+      for (const auto& e : rows[ls].extraUser) keys.push_back(e.lm * sideSpan + subs[ls].index);
+    }
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    std::vector<GO> rowsOfKeys(keys.size());
+    for (size_t k = 0; k < keys.size(); ++k) rowsOfKeys[k] = keys[k] / sideSpan;
+    std::vector<int> pids;
+    std::vector<LO> lids;
+    owners(*lmMap, rowsOfKeys, pids, lids);
+    std::vector<std::vector<KeyRecord>> send(ctx.size);
+    for (size_t k = 0; k < keys.size(); ++k)
+      if (pids[k] >= 0) send[pids[k]].push_back(KeyRecord{keys[k]});
+    std::vector<GO> ownedKeys;
+    for (const auto& r : exchangeRecords(ctx.mpi, send)) ownedKeys.push_back(r.key);
+    std::sort(ownedKeys.begin(), ownedKeys.end());
+    ownedKeys.erase(std::unique(ownedKeys.begin(), ownedKeys.end()), ownedKeys.end());
+    sideMap = makeMap(ownedKeys, 0, ctx.comm);
+    sideOvMap = makeMap(keys, 0, ctx.comm);
+    sideImport = rcp(new Import(sideMap, sideOvMap));
+    sideExport = rcp(new Export(sideOvMap, sideMap));
+  }
+  for (Rows& rw : rows) {
+    rw.entries.clear();
+    for (const auto& e : rw.compat) rw.entries.push_back(Entry{lmOvMap->getLocalElement(e.lm), e.dof, e.coef, e.coef, false});
+    for (const auto& e : rw.extra)
+      rw.entries.push_back(Entry{lmOvMap->getLocalElement(e.lm), e.dof, e.coef, e.coef, true, e.full,
+                                 sideOvMap->getLocalElement(e.lm * sideSpan + e.side), e.split});
+    // Deterministic order within a subdomain (by LM, then DOF).
+    std::sort(rw.entries.begin(), rw.entries.end(),
+              [](const Entry& a, const Entry& b) { return a.lm != b.lm ? a.lm < b.lm : a.dof < b.dof; });
+  }
+  ovWork = rcp(new Vector(lmOvMap));
+  work = rcp(new Vector(lmMap));
+  rhs = rcp(new Vector(lmMap));
+  lastLambda = rcp(new Vector(lmMap));
+  mask = Teuchos::null;
+  Vector countOv(lmOvMap);
+  {
+    auto c = countOv.getDataNonConst();
+    for (const Rows& rw : rows)
+      for (const Entry& e : rw.entries) c[e.lm] += 1.0;
+  }
+  rowEntries = rcp(new Vector(lmMap));
+  rowEntries->doExport(countOv, *lmExport, Tpetra::ADD);
+  assembleBlocks(subs, false);
+  weightsCurrent = false;
+}
+
+void JumpOperator::applyMask(Vector& v) const {
+  if (!mask.is_null()) v.elementWiseMultiply(1.0, *mask, v, 0.0);
 }
 
 }  // namespace ddc

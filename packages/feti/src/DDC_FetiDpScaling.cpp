@@ -1,5 +1,6 @@
-// FETI-DP, scaling (doc/feti-dp.md "Preconditioner and scaling"): the
-// weights of B_D in the preconditioner. See DDC_FetiDpImpl.hpp.
+// FETI-DP, scaling (doc/feti-dp.md "Preconditioner and scaling", "Extra
+// rows"): the weights of B_D in the preconditioner, and the sparse blocks of
+// B and B_D the operators apply. See DDC_FetiDpImpl.hpp.
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_Export.hpp>
 #include <Tpetra_Import.hpp>
@@ -37,25 +38,26 @@ namespace ddc {
 /// 1/2 instead give (rho_1 + rho_2)/4: with a body 1000 times stiffer than
 /// the other, the contact rows' preconditioner was ~250 times too stiff and
 /// the dual iterations grew tenfold (doc/feti-dp.md, "Extra rows").
-void FetiDpSolver::Impl::computeScaling() {
+void JumpOperator::computeWeights(const Context& ctx, const std::vector<Subdomain>& subs) {
   const bool stiffCompat = scaling == Scaling::Stiffness;
   const bool stiffExtra = scaling != Scaling::Multiplicity;
-  auto weight = [&](const Sub& s, LO dof) { return stiffCompat ? std::abs(s.diag[dof]) : 1.0; };
+  auto weight = [&](const Subdomain& s, LO dof) { return stiffCompat ? std::abs(s.diag[dof]) : 1.0; };
   // Compatibility weights: w per copy, summed over the copies (wOv) and per
   // row (rowOv).
-  Vector wOv(dofOvMap), wOwned(ownedMap), rowOv(lmOvMap), row(lmMap);
+  Vector wOv(ctx.dofOvMap), wOwned(ctx.ownedMap), rowOv(lmOvMap), row(lmMap);
   {
     auto w = wOv.getDataNonConst();
     auto rs = rowOv.getDataNonConst();
-    for (const Sub& s : subs) {
+    for (size_t ls = 0; ls < subs.size(); ++ls) {
+      const Subdomain& s = subs[ls];
       for (LO r = 0; r < s.nr; ++r)
         if (s.dIdx[r] != kNone) w[s.ovLid[s.rDof[r]]] += weight(s, s.rDof[r]);
-      for (const BEntry& e : s.B)
+      for (const Entry& e : rows[ls].entries)
         if (!e.extra) rs[e.lm] += weight(s, e.dof);
     }
   }
-  wOwned.doExport(wOv, *dofExport, Tpetra::ADD);
-  wOv.doImport(wOwned, *dofImport, Tpetra::INSERT);
+  wOwned.doExport(wOv, *ctx.dofExport, Tpetra::ADD);
+  wOv.doImport(wOwned, *ctx.dofImport, Tpetra::INSERT);
   row.doExport(rowOv, *lmExport, Tpetra::ADD);
   rowOv.doImport(row, *lmImport, Tpetra::INSERT);
   auto w = wOv.getData();
@@ -65,23 +67,25 @@ void FetiDpSolver::Impl::computeScaling() {
   // caller's entries of c^2 times the DOF's diagonal assembled over its
   // copies (the caller's basis), summed at the row's owner, who turns the
   // sides of a row into their weights D.
-  Vector dOv(dofOvMap), dOwned(ownedMap);
+  Vector dOv(ctx.dofOvMap), dOwned(ctx.ownedMap);
   {
     auto d = dOv.getDataNonConst();
-    for (const Sub& s : subs)
+    for (const Subdomain& s : subs)
       for (LO k = 0; k < s.n; ++k) d[s.ovLid[k]] += std::abs(s.diagUser[k]);
   }
-  dOwned.doExport(dOv, *dofExport, Tpetra::ADD);
-  dOv.doImport(dOwned, *dofImport, Tpetra::INSERT);
+  dOwned.doExport(dOv, *ctx.dofExport, Tpetra::ADD);
+  dOv.doImport(dOwned, *ctx.dofImport, Tpetra::INSERT);
   Vector rhoOv(sideOvMap), rho(sideMap);
   {
     auto d = dOv.getData();
     auto r = rhoOv.getDataNonConst();
-    for (const Sub& s : subs)
-      for (const GidEntry& e : s.extraUserB) {
+    for (size_t ls = 0; ls < subs.size(); ++ls) {
+      const Subdomain& s = subs[ls];
+      for (const GidEntry& e : rows[ls].extraUser) {
         const LO key = sideOvMap->getLocalElement(e.lm * sideSpan + s.index);
         if (key != Teuchos::OrdinalTraits<LO>::invalid()) r[key] += e.coef * e.coef * d[s.ovLid[e.dof]];
       }
+    }
   }
   rho.doExport(rhoOv, *sideExport, Tpetra::ADD);
   {
@@ -106,8 +110,9 @@ void FetiDpSolver::Impl::computeScaling() {
 
 
   for (size_t ls = 0; ls < subs.size(); ++ls) {
-    Sub& s = subs[ls];
-    for (BEntry& e : s.B) {
+    const Subdomain& s = subs[ls];
+    Rows& rw = rows[ls];
+    for (Entry& e : rw.entries) {
       if (e.extra) {
         if (e.split) {
           // omega_k: this copy's share in the compatibility weights.
@@ -123,7 +128,29 @@ void FetiDpSolver::Impl::computeScaling() {
       e.scaled = sum > 0.0 && other >= 0.0 ? e.coef * other / sum : e.coef * s.invMult[e.dof];
     }
   }
-  scalingCurrent = true;
+  assembleBlocks(subs, true);
+  weightsCurrent = true;
+}
+
+/// The sparse blocks the operators apply, from the entries (sorted by row):
+/// B on the remainder and primal DOFs and, with `weights`, B_D on the dual
+/// DOFs and the lumped diagonal of extra rows on primal (or interior) DOFs.
+/// Without that term a row lying on primal DOFs only (a slave node on a
+/// primal master node) has no preconditioner at all and CG breaks down.
+void JumpOperator::assembleBlocks(const std::vector<Subdomain>& subs, bool weights) {
+  for (size_t ls = 0; ls < subs.size(); ++ls) {
+    const Subdomain& s = subs[ls];
+    Rows& rw = rows[ls];
+    rw.Br.clear(), rw.Bp.clear(), rw.BDd.clear(), rw.lumped.clear();
+    for (const Entry& e : rw.entries) {
+      const LO r = s.rIdx[e.dof];
+      if (r != kNone) rw.Br.push(e.lm, r, e.coef);
+      else rw.Bp.push(e.lm, s.pIdx[e.dof], e.coef);
+      if (!weights) continue;
+      if (r != kNone && s.dIdx[r] != kNone) rw.BDd.push(e.lm, s.dIdx[r], e.scaled);
+      else if (e.extra) rw.lumped.push(e.lm, e.lm, e.scaled * e.scaled * std::abs(s.diag[e.dof]));
+    }
+  }
 }
 
 }  // namespace ddc

@@ -1,19 +1,8 @@
 // FETI-DP dual-interface solver (doc/feti-dp.md): see DDC_FetiDpSolver.hpp
-// for the method.
-//
-// Data layout on each rank:
-//  - per subdomain (Sub): the split of K^s into remainder (r) / primal (Pi)
-//    blocks, K_rr^s as a CrsMatrix on MPI_COMM_SELF with its direct solver,
-//    Phi^s = K_rr^{-1} K_rPi (dense, column-major), S_PiPi^s (dense), the
-//    Dirichlet split of the remainder into interior (I) / dual (Delta) DOFs,
-//    and the constraint entries (LM, local DOF, coefficient) of B^s;
-//  - overlapped ("Ov") maps: the DOFs, LMs and coarse DOFs touched by this
-//    rank's subdomains, with Import/Export to the one-to-one owned maps, so
-//    that every assembly is one Export(ADD) and every distribution one Import.
-//
-// Every exchange whose pattern is not a Tpetra map (who shares which DOF,
-// the coarse matrix entries) goes through exchangeRecords(), a variable-size
-// MPI_Alltoallv, to the owner of the DOF in the owned map.
+// for the method. This unit holds the parameters and the driver
+// (setTopology(), numeric(), solve(), the constraint rows); the state lives
+// in the units of DDC_FetiDpImpl.hpp (Subdomain, JumpOperator,
+// CoarseProblem, DualOperator, Preconditioner).
 #include "DDC_FetiDpSolver.hpp"
 
 #include <BelosLinearProblem.hpp>
@@ -172,22 +161,25 @@ FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramete
   Impl& m = *impl_;
   m.factory = std::move(solvers);
   if (comm.is_null()) throw std::invalid_argument("FetiDpSolver: null communicator");
-  m.comm = comm;
-  m.mpi = rawComm(comm);
-  MPI_Comm_rank(m.mpi, &m.rank);
-  MPI_Comm_size(m.mpi, &m.size);
-  m.path = path;
+  m.ctx.comm = comm;
+  m.ctx.mpi = rawComm(comm);
+  MPI_Comm_rank(m.ctx.mpi, &m.ctx.rank);
+  MPI_Comm_size(m.ctx.mpi, &m.ctx.size);
+  m.ctx.path = path;
   const auto valid = getValidParameters();
   validateLevel(params, *valid, path);
   const std::string prec = params.get<std::string>("Preconditioner");
-  m.prec = prec == "Dirichlet" ? Impl::Prec::Dirichlet : prec == "Lumped" ? Impl::Prec::Lumped : Impl::Prec::None;
+  m.prec.kind = prec == "Dirichlet" ? Preconditioner::Kind::Dirichlet
+                : prec == "Lumped"  ? Preconditioner::Kind::Lumped
+                                    : Preconditioner::Kind::None;
   {
     const std::string sc = params.get<std::string>("Scaling");
-    m.scaling = sc == "Stiffness" ? Impl::Scaling::Stiffness
-                : sc == "Multiplicity" ? Impl::Scaling::Multiplicity : Impl::Scaling::Automatic;
+    m.jump.scaling = sc == "Stiffness"      ? JumpOperator::Scaling::Stiffness
+                     : sc == "Multiplicity" ? JumpOperator::Scaling::Multiplicity
+                                            : JumpOperator::Scaling::Automatic;
   }
-  m.singularityThreshold = params.get<double>("Local Singularity Threshold");
-  m.localSchur = params.get<bool>("Local Schur Complement");
+  m.dual.singularityThreshold = params.get<double>("Local Singularity Threshold");
+  m.dual.localSchur = params.get<bool>("Local Schur Complement");
   const bool automaticPrimal = params.get<std::string>("Primal Constraints") == "Automatic";
   m.primalChoice = automaticPrimal ? PrimalConstraints::VerticesAndEdges
                                      : primalConstraintsFromName(params.get<std::string>("Primal Constraints"));
@@ -261,64 +253,39 @@ void FetiDpSolver::numeric() {
   Info& st = m.setup;
   st = Info{};
 
+  // 1. Subdomain factorisations (values refreshed first, K^ = T^T K T too).
   std::string msg;
-  for (auto& s : m.subs) {
-    msg = m.factorSub(s);
-    if (!msg.empty()) break;
-    ++s.factorizations;
-  }
+  for (size_t ls = 0; ls < m.subs.size() && msg.empty(); ++ls) msg = m.dual.factor(m.ctx, m.subs[ls], ls, m.analysed);
   const double t1 = MPI_Wtime();
   st.localFactorSeconds = t1 - t0;
-  raiseCollectively<SolverError>(m.mpi, msg);
+  raiseCollectively<SolverError>(m.ctx.mpi, msg);
   {
     int mm[2] = {INT_MAX, 0};  // min, -max
     for (const auto& s : m.subs) mm[0] = std::min(mm[0], s.factorizations), mm[1] = std::min(mm[1], -s.factorizations);
     int g[2];
-    MPI_Allreduce(mm, g, 2, MPI_INT, MPI_MIN, m.mpi);
+    MPI_Allreduce(mm, g, 2, MPI_INT, MPI_MIN, m.ctx.mpi);
     st.minLocalFactorizations = g[0] == INT_MAX ? 0 : g[0];
     st.maxLocalFactorizations = -g[1];
   }
 
-  m.computeScaling();
-
-  if (m.prec == Impl::Prec::Dirichlet) {
-    for (auto& s : m.subs) {
-      if (!s.iSolver) continue;
-      try {
-        if (!m.analysed) s.iSolver->symbolic(s.Kii);
-        s.iSolver->numeric();
-      } catch (const SolverError& e) {
-        msg = "FETI-DP: subdomain " + std::to_string(s.id) +
-              ": the interior stiffness K_II of the Dirichlet preconditioner is singular (an interior part not "
-              "connected to the interface, primal DOFs or Dirichlet data?) [" +
-              e.what() + "]; or use '" + m.param("Preconditioner") + "' = Lumped";
-        break;
-      }
-    }
-  }
+  // 2. The weights of B_D read the new diagonals; the Dirichlet blocks.
+  m.jump.computeWeights(m.ctx, m.subs);
+  m.prec.factor(m.ctx, m.subs, m.analysed);
   const double t2 = MPI_Wtime();
   st.dirichletFactorSeconds = t2 - t1;
-  raiseCollectively<SolverError>(m.mpi, msg);
 
-  if (m.nCoarse > 0) {
-    m.assembleCoarse();
-    try {
-      if (!m.analysed) m.coarseSolver->symbolic(m.coarse);
-      m.coarseSolver->numeric();
-    } catch (const SolverError& e) {
-      // The coarse solver's errors are collective (same INFOG on every rank).
-      DDC_THROW(SolverError, "FETI-DP: the coarse matrix S_PiPi (" << m.nCoarse
-                                                                    << " primal DOFs) could not be factorised: "
-                                                                    << e.what()
-                                                                    << " (is the whole structure floating?)");
-    }
+  // 3. The coarse problem from the S_PiPi^s.
+  {
+    std::vector<std::vector<double>> S(m.subs.size());
+    for (size_t ls = 0; ls < m.subs.size(); ++ls) S[ls].swap(m.dual.local[ls].S);
+    m.coarse.assembleAndFactor(m.ctx, S, m.analysed);
   }
   const double t3 = MPI_Wtime();
   st.coarseFactorSeconds = t3 - t2;
   st.setupSeconds = t3 - t0;
   double loc[4] = {st.localFactorSeconds, st.dirichletFactorSeconds, st.coarseFactorSeconds, st.setupSeconds};
   double glob[4];
-  MPI_Allreduce(loc, glob, 4, MPI_DOUBLE, MPI_MAX, m.mpi);
+  MPI_Allreduce(loc, glob, 4, MPI_DOUBLE, MPI_MAX, m.ctx.mpi);
   st.localFactorSeconds = glob[0];
   st.dirichletFactorSeconds = glob[1];
   st.coarseFactorSeconds = glob[2];
@@ -341,69 +308,70 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
   Impl& m = *impl_;
   if (!m.factored) throw std::logic_error("FetiDpSolver::solve() called without a successful numeric()");
   const double t0 = MPI_Wtime();
-  m.tLocalSolve = m.tCoarseSolve = m.tPrec = m.tDirichletSolve = 0.0;
-  m.nApplyF = m.nApplyM = 0;
+  m.dual.tLocalSolve = m.coarse.tSolve = m.prec.tApply = m.prec.tDirichletSolve = 0.0;
+  m.dual.nApply = m.prec.nApply = 0;
   Info info = m.setup;
-  if (!m.scalingCurrent) m.computeScaling();
+  if (!m.jump.weightsCurrent) m.jump.computeWeights(m.ctx, m.subs);
 
-  const bool sameMaps = b.getMap()->isSameAs(*m.ownedMap) && u.getMap()->isSameAs(*m.ownedMap);
+  const bool sameMaps = b.getMap()->isSameAs(*m.ctx.ownedMap) && u.getMap()->isSameAs(*m.ctx.ownedMap);
   if (!sameMaps) throw std::invalid_argument("FetiDpSolver::solve: b and u must be on the owned DOF map");
   {
     auto bv = b.getData();
     std::string msg;
     for (LO l = 0; l < LO(bv.size()); ++l)
-      if (m.ownedMult[l] == 0 && bv[l] != 0.0) {
+      if (m.ctx.ownedMult[l] == 0 && bv[l] != 0.0) {
         std::ostringstream os;
-        os << "FetiDpSolver::solve: b = " << bv[l] << " on DOF " << m.ownedMap->getGlobalElement(l)
+        os << "FetiDpSolver::solve: b = " << bv[l] << " on DOF " << m.ctx.ownedMap->getGlobalElement(l)
            << ", which belongs to no subdomain";
         msg = os.str();
         break;
       }
-    raiseCollectively<std::invalid_argument>(m.mpi, msg);
+    raiseCollectively<std::invalid_argument>(m.ctx.mpi, msg);
   }
 
   // f~: interior DOFs as is, dual copies b_j / m_j, primal DOFs assembled
   // directly into the coarse right-hand side.
   // With edge/face constraints, f^s = T^T (b_j / m_j): the constraint DOFs get their
   // share in f_Pi^s, summed over the subdomains by the coarse assembly.
-  m.dofOvWork->doImport(b, *m.dofImport, Tpetra::INSERT);
+  m.dofOvWork->doImport(b, *m.ctx.dofImport, Tpetra::INSERT);
   std::vector<std::vector<double>> frBase(m.subs.size()), fpBase(m.subs.size());
   {
     auto bo = m.dofOvWork->getData();
     std::vector<double> f;
     for (size_t ls = 0; ls < m.subs.size(); ++ls) {
-      auto& s = m.subs[ls];
-      std::fill(s.fp.begin(), s.fp.end(), 0.0);
+      const Subdomain& s = m.subs[ls];
+      LocalProblem& lp = m.dual.local[ls];
+      std::fill(lp.fp.begin(), lp.fp.end(), 0.0);
       if (s.cob.active()) {
         f.resize(s.n);
         for (LO k = 0; k < s.n; ++k) f[k] = bo[s.ovLid[k]] * s.invMult[k];
         s.cob.forceToNew(f);
-        for (LO r = 0; r < s.nr; ++r) s.fr[r] = f[s.rDof[r]];
+        for (LO r = 0; r < s.nr; ++r) lp.fr[r] = f[s.rDof[r]];
         for (LO p = 0; p < s.np; ++p)
-          if (s.cob.holdsConstraint(s.pDof[p])) s.fp[p] = f[s.pDof[p]];
+          if (s.cob.holdsConstraint(s.pDof[p])) lp.fp[p] = f[s.pDof[p]];
       } else {
-        for (LO r = 0; r < s.nr; ++r) s.fr[r] = bo[s.ovLid[s.rDof[r]]] * s.invMult[s.rDof[r]];
+        for (LO r = 0; r < s.nr; ++r) lp.fr[r] = bo[s.ovLid[s.rDof[r]]] * s.invMult[s.rDof[r]];
       }
-      frBase[ls] = s.fr;
-      fpBase[ls] = s.fp;
+      frBase[ls] = lp.fr;
+      fpBase[ls] = lp.fp;
     }
   }
-  Vector fPi(m.coarseMap);
+  Vector fPi(m.coarse.map);
   {
     auto bv = b.getData();
     auto f = fPi.getDataNonConst();
-    for (size_t k = 0; k < m.coarseOwnedLid.size(); ++k)
-      f[k] = m.coarseIsEdgeFace[k] ? 0.0 : bv[m.coarseOwnedLid[k]];
+    for (size_t k = 0; k < m.coarse.ownedLid.size(); ++k)
+      f[k] = m.coarse.isEdgeFace[k] ? 0.0 : bv[m.coarse.ownedLid[k]];
   }
 
   // d = B K~^{-1} f~ (the compatibility constraints have zero right-hand side)
-  auto d = rcp(new MultiVector(m.lmMap, 1));
-  auto lambda = rcp(new MultiVector(m.lmMap, 1));
-  m.applyKtildeInv(&fPi);
-  m.gatherB(*d->getVectorNonConst(0));
+  auto d = rcp(new MultiVector(m.jump.lmMap, 1));
+  auto lambda = rcp(new MultiVector(m.jump.lmMap, 1));
+  m.dual.applyKtildeInv(m.subs, m.coarse, &fPi);
+  m.dual.gatherB(m.jump, *d->getVectorNonConst(0));
   // d = P (B K~^{-1} f~ - c)
-  d->getVectorNonConst(0)->update(-1.0, *m.rhs, 1.0);
-  m.applyMask(*d->getVectorNonConst(0));
+  d->getVectorNonConst(0)->update(-1.0, *m.jump.rhs, 1.0);
+  m.jump.applyMask(*d->getVectorNonConst(0));
 
   double dNorm = 0.0;
   {
@@ -412,7 +380,7 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
     dNorm = n[0];
   }
   const double tb0 = MPI_Wtime();
-  if (m.lmMap->getGlobalNumElements() > 0 && dNorm > 0.0) {
+  if (m.jump.lmMap->getGlobalNumElements() > 0 && dNorm > 0.0) {
     Belos::SolverFactory<Scalar, MultiVector, Operator> factory;
     auto bp = Teuchos::parameterList();
     bp->set("Convergence Tolerance", m.solveTol);
@@ -454,7 +422,7 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
     }
     if (!failure.empty() || ret != Belos::Converged) {
       std::ostringstream os;
-      os << "FETI-DP: Belos " << type << " did not converge on F lambda = d (" << m.lmMap->getGlobalNumElements()
+      os << "FETI-DP: Belos " << type << " did not converge on F lambda = d (" << m.jump.lmMap->getGlobalNumElements()
          << " Lagrange multipliers): " << info.iterations << " iterations, achieved relative residual "
          << std::scientific << info.relativeResidual << ", tolerance " << m.solveTol;
       if (!failure.empty()) os << "; Belos reported: " << failure;
@@ -466,17 +434,16 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
   }
   const double tb1 = MPI_Wtime();
 
-  m.applyMask(*lambda->getVectorNonConst(0));  // restrained rows: exactly zero
-  m.lastLambda->assign(*lambda->getVector(0));
+  m.jump.applyMask(*lambda->getVectorNonConst(0));  // restrained rows: exactly zero
+  m.jump.lastLambda->assign(*lambda->getVector(0));
 
   // u = K~^{-1} (f~ - B^T lambda)
   for (size_t ls = 0; ls < m.subs.size(); ++ls) {
-    auto& s = m.subs[ls];
-    s.fr = frBase[ls];
-    s.fp = fpBase[ls];
+    m.dual.local[ls].fr = frBase[ls];
+    m.dual.local[ls].fp = fpBase[ls];
   }
-  m.scatterBt(*lambda->getVector(0), -1.0);
-  m.applyKtildeInv(&fPi);
+  m.dual.scatterBt(m.jump, *lambda->getVector(0), -1.0);
+  m.dual.applyKtildeInv(m.subs, m.coarse, &fPi);
 
   // Assemble u: copies of dual DOFs averaged (weights 1/m_j), vertex DOFs
   // from the coarse solution. With edge/face constraints, u^s = T û^s
@@ -486,39 +453,41 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
   {
     auto uo = m.dofOvWork->getDataNonConst();
     std::vector<double> us;
-    for (auto& s : m.subs) {
+    for (size_t ls = 0; ls < m.subs.size(); ++ls) {
+      const Subdomain& s = m.subs[ls];
+      const LocalProblem& lp = m.dual.local[ls];
       if (!s.cob.active()) {
-        for (LO r = 0; r < s.nr; ++r) uo[s.ovLid[s.rDof[r]]] += s.xr[r] * s.invMult[s.rDof[r]];
+        for (LO r = 0; r < s.nr; ++r) uo[s.ovLid[s.rDof[r]]] += lp.xr[r] * s.invMult[s.rDof[r]];
         continue;
       }
       us.assign(s.n, 0.0);
-      for (LO r = 0; r < s.nr; ++r) us[s.rDof[r]] = s.xr[r];
-      for (LO p = 0; p < s.np; ++p) us[s.pDof[p]] = s.up[p];
+      for (LO r = 0; r < s.nr; ++r) us[s.rDof[r]] = lp.xr[r];
+      for (LO p = 0; p < s.np; ++p) us[s.pDof[p]] = lp.up[p];
       s.cob.displacementToOld(us);
       for (LO k = 0; k < s.n; ++k)
         if (s.rIdx[k] != kNone || s.cob.holdsConstraint(k)) uo[s.ovLid[k]] += us[k] * s.invMult[k];
     }
   }
   u.putScalar(0.0);
-  u.doExport(*m.dofOvWork, *m.dofExport, Tpetra::ADD);
-  if (m.nCoarse > 0) {
+  u.doExport(*m.dofOvWork, *m.ctx.dofExport, Tpetra::ADD);
+  if (m.coarse.n > 0) {
     auto uv = u.getDataNonConst();
-    auto c = m.coarseSol->getData();
-    for (size_t k = 0; k < m.coarseOwnedLid.size(); ++k)
-      if (!m.coarseIsEdgeFace[k]) uv[m.coarseOwnedLid[k]] = c[k];
+    auto c = m.coarse.sol->getData();
+    for (size_t k = 0; k < m.coarse.ownedLid.size(); ++k)
+      if (!m.coarse.isEdgeFace[k]) uv[m.coarse.ownedLid[k]] = c[k];
   }
 
   const double t1 = MPI_Wtime();
-  double loc[5] = {t1 - t0, tb1 - tb0, m.tLocalSolve, m.tCoarseSolve, m.tPrec};
+  double loc[5] = {t1 - t0, tb1 - tb0, m.dual.tLocalSolve, m.coarse.tSolve, m.prec.tApply};
   double glob[5];
-  MPI_Allreduce(loc, glob, 5, MPI_DOUBLE, MPI_MAX, m.mpi);
+  MPI_Allreduce(loc, glob, 5, MPI_DOUBLE, MPI_MAX, m.ctx.mpi);
   info.solveSeconds = glob[0];
   info.belosSeconds = glob[1];
   info.localSolveSeconds = glob[2];
   info.coarseSolveSeconds = glob[3];
   info.preconditionerSeconds = glob[4];
-  info.operatorApplications = m.nApplyF;
-  info.preconditionerApplications = m.nApplyM;
+  info.operatorApplications = m.dual.nApply;
+  info.preconditionerApplications = m.prec.nApply;
   return info;
 }
 
@@ -527,7 +496,7 @@ void FetiDpSolver::setConstraintRows(Teuchos::RCP<const Map> rowMap,
   Impl& m = *impl_;
   if (!m.haveTopology) throw std::logic_error("FetiDpSolver::setConstraintRows() called before setTopology()");
   std::string msg;
-  if (rowMap.is_null() || rowMap->getComm()->getSize() != m.size || !rowMap->isOneToOne())
+  if (rowMap.is_null() || rowMap->getComm()->getSize() != m.ctx.size || !rowMap->isOneToOne())
     msg = "FetiDpSolver::setConstraintRows: the row map must be a one-to-one map on the solver's communicator";
   else if (entries.size() != m.subs.size())
     msg = "FetiDpSolver::setConstraintRows: one entry list per local subdomain (" + std::to_string(m.subs.size()) +
@@ -542,7 +511,7 @@ void FetiDpSolver::setConstraintRows(Teuchos::RCP<const Map> rowMap,
         msg = os.str();
         break;
       }
-  raiseCollectively<std::invalid_argument>(m.mpi, msg);
+  raiseCollectively<std::invalid_argument>(m.ctx.mpi, msg);
 
   // With edge/face constraints the rows act on û: c^T u = (c^T T) û, row by row.
   std::vector<std::vector<ConstraintEntry>> transformed;
@@ -567,9 +536,9 @@ void FetiDpSolver::setConstraintRows(Teuchos::RCP<const Map> rowMap,
 
   // Extra row GIDs: nCompat + (rows of lower ranks) + LID in rowMap.
   long long mine = static_cast<long long>(rowMap->getNodeNumElements());
-  std::vector<long long> counts(m.size), offsets(m.size, 0);
-  MPI_Allgather(&mine, 1, MPI_LONG_LONG, counts.data(), 1, MPI_LONG_LONG, m.mpi);
-  for (int r = 1; r < m.size; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::vector<long long> counts(m.ctx.size), offsets(m.ctx.size, 0);
+  MPI_Allgather(&mine, 1, MPI_LONG_LONG, counts.data(), 1, MPI_LONG_LONG, m.ctx.mpi);
+  for (int r = 1; r < m.ctx.size; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
   std::vector<GO> rows;
   for (const auto& list : *use)
     for (const auto& e : list) rows.push_back(e.row);
@@ -585,15 +554,16 @@ void FetiDpSolver::setConstraintRows(Teuchos::RCP<const Map> rowMap,
     owners(*rowMap, userRows, upids, ulids);
     size_t k = 0;
     for (size_t ls = 0; ls < entries.size(); ++ls) {
-      m.subs[ls].extraUserB.clear();
+      m.jump.rows[ls].extraUser.clear();
       for (const auto& e : entries[ls]) {
         if (upids[k] >= 0)
-          m.subs[ls].extraUserB.push_back(Impl::GidEntry{m.nCompat + offsets[upids[k]] + ulids[k], e.dof, e.coef});
+          m.jump.rows[ls].extraUser.push_back(
+              JumpOperator::GidEntry{m.jump.nCompat + offsets[upids[k]] + ulids[k], e.dof, e.coef});
         ++k;
       }
     }
   }
-  std::vector<std::vector<Impl::GidEntry>> rowsNew(use->size());
+  std::vector<std::vector<JumpOperator::GidEntry>> rowsNew(use->size());
   size_t k = 0;
   for (size_t ls = 0; ls < use->size(); ++ls) {
     for (size_t i = 0; i < (*use)[ls].size(); ++i, ++k) {
@@ -603,64 +573,63 @@ void FetiDpSolver::setConstraintRows(Teuchos::RCP<const Map> rowMap,
                                std::to_string(m.subs[ls].id) + ") is not in the row map";
         continue;
       }
-      rowsNew[ls].push_back(Impl::GidEntry{m.nCompat + offsets[pids[k]] + lids[k], e.dof, e.coef});
+      rowsNew[ls].push_back(JumpOperator::GidEntry{m.jump.nCompat + offsets[pids[k]] + lids[k], e.dof, e.coef});
     }
   }
-  raiseCollectively<std::invalid_argument>(m.mpi, msg);
-  msg = m.distributeExtraRows(rowsNew);
-  raiseCollectively<std::invalid_argument>(m.mpi, msg);
-  m.extraRowMap = rowMap;
-  m.extraOffset = offsets[m.rank];
-  m.finalizeLm();
+  raiseCollectively<std::invalid_argument>(m.ctx.mpi, msg);
+  msg = m.jump.distributeExtra(m.ctx, m.subs, rowsNew);
+  raiseCollectively<std::invalid_argument>(m.ctx.mpi, msg);
+  m.jump.extraRowMap = rowMap;
+  m.jump.extraOffset = offsets[m.ctx.rank];
   // The rows are constraint rows only: the factorisations stay valid (a
   // linear material is factorised once per analysis, doc/feti-dp.md "Extra
-  // rows"); the weights of B_D are recomputed by the next solve().
-  m.scalingCurrent = false;
+  // rows"); finalize() marks the weights of B_D for the next solve().
+  m.jump.finalize(m.ctx, m.subs);
 }
 
 void FetiDpSolver::setConstraintState(const std::vector<char>& active, const std::vector<double>& rhs) {
   Impl& m = *impl_;
-  const size_t n = m.extraRowMap.is_null() ? 0 : m.extraRowMap->getNodeNumElements();
+  const size_t n = m.jump.extraRowMap.is_null() ? 0 : m.jump.extraRowMap->getNodeNumElements();
   std::string msg;
   if (active.size() != n || rhs.size() != n)
     msg = "FetiDpSolver::setConstraintState: one active flag and one right-hand side per owned row of the row map (" +
           std::to_string(n) + ")";
-  raiseCollectively<std::invalid_argument>(m.mpi, msg);
-  if (n == 0 && m.extraRowMap.is_null()) return;
-  m.mask = rcp(new Vector(m.lmMap));
-  m.mask->putScalar(1.0);
-  m.rhs->putScalar(0.0);
-  auto mk = m.mask->getDataNonConst();
-  auto c = m.rhs->getDataNonConst();
-  auto cnt = m.rowEntries->getData();
+  raiseCollectively<std::invalid_argument>(m.ctx.mpi, msg);
+  if (n == 0 && m.jump.extraRowMap.is_null()) return;
+  m.jump.mask = rcp(new Vector(m.jump.lmMap));
+  m.jump.mask->putScalar(1.0);
+  m.jump.rhs->putScalar(0.0);
+  auto mk = m.jump.mask->getDataNonConst();
+  auto c = m.jump.rhs->getDataNonConst();
+  auto cnt = m.jump.rowEntries->getData();
   for (size_t k = 0; k < n; ++k) {
-    const size_t l = size_t(m.nCompatOwned) + k;
+    const size_t l = size_t(m.jump.nCompatOwned) + k;
     mk[l] = active[k] ? 1.0 : 0.0;
     c[l] = active[k] ? rhs[k] : 0.0;
     if (active[k] && cnt[l] == 0.0 && msg.empty())
-      msg = "FETI-DP: constraint row " + std::to_string(m.extraRowMap->getGlobalElement(LO(k))) +
+      msg = "FETI-DP: constraint row " + std::to_string(m.jump.extraRowMap->getGlobalElement(LO(k))) +
             " is active but has no entry on a free DOF of any subdomain (all its DOFs are prescribed), so it "
             "cannot be enforced";
   }
-  raiseCollectively<SolverError>(m.mpi, msg);
+  raiseCollectively<SolverError>(m.ctx.mpi, msg);
 }
 
 Teuchos::RCP<const Vector> FetiDpSolver::constraintMultipliers() const {
   const Impl& m = *impl_;
-  if (m.extraRowMap.is_null()) return Teuchos::null;
-  auto out = rcp(new Vector(m.extraRowMap));
+  if (m.jump.extraRowMap.is_null()) return Teuchos::null;
+  auto out = rcp(new Vector(m.jump.extraRowMap));
   auto o = out->getDataNonConst();
-  auto l = m.lastLambda->getData();
-  for (size_t k = 0; k < o.size(); ++k) o[k] = l[size_t(m.nCompatOwned) + k];
+  auto l = m.jump.lastLambda->getData();
+  for (size_t k = 0; k < o.size(); ++k) o[k] = l[size_t(m.jump.nCompatOwned) + k];
   return out;
 }
 
 const FetiDpSolver::Info& FetiDpSolver::setupInfo() const { return impl_->setup; }
 
-Teuchos::RCP<const Map> FetiDpSolver::lmMap() const { return impl_->lmMap; }
-Teuchos::RCP<const Map> FetiDpSolver::primalMap() const { return impl_->primalMap; }
-GO FetiDpSolver::numDualDofs() const { return impl_->nDual; }
-GO FetiDpSolver::numEdgeFaceConstraints() const { return impl_->nEdgeFace; }
+Teuchos::RCP<const Map> FetiDpSolver::lmMap() const { return impl_->jump.lmMap; }
+Teuchos::RCP<const Map> FetiDpSolver::primalMap() const { return impl_->coarse.primalMap; }
+GO FetiDpSolver::numDualDofs() const { return impl_->jump.nDual; }
+GO FetiDpSolver::numEdgeFaceConstraints() const { return impl_->coarse.nEdgeFace; }
 
 Teuchos::RCP<Vector> FetiDpSolver::applyB(const std::vector<std::vector<double>>& field) const {
   Impl& m = *impl_;
@@ -669,14 +638,15 @@ Teuchos::RCP<Vector> FetiDpSolver::applyB(const std::vector<std::vector<double>>
   for (size_t ls = 0; !bad && ls < field.size(); ++ls) bad = field[ls].size() != size_t(m.subs[ls].n);
   if (bad) throw std::invalid_argument("FetiDpSolver::applyB: one value per local DOF of each local subdomain");
   for (size_t ls = 0; ls < field.size(); ++ls) {
-    auto& s = m.subs[ls];
+    const Subdomain& s = m.subs[ls];
+    LocalProblem& lp = m.dual.local[ls];
     std::vector<double> f(field[ls]);
     s.cob.displacementToNew(f);  // B acts on û
-    for (LO r = 0; r < s.nr; ++r) s.xr[r] = f[s.rDof[r]];
-    for (LO p = 0; p < s.np; ++p) s.up[p] = f[s.pDof[p]];
+    for (LO r = 0; r < s.nr; ++r) lp.xr[r] = f[s.rDof[r]];
+    for (LO p = 0; p < s.np; ++p) lp.up[p] = f[s.pDof[p]];
   }
-  auto y = rcp(new Vector(m.lmMap));
-  m.gatherB(*y);
+  auto y = rcp(new Vector(m.jump.lmMap));
+  m.dual.gatherB(m.jump, *y);
   return y;
 }
 

@@ -1,0 +1,177 @@
+// FETI-DP, preconditioner (doc/feti-dp.md "Preconditioner and scaling"):
+// M^{-1} = sum_s B_D^s S^s B_D^sT with the Dirichlet Schur complement S^s =
+// K_DD - K_DI K_II^{-1} K_ID of each subdomain on its dual DOFs (primal DOFs
+// fixed), or the lumped S^s = K_DD, and the blocks it needs. The weights of
+// B_D are the JumpOperator's (DDC_FetiDpScaling.cpp). See DDC_FetiDpImpl.hpp.
+#include <Tpetra_Export.hpp>
+#include <Tpetra_Import.hpp>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "DDC_Error.hpp"
+#include "DDC_FetiDpImpl.hpp"
+#include "DDC_MpiRecords.hpp"
+
+namespace ddc {
+
+/// Pattern of K_II (CrsMatrix on MPI_COMM_SELF) and, for the Dirichlet
+/// preconditioner, its solver.
+void Preconditioner::build(const std::vector<Subdomain>& subs, const DirectSolverFactory& factory,
+                           const Teuchos::ParameterList& localParams, const std::string& where) {
+  blocks.clear();
+  blocks.resize(subs.size());
+  for (size_t ls = 0; ls < subs.size(); ++ls) {
+    const Subdomain& s = subs[ls];
+    Blocks& b = blocks[ls];
+    if (kind == Kind::Dirichlet && s.ni > 0 && s.nd > 0) {
+      Teuchos::ParameterList p(localParams);
+      b.solver = factory.create(p, where);
+    }
+    const auto& rowMap = *s.K->getRowMap();
+    const auto& colMap = *s.K->getColMap();
+    std::vector<size_t> count(s.ni, 0);
+    CrsMatrix::local_inds_host_view_type inds;
+    CrsMatrix::values_host_view_type vals;
+    auto interior = [&s](LO dof) { return s.rIdx[dof] != kNone ? s.iIdx[s.rIdx[dof]] : kNone; };
+    for (LO lr = 0; lr < s.n; ++lr) {
+      const LO ir = interior(static_cast<LO>(rowMap.getGlobalElement(lr)));
+      if (ir == kNone) continue;
+      s.K->getLocalRowView(lr, inds, vals);
+      for (size_t e = 0; e < inds.extent(0); ++e)
+        if (interior(static_cast<LO>(colMap.getGlobalElement(inds(e)))) != kNone) ++count[ir];
+    }
+    b.iMap = rcp(new Map(static_cast<Tpetra::global_size_t>(s.ni), 0, s.K->getComm()));
+    b.Kii = rcp(new CrsMatrix(b.iMap, Teuchos::ArrayView<const size_t>(count.data(), count.size())));
+    std::vector<GO> ic;
+    std::vector<double> iv;
+    for (LO lr = 0; lr < s.n; ++lr) {
+      const LO ir = interior(static_cast<LO>(rowMap.getGlobalElement(lr)));
+      if (ir == kNone) continue;
+      s.K->getLocalRowView(lr, inds, vals);
+      ic.clear(), iv.clear();
+      for (size_t e = 0; e < inds.extent(0); ++e) {
+        const LO c = interior(static_cast<LO>(colMap.getGlobalElement(inds(e))));
+        if (c != kNone) ic.push_back(c), iv.push_back(vals(e));
+      }
+      b.Kii->insertGlobalValues(ir, Teuchos::ArrayView<const GO>(ic.data(), ic.size()),
+                                Teuchos::ArrayView<const double>(iv.data(), iv.size()));
+    }
+    b.Kii->fillComplete(b.iMap, b.iMap);
+    b.iB = rcp(new MultiVector(b.iMap, 1));
+    b.iX = rcp(new MultiVector(b.iMap, 1));
+    b.vd.assign(s.nd, 0.0);
+    b.wd.assign(s.nd, 0.0);
+  }
+}
+
+/// The values of K_II, K_ID, K_DI, K_DD from each K (after
+/// DualOperator::factor(), which refreshes K^ with edge/face constraints),
+/// and the K_II factorisations of the Dirichlet preconditioner.
+void Preconditioner::factor(const Context& ctx, const std::vector<Subdomain>& subs, bool analysed) {
+  std::string msg;
+  for (size_t ls = 0; ls < subs.size() && msg.empty(); ++ls) {
+    const Subdomain& s = subs[ls];
+    Blocks& b = blocks[ls];
+    const auto& rowMap = *s.K->getRowMap();
+    const auto& colMap = *s.K->getColMap();
+    b.Kii->resumeFill();
+    b.Kii->setAllToScalar(0.0);
+    b.KID.clear(), b.KDI.clear(), b.KDD.clear();
+    CrsMatrix::local_inds_host_view_type inds;
+    CrsMatrix::values_host_view_type vals;
+    std::vector<GO> ic;
+    std::vector<double> iv;
+    bool patternOk = true;
+    for (LO lr = 0; lr < s.n; ++lr) {
+      const LO rr = s.rIdx[static_cast<LO>(rowMap.getGlobalElement(lr))];
+      if (rr == kNone) continue;
+      s.K->getLocalRowView(lr, inds, vals);
+      ic.clear(), iv.clear();
+      const LO ir = s.iIdx[rr], dr = s.dIdx[rr];
+      for (size_t e = 0; e < inds.extent(0); ++e) {
+        const LO rc = s.rIdx[static_cast<LO>(colMap.getGlobalElement(inds(e)))];
+        if (rc == kNone) continue;
+        const double v = vals(e);
+        const LO icol = s.iIdx[rc], dc = s.dIdx[rc];
+        if (ir != kNone && icol != kNone) ic.push_back(icol), iv.push_back(v);
+        else if (ir != kNone) b.KID.push_back(Triplet{ir, dc, v});
+        else if (icol != kNone) b.KDI.push_back(Triplet{dr, icol, v});
+        else b.KDD.push_back(Triplet{dr, dc, v});
+      }
+      if (ir != kNone)
+        patternOk = patternOk && b.Kii->sumIntoGlobalValues(ir, LO(ic.size()), iv.data(), ic.data()) == LO(ic.size());
+    }
+    b.Kii->fillComplete(b.iMap, b.iMap);
+    if (!patternOk) {
+      msg = "FETI-DP: subdomain " + std::to_string(s.id) +
+            ": the sparsity pattern of K changed since setTopology(); call setTopology() again";
+      break;
+    }
+    if (!b.solver) continue;
+    try {
+      if (!analysed) b.solver->symbolic(b.Kii);
+      b.solver->numeric();
+    } catch (const SolverError& e) {
+      msg = "FETI-DP: subdomain " + std::to_string(s.id) +
+            ": the interior stiffness K_II of the Dirichlet preconditioner is singular (an interior part not "
+            "connected to the interface, primal DOFs or Dirichlet data?) [" +
+            e.what() + "]; or use '" + ctx.param("Preconditioner") + "' = Lumped";
+    }
+  }
+  raiseCollectively<SolverError>(ctx.mpi, msg);
+}
+
+/// y = P M^{-1} P x, M^{-1} = sum_s B_D^s S^s B_D^sT with S^s = K_DD - K_DI
+/// K_II^{-1} K_ID (Dirichlet) or K_DD (lumped). Primal DOFs count as fixed,
+/// so entries of compatibility rows on primal DOFs do not enter; entries of
+/// extra rows on primal or interior DOFs enter lumped and diagonal
+/// (JumpOperator::Rows::lumped).
+void Preconditioner::apply(const std::vector<Subdomain>& subs, const JumpOperator& jump, const Vector& x, Vector& y) {
+  const double t0 = MPI_Wtime();
+  if (jump.mask.is_null()) {
+    jump.ovWork->doImport(x, *jump.lmImport, Tpetra::INSERT);
+  } else {
+    jump.work->elementWiseMultiply(1.0, *jump.mask, x, 0.0);
+    jump.ovWork->doImport(*jump.work, *jump.lmImport, Tpetra::INSERT);
+  }
+  std::vector<double> yOv(jump.lmOvMap->getNodeNumElements(), 0.0);
+  {
+    auto l = jump.ovWork->getData();
+    for (size_t ls = 0; ls < subs.size(); ++ls) {
+      const Subdomain& s = subs[ls];
+      const JumpOperator::Rows& rw = jump.rows[ls];
+      Blocks& b = blocks[ls];
+      rw.lumped.add(l.getRawPtr(), yOv.data());
+      std::fill(b.vd.begin(), b.vd.end(), 0.0);
+      rw.BDd.addTransposed(l.getRawPtr(), 1.0, b.vd.data());
+      std::fill(b.wd.begin(), b.wd.end(), 0.0);
+      for (const Triplet& t : b.KDD) b.wd[t.i] += t.v * b.vd[t.j];
+      if (b.solver) {
+        const double t1 = MPI_Wtime();
+        b.vi.assign(s.ni, 0.0);
+        for (const Triplet& t : b.KID) b.vi[t.i] += t.v * b.vd[t.j];
+        {
+          auto in = b.iB->getDataNonConst(0);
+          std::copy(b.vi.begin(), b.vi.end(), in.begin());
+        }
+        b.solver->solve(*b.iB, *b.iX);
+        auto out = b.iX->getData(0);
+        for (const Triplet& t : b.KDI) b.wd[t.i] -= t.v * out[t.j];
+        tDirichletSolve += MPI_Wtime() - t1;
+      }
+      rw.BDd.add(b.wd.data(), yOv.data());
+    }
+  }
+  {
+    auto l = jump.ovWork->getDataNonConst();
+    std::copy(yOv.begin(), yOv.end(), l.begin());
+  }
+  y.putScalar(0.0);
+  y.doExport(*jump.ovWork, *jump.lmExport, Tpetra::ADD);
+  jump.applyMask(y);
+  ++nApply;
+  tApply += MPI_Wtime() - t0;
+}
+
+}  // namespace ddc
