@@ -76,7 +76,7 @@ for i in "${!SIZES[@]}"; do
       [ "$strat" = MUMPS ] && label="MUMPS (direct)"
       [ "$strat" = Belos-MueLu ] && label="Belos CG + MueLu SA"
       [ "$strat" = Belos-FROSch ] && label="Belos GMRES + FROSch GDSW"
-      [ "$strat" = FETI-DP ] && label="FETI-DP (${PRIMAL:-default constraints}, Dirichlet, MUMPS local/coarse, CG)"
+      [ "$strat" = FETI-DP ] && label="FETI-DP (${PRIMAL:-default constraints}, Dirichlet, default local (CHOLMOD) and coarse (MUMPS) solvers, CG)"
       echo "| $d | $subs | $label | $s | $t | $it | $m |"
     fi
   done

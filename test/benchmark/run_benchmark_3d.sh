@@ -150,7 +150,7 @@ for ref in "${ALL[@]}"; do
         args=("${base[@]}" --set "Solver/Strategy=Monolithic" --set "Solver/Linear Solver/Type=MUMPS") ;;
       Belos-MueLu) label="Belos CG + MueLu SA" subs=$RANKS
         args=("${base[@]}" --set "Solver/Strategy=Monolithic" --set "Solver/Linear Solver/Type=Belos-MueLu") ;;
-      FETI-DP) label="FETI-DP (${PRIMAL:-default constraints}, Dirichlet, MUMPS local/coarse, CG)" subs=$nsub
+      FETI-DP) label="FETI-DP (${PRIMAL:-default constraints}, Dirichlet, default local (CHOLMOD) and coarse (MUMPS) solvers, CG)" subs=$nsub
         args=("${base[@]}" --set "Solver/Strategy=FETI-DP" --set "Partition/Number of Subdomains=$nsub"
               "${PRIMAL_ARGS[@]}" --set "Solver/FETI-DP/Belos/Maximum Iterations=5000") ;;
     esac

@@ -29,38 +29,11 @@ void DualOperator::build(const std::vector<Subdomain>& subs, const DirectSolverF
       lp.solver = factory.create(p, where);
       lp.schur = localSchur && s.np > 0 && lp.solver->setSchurIndices(s.pDof);
     }
-    const auto& rowMap = *s.K->getRowMap();
-    const auto& colMap = *s.K->getColMap();
     if (lp.schur) {
       lp.rMap = s.K->getRowMap();  // the solver's rows: every local DOF
     } else {
-      std::vector<size_t> count(s.nr, 0);
-      CrsMatrix::local_inds_host_view_type inds;
-      CrsMatrix::values_host_view_type vals;
-      for (LO lr = 0; lr < s.n; ++lr) {
-        const LO rr = s.rIdx[static_cast<LO>(rowMap.getGlobalElement(lr))];
-        if (rr == kNone) continue;
-        s.K->getLocalRowView(lr, inds, vals);
-        for (size_t e = 0; e < inds.extent(0); ++e)
-          if (s.rIdx[static_cast<LO>(colMap.getGlobalElement(inds(e)))] != kNone) ++count[rr];
-      }
-      lp.rMap = rcp(new Map(static_cast<Tpetra::global_size_t>(s.nr), 0, s.K->getComm()));
-      lp.Krr = rcp(new CrsMatrix(lp.rMap, Teuchos::ArrayView<const size_t>(count.data(), count.size())));
-      std::vector<GO> rc;
-      std::vector<double> rv;
-      for (LO lr = 0; lr < s.n; ++lr) {
-        const LO rr = s.rIdx[static_cast<LO>(rowMap.getGlobalElement(lr))];
-        if (rr == kNone) continue;
-        s.K->getLocalRowView(lr, inds, vals);
-        rc.clear(), rv.clear();
-        for (size_t e = 0; e < inds.extent(0); ++e) {
-          const LO c = s.rIdx[static_cast<LO>(colMap.getGlobalElement(inds(e)))];
-          if (c != kNone) rc.push_back(c), rv.push_back(vals(e));
-        }
-        lp.Krr->insertGlobalValues(rr, Teuchos::ArrayView<const GO>(rc.data(), rc.size()),
-                                   Teuchos::ArrayView<const double>(rv.data(), rv.size()));
-      }
-      lp.Krr->fillComplete(lp.rMap, lp.rMap);
+      lp.Krr = extractBlock(*s.K, s.rIdx, s.nr);
+      lp.rMap = lp.Krr->getRowMap();
     }
     lp.rB = rcp(new MultiVector(lp.rMap, 1));
     lp.rX = rcp(new MultiVector(lp.rMap, 1));
@@ -71,6 +44,40 @@ void DualOperator::build(const std::vector<Subdomain>& subs, const DirectSolverF
     lp.bn.assign(lp.schur ? s.n : 0, 0.0);
     lp.xn.assign(lp.schur ? s.n : 0, 0.0);
   }
+}
+
+RCP<CrsMatrix> feti_internal::extractBlock(const CrsMatrix& K, const std::vector<LO>& index, LO size) {
+  const auto& rowMap = *K.getRowMap();
+  const auto& colMap = *K.getColMap();
+  const LO n = LO(rowMap.getNodeNumElements());
+  std::vector<size_t> count(size, 0);
+  CrsMatrix::local_inds_host_view_type inds;
+  CrsMatrix::values_host_view_type vals;
+  for (LO lr = 0; lr < n; ++lr) {
+    const LO br = index[static_cast<LO>(rowMap.getGlobalElement(lr))];
+    if (br == kNone) continue;
+    K.getLocalRowView(lr, inds, vals);
+    for (size_t e = 0; e < inds.extent(0); ++e)
+      if (index[static_cast<LO>(colMap.getGlobalElement(inds(e)))] != kNone) ++count[br];
+  }
+  auto map = rcp(new Map(static_cast<Tpetra::global_size_t>(size), 0, K.getComm()));
+  auto B = rcp(new CrsMatrix(map, Teuchos::ArrayView<const size_t>(count.data(), count.size())));
+  std::vector<GO> bc;
+  std::vector<double> bv;
+  for (LO lr = 0; lr < n; ++lr) {
+    const LO br = index[static_cast<LO>(rowMap.getGlobalElement(lr))];
+    if (br == kNone) continue;
+    K.getLocalRowView(lr, inds, vals);
+    bc.clear(), bv.clear();
+    for (size_t e = 0; e < inds.extent(0); ++e) {
+      const LO c = index[static_cast<LO>(colMap.getGlobalElement(inds(e)))];
+      if (c != kNone) bc.push_back(c), bv.push_back(vals(e));
+    }
+    B->insertGlobalValues(br, Teuchos::ArrayView<const GO>(bc.data(), bc.size()),
+                          Teuchos::ArrayView<const double>(bv.data(), bv.size()));
+  }
+  B->fillComplete(map, map);
+  return B;
 }
 
 namespace {

@@ -168,6 +168,12 @@ struct Subdomain {
   bool isDual(LO dof) const { return rIdx[dof] != kNone && dIdx[rIdx[dof]] != kNone; }
 };
 
+/// The block of K (on MPI_COMM_SELF, the contiguous map 0..n-1) of the
+/// rows and columns with index[k] != kNone, renumbered index[k] (0..size-1),
+/// with K's current values, fill-complete on MPI_COMM_SELF: K_rr or K_II of
+/// a subdomain (DDC_FetiDpBlocks.cpp).
+RCP<CrsMatrix> extractBlock(const CrsMatrix& K, const std::vector<LO>& index, LO size);
+
 /// A sparse block by rows (CSR): stored row k is LM row `row[k]` (LID in the
 /// LM overlapped map) with columns col[ptr[k] .. ptr[k+1]) in the block's
 /// local index (remainder, primal or dual index of the subdomain).

@@ -28,36 +28,11 @@ void Preconditioner::build(const std::vector<Subdomain>& subs, const DirectSolve
       Teuchos::ParameterList p(localParams);
       b.solver = factory.create(p, where);
     }
-    const auto& rowMap = *s.K->getRowMap();
-    const auto& colMap = *s.K->getColMap();
-    std::vector<size_t> count(s.ni, 0);
-    CrsMatrix::local_inds_host_view_type inds;
-    CrsMatrix::values_host_view_type vals;
-    auto interior = [&s](LO dof) { return s.rIdx[dof] != kNone ? s.iIdx[s.rIdx[dof]] : kNone; };
-    for (LO lr = 0; lr < s.n; ++lr) {
-      const LO ir = interior(static_cast<LO>(rowMap.getGlobalElement(lr)));
-      if (ir == kNone) continue;
-      s.K->getLocalRowView(lr, inds, vals);
-      for (size_t e = 0; e < inds.extent(0); ++e)
-        if (interior(static_cast<LO>(colMap.getGlobalElement(inds(e)))) != kNone) ++count[ir];
-    }
-    b.iMap = rcp(new Map(static_cast<Tpetra::global_size_t>(s.ni), 0, s.K->getComm()));
-    b.Kii = rcp(new CrsMatrix(b.iMap, Teuchos::ArrayView<const size_t>(count.data(), count.size())));
-    std::vector<GO> ic;
-    std::vector<double> iv;
-    for (LO lr = 0; lr < s.n; ++lr) {
-      const LO ir = interior(static_cast<LO>(rowMap.getGlobalElement(lr)));
-      if (ir == kNone) continue;
-      s.K->getLocalRowView(lr, inds, vals);
-      ic.clear(), iv.clear();
-      for (size_t e = 0; e < inds.extent(0); ++e) {
-        const LO c = interior(static_cast<LO>(colMap.getGlobalElement(inds(e))));
-        if (c != kNone) ic.push_back(c), iv.push_back(vals(e));
-      }
-      b.Kii->insertGlobalValues(ir, Teuchos::ArrayView<const GO>(ic.data(), ic.size()),
-                                Teuchos::ArrayView<const double>(iv.data(), iv.size()));
-    }
-    b.Kii->fillComplete(b.iMap, b.iMap);
+    std::vector<LO> interior(s.n, kNone);
+    for (LO k = 0; k < s.n; ++k)
+      if (s.rIdx[k] != kNone) interior[k] = s.iIdx[s.rIdx[k]];
+    b.Kii = extractBlock(*s.K, interior, s.ni);
+    b.iMap = b.Kii->getRowMap();
     b.iB = rcp(new MultiVector(b.iMap, 1));
     b.iX = rcp(new MultiVector(b.iMap, 1));
     b.vd.assign(s.nd, 0.0);
