@@ -18,7 +18,8 @@
 //   feti.setTopology(std::move(subdomains), ownedMap);   // once per pattern
 //   for (...) {            // Newton
 //     ... update the values of every subdomain's K (same pattern) ...
-//     feti.numeric();
+//     feti.numeric();      // only when the values changed: a linear
+//                          // material is factorised once, contact rows or not
 //     auto info = feti.solve(residual, du);
 //   }
 #pragma once
@@ -162,7 +163,7 @@ class FetiDpSolver {
   ///  - "Preconditioner": "Dirichlet" (default) | "Lumped" | "None";
   ///  - "Scaling": "Automatic" (default: multiplicity on compatibility
   ///    rows, stiffness weights on extra rows) | "Multiplicity" |
-  ///    "Stiffness" (computeScaling() in DDC_FetiDpScaling.cpp);
+  ///    "Stiffness" (JumpOperator::computeWeights() in DDC_FetiDpScaling.cpp);
   ///  - "Primal Constraints": "Automatic" (default: "Vertices and
   ///    Edges") | "Vertices" | "Vertices and Edges" |
   ///    "Vertices, Edges and Faces" (in 2-D there are no faces, so it
@@ -179,7 +180,7 @@ class FetiDpSolver {
   ///    "Output Frequency" (-1)}, and any other parameter of the chosen
   ///    Belos solver (its getValidParameters(), same type), passed through;
   ///  - "Local Solver", "Coarse Solver": DirectSolverFactory {Type, ...}
-  ///    sublists, Type "MUMPS" by default.
+  ///    sublists, Type "CHOLMOD" (local) and "MUMPS" (coarse) by default.
   static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
 
   /// \param comm the communicator of the whole problem (the owned DOF map's).
