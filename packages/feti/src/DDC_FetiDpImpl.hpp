@@ -162,10 +162,6 @@ struct Subdomain {
   std::vector<double> diag;      ///< K_jj per local DOF (K as FETI-DP works on it)
   std::vector<double> diagUser;  ///< the caller's K^s_jj per local DOF
   int factorizations = 0;        ///< of K_rr (or K^s with Schur rows) since setTopology()
-
-  /// A dual DOF: remainder and shared with another subdomain or touched by
-  /// extra rows (the Dirichlet preconditioner's interface).
-  bool isDual(LO dof) const { return rIdx[dof] != kNone && dIdx[rIdx[dof]] != kNone; }
 };
 
 /// The block of K (on MPI_COMM_SELF, the contiguous map 0..n-1) of the

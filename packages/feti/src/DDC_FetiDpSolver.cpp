@@ -392,6 +392,7 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
     std::string failure, type = m.belosType;
     auto run = [&] {
       lambda->putScalar(0.0);
+      info.conditionEstimate = -1.0;  // from CG only, and from the last run
       auto solver = factory.create(type, bp);
       auto problem = rcp(new Belos::LinearProblem<Scalar, MultiVector, Operator>(m.fOp, lambda, d));
       if (!m.mOp.is_null()) problem->setLeftPrec(m.mOp);
@@ -539,43 +540,34 @@ void FetiDpSolver::setConstraintRows(Teuchos::RCP<const Map> rowMap,
   std::vector<long long> counts(m.ctx.size), offsets(m.ctx.size, 0);
   MPI_Allgather(&mine, 1, MPI_LONG_LONG, counts.data(), 1, MPI_LONG_LONG, m.ctx.mpi);
   for (int r = 1; r < m.ctx.size; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
-  std::vector<GO> rows;
-  for (const auto& list : *use)
-    for (const auto& e : list) rows.push_back(e.row);
-  std::vector<int> pids;
-  std::vector<LO> lids;
-  owners(*rowMap, rows, pids, lids);
+  // The LM GID of every row the caller named (-1: not in the row map); the
+  // rows in the new basis are the same rows.
+  std::map<GO, GO> lmOf;
   {
-    std::vector<GO> userRows;
+    std::vector<GO> rows;
     for (const auto& list : entries)
-      for (const auto& e : list) userRows.push_back(e.row);
-    std::vector<int> upids;
-    std::vector<LO> ulids;
-    owners(*rowMap, userRows, upids, ulids);
-    size_t k = 0;
-    for (size_t ls = 0; ls < entries.size(); ++ls) {
-      m.jump.rows[ls].extraUser.clear();
-      for (const auto& e : entries[ls]) {
-        if (upids[k] >= 0)
-          m.jump.rows[ls].extraUser.push_back(
-              JumpOperator::GidEntry{m.jump.nCompat + offsets[upids[k]] + ulids[k], e.dof, e.coef});
-        ++k;
-      }
-    }
+      for (const auto& e : list) rows.push_back(e.row);
+    std::vector<int> pids;
+    std::vector<LO> lids;
+    owners(*rowMap, rows, pids, lids);
+    for (size_t k = 0; k < rows.size(); ++k) lmOf[rows[k]] = pids[k] < 0 ? -1 : m.jump.nCompat + offsets[pids[k]] + lids[k];
+  }
+  for (size_t ls = 0; ls < entries.size(); ++ls) {
+    m.jump.rows[ls].extraUser.clear();
+    for (const auto& e : entries[ls])
+      if (lmOf[e.row] >= 0) m.jump.rows[ls].extraUser.push_back(JumpOperator::GidEntry{lmOf[e.row], e.dof, e.coef});
   }
   std::vector<std::vector<JumpOperator::GidEntry>> rowsNew(use->size());
-  size_t k = 0;
-  for (size_t ls = 0; ls < use->size(); ++ls) {
-    for (size_t i = 0; i < (*use)[ls].size(); ++i, ++k) {
-      const ConstraintEntry& e = (*use)[ls][i];
-      if (pids[k] < 0) {
+  for (size_t ls = 0; ls < use->size(); ++ls)
+    for (const ConstraintEntry& e : (*use)[ls]) {
+      const GO lm = lmOf[e.row];
+      if (lm < 0) {
         if (msg.empty()) msg = "FetiDpSolver::setConstraintRows: row " + std::to_string(e.row) + " (subdomain " +
                                std::to_string(m.subs[ls].id) + ") is not in the row map";
         continue;
       }
-      rowsNew[ls].push_back(JumpOperator::GidEntry{m.jump.nCompat + offsets[pids[k]] + lids[k], e.dof, e.coef});
+      rowsNew[ls].push_back(JumpOperator::GidEntry{lm, e.dof, e.coef});
     }
-  }
   raiseCollectively<std::invalid_argument>(m.ctx.mpi, msg);
   msg = m.jump.distributeExtra(m.ctx, m.subs, rowsNew);
   raiseCollectively<std::invalid_argument>(m.ctx.mpi, msg);
