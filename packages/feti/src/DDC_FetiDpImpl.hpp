@@ -101,7 +101,7 @@ struct SplitRequest {
   GO lm;        ///< row GID in lmMap
   GO gid;       ///< the DOF
   double full;  ///< the caller's coefficient (in the new basis)
-  int side;     ///< Subdomain::index of the caller's subdomain (the row's side)
+  int side;     ///< the caller's entry's side (Subdomain::sideOf)
 };
 
 /// One copy of a split extra-row entry, for local subdomain `localSub`.
@@ -143,6 +143,14 @@ struct Context {
 struct Subdomain {
   int id = -1;
   int index = -1;  ///< rank of id among all subdomain ids (0..number of subdomains - 1)
+  /// Per local DOF: the connected part of K^s's graph it lies in (0..). A
+  /// METIS subdomain may hold pieces of several bodies that only contact
+  /// couples; each piece is one side of a contact row (doc/feti-dp.md
+  /// "Extra rows").
+  std::vector<int> part;
+  int partBase = 0;  ///< global number of part 0: parts are numbered across all subdomains by index
+  /// The side of an extra row's entry on local DOF `dof` (a global part number).
+  int sideOf(LO dof) const { return partBase + part[size_t(dof)]; }
   std::vector<GO> dofs;
   std::vector<char> primal;
   std::vector<char> constrainable;  ///< per local DOF: extra rows may touch it
@@ -229,7 +237,7 @@ class JumpOperator {
     bool extra;  ///< a row from setConstraintRows() (not a compatibility row)
     /// Extra rows: the caller's coefficient before the split over the copies
     /// of a shared dual DOF (coef = full * omega_k), and the LID of the row's
-    /// side (the caller's subdomain of the entry) in sideOvMap.
+    /// side (Subdomain::sideOf the caller's entry) in sideOvMap.
     double full = 0.0;
     LO sideKey = -1;
     bool split = false;
@@ -241,7 +249,7 @@ class JumpOperator {
     LO dof;
     double coef;
     double full = 0.0;  ///< extra rows: see Entry
-    int side = -1;      ///< extra rows: Subdomain::index of the caller's subdomain
+    int side = -1;      ///< extra rows: the caller's entry's side (Subdomain::sideOf)
     bool split = false;
   };
 

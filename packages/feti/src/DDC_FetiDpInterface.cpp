@@ -25,6 +25,43 @@ namespace ddc {
 // topology
 // ---------------------------------------------------------------------------
 
+namespace {
+
+/// The connected parts of the graph of K (on MPI_COMM_SELF, square): part[k]
+/// per row, numbered 0.. in the order of their lowest row; returns the
+/// number of parts.
+int connectedParts(const CrsMatrix& K, std::vector<int>& part) {
+  const LO n = LO(K.getNodeNumRows());
+  std::vector<LO> parent(static_cast<size_t>(n));
+  for (LO k = 0; k < n; ++k) parent[size_t(k)] = k;
+  auto root = [&](LO k) {
+    while (parent[size_t(k)] != k) k = parent[size_t(k)] = parent[size_t(parent[size_t(k)])];
+    return k;
+  };
+  const auto& colMap = *K.getColMap();
+  const auto& rowMap = *K.getRowMap();
+  CrsMatrix::local_inds_host_view_type cols;
+  CrsMatrix::values_host_view_type vals;
+  for (LO k = 0; k < n; ++k) {
+    K.getLocalRowView(k, cols, vals);
+    for (size_t e = 0; e < cols.extent(0); ++e) {
+      const LO c = rowMap.getLocalElement(colMap.getGlobalElement(cols(e)));
+      if (c == Teuchos::OrdinalTraits<LO>::invalid()) continue;
+      const LO a = root(k), b = root(c);
+      if (a != b) parent[size_t(std::max(a, b))] = std::min(a, b);
+    }
+  }
+  part.assign(size_t(n), -1);
+  int count = 0;
+  for (LO k = 0; k < n; ++k) {
+    const LO r = root(k);
+    part[size_t(k)] = r == k ? count++ : part[size_t(r)];
+  }
+  return count;
+}
+
+}  // namespace
+
 void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<const Map> owned) {
   haveTopology = analysed = factored = false;
   subs.clear();
@@ -96,9 +133,16 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
     if (dup != all.end())
       throw std::invalid_argument("FetiDpSolver::setTopology: subdomain id " + std::to_string(*dup) +
                                   " is used twice");
-    // The sides of extra rows are numbered by the rank of the id among all.
-    jump.sideSpan = std::max<GO>(1, GO(all.size()));
     for (Subdomain& s : subs) s.index = int(std::lower_bound(all.begin(), all.end(), s.id) - all.begin());
+    // The sides of extra rows: the connected parts of each subdomain,
+    // numbered across all subdomains in the order of their index.
+    std::vector<int> parts(all.size(), 0);
+    for (Subdomain& s : subs) parts[size_t(s.index)] = connectedParts(*s.K, s.part);
+    MPI_Allreduce(MPI_IN_PLACE, parts.data(), int(parts.size()), MPI_INT, MPI_SUM, ctx.mpi);
+    std::vector<int> base(parts.size() + 1, 0);
+    for (size_t k = 0; k < parts.size(); ++k) base[k + 1] = base[k] + parts[k];
+    for (Subdomain& s : subs) s.partBase = base[size_t(s.index)];
+    jump.sideSpan = std::max<GO>(1, GO(base.back()));
   }
 
   // 2. Overlapped DOF map of this rank's subdomains; all DOFs in the owned map.
@@ -385,7 +429,7 @@ std::string JumpOperator::distributeExtra(const Context& ctx, const std::vector<
         gids.push_back(s.dofs[e.dof]);
         where.emplace_back(ls, i);
       } else {
-        rows[ls].extra.push_back(GidEntry{e.lm, e.dof, e.coef, e.coef, s.index, false});
+        rows[ls].extra.push_back(GidEntry{e.lm, e.dof, e.coef, e.coef, s.sideOf(e.dof), false});
       }
     }
   }
@@ -394,7 +438,7 @@ std::string JumpOperator::distributeExtra(const Context& ctx, const std::vector<
   owners(*ctx.ownedMap, gids, pids, lids);
   for (size_t k = 0; k < gids.size(); ++k) {
     const GidEntry& e = rowsNew[where[k].first][where[k].second];
-    send[pids[k]].push_back(SplitRequest{e.lm, gids[k], e.coef, subs[where[k].first].index});
+    send[pids[k]].push_back(SplitRequest{e.lm, gids[k], e.coef, subs[where[k].first].sideOf(e.dof)});
   }
   std::vector<SplitRequest> requests = exchangeRecords(ctx.mpi, send);
   std::vector<std::vector<SplitEntry>> forward(ctx.size);
@@ -460,7 +504,7 @@ void JumpOperator::finalize(const Context& ctx, const std::vector<Subdomain>& su
     std::vector<GO> keys;
     for (size_t ls = 0; ls < rows.size(); ++ls) {
       for (const auto& e : rows[ls].extra) keys.push_back(e.lm * sideSpan + e.side);
-      for (const auto& e : rows[ls].extraUser) keys.push_back(e.lm * sideSpan + subs[ls].index);
+      for (const auto& e : rows[ls].extraUser) keys.push_back(e.lm * sideSpan + subs[ls].sideOf(e.dof));
     }
     std::sort(keys.begin(), keys.end());
     keys.erase(std::unique(keys.begin(), keys.end()), keys.end());

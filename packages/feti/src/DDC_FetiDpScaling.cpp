@@ -25,12 +25,14 @@ namespace ddc {
 /// (multiplicity: 1/m_j) or w = K^k_jj (stiffness, rho-scaling). The
 /// partner's weight is the row sum of the weights minus the own one.
 ///
-/// Extra rows (contact): a row joins the subdomains it has entries in, in
-/// general two different bodies. Each subdomain k sees the row with the
-/// stiffness rho_k = sum over its entries of c_j^2 |K^k_jj| (the caller's
-/// basis: the diagonal of B^k K^k B^kT); the entries of k are weighted by
+/// Extra rows (contact): a row joins the sides it has entries in, in
+/// general two different bodies. A side is one connected part of a
+/// subdomain (Subdomain::part): a subdomain holding pieces of two bodies
+/// that only the row joins gives it two sides. Each side k sees the row
+/// with the stiffness rho_k = sum over its entries of c_j^2 |K^k_jj| (the
+/// caller's basis: the diagonal of B^k K^k B^kT); its entries are weighted
 ///     D_k = (rho - rho_k) / ((m - 1) rho),   rho = sum_k rho_k,
-/// over the m subdomains (D = 1 for m = 1; 1/m with multiplicity scaling).
+/// over the m sides (D = 1 for m = 1; 1/m with multiplicity scaling).
 /// For two sides this is rho-scaling, D_1 = rho_2 / (rho_1 + rho_2): the
 /// preconditioner's diagonal D_1^2 rho_1 + D_2^2 rho_2 = rho_1 rho_2 /
 /// (rho_1 + rho_2) is then the inverse of the row's flexibility 1/rho_1 +
@@ -82,7 +84,7 @@ void JumpOperator::computeWeights(const Context& ctx, const std::vector<Subdomai
     for (size_t ls = 0; ls < subs.size(); ++ls) {
       const Subdomain& s = subs[ls];
       for (const GidEntry& e : rows[ls].extraUser) {
-        const LO key = sideOvMap->getLocalElement(e.lm * sideSpan + s.index);
+        const LO key = sideOvMap->getLocalElement(e.lm * sideSpan + s.sideOf(e.dof));
         if (key != Teuchos::OrdinalTraits<LO>::invalid()) r[key] += e.coef * e.coef * d[s.ovLid[e.dof]];
       }
     }

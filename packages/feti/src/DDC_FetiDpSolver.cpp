@@ -66,9 +66,10 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
             "subdomain s in the row between s and t at DOF j is scaled by 1/m_j (m_j = number of subdomains "
             "sharing j) with Multiplicity and Automatic, by K^t_jj / sum_k K^k_jj with Stiffness (rho-scaling "
             "from diagonal entries, for coefficients that jump inside a body). Extra rows (contact), which join "
-            "different bodies: Automatic and Stiffness weight each side by the other sides' share of the row's "
-            "stiffness sum_j c_j^2 K_jj (robust to a stiff body against a soft one); Multiplicity by 1/m, m = "
-            "number of subdomains the row touches.",
+            "different bodies: Automatic and Stiffness weight each side (the row's entries in one connected part "
+            "of a subdomain's matrix graph, e.g. one body's piece of a METIS subdomain) by the other sides' share "
+            "of the row's stiffness sum_j c_j^2 K_jj (robust to a stiff body against a soft one); Multiplicity "
+            "by 1/m, m = number of sides.",
             enumValidator(scalingNames(), "Scaling"));
     pl->set("Primal Constraints", std::string("Automatic"),
             "Primal (coarse) constraints besides the caller's vertex DOFs: Automatic (Vertices and Edges, with "
