@@ -39,8 +39,7 @@ run_case() {
 
 # row CASE MESH STEPS DECK_DECOMPOSED DECK_CONVENTIONAL MESH_ARGS...: one
 # conventional Monolithic and one decomposed FETI-DP run (the deck's
-# partition; the FETI-DP run also gets the options in array DD_EXTRA)
-DD_EXTRA=()
+# partition)
 row() {
   local name=$1 mesh=$2 steps=$3 dd=$4 conv=$5
   shift 5
@@ -49,8 +48,7 @@ row() {
       --set "Contact/Formulation=Node-To-Surface" --set "Solver/Strategy=Monolithic")"
   echo "| $name | $mesh | $dofs | $steps | conventional, Monolithic (MUMPS) | $mw | $mn | - | $ms | $mv | 1 |"
   read -r w nn d s v _ <<< "$(run_case "$dd" "$steps" "$@" \
-      --set "Contact/Formulation=Decomposed Node-To-Surface" --set "Solver/Strategy=FETI-DP" \
-      ${DD_EXTRA[@]+"${DD_EXTRA[@]}"})"
+      --set "Contact/Formulation=Decomposed Node-To-Surface" --set "Solver/Strategy=FETI-DP")"
   ratio=$(awk -v a="$w" -v b="$mw" 'BEGIN {printf "%.2f", a / b}')
   echo "| $name | $mesh | $dofs | $steps | decomposed, FETI-DP | $w | $nn | $d | $s | $v | $ratio |"
 }
@@ -74,9 +72,6 @@ for c in "${CASES[@]}"; do
         row "half-rings, free faces (METIS 8)" "$nr x $nc x $na per ring" "$RINGS_STEPS" "$deck" "$deck" "${mesh[@]}"
       done ;;
     ironing)
-      # The refined slab needs more than 500 dual iterations in some Newton
-      # iterations (the die is 1000 times stiffer; doc/performance.md).
-      DD_EXTRA=(--set "Solver/FETI-DP/Belos/Maximum Iterations=5000")
       for f in "${IRONING_REFINE[@]}"; do
         sx=$(scaled 18 "$f") sy=$(scaled 6 "$f") sz=$(scaled 8 "$f") dc=$(scaled 36 "$f") da=$(scaled 4 "$f")
         mesh=(--set "Mesh/Bodies/Slab/Box/Elements X=$sx" --set "Mesh/Bodies/Slab/Box/Elements Y=$sy"
@@ -85,8 +80,7 @@ for c in "${CASES[@]}"; do
               --set "Mesh/Bodies/Die/Cylindrical Shell Sector/Axial Elements=$da")
         row "ironing (METIS 4)" "slab $sx x $sy x $sz, die 1 x $dc x $da" "$IRONING_STEPS" examples/ironing_3d.xml \
           "$OUT/ironing_3d_monolithic.xml" "${mesh[@]}"
-      done
-      DD_EXTRA=() ;;
+      done ;;
     *) echo "contact_3d.sh: unknown case '$c' in CASES (rings, ironing)" >&2; exit 2 ;;
   esac
 done
