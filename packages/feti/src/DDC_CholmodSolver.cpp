@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "DDC_Error.hpp"
+#include "DDC_LocalCsr.hpp"
 #include "DDC_MumpsSolver.hpp"
 #include "DDC_Parameters.hpp"
 
@@ -178,25 +179,28 @@ struct CholmodSolver::Impl {
     if (cm.get() != colMap.get() && !cm->isSameAs(*colMap)) return false;
     if (A->getNodeNumEntries() != cols.size()) return false;
     double* x = S ? static_cast<double*>(S->x) : nullptr;
-    CrsMatrix::local_inds_host_view_type inds;
-    CrsMatrix::values_host_view_type vals;
-    for (size_t lr = 0; lr < n; ++lr) {
-      A->getLocalRowView(static_cast<LO>(lr), inds, vals);
-      const size_t first = rowPtr[lr], len = inds.extent(0);
-      if (len != rowPtr[lr + 1] - first) return false;
-      for (size_t e = 0; e < len; ++e) {
-        if (inds(e) != cols[first + e]) return false;
-        const Long s = slot[first + e];
-        if (s < 0) continue;
-        x[s] = vals(e);
-        if (bad.empty() && !std::isfinite(vals(e))) {
-          std::ostringstream os;
-          os << "entry (" << A->getRowMap()->getGlobalElement(static_cast<LO>(lr)) << ", "
-             << colMap->getGlobalElement(inds(e)) << ") is " << vals(e);
-          bad = os.str();
+    {
+      const LocalCsr a(*A);
+      for (size_t lr = 0; lr < n; ++lr) {
+        const size_t first = rowPtr[lr], len = a.ptr[lr + 1] - a.ptr[lr];
+        if (len != rowPtr[lr + 1] - first) return false;
+        for (size_t e = 0; e < len; ++e) {
+          const size_t ae = a.ptr[lr] + e;
+          if (a.col[ae] != cols[first + e]) return false;
+          const Long s = slot[first + e];
+          if (s < 0) continue;
+          x[s] = a.val[ae];
+          if (bad.empty() && !std::isfinite(a.val[ae])) {
+            std::ostringstream os;
+            os << "entry (" << A->getRowMap()->getGlobalElement(static_cast<LO>(lr)) << ", "
+               << colMap->getGlobalElement(a.col[ae]) << ") is " << a.val[ae];
+            bad = os.str();
+          }
         }
       }
     }
+    CrsMatrix::local_inds_host_view_type inds;
+    CrsMatrix::values_host_view_type vals;
     if (fallback && !renumbered.is_null()) {
       renumbered->resumeFill();
       std::vector<GO> gc;

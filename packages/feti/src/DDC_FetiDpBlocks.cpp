@@ -11,6 +11,7 @@
 
 #include "DDC_Error.hpp"
 #include "DDC_FetiDpImpl.hpp"
+#include "DDC_LocalCsr.hpp"
 
 namespace ddc {
 
@@ -87,13 +88,11 @@ void diagonalOf(const CrsMatrix& A, LO n, std::vector<double>& d) {
   d.assign(n, 0.0);
   const auto& rowMap = *A.getRowMap();
   const auto& colMap = *A.getColMap();
-  CrsMatrix::local_inds_host_view_type inds;
-  CrsMatrix::values_host_view_type vals;
+  const LocalCsr a(A);
   for (LO lr = 0; lr < n; ++lr) {
-    A.getLocalRowView(lr, inds, vals);
     const GO row = rowMap.getGlobalElement(lr);
-    for (size_t e = 0; e < inds.extent(0); ++e)
-      if (colMap.getGlobalElement(inds(e)) == row) d[row] += vals(e);
+    for (size_t e = a.ptr[lr]; e < a.ptr[lr + 1]; ++e)
+      if (colMap.getGlobalElement(a.col[e]) == row) d[row] += a.val[e];
   }
 }
 
@@ -124,19 +123,17 @@ std::string DualOperator::factor(const Context& ctx, Subdomain& s, size_t ls, bo
     lp.KPP.assign(lp.schur ? 0 : size_t(s.np) * s.np, 0.0);
     s.diag.assign(s.n, 0.0);
     std::vector<double> colSum(s.nr, 0.0);
-    CrsMatrix::local_inds_host_view_type inds;
-    CrsMatrix::values_host_view_type vals;
+    const LocalCsr k(*s.K);
     std::vector<GO> rc;
     std::vector<double> rv;
     bool patternOk = true;
     for (LO lr = 0; lr < s.n; ++lr) {
       const LO row = static_cast<LO>(rowMap.getGlobalElement(lr));
-      s.K->getLocalRowView(lr, inds, vals);
       rc.clear(), rv.clear();
       const LO rr = s.rIdx[row], pr = s.pIdx[row];
-      for (size_t e = 0; e < inds.extent(0); ++e) {
-        const LO col = static_cast<LO>(colMap.getGlobalElement(inds(e)));
-        const double v = vals(e);
+      for (size_t e = k.ptr[lr]; e < k.ptr[lr + 1]; ++e) {
+        const LO col = static_cast<LO>(colMap.getGlobalElement(k.col[e]));
+        const double v = k.val[e];
         if (col == row) s.diag[row] += v;
         const LO rc2 = s.rIdx[col], pc = s.pIdx[col];
         if (rr != kNone && rc2 != kNone) {

@@ -11,6 +11,7 @@
 
 #include "DDC_Error.hpp"
 #include "DDC_FetiDpImpl.hpp"
+#include "DDC_LocalCsr.hpp"
 #include "DDC_MpiRecords.hpp"
 
 namespace ddc {
@@ -53,21 +54,19 @@ void Preconditioner::factor(const Context& ctx, const std::vector<Subdomain>& su
     b.Kii->resumeFill();
     b.Kii->setAllToScalar(0.0);
     b.KID.clear(), b.KDI.clear(), b.KDD.clear();
-    CrsMatrix::local_inds_host_view_type inds;
-    CrsMatrix::values_host_view_type vals;
+    const LocalCsr k(*s.K);
     std::vector<GO> ic;
     std::vector<double> iv;
     bool patternOk = true;
     for (LO lr = 0; lr < s.n; ++lr) {
       const LO rr = s.rIdx[static_cast<LO>(rowMap.getGlobalElement(lr))];
       if (rr == kNone) continue;
-      s.K->getLocalRowView(lr, inds, vals);
       ic.clear(), iv.clear();
       const LO ir = s.iIdx[rr], dr = s.dIdx[rr];
-      for (size_t e = 0; e < inds.extent(0); ++e) {
-        const LO rc = s.rIdx[static_cast<LO>(colMap.getGlobalElement(inds(e)))];
+      for (size_t e = k.ptr[lr]; e < k.ptr[lr + 1]; ++e) {
+        const LO rc = s.rIdx[static_cast<LO>(colMap.getGlobalElement(k.col[e]))];
         if (rc == kNone) continue;
-        const double v = vals(e);
+        const double v = k.val[e];
         const LO icol = s.iIdx[rc], dc = s.dIdx[rc];
         if (ir != kNone && icol != kNone) ic.push_back(icol), iv.push_back(v);
         else if (ir != kNone) b.KID.push_back(Triplet{ir, dc, v});

@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
+#include "DDC_LocalCsr.hpp"
 #include "DDC_MapOwners.hpp"
 #include "DDC_MpiRecords.hpp"
 
@@ -346,8 +348,7 @@ void ChangeOfBasis::tCol(LO a, std::vector<std::pair<LO, double>>& out) const {
 void ChangeOfBasis::multiply(const CrsMatrix& K, bool values) {
   const auto& rowMap = *K.getRowMap();
   const auto& colMap = *K.getColMap();
-  CrsMatrix::local_inds_host_view_type inds;
-  CrsMatrix::values_host_view_type vals;
+  const LocalCsr k(K);
   std::vector<double> acc(size_t(n_), 0.0);
   std::vector<char> mark(size_t(n_), 0);
   std::vector<LO> touched;
@@ -356,14 +357,13 @@ void ChangeOfBasis::multiply(const CrsMatrix& K, bool values) {
   std::vector<std::vector<std::pair<LO, double>>> kt(static_cast<size_t>(n_));
   for (LO lr = 0; lr < n_; ++lr) {
     const LO i = LO(rowMap.getGlobalElement(lr));
-    K.getLocalRowView(lr, inds, vals);
     touched.clear();
-    for (size_t e = 0; e < inds.extent(0); ++e) {
-      const LO j = LO(colMap.getGlobalElement(inds(e)));
+    for (size_t e = k.ptr[lr]; e < k.ptr[lr + 1]; ++e) {
+      const LO j = LO(colMap.getGlobalElement(k.col[e]));
       tRow(j, t);
       for (const auto& [b, tb] : t) {
         if (!mark[b]) mark[b] = 1, touched.push_back(b);
-        acc[b] += vals(e) * tb;
+        acc[b] += k.val[e] * tb;
       }
     }
     auto& row = kt[i];
@@ -374,13 +374,10 @@ void ChangeOfBasis::multiply(const CrsMatrix& K, bool values) {
   // from its own graph (row map = column map: local column = DOF).
   if (!values) hatCols_.assign(size_t(n_), {});
   std::vector<double> h;
-  std::vector<size_t> off;
-  CrsMatrix::local_inds_host_view_type hInds;
-  CrsMatrix::values_host_view_type hVals;
+  std::optional<LocalCsr> hc;
   if (values) {
-    off.assign(size_t(n_) + 1, 0);
-    for (LO a = 0; a < n_; ++a) off[a + 1] = off[a] + hat_->getNumEntriesInLocalRow(a);
-    h.assign(off.back(), 0.0);
+    hc.emplace(*hat_);
+    h.assign(hc->ptr[n_], 0.0);
   }
   for (LO a = 0; a < n_; ++a) {
     tCol(a, t);
@@ -394,16 +391,17 @@ void ChangeOfBasis::multiply(const CrsMatrix& K, bool values) {
       hatCols_[a] = touched;
       std::sort(hatCols_[a].begin(), hatCols_[a].end());
     } else {
-      hat_->getLocalRowView(a, hInds, hVals);
-      for (size_t q = 0; q < hInds.extent(0); ++q) h[off[a] + q] = acc[hInds(q)];
+      for (size_t q = hc->ptr[a]; q < hc->ptr[a + 1]; ++q) h[q] = acc[hc->col[q]];
     }
     for (LO b : touched) acc[b] = 0.0, mark[b] = 0;
   }
   if (!values) return;
+  hc.reset();
   hat_->resumeFill();
-  for (LO a = 0; a < n_; ++a) {
-    hat_->getLocalRowView(a, hInds, hVals);
-    hat_->replaceLocalValues(a, LO(hInds.extent(0)), h.data() + off[a], hInds.data());
+  {
+    // The values in CSR order, written in one pass (the graph is static).
+    auto A = hat_->getLocalMatrixHost();
+    std::copy(h.begin(), h.end(), A.values.data());
   }
   hat_->fillComplete(hat_->getDomainMap(), hat_->getRangeMap());
 }
