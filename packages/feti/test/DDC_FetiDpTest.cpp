@@ -765,6 +765,23 @@ TEST(FetiDp, ExtraRowsMatchTheSaddlePointSolveWithEdgeConstraints) { checkExtraR
 
 // ---- extra rows between bodies of different stiffness ---------------------------
 
+/// Insert the local rows of `src` into `dst`, rows and columns shifted by
+/// `shift` global ids (a block of a block-diagonal matrix).
+void insertShifted(const CrsMatrix& src, GO shift, CrsMatrix& dst) {
+  CrsMatrix::local_inds_host_view_type inds;
+  CrsMatrix::values_host_view_type vals;
+  std::vector<GO> cols;
+  std::vector<double> v;
+  for (LO l = 0; l < LO(src.getNodeNumRows()); ++l) {
+    src.getLocalRowView(l, inds, vals);
+    cols.clear(), v.clear();
+    for (size_t e = 0; e < inds.extent(0); ++e)
+      cols.push_back(src.getColMap()->getGlobalElement(inds(e)) + shift), v.push_back(vals(e));
+    dst.insertGlobalValues(src.getRowMap()->getGlobalElement(l) + shift, Teuchos::ArrayView<const GO>(cols),
+                           Teuchos::ArrayView<const double>(v));
+  }
+}
+
 /// One subdomain per pair: the first `nLocalA` of `subs` are body A's, the
 /// rest body B's (ids shifted by `idB`); A's (a, b) takes B's (Sx-1-a, b),
 /// which must be on this rank, its DOFs appended and its matrix placed
@@ -786,18 +803,8 @@ std::vector<FetiSubdomain> pairedSubdomains(const std::vector<FetiSubdomain>& su
     m.coordinates.insert(m.coordinates.end(), B.coordinates.begin(), B.coordinates.end());
     const LO nA = LO(A.dofs.size()), n = LO(m.dofs.size());
     auto K = rcp(new CrsMatrix(rcp(new Map(n, 0, selfComm())), 18));
-    for (const auto& [blk, shift] : {std::make_pair(A.K, LO(0)), std::make_pair(B.K, nA)}) {
-      CrsMatrix::local_inds_host_view_type inds;
-      CrsMatrix::values_host_view_type vals;
-      for (LO r = 0; r < LO(blk->getNodeNumRows()); ++r) {
-        blk->getLocalRowView(r, inds, vals);
-        std::vector<GO> cols;
-        std::vector<double> v;
-        for (size_t e = 0; e < inds.extent(0); ++e)
-          cols.push_back(blk->getColMap()->getGlobalElement(inds(e)) + shift), v.push_back(vals(e));
-        K->insertGlobalValues(GO(r + shift), Teuchos::ArrayView<const GO>(cols), Teuchos::ArrayView<const double>(v));
-      }
-    }
+    insertShifted(*A.K, 0, *K);
+    insertShifted(*B.K, nA, *K);
     K->fillComplete();
     m.K = K;
     out.push_back(std::move(m));
@@ -900,20 +907,8 @@ std::pair<int, double> twoBodiesAcrossAStiffnessJump(double ratio, const std::st
 
   // Reference: the block-diagonal K of the two bodies.
   auto K = rcp(new CrsMatrix(owned, 24));
-  for (const auto& [pb, shift] : {std::make_pair(&A, GO(0)), std::make_pair(&B, nA)}) {
-    auto Kb = pb->globalK();
-    CrsMatrix::local_inds_host_view_type inds;
-    CrsMatrix::values_host_view_type vals;
-    for (LO l = 0; l < LO(Kb->getNodeNumRows()); ++l) {
-      Kb->getLocalRowView(l, inds, vals);
-      std::vector<GO> cols;
-      std::vector<double> v;
-      for (size_t e = 0; e < inds.extent(0); ++e)
-        cols.push_back(Kb->getColMap()->getGlobalElement(inds(e)) + shift), v.push_back(vals(e));
-      K->insertGlobalValues(Kb->getRowMap()->getGlobalElement(l) + shift, Teuchos::ArrayView<const GO>(cols),
-                            Teuchos::ArrayView<const double>(v));
-    }
-  }
+  insertShifted(*A.globalK(), 0, *K);
+  insertShifted(*B.globalK(), nA, *K);
   K->fillComplete();
   Vector xAll = saddlePointReference(*K, b, rows);
   auto xa = xAll.getData();
