@@ -58,6 +58,21 @@ struct Options {
   bool help = false, printParameters = false;
 };
 
+/// The value of --output-dir or --set as given, checked before anything else
+/// reads it: an empty directory (an unset shell variable) would otherwise
+/// mean the default directory and replace the result there; a --set without
+/// '=' (its value given as a separate argument) would make the value look
+/// like a second input file.
+void checkOptionValue(const std::string& option, const std::string& value) {
+  if (option == "--output-dir")
+    DDC_INPUT_REQUIRE(!value.empty(), "option --output-dir needs a directory, got an empty name (an unset shell "
+                                      "variable?); leave the option out for the default ddcontact-out/<input stem>");
+  if (option == "--set")
+    DDC_INPUT_REQUIRE(value.find('=') != std::string::npos && value.find('=') > 0,
+                      "option --set needs PATH=VALUE in one argument, got '"
+                          << value << "' (quote a value with spaces: --set \"Load Stepping/Number of Steps=50\")");
+}
+
 Options parse(const std::vector<std::string>& args) {
   Options o;
   const int argc = static_cast<int>(args.size());
@@ -70,10 +85,13 @@ Options parse(const std::vector<std::string>& args) {
     } else if (a == "--output-dir" || a == "--set") {
       DDC_INPUT_REQUIRE(i + 1 < argc, "option " << a << " needs a value\n" << kUsage);
       (a == "--set" ? o.sets.emplace_back() : o.outputDir) = args[++i];
+      checkOptionValue(a, args[i]);
     } else if (a.rfind("--output-dir=", 0) == 0) {
       o.outputDir = a.substr(13);
+      checkOptionValue("--output-dir", o.outputDir);
     } else if (a.rfind("--set=", 0) == 0) {
       o.sets.push_back(a.substr(6));
+      checkOptionValue("--set", o.sets.back());
     } else if (!a.empty() && a[0] == '-') {
       DDC_THROW(ddc::InputError, "unknown option '" << a << "'\n" << kUsage);
     } else {
