@@ -316,6 +316,13 @@ void requireSameFilesOnEveryRank(const Teuchos::Comm<int>& comm,
   const int rank = comm.getRank();
   // The file list is the same on every rank (it comes from the parameters).
   for (const auto& [param, file] : files) {
+    // A directory is not an unreadable file: say what it is (the readers
+    // saw an empty file).
+    std::error_code ec;
+    const int directory = fs::is_directory(file, ec) ? 1 : 0;
+    int directories = 0;
+    Teuchos::reduceAll<int, int>(comm, Teuchos::REDUCE_SUM, directory, Teuchos::outArg(directories));
+    DDC_INPUT_REQUIRE(directories == 0, "'" << param << "' = '" << file << "' is a directory, expected a file");
     std::string bytes;
     const int readable = readWhole(file, bytes) ? 1 : 0;
     int readers = 0;
