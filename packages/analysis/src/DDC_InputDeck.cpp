@@ -183,7 +183,23 @@ ElementDepth maxElementDepth(const std::string& text, int limit) {
   return deepest;
 }
 
-Teuchos::RCP<Teuchos::ParameterList> parseDeck(const std::string& text, const std::string& fileName) {
+/// A deck must be UTF-8 (or ASCII): a UTF-16 or UTF-32 file (as some
+/// Windows editors save one) is named as such instead of failing in the XML
+/// parser on its NUL bytes. A UTF-8 byte-order mark is skipped.
+static std::string utf8Text(const std::string& text, const std::string& fileName) {
+  const auto starts = [&](const char* bom, std::size_t n) { return text.compare(0, n, bom, n) == 0; };
+  if (starts("\xEF\xBB\xBF", 3)) return text.substr(3);
+  const char* encoding = starts("\x00\x00\xFE\xFF", 4) || starts("\xFF\xFE\x00\x00", 4) ? "UTF-32"
+                         : starts("\xFE\xFF", 2) || starts("\xFF\xFE", 2)                     ? "UTF-16"
+                         : text.find('\0') != std::string::npos                                ? "not UTF-8 (it contains NUL bytes; UTF-16 without a byte-order mark?)"
+                                                                                                : nullptr;
+  DDC_INPUT_REQUIRE(encoding == nullptr, "input file '" << fileName << "' is " << encoding
+                                                        << "; a deck must be UTF-8 (or ASCII): save it as UTF-8");
+  return text;
+}
+
+Teuchos::RCP<Teuchos::ParameterList> parseDeck(const std::string& rawText, const std::string& fileName) {
+  const std::string text = utf8Text(rawText, fileName);
   const ElementDepth d = maxElementDepth(text, kMaxDeckDepth);
   DDC_INPUT_REQUIRE(d.depth <= kMaxDeckDepth,
                     "input file '" << fileName << "': elements nest more than " << kMaxDeckDepth

@@ -4,7 +4,8 @@
 // Teuchos::getParametersFromXmlFile() is lenient: it reads "3abc" as the int
 // 3, "2.9" as the int 2, "abc" as the double 0, 99999999999 as a wrapped-
 // around int, and keeps the last of two parameters with the same name in one
-// list. parseDeck() reads a deck in four steps instead:
+// list. parseDeck() reads a deck in four steps instead (after skipping a
+// UTF-8 byte-order mark and refusing UTF-16 / UTF-32 text by name):
 //  1. a lexical pre-scan refuses elements nested deeper than kMaxDeckDepth,
 //     before Teuchos builds anything: its XML parser is iterative, but the
 //     tree it builds is destroyed, converted to a ParameterList and copied
@@ -60,7 +61,9 @@ ElementDepth maxElementDepth(const std::string& text, int limit);
 /// collective.
 /// \param fileName the deck's file name, for messages.
 /// \return the parameters, as Teuchos::XMLParameterListReader reads them.
-/// \throws InputError naming `fileName`: nesting deeper than kMaxDeckDepth,
+/// \throws InputError naming `fileName`: text that is not UTF-8 (UTF-16,
+///         UTF-32, NUL bytes; a UTF-8 byte-order mark is skipped), nesting
+///         deeper than kMaxDeckDepth,
 ///         malformed XML ("input file 'X' is not a valid Teuchos XML
 ///         parameter list: ..."), an element other than <ParameterList> /
 ///         <Parameter>, a missing name, type or value, an unsupported type, a
