@@ -310,6 +310,8 @@ void parseElements(MshLines& in, MshData& d) {
   d.hasElements = true;
   const auto h = in.tokens("Elements", 4, "'numEntityBlocks numElements minElementTag maxElementTag'");
   const int nb = in.toCount(h[0], "number of entity blocks");
+  const int total = in.toCount(h[1], "number of elements");
+  int read = 0;
   for (int b = 0; b < nb; ++b) {
     const auto t = in.tokens("Elements", 4, "'entityDim entityTag elementType numElementsInBlock'");
     ElementBlock blk;
@@ -343,7 +345,11 @@ void parseElements(MshLines& in, MshData& d) {
     }
     if (blk.numNodes < 0) blk.tags.assign(n, 0);  // remember the count only
     d.blocks.push_back(std::move(blk));
+    read += n;
   }
+  if (read != total)
+    in.fail("section $Elements announces " + std::to_string(total) + " elements but its blocks hold " +
+            std::to_string(read));
   in.expectEnd("Elements");
 }
 

@@ -234,6 +234,9 @@ TEST(Gmsh, RejectsBadSideSetsAndMalformedFiles) {
               HasSubstr("section $Elements ends early"));
   EXPECT_THAT(readError(writeTemp("count2.msh", replaced(base, "6 6 10 60\n", "6 7 10 60\n"))),
               HasSubstr("announces 7 nodes"));
+  // A header count that disagrees with the blocks (was accepted silently).
+  EXPECT_THAT(readError(writeTemp("count3.msh", replaced(base, "4 5 1 5\n", "4 6 1 5\n"))),
+              HasSubstr("section $Elements announces 6 elements but its blocks hold 5"));
   EXPECT_THAT(readError(writeTemp("short.msh", replaced(base, "5 20 50 60 30\n", "5 20 50 60\n"))),
               HasSubstr("element 5 of type 3 must list 4 node tags, found 3"));
   EXPECT_THAT(readError(writeTemp("num.msh", replaced(base, "2 1 0\n", "2 x 0\n"))),
