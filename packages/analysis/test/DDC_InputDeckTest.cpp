@@ -174,8 +174,17 @@ TEST(ParseDeck, RepositoryDecksReadAsTeuchosReadsThem) {
         ++refused;
         continue;
       }
+      if (name == "deck_utf16.xml") {  // refused, naming the encoding (Teuchos cannot read it either)
+        EXPECT_THAT(inputErrorOf([&] { ddc::parseDeck(readText(e.path()), name); }),
+                    StartsWith("input file '" + name + "' is UTF-16"));
+        ++refused;
+        continue;
+      }
       const auto strict = ddc::parseDeck(readText(e.path()), e.path().string());
-      const auto teuchos = Teuchos::getParametersFromXmlFile(e.path().string());
+      // small_block.xml saved with a UTF-8 byte-order mark, which Teuchos
+      // stumbles on: it reads as small_block.xml.
+      const fs::path same = name == "deck_utf8_bom.xml" ? e.path().parent_path() / "small_block.xml" : e.path();
+      const auto teuchos = Teuchos::getParametersFromXmlFile(same.string());
       if (name == "final_load_factor_nan.xml") {  // nan != nan: haveSameValues() cannot compare it
         EXPECT_TRUE(std::isnan(strict->sublist("Load Stepping").get<double>("Final Load Factor")));
         continue;
