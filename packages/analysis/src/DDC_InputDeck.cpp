@@ -189,10 +189,13 @@ ElementDepth maxElementDepth(const std::string& text, int limit) {
 static std::string utf8Text(const std::string& text, const std::string& fileName) {
   const auto starts = [&](const char* bom, std::size_t n) { return text.compare(0, n, bom, n) == 0; };
   if (starts("\xEF\xBB\xBF", 3)) return text.substr(3);
-  const char* encoding = starts("\x00\x00\xFE\xFF", 4) || starts("\xFF\xFE\x00\x00", 4) ? "UTF-32"
-                         : starts("\xFE\xFF", 2) || starts("\xFF\xFE", 2)                     ? "UTF-16"
-                         : text.find('\0') != std::string::npos                                ? "not UTF-8 (it contains NUL bytes; UTF-16 without a byte-order mark?)"
-                                                                                                : nullptr;
+  const char* encoding = nullptr;
+  if (starts("\x00\x00\xFE\xFF", 4) || starts("\xFF\xFE\x00\x00", 4))
+    encoding = "UTF-32";
+  else if (starts("\xFE\xFF", 2) || starts("\xFF\xFE", 2))
+    encoding = "UTF-16";
+  else if (text.find('\0') != std::string::npos)
+    encoding = "not UTF-8 (it contains NUL bytes; UTF-16 without a byte-order mark?)";
   DDC_INPUT_REQUIRE(encoding == nullptr, "input file '" << fileName << "' is " << encoding
                                                         << "; a deck must be UTF-8 (or ASCII): save it as UTF-8");
   return text;
