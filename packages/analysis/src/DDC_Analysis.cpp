@@ -362,8 +362,9 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
       DDC_INPUT_REQUIRE(supported || !inContact[b] || !fetiStrategy,
                         "body '" << mesh->body(b).name
                                  << "' is held only by contact: with Solver/Strategy = FETI-DP every body must be "
-                                    "supported by its own prescribed displacements (Boundary Conditions: x and y, "
-                                    "at least two nodes), because the contact rows are dual constraints and cannot "
+                                    "supported by its own prescribed displacements (Boundary Conditions: "
+                                 << (dim == 2 ? "x and y, at least two nodes" : "x, y and z, at least three nodes not on one line")
+                                 << "), because the contact rows are dual constraints and cannot "
                                     "fix the rigid-body modes of the subdomain problems; use Solver/Strategy = "
                                     "Monolithic, or prescribe displacements on the body");
       DDC_INPUT_REQUIRE(inContact[b] || supported,
@@ -496,12 +497,25 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
     const auto start = std::chrono::steady_clock::now();
     // One element pass: the residual and what the strategy solves with (the
     // global tangent, or the subdomain stiffness matrices).
+    AssemblyResult assembled;
     try {
-      strategy_->assemble(*u, lambda1, *r, it == 0 ? dp.get() : nullptr);
+      assembled = strategy_->assemble(*u, lambda1, *r, it == 0 ? dp.get() : nullptr);
     } catch (const InadmissibleDeformation& e) {
       rec.failure = std::string("Newton iteration ") + std::to_string(it) + ": " + e.what();
       progress("    " + rec.failure);
       return false;
+    }
+    // A rigid motion nothing restrains makes the tangent singular; a direct
+    // solver may factorise it anyway and return a drift along it (the same
+    // on every rank: the check ends with a reduction).
+    if (!assembled.freeMotions.empty()) {
+      std::ostringstream os;
+      os << "the problem is singular in step " << rec.step << " (load factor " << lambda0 << " -> " << lambda1
+         << "), Newton iteration " << it << ": no prescribed displacement and no active contact restrains "
+         << assembled.freeMotions
+         << ". Prescribe displacements (Boundary Conditions) that hold these motions; frictionless contact "
+            "holds a body only along its contact normals (doc/user-guide.md, \"A singular problem\")";
+      throw SolverError(os.str());
     }
     timing_.assembly += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double rnorm = r->norm2();

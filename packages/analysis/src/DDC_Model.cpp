@@ -173,6 +173,11 @@ void Model::buildDofNumbering() {
   }
   lmDof_.assign(numSlots, -1);
   for (size_t k = 0; k < numSlots; ++k) lmDof_[k] = next[contact_->slotOwner(static_cast<int>(k))]++;
+  dofEntity_.assign(numGlobalDofs_, 0);
+  for (int n = 0; n < mesh.numNodes(); ++n)
+    for (int c = 0; c < d; ++c) dofEntity_[nodeDof_[n] + c] = n;
+  for (size_t k = 0; k < numSlots; ++k) dofEntity_[lmDof_[k]] = -1 - static_cast<int>(k);
+  rigidCheck_ = std::make_unique<RigidMotionCheck>(mesh, static_cast<int>(numSlots));
   ownedMap_ = Teuchos::rcp(new Map(numGlobalDofs_, static_cast<size_t>(count[me]), 0, comm_));
 }
 
@@ -424,6 +429,18 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
       sys.K->setAllToScalar(0.0);
     }
 
+  // The rigid-motion check (AssemblyResult::freeMotions) with every tangent.
+  RigidMotionCheck* rigid = (K || subdomains) ? rigidCheck_.get() : nullptr;
+  if (rigid) rigid->reset();
+  auto position = [&](int n) {  // x = X + u of a node whose DOFs are in the overlap map
+    std::array<double, 3> x = mesh.coord(n);
+    for (int c = 0; c < mesh.dim(); ++c) {
+      const LO l = overlapMap_->getLocalElement(nodeDof_[n] + c);
+      if (l != Teuchos::OrdinalTraits<LO>::invalid()) x[c] += ud[l];
+    }
+    return x;
+  };
+
   std::vector<LO> lids;
   std::vector<char> con;
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Ke;
@@ -523,6 +540,15 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
         if (failedElement >= 0) return;  // the assembly is thrown away below
         lids.resize(d.size());
         for (size_t a = 0; a < d.size(); ++a) lids[a] = overlapMap_->getLocalElement(d[a]);
+        // The multiplier's row (last) of the tangent is the contact row C_k.
+        const int last = static_cast<int>(d.size()) - 1;
+        if (rigid && last > 0 && dofEntity_[d[last]] < 0)
+          for (int a = 0; a < last; ++a) {
+            const int n = dofEntity_[d[a]];
+            if (n >= 0 && r.tangent(last, a) != 0.0)
+              rigid->addRowEntry(-1 - dofEntity_[d[last]], n, static_cast<int>(d[a] - nodeDof_[n]), position(n),
+                                 r.tangent(last, a));
+          }
         scatter(r);
       });
     } catch (const InadmissibleDeformation& ex) {
@@ -546,6 +572,14 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
 
   const GO first = ownedMap_->getMinGlobalIndex();
   const size_t numOwned = ownedMap_->getNodeNumElements();
+  if (rigid) {
+    for (size_t l = 0; l < numOwned; ++l) {
+      const GO g = first + static_cast<GO>(l);
+      const int n = dofEntity_[g];
+      if (constrained_[g] && n >= 0) rigid->addPrescribed(n, static_cast<int>(g - nodeDof_[n]), position(n));
+    }
+    result.freeMotions = rigid->freeMotions(*comm_);
+  }
   if (fint) {
     fd = Teuchos::null;
     fint->putScalar(0.0);

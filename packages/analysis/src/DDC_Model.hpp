@@ -22,6 +22,7 @@
 #include "DDC_FetiDpSolver.hpp"
 #include "DDC_Mesh.hpp"
 #include "DDC_Partition.hpp"
+#include "DDC_RigidMotionCheck.hpp"
 
 namespace ddc {
 
@@ -38,6 +39,11 @@ struct SubdomainSink {
 /// Results of one assembly.
 struct AssemblyResult {
   double strainEnergy = 0.0;  ///< Σ U_e over the continuum elements (global)
+  /// With a tangent (K or subdomain matrices): the rigid-body motions that no
+  /// prescribed displacement and no active contact row restrains, described
+  /// for a message (RigidMotionCheck::freeMotions()); "" if none. Non-empty
+  /// means the tangent is singular. Equal on every rank.
+  std::string freeMotions;
 };
 
 /// The discrete model shared by every strategy. Each rank holds the whole
@@ -195,6 +201,9 @@ class Model {
   std::vector<int> nodeOwner_;
   std::vector<GO> nodeDof_;  ///< first DOF of each node
   std::vector<GO> lmDof_;    ///< DOF of each contact slot's multiplier
+  /// Per global DOF: its node (≥ 0), or −1 − k for the multiplier of slot k.
+  std::vector<int> dofEntity_;
+  mutable std::unique_ptr<RigidMotionCheck> rigidCheck_;  ///< see AssemblyResult::freeMotions
   GO numGlobalDofs_ = 0;
   std::vector<char> constrained_;
   std::vector<std::pair<int, int>> constraintSource_;
