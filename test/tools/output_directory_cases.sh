@@ -18,8 +18,10 @@
 #   foreign       directories and files DDContact did not write (the output
 #                 directory itself, reached directly or through "P/sub/..",
 #                 files added to an earlier result, a D.partial, D.old or
-#                 D.lock of someone else's): every rank exits non-zero at
-#                 start naming the path, and every foreign file is still there.
+#                 D.lock of someone else's, and a D.lock that is a symbolic
+#                 link, an empty file, a FIFO or a directory): every rank
+#                 exits non-zero at start naming the path, and every foreign
+#                 file is still there.
 # DECK is a small deck with VTK output (e.g. test/inputs/small_block.xml).
 set -u
 case_name=$1 np=$2 app=$3 deck=$4 work=$5
@@ -221,6 +223,30 @@ foreign)
   echo "someone's file" >"$out.lock"
   check foreign_lock "$out" "'$out.lock' exists and was not written by ddcontact" "$out.lock"
   rm "$out.lock"
+  # The lock is never opened through a link: a link to someone's file (which
+  # the run would have locked, overwritten and unlinked at its end) or a
+  # dangling one (whose target it would have created) is refused.
+  ln -s "$mine/thesis.tex" "$out.lock"
+  check lock_symlink "$out" "'$out.lock' is a symbolic link.*does not follow links" "$mine"
+  [ -L "$out.lock" ] || fail "lock_symlink: the link '$out.lock' was removed"
+  rm "$out.lock"
+  ln -s "$work/nowhere" "$out.lock"
+  check lock_dangling_symlink "$out" "'$out.lock' is a symbolic link" "$mine"
+  [ -e "$work/nowhere" ] && fail "lock_dangling_symlink: the link's target '$work/nowhere' was created"
+  rm "$out.lock"
+  # An empty file nobody holds is not a lock DDContact made (it used to be
+  # taken over and deleted at the end of the run).
+  : >"$out.lock"
+  check lock_empty_foreign "$out" "'$out.lock' exists, is empty and no ddcontact run holds it" "$out.lock"
+  [ -f "$out.lock" ] || fail "lock_empty_foreign: '$out.lock' was removed"
+  rm "$out.lock"
+  mkfifo "$out.lock"
+  check lock_fifo "$out" "'$out.lock' exists and is not a regular file" "$mine"
+  [ -p "$out.lock" ] || fail "lock_fifo: the FIFO '$out.lock' was removed"
+  rm "$out.lock"
+  mkdir "$out.lock"
+  check lock_directory "$out" "'$out.lock' exists and is not a regular file" "$mine"
+  rmdir "$out.lock" || fail "lock_directory: '$out.lock' is no longer an empty directory"
   # A regular file where the directory should be.
   echo "a file" >"$work/afile"
   check not_a_directory "$work/afile" "'$work/afile' exists and is not a directory" "$work/afile"

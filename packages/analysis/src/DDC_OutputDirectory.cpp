@@ -244,12 +244,40 @@ std::string readSmallFile(int fd) {
 /// -1 with `failure` set.
 int acquireLock(const fs::path& lock, const fs::path& final, const RunDescription& run, const std::string& started,
                 Failure& failure) {
+  // An existing empty lock file is either another run's that has just
+  // created it and not yet locked and written it, or someone else's file:
+  // wait this many times 50 ms for its creator to write it before refusing.
+  int emptyWaits = 20;
   for (int attempt = 0; attempt < 10; ++attempt) {
-    const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    // Never through a symbolic link (it would lock, write and finally
+    // unlink a file elsewhere); O_EXCL tells whether this run made the file.
+    bool created = true;
+    int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd < 0 && errno == EEXIST) {
+      created = false;
+      fd = ::open(lock.c_str(), O_RDWR | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+      if (fd < 0 && errno == ENOENT) continue;  // unlinked by its holder in between
+    }
     if (fd < 0) {
       const int err = errno;
-      failure = {Failure::Output, "cannot create the lock file '" + lock.string() + "' of output directory '" +
-                                      final.string() + "': " + std::strerror(err)};
+      if (err == ELOOP) {
+        failure = {Failure::Input, "'" + lock.string() + "' is a symbolic link; DDContact needs that name for the "
+                                   "lock of output directory '" + final.string() +
+                                   "' and does not follow links there: remove the link or choose another --output-dir"};
+        return -1;
+      }
+      if (err != EISDIR) {
+        failure = {Failure::Output, "cannot create the lock file '" + lock.string() + "' of output directory '" +
+                                        final.string() + "': " + std::strerror(err)};
+        return -1;
+      }
+    }
+    struct stat st {};
+    if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+      if (fd >= 0) ::close(fd);
+      failure = {Failure::Input, "'" + lock.string() + "' exists and is not a regular file; DDContact needs that "
+                                 "name for the lock of output directory '" + final.string() +
+                                 "': move it away or choose another --output-dir"};
       return -1;
     }
     struct flock fl {};
@@ -299,6 +327,20 @@ int acquireLock(const fs::path& lock, const fs::path& final, const RunDescriptio
       continue;
     }
     const std::string previous = readSmallFile(fd);
+    if (previous.empty() && !created) {
+      if (emptyWaits-- > 0) {
+        ::close(fd);  // let its creator lock and write it
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        --attempt;
+        continue;
+      }
+      ::close(fd);
+      failure = {Failure::Input, "'" + lock.string() + "' exists, is empty and no ddcontact run holds it; DDContact "
+                                 "needs that name for the lock of output directory '" + final.string() +
+                                 "': remove the file (if a run was killed while creating it) or choose another "
+                                 "--output-dir"};
+      return -1;
+    }
     if (!previous.empty() && previous.rfind(kLockMagic, 0) != 0) {
       ::close(fd);
       failure = {Failure::Input, "'" + lock.string() + "' exists and was not written by ddcontact; DDContact needs "
