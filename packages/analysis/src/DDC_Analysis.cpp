@@ -754,6 +754,10 @@ void Analysis::runSteps(OutputDirectory* dir) {
   double work = 0.0;
   double lambda = 0.0;
   int vtkCounter = 0;
+  auto contactWarnings = [&] {
+    for (const auto& w : model_->takeContactWarnings()) progress("warning: " + w);
+  };
+  contactWarnings();  // from the initial pairing
   for (int n = 1; n <= nsteps; ++n) {
     const double target = finalLambda * n / nsteps;
     double dl = target - lambda;
@@ -803,6 +807,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
         const auto cs = model_->contactSummary();
         if (contactNodes) convergedSlots = model_->contactSlots();
         model_->updatePairing(*u_, true, decomposed);
+        contactWarnings();
         rec.activeContacts = cs.active;
         rec.contactForce[0] = cs.force[0];
         rec.contactForce[1] = cs.force[1];
@@ -855,6 +860,10 @@ void Analysis::runSteps(OutputDirectory* dir) {
        << " bytes between ranks); slave queries: " << c[0] << " by tracking (" << c[1]
        << " fell back to the global search), " << c[2] << " by the global search";
     progress(os.str());
+    for (const auto& pair : model_->neverPairedPairs())
+      progress("warning: " + pair + " never paired a slave node in this run: no master facet within the search "
+               "radius (Contact/Search Radius) faced any of its slave nodes, so contact was not enforced there "
+               "(doc/contact.md, 'Which slave nodes pair')");
   }
   {
     // Peak resident memory per rank (Linux ru_maxrss is in KiB).

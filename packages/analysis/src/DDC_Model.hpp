@@ -173,6 +173,12 @@ class Model {
   std::string describeNonFinite(const Vector& v) const;
   /// ContactComponent::exchanges(), searchCounters(), bytesExchanged() (0 without contact).
   long exchanges() const { return contact_ ? contact_->exchanges() : 0; }
+  /// ContactComponent::takeWarnings() (none without contact).
+  std::vector<std::string> takeContactWarnings() { return contact_ ? contact_->takeWarnings() : std::vector<std::string>(); }
+  /// ContactComponent::neverPairedPairs() (none without contact).
+  std::vector<std::string> neverPairedPairs() const {
+    return contact_ ? contact_->neverPairedPairs() : std::vector<std::string>();
+  }
   std::array<long, 3> searchCounters() const;
   long bytesExchanged() const { return contact_ ? contact_->bytesExchanged() : 0; }
 

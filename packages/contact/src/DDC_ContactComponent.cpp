@@ -113,6 +113,9 @@ struct ContactComponent::Found {
   double gap = 0.0, distance = 0.0;
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   Eigen::Vector3d slaveNormal = Eigen::Vector3d::Zero();  ///< replicated search: n_s (hysteresis)
+  /// Not paired only because of the facing rule's normal test: a master
+  /// facet within the search radius does not face the slave surface.
+  bool notFacing = false;
 };
 
 /// Field values at this rank's counterpart DOFs (dof) and multipliers (lm).
@@ -784,7 +787,8 @@ struct NodePosition {
 /// The pairing of one slot, found by the owner of its slave node.
 template <int D>
 struct SlotPairing {
-  int slot, facet, pastFreeEnd, viaCorner;
+  enum Flag { kPastFreeEnd = 1, kViaCorner = 2, kNotFacing = 4 };
+  int slot, facet, flags;
   double xi[D - 1], gap, distance, n[D];
 };
 }  // namespace
@@ -888,7 +892,9 @@ std::vector<ContactComponent::Found> ContactComponent::facetPairing(
     f.facet = g;
     if (f.pastFreeEnd) continue;
     const double limit = kFacingDepthFraction * pair.masterFacets[g].depth;
-    if (facingVerdict(f.slaveNormal, f.normal, f.gap, limit) != ContactRejection::None) f.facet = -1;
+    const ContactRejection verdict = facingVerdict(f.slaveNormal, f.normal, f.gap, limit);
+    if (verdict != ContactRejection::None) f.facet = -1;
+    f.notFacing = verdict == ContactRejection::NotFacing;
   }
   return out;
 }
@@ -913,6 +919,7 @@ void ContactComponent::replicatedSearch(const std::function<Eigen::Vector3d(int)
         f.distance = c.distance;
         f.normal << c.normal, 0.0;
         f.slaveNormal << c.slaveNormal, 0.0;
+        f.notFacing = c.rejection == ContactRejection::NotFacing;
         found[p].push_back(f);
       }
     } else {
@@ -1037,6 +1044,7 @@ void ContactComponent::distributedSearchIn(const Vector& u, std::vector<std::vec
           f.gap = c.gap;
           f.distance = c.distance;
           f.normal << c.normal, 0.0;
+          f.notFacing = c.rejection == ContactRejection::NotFacing;
         }
       } else {
         std::vector<std::vector<int>> facets;
@@ -1048,7 +1056,9 @@ void ContactComponent::distributedSearchIn(const Vector& u, std::vector<std::vec
     }
     for (size_t i = 0; i < here.size(); ++i) {
       const Found& f = here[i];
-      SlotPairing<D> rec{localSlotIds[i], f.facet, int(f.pastFreeEnd), int(f.viaCorner), {}, f.gap, f.distance, {}};
+      const int flags = (f.pastFreeEnd ? SlotPairing<D>::kPastFreeEnd : 0) | (f.viaCorner ? SlotPairing<D>::kViaCorner : 0) |
+                        (f.notFacing ? SlotPairing<D>::kNotFacing : 0);
+      SlotPairing<D> rec{localSlotIds[i], f.facet, flags, {}, f.gap, f.distance, {}};
       for (int a = 0; a < D - 1; ++a) rec.xi[a] = f.xi[a];
       for (int c = 0; c < D; ++c) rec.n[c] = f.normal[c];
       for (int r = 0; r < P; ++r) results[r].push_back(rec);
@@ -1067,8 +1077,9 @@ void ContactComponent::distributedSearchIn(const Vector& u, std::vector<std::vec
   for (const auto& a : all) {
     Found& f = found[slots_[a.slot].pair][indexInPair[a.slot]];
     f.facet = a.facet;
-    f.pastFreeEnd = a.pastFreeEnd != 0;
-    f.viaCorner = a.viaCorner != 0;
+    f.pastFreeEnd = (a.flags & SlotPairing<D>::kPastFreeEnd) != 0;
+    f.viaCorner = (a.flags & SlotPairing<D>::kViaCorner) != 0;
+    f.notFacing = (a.flags & SlotPairing<D>::kNotFacing) != 0;
     for (int c = 0; c < D - 1; ++c) f.xi[c] = a.xi[c];
     f.gap = a.gap;
     f.distance = a.distance;
@@ -1189,8 +1200,52 @@ bool ContactComponent::updatePairing(const Vector& u, bool global, bool freeze, 
       }
     }
   }
+  notePairing(found);
   if (changed) buildTopology();
   return changed;
+}
+
+void ContactComponent::notePairing(const std::vector<std::vector<Found>>& found) {
+  // `found` and the slots are the same on every rank: so are the warnings.
+  everPaired_.resize(pairs_.size(), 0);
+  facingReported_.resize(pairs_.size(), 0);
+  for (size_t p = 0; p < pairs_.size(); ++p) {
+    const Pair& pair = pairs_[p];
+    int notFacing = 0, example = -1;
+    for (size_t i = 0; i < pair.slots.size() && i < found[p].size(); ++i) {
+      if (slots_[pair.slots[i]].paired()) everPaired_[p] = 1;
+      if (found[p][i].notFacing && !slots_[pair.slots[i]].paired() && notFacing++ == 0) example = int(i);
+    }
+    if (everPaired_[p] || facingReported_[p] || notFacing == 0) continue;
+    facingReported_[p] = 1;
+    const int node = slots_[pair.slots[example]].slaveNode;
+    const Eigen::Vector3d x = X_[index(node)], n = found[p][example].normal + Eigen::Vector3d::Zero();  // + 0: no "-0"
+    std::ostringstream os;
+    os << "contact pair '" << pair.path << "': none of its " << pair.slots.size() << " slave nodes pairs, and "
+       << notFacing << " of them lie within the search radius of master facets that do not face them (e.g. slave "
+       << "node " << node << " at (" << x.x() << ", " << x.y();
+    if (dim_ == 3) os << ", " << x.z();
+    os << "), nearest master facet normal (" << n.x() << ", " << n.y();
+    if (dim_ == 3) os << ", " << n.z();
+    os << ")): the master side set '" << pair.masterName << "' faces away from or across the slave side set '"
+       << pair.slaveName << "'; contact there is not enforced (doc/contact.md, 'Which slave nodes pair')";
+    warnings_.push_back(os.str());
+  }
+}
+
+std::vector<std::string> ContactComponent::takeWarnings() {
+  std::vector<std::string> out;
+  out.swap(warnings_);
+  return out;
+}
+
+std::vector<std::string> ContactComponent::neverPairedPairs() const {
+  std::vector<std::string> out;
+  for (size_t p = 0; p < pairs_.size(); ++p)
+    if (p >= everPaired_.size() || !everPaired_[p])
+      out.push_back("contact pair '" + pairs_[p].path + "' (slave '" + pairs_[p].slaveName + "', master '" +
+                    pairs_[p].masterName + "')");
+  return out;
 }
 
 void ContactComponent::checkInitialPenetration(

@@ -227,6 +227,15 @@ class ContactComponent {
   /// \return true if any slave changed its master facet (new topology);
   ///         the slots that did are appended to `changedSlots` when given.
   bool updatePairing(const Vector& u, bool global, bool freeze, std::vector<int>* changedSlots = nullptr);
+  /// Warnings from the pairings since the last call, each once per run: a
+  /// pair none of whose slave nodes has paired yet while some lie within
+  /// the search radius of master facets that do not face them (a master
+  /// side set facing away from or across the slave surface). The same on
+  /// every rank.
+  std::vector<std::string> takeWarnings();
+  /// The pairs (path and side sets) none of whose slave nodes any pairing so
+  /// far has paired: contact was never enforced on them.
+  std::vector<std::string> neverPairedPairs() const;
   /// Activate every paired slot (Initial Contact State = In Contact), except
   /// the fully prescribed ones (fullyPrescribed()).
   void activateAllPaired();
@@ -322,6 +331,9 @@ class ContactComponent {
   Eigen::Vector3d currentPosition(int id, const std::vector<double>& surfaceValues) const;
   void gatherSurface(const Vector& u, const Vector* multipliers, std::vector<double>& values) const;
   void refreshSlotGeometry(const std::vector<double>& surfaceValues);
+  /// After a pairing: the per-pair record behind takeWarnings() and
+  /// neverPairedPairs().
+  void notePairing(const std::vector<std::vector<Found>>& found);
   /// Decomposed step-end pairing: the bounding-box-limited exchange and the
   /// search of the owners of the slave nodes (one exchange).
   void distributedSearch(const Vector& u, std::vector<std::vector<Found>>& found);
@@ -364,6 +376,9 @@ class ContactComponent {
 
   std::vector<ContactNode> myNodes_;  ///< registered here, before commit()
   std::vector<Pair> pairs_;
+  std::vector<char> everPaired_;      ///< per pair: some slave node has paired (neverPairedPairs())
+  std::vector<char> facingReported_;  ///< per pair: the facing warning was given
+  std::vector<std::string> warnings_;  ///< takeWarnings()
   // Surface nodes after commit(), ascending id: replicated.
   std::vector<int> nodeIds_;
   std::vector<Eigen::Vector3d> X_;
