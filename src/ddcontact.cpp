@@ -15,10 +15,13 @@
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Tpetra_Core.hpp>
+#include <array>
 #include <chrono>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 #include <thread>
 #include <vector>
 
@@ -170,6 +173,93 @@ int run(const std::vector<std::string>& args, const Teuchos::RCP<const Teuchos::
   return 0;
 }
 
+/// Start-up handshake, before the first collective: every rank of the job
+/// must be a ddcontact. Each rank other than 0 sends rank 0 a hello and waits
+/// for its answer; rank 0 answers once every rank has said hello. A rank that
+/// runs another program (an MPMD launch such as `mpirun -np 1 ddcontact D :
+/// -np 1 other`) never says hello or answers, and instead of waiting for it
+/// for ever in the first collective the job ends after the time-out,
+/// DDCONTACT_STARTUP_TIMEOUT seconds (default 60), with a message naming the
+/// silent ranks. Returns false (rank 0 printing why) if the time-out set is
+/// not a number of seconds: every rank reads the same environment and stops.
+bool startupHandshake(MPI_Comm comm) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  double timeout = 60.0;
+  if (const char* env = std::getenv("DDCONTACT_STARTUP_TIMEOUT")) {
+    char* end = nullptr;
+    const double t = std::strtod(env, &end);
+    if (end == env || *end != '\0' || !(t > 0.0) || t > 1e6) {
+      if (rank == 0)
+        std::cerr << "ddcontact: error: environment variable DDCONTACT_STARTUP_TIMEOUT = '"
+                  << std::string(env).substr(0, 80) << "': expected a number of seconds in (0, 1e6]" << std::endl;
+      return false;
+    }
+    timeout = t;
+  }
+  if (size == 1) return true;
+  constexpr int kTag = 31415;  // below the smallest MPI_TAG_UB MPI allows (32767)
+  constexpr int kLength = 32;
+  static const char kHello[kLength] = "ddcontact start-up handshake 1";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
+  // Waits for the requests until done or the deadline; false on time-out.
+  auto wait = [&](std::vector<MPI_Request>& requests) {
+    int done = 0;
+    while (true) {
+      MPI_Testall(static_cast<int>(requests.size()), requests.data(), &done, MPI_STATUSES_IGNORE);
+      if (done) return true;
+      if (std::chrono::steady_clock::now() > deadline) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+  };
+  const char* hint =
+      "; every rank of the job must run ddcontact (an MPMD launch that starts another program on some ranks is not "
+      "supported; DDCONTACT_STARTUP_TIMEOUT sets the time-out for slow starts)";
+  if (rank == 0) {
+    std::vector<std::array<char, kLength>> hello(size - 1);
+    std::vector<MPI_Request> requests(size - 1);
+    for (int r = 1; r < size; ++r) MPI_Irecv(hello[r - 1].data(), kLength, MPI_CHAR, r, kTag, comm, &requests[r - 1]);
+    const bool all = wait(requests);
+    std::ostringstream silent, foreign;
+    for (int r = 1; r < size; ++r) {
+      if (requests[r - 1] != MPI_REQUEST_NULL) {
+        int done = 0;
+        MPI_Test(&requests[r - 1], &done, MPI_STATUS_IGNORE);
+        if (!done) {
+          silent << (silent.tellp() > 0 ? ", " : "") << r;
+          continue;
+        }
+      }
+      if (std::string(hello[r - 1].data(), strnlen(hello[r - 1].data(), kLength)) != kHello)
+        foreign << (foreign.tellp() > 0 ? ", " : "") << r;
+    }
+    if (!all || foreign.tellp() > 0) {
+      std::cerr << "ddcontact: error: the start-up handshake ";
+      if (silent.tellp() > 0) std::cerr << "heard nothing from rank(s) " << silent.str() << " within " << timeout << " s";
+      if (silent.tellp() > 0 && foreign.tellp() > 0) std::cerr << ", and ";
+      if (foreign.tellp() > 0) std::cerr << "got another program's message from rank(s) " << foreign.str();
+      std::cerr << hint << std::endl;
+      MPI_Abort(comm, 1);
+    }
+    std::vector<MPI_Request> answers(size - 1);
+    for (int r = 1; r < size; ++r) MPI_Isend(kHello, kLength, MPI_CHAR, r, kTag, comm, &answers[r - 1]);
+    MPI_Waitall(size - 1, answers.data(), MPI_STATUSES_IGNORE);
+    return true;
+  } else {
+    std::array<char, kLength> answer{};
+    std::vector<MPI_Request> requests(2);
+    MPI_Isend(kHello, kLength, MPI_CHAR, 0, kTag, comm, &requests[0]);
+    MPI_Irecv(answer.data(), kLength, MPI_CHAR, 0, kTag, comm, &requests[1]);
+    if (!wait(requests) || std::string(answer.data(), strnlen(answer.data(), kLength)) != kHello) {
+      std::cerr << "ddcontact: error on rank " << rank << ": the start-up handshake heard nothing from rank 0 within "
+                << timeout << " s" << hint << std::endl;
+      MPI_Abort(comm, 1);
+    }
+    return true;
+  }
+}
+
 /// After an exception: if every rank failed (input errors are detected
 /// identically on all ranks) they meet in a barrier and exit cleanly, rank 0
 /// printing the message. If only some ranks failed, the others are stuck in
@@ -198,6 +288,8 @@ int fail(const std::string& msg, MPI_Comm comm) {
 
 int main(int argc, char** argv) {
   Tpetra::ScopeGuard scope(&argc, &argv);
+  // Before the first collective (Teuchos::MpiComm's constructor has one).
+  if (!startupHandshake(MPI_COMM_WORLD)) return 1;
   auto comm = Tpetra::getDefaultComm();
   int status = 0;
   std::string msg;
