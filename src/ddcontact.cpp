@@ -21,6 +21,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <new>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -28,6 +29,7 @@
 #include "DDC_Analysis.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_InputDeck.hpp"
+#include "DDC_Memory.hpp"
 #include "DDC_OutputDirectory.hpp"
 #include "DDC_Parameters.hpp"
 #include "DDC_ResultFile.hpp"
@@ -167,7 +169,8 @@ int run(const std::vector<std::string>& args, const Teuchos::RCP<const Teuchos::
     const auto& m = analysis.model().mesh();
     std::cout << "ddcontact: " << o.input << ": " << m.numBodies() << " bodies, " << m.numElements()
               << " elements, " << m.dim() * m.numNodes() << " DOFs, " << analysis.model().partition().numSubdomains
-              << " subdomains on " << comm->getSize() << " ranks" << std::endl;
+              << " subdomains on " << comm->getSize() << " ranks; estimated memory "
+              << ddc::formatBytes(analysis.memoryEstimate().total()) << " per rank" << std::endl;
   }
   analysis.run(dir);
   return 0;
@@ -304,6 +307,10 @@ int main(int argc, char** argv) {
     msg = std::string("solver failure: ") + e.what();
   } catch (const ddc::OutputError& e) {
     msg = std::string("output: ") + e.what() + " (earlier results are untouched)";
+  } catch (const std::bad_alloc&) {
+    msg = "out of memory (std::bad_alloc) while " + ddc::currentActivity() + "; this rank's peak was " +
+          ddc::formatBytes(ddc::peakResidentBytes()) +
+          " (doc/user-guide.md, 'Memory': refine less, or run on more ranks or hosts)";
   } catch (const std::exception& e) {
     msg = std::string("unexpected: ") + e.what();
   }

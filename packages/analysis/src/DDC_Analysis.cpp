@@ -20,6 +20,7 @@
 #include "DDC_Gmsh.hpp"
 #include "DDC_HistoryWriter.hpp"
 #include "DDC_InputDeck.hpp"
+#include "DDC_Memory.hpp"
 #include "DDC_MeshGenerators.hpp"
 #include "DDC_ModelOutput.hpp"
 #include "DDC_OutputDirectory.hpp"
@@ -123,6 +124,11 @@ Teuchos::RCP<PL> newtonValidParameters() {
 
 Teuchos::RCP<PL> solverValidParameters() {
   auto pl = Teuchos::rcp(new PL("Solver"));
+  pl->set("Memory Check", true,
+          "Estimate the memory per rank from the mesh, the partition and the solver before building anything "
+          "(doc/user-guide.md, 'Memory') and refuse a run whose estimate exceeds what this host offers each "
+          "rank (MemAvailable, a control-group limit or ulimit -v, shared by the ranks on the host); false: "
+          "run anyway.");
   pl->set("Strategy", "Monolithic",
           "Solution strategy. Monolithic: one global system (distributed Tpetra CrsMatrix, contact "
           "multipliers appended) solved by the Linear Solver below. FETI-DP: dual-primal domain "
@@ -214,7 +220,8 @@ Teuchos::RCP<const Teuchos::ParameterList> Analysis::getValidParameters(const El
 }
 
 std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const ElementFactory& factory,
-                                const std::string& baseDirectory) {
+                                const std::string& baseDirectory, const MemoryLimit* budget,
+                                const std::string& budgetHint) {
   PL validMesh("Mesh");
   validMesh.sublist("Bodies");
   validateLevel(meshParams, validMesh, "Mesh");
@@ -223,9 +230,12 @@ std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const Elemen
   PL& bodies = meshParams.sublist("Bodies");
   const auto validBody = bodyValidParameters(factory);
   auto mesh = std::make_shared<Mesh>();
+  if (budget && std::isfinite(budget->bytes)) mesh->setMemoryBudget(budget->bytes, budget->source, budgetHint);
   for (auto it = bodies.begin(); it != bodies.end(); ++it) {
     const std::string name = bodies.name(it);
     const std::string path = "Mesh/Bodies/" + name;
+    Activity activity("building the mesh of body '" + name + "' (" + std::to_string(mesh->numNodes()) +
+                      " nodes before it)");
     DDC_INPUT_REQUIRE(bodies.isSublist(name), "'" << path << "' must be a sublist describing a body");
     PL& body = bodies.sublist(name);
     validateLevel(body, *validBody, path);
@@ -289,8 +299,16 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
   // missing or different on some ranks must fail all ranks alike.
   requireSameFilesOnEveryRank(*comm_, namedInputFiles(params, baseDirectory));
 
+  // Memory: what each rank may use, checked by the mesh generators before
+  // they allocate and, once the mesh and partition are known, against the
+  // estimate of the whole run (doc/user-guide.md, "Memory").
+  const bool memoryCheck = params.sublist("Solver").get<bool>("Memory Check");
+  const MemoryLimit memory = memoryCheck ? availableMemory(*comm_) : MemoryLimit();
+  const std::string memoryHint =
+      "refine less, run on more ranks or hosts, or set 'Solver/Memory Check' = false to run anyway";
+
   // Mesh and one element evaluator per body.
-  auto mesh = buildMesh(params.sublist("Mesh"), factory_, baseDirectory);
+  auto mesh = buildMesh(params.sublist("Mesh"), factory_, baseDirectory, &memory, memoryHint);
   std::vector<std::shared_ptr<const Element>> elements;
   for (int b = 0; b < mesh->numBodies(); ++b) {
     const std::string path = "Mesh/Bodies/" + mesh->body(b).name + "/Element";
@@ -416,11 +434,20 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
     partition = partitionByBody(*mesh);
     requireCount(partition.numSubdomains);
   } else {
+    Activity activity("partitioning " + std::to_string(mesh->numElements()) + " elements into " +
+                      std::to_string(nsub) + " subdomains (METIS)");
     partition = partitionMetis(*mesh, nsub);
   }
   DDC_INPUT_REQUIRE(partition.numSubdomains >= comm_->getSize(),
                     "'Partition/Number of Subdomains' (" << partition.numSubdomains << ") must be at least the number of MPI ranks ("
                                                           << comm_->getSize() << ")");
+  memoryEstimate_ = estimateMemory(*mesh, partition, comm_->getSize(), params.sublist("Solver"));
+  DDC_INPUT_REQUIRE(!memoryCheck || memoryEstimate_.total() <= memory.bytes,
+                    "the run needs an estimated " << formatBytes(memoryEstimate_.total()) << " per rank ("
+                                                  << memoryEstimate_.describe()
+                                                  << "; doc/user-guide.md, 'Memory'), more than the "
+                                                  << formatBytes(memory.bytes) << " available (" << memory.source
+                                                  << "): " << memoryHint);
 
 
   strategy_ = makeSolutionStrategy(comm_, params.sublist("Solver"), contact);
@@ -436,9 +463,16 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
                                                       "contact element");
     return el;
   };
-  model_ = std::make_shared<Model>(comm_, mesh, std::move(elements), std::move(partition), std::move(bcs),
-                                   std::move(contact), std::move(contactElements), surfaceElements);
-  u_ = model_->createVector();
+  const std::string sizes = std::to_string(mesh->numNodes()) + " nodes, " + std::to_string(mesh->numElements()) +
+                            " elements, " + std::to_string(partition.numSubdomains) + " subdomains; estimated " +
+                            formatBytes(memoryEstimate_.total()) + " per rank";
+  {
+    Activity activity("building the model (" + sizes + ")");
+    model_ = std::make_shared<Model>(comm_, mesh, std::move(elements), std::move(partition), std::move(bcs),
+                                     std::move(contact), std::move(contactElements), surfaceElements);
+    u_ = model_->createVector();
+  }
+  Activity activity("setting up the " + strategy_->name() + " solver (" + sizes + ")");
   strategy_->setUp(model_, [this](const std::string& line) { progress(line); });
   params_ = params;
 }
@@ -770,6 +804,9 @@ void Analysis::runSteps(OutputDirectory* dir) {
       const long bytes0 = contact ? model_->bytesExchanged() : 0;
       const auto savedSlots = contact ? model_->contactSlots() : std::vector<ContactSlot>();
       if (contact && model_->contactOptions().initialInContact) model_->activateAllPaired();
+      Activity activity("solving step " + std::to_string(n) + " (load factor " + std::to_string(lambda) + " -> " +
+                        std::to_string(trial) + ", " + std::to_string(model_->ownedMap()->getGlobalNumElements()) +
+                        " unknowns; estimated " + formatBytes(memoryEstimate_.total()) + " per rank)");
       if (!solveIncrement(lambda, trial, rec)) {
         if (contact) model_->restoreContactState(savedSlots);
         ++depth;

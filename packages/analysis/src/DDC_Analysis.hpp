@@ -19,6 +19,8 @@
 #include "DDC_DirectSolver.hpp"
 #include "DDC_ElementFactory.hpp"
 #include "DDC_FetiDpSolver.hpp"
+#include "DDC_Memory.hpp"
+#include "DDC_MemoryEstimate.hpp"
 #include "DDC_Model.hpp"
 #include "DDC_OutputDirectory.hpp"
 #include "DDC_SolutionStrategy.hpp"
@@ -90,6 +92,8 @@ class Analysis {
   const Vector& displacement() const { return *u_; }
   const std::vector<StepRecord>& history() const { return history_; }
   const RunTiming& timing() const { return timing_; }
+  /// The memory estimate made before the model was built (doc/user-guide.md, "Memory").
+  const MemoryEstimate& memoryEstimate() const { return memoryEstimate_; }
   const Teuchos::ParameterList& parameters() const { return params_; }
 
  private:
@@ -110,12 +114,17 @@ class Analysis {
   Teuchos::RCP<Vector> u_;
   std::vector<StepRecord> history_;
   RunTiming timing_;
+  MemoryEstimate memoryEstimate_;
   bool progressEnabled_ = true;
 };
 
 /// Build the mesh described by "Mesh" (validated in place). Exposed for tools
 /// and tests. Cell types follow each body's element type in `factory`.
+/// \param budget if given, the memory a rank may use for the replicated mesh
+///        (Mesh::setMemoryBudget(): generators refuse a body that does not fit)
+/// \param budgetHint what the user can do about it, for that message
 std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const ElementFactory& factory,
-                                const std::string& baseDirectory);
+                                const std::string& baseDirectory, const MemoryLimit* budget = nullptr,
+                                const std::string& budgetHint = "");
 
 }  // namespace ddc

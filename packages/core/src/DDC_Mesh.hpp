@@ -61,6 +61,22 @@ class Mesh {
   /// elements that share the facet.
   std::vector<int> facetKey(int e, int f) const;
 
+  /// \name Memory budget of the replicated mesh (doc/user-guide.md, "Memory")
+  /// Every rank holds the whole mesh and the analysis keeps per-node and
+  /// per-DOF indexes of it on every rank: about replicatedBytes() per rank.
+  ///@{
+  /// Bytes per rank of a replicated mesh of `nodes` nodes and `elements`
+  /// elements of `nodesPerElement` nodes, with the analysis's indexes.
+  static double replicatedBytes(double nodes, double elements, int nodesPerElement);
+  /// Generators check against this before they allocate (default: none).
+  /// \param hint what the user can do, appended to the message
+  void setMemoryBudget(double bytes, std::string source, std::string hint);
+  /// 	hrows InputError naming `path`, the sizes, the estimate and the budget
+  ///         if the mesh so far plus a body of `nodes` nodes and `elements`
+  ///         elements (and the generator's transient copies) would not fit.
+  void requireRoom(double nodes, double elements, int nodesPerElement, const std::string& path) const;
+  ///@}
+
   /// Spatial dimension: 2 or 3, 0 before the first body.
   int dim() const { return dim_; }
 
@@ -106,6 +122,8 @@ class Mesh {
   std::vector<int> elemNodes_;
   std::map<std::string, std::vector<int>> nodeSets_;
   std::map<std::string, std::vector<Segment>> sideSets_;
+  double memoryBudget_ = -1.0;  ///< < 0: none
+  std::string budgetSource_, budgetHint_;
 };
 
 }  // namespace ddc

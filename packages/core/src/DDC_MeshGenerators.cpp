@@ -368,6 +368,15 @@ Grid makeGrid(CellType type, const std::vector<int>& counts, const std::string& 
   return g;
 }
 
+/// Mesh::requireRoom() for a structured body on grid g (before its points
+/// are allocated).
+void requireRoom(const Mesh& mesh, const Grid& g, CellType type, const std::string& path) {
+  double cells = 1.0;
+  for (int d = 0; d < g.dim; ++d) cells *= g.n[d];
+  if (referenceCell(type).simplex) cells *= g.dim == 3 ? 6.0 : 2.0;
+  mesh.requireRoom(static_cast<double>(g.numPoints()), cells, numCellNodes(type), path);
+}
+
 /// Annular-sector geometry read from (and checked against) a parameter
 /// list holding the AnnularSectorGenerator parameters.
 struct SectorGeometry {
@@ -509,6 +518,7 @@ int generateRectangle(Mesh& mesh, const std::string& bodyName, CellType type,
   validateLevel(params, *RectangleGenerator::getValidParameters(), path);
   const BoxGeometry box = readBox(params, type, 2, "Rectangle", path);
   const Grid& g = box.grid;
+  requireRoom(mesh, g, type, path);
   const int body = mesh.beginBody(bodyName, type);
   const auto x = boxPoints(g, box.origin, box.length, box.distortion, /*simplexCells=*/false);
   const auto node = addStructuredBody(mesh, body, g, type, /*reversed=*/false, x, {"left", "right", "bottom", "top"});
@@ -532,6 +542,7 @@ int generateBox(Mesh& mesh, const std::string& bodyName, CellType type, Teuchos:
   validateLevel(params, *BoxGenerator::getValidParameters(), path);
   const BoxGeometry box = readBox(params, type, 3, "Box", path);
   const Grid& g = box.grid;
+  requireRoom(mesh, g, type, path);
   const int body = mesh.beginBody(bodyName, type);
   const auto x = boxPoints(g, box.origin, box.length, box.distortion, referenceCell(type).simplex);
   const auto node =
@@ -563,6 +574,7 @@ int generateAnnularSector(Mesh& mesh, const std::string& bodyName, CellType type
   validateLevel(params, *AnnularSectorGenerator::getValidParameters(), path);
   const SectorGeometry s = readSector(params, path);
   const Grid g = makeGrid(type, {s.nr, s.nc}, "Annular Sector", path);
+  requireRoom(mesh, g, type, path);
   const int body = mesh.beginBody(bodyName, type);
   // (r, theta) -> (x, y) preserves orientation when theta increases.
   addStructuredBody(mesh, body, g, type, /*reversed=*/s.end < s.start, sectorPoints(g, s),
@@ -592,6 +604,7 @@ int generateCylindricalShellSector(Mesh& mesh, const std::string& bodyName, Cell
   const SectorGeometry s = readSector(params, path);
   const int nz = refinedCount(params, "Axial Elements", s.refinement, path);
   const Grid g = makeGrid(type, {s.nr, s.nc, nz}, "Cylindrical Shell Sector", path);
+  requireRoom(mesh, g, type, path);
   const int body = mesh.beginBody(bodyName, type);
   // (r, theta, z) -> (x, y, z) preserves orientation when theta increases.
   addStructuredBody(mesh, body, g, type, /*reversed=*/s.end < s.start,
@@ -649,6 +662,7 @@ int generateSphereOctant(Mesh& mesh, const std::string& bodyName, CellType type,
   const int refinement = params.get<int>("Refinement");
   const int n = refinedCount(params, "Elements", refinement, path);
   const Grid g = makeGrid(type, {n, n, n}, "Sphere Octant", path);
+  requireRoom(mesh, g, type, path);
   const double radius = params.get<double>("Radius");
   const Point c{params.get<double>("Center X"), params.get<double>("Center Y"), params.get<double>("Center Z")};
   const auto t = gradedParameters(n, g.m, std::pow(params.get<double>("Progression"), 1.0 / refinement));
