@@ -108,6 +108,20 @@ Options parse(const std::vector<std::string>& args) {
   return o;
 }
 
+/// A message or an echoed argument of at most about `max` characters: the
+/// start and the end of a longer one, with the count left out between them
+/// (a 1 MB value given on the command line was repeated in full).
+std::string capText(const std::string& text, std::size_t max) {
+  if (text.size() <= max) return text;
+  const std::size_t head = max * 3 / 4, tail = max / 4;
+  return text.substr(0, head) + " [... " + std::to_string(text.size() - head - tail) + " characters left out ...] " +
+         text.substr(text.size() - tail);
+}
+
+/// Longest message printed, and longest argument echoed in a note.
+constexpr std::size_t kMaxMessage = 4000;
+constexpr std::size_t kMaxEchoedArgument = 200;
+
 /// Every rank runs rank 0's command line. An MPMD launch (`mpirun -np 1
 /// ddcontact a.xml : -np 1 ddcontact b.xml`) would otherwise give the ranks
 /// different decks, overrides or output directories, and they would wait
@@ -122,7 +136,7 @@ std::vector<std::string> commandLine(int argc, char** argv, const Teuchos::Comm<
   if (firstDiffering < comm.getSize() && comm.getRank() == 0) {
     std::cerr << "ddcontact: note: rank " << firstDiffering
               << " was started with other arguments than rank 0; every rank runs rank 0's:";
-    for (const auto& a : args) std::cerr << " '" << a << "'";
+    for (const auto& a : args) std::cerr << " '" << capText(a, kMaxEchoedArgument) << "'";
     std::cerr << std::endl;
   }
   return args;
@@ -267,7 +281,8 @@ bool startupHandshake(MPI_Comm comm) {
 /// identically on all ranks) they meet in a barrier and exit cleanly, rank 0
 /// printing the message. If only some ranks failed, the others are stuck in
 /// a collective: abort the job so that nothing hangs.
-int fail(const std::string& msg, MPI_Comm comm) {
+int fail(const std::string& fullMessage, MPI_Comm comm) {
+  const std::string msg = capText(fullMessage, kMaxMessage);
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   MPI_Request req;

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 
@@ -219,6 +220,15 @@ Teuchos::RCP<const Teuchos::ParameterList> Analysis::getValidParameters(const El
   return pl;
 }
 
+namespace {
+/// Poisson's ratio from which a body is reported nearly incompressible
+/// (lambda/mu >= 49): displacement elements lock noticeably.
+constexpr double kNearlyIncompressible = 0.49;
+/// The range of a body's extent and coordinates buildMesh() accepts.
+constexpr double kMinBodyExtent = 1e-100;
+constexpr double kMaxCoordinate = 1e100;
+}  // namespace
+
 std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const ElementFactory& factory,
                                 const std::string& baseDirectory, const MemoryLimit* budget,
                                 const std::string& budgetHint) {
@@ -272,6 +282,25 @@ std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const Elemen
       generateSphereOctant(*mesh, name, cell, gp, path + "/Sphere Octant");
     else
       readGmshBody(*mesh, name, cell, gp, path + "/Gmsh", baseDirectory);
+    // Lengths far from 1 under- or overflow in the element arithmetic
+    // (Jacobians are cubes of lengths in 3-D, stiffnesses divide by them):
+    // a body's extent must lie in [1e-100, 1e100].
+    const Body& b = mesh->body(mesh->numBodies() - 1);
+    double lo[3] = {1e308, 1e308, 1e308}, hi[3] = {-1e308, -1e308, -1e308};
+    for (int n = b.firstNode; n < b.firstNode + b.numNodes; ++n)
+      for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], mesh->coord(n)[c]), hi[c] = std::max(hi[c], mesh->coord(n)[c]);
+    double extent = 1e308, far = 0.0;  // the smallest extent over the axes
+    for (int c = 0; c < mesh->dim(); ++c) {
+      extent = std::min(extent, hi[c] - lo[c]);
+      far = std::max({far, std::abs(lo[c]), std::abs(hi[c])});
+    }
+    DDC_INPUT_REQUIRE(b.numNodes == 0 || (extent >= kMinBodyExtent && far <= kMaxCoordinate),
+                      "'" << path << "/" << gen << "': body '" << name << "' spans " << extent
+                          << " along its thinnest axis, with coordinates up to " << far
+                          << " in magnitude; its extent must lie in ["
+                          << kMinBodyExtent << ", " << kMaxCoordinate << "] and its coordinates within "
+                          << kMaxCoordinate << " (lengths this far from 1 under- or overflow in the element "
+                             "arithmetic): choose other length units");
   }
   mesh->check();
   return mesh;
@@ -289,6 +318,15 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
   for (const char* s : {"Load Stepping", "Newton", "Solver", "Partition", "Output"})
     validateLevel(params.sublist(s), valid->sublist(s), s);
   DDC_INPUT_REQUIRE(params.isSublist("Mesh"), "sublist 'Mesh' is required");
+  {
+    const PL& nw = params.sublist("Newton");
+    DDC_INPUT_REQUIRE(nw.get<double>("Residual Tolerance") > 0.0 || nw.get<double>("Absolute Residual Tolerance") > 0.0,
+                      "'Newton/Residual Tolerance' and 'Newton/Absolute Residual Tolerance' are both 0: Newton would "
+                      "need |r| = 0 exactly, which round-off never gives; set one of them > 0 (defaults 1e-8, 1e-10)");
+    DDC_INPUT_REQUIRE(nw.get<double>("Energy Tolerance") > 0.0,
+                      "'Newton/Energy Tolerance' is 0: Newton would need |du.r| = 0 exactly, which round-off never "
+                      "gives; set it > 0 (default 1e-16)");
+  }
   progressEnabled_ = params.sublist("Output").get<bool>("Progress");
   DDC_INPUT_REQUIRE(!params.sublist("Output").get<bool>("Contact Nodes") ||
                         (params.isSublist("Contact") && params.sublist("Contact").isSublist("Pairs") &&
@@ -313,6 +351,25 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
   for (int b = 0; b < mesh->numBodies(); ++b) {
     const std::string path = "Mesh/Bodies/" + mesh->body(b).name + "/Element";
     elements.push_back(factory_.create(params.sublist("Mesh").sublist("Bodies").sublist(mesh->body(b).name).sublist("Element"), path));
+  }
+  // Nearly incompressible materials: the elements are displacement-only
+  // (no mixed u-p formulation), so they lock: said at the start and with a
+  // Newton failure, where it is the likely cause.
+  for (int b = 0; b < mesh->numBodies(); ++b) {
+    const PL& el = params.sublist("Mesh").sublist("Bodies").sublist(mesh->body(b).name).sublist("Element");
+    if (!el.isSublist("Material") || !el.sublist("Material").isType<double>("Poisson's Ratio")) continue;
+    const double nu = el.sublist("Material").get<double>("Poisson's Ratio");
+    if (nu < kNearlyIncompressible) continue;
+    std::ostringstream os;
+    os.precision(12);
+    os << (nearlyIncompressible_.empty() ? "" : "; ") << "body '" << mesh->body(b).name
+       << "' is nearly incompressible ('Mesh/Bodies/" << mesh->body(b).name
+       << "/Element/Material/Poisson's Ratio' = " << nu << ", lambda/mu = " << std::setprecision(3)
+       << 2.0 * nu / (1.0 - 2.0 * nu)
+       << "): the elements are displacement-only, with no mixed (u-p) formulation, so they lock: results too "
+          "stiff and Newton slow to converge or stagnating; use a Poisson's ratio below "
+       << kNearlyIncompressible;
+    nearlyIncompressible_ += os.str();
   }
   // Reject inverted or degenerate elements before anything runs (every rank
   // holds the mesh, so every rank reaches the same verdict).
@@ -511,6 +568,7 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
   auto r = model_->createVector();
   auto du = model_->createVector();
   double r0 = 0.0, e0 = 0.0;
+  double lastEnergy = 0.0;  // |du.r| of the last iteration (for the failure message)
   rec.residualHistory.clear();
   rec.failure.clear();
   // Active sets seen after each change in this increment: a repeat is cycling.
@@ -670,13 +728,48 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
       }
       seen.push_back(std::move(a));
     }
+    lastEnergy = energy;
     if (residualOk && energy <= etol * e0 && changed.empty() && !pairingChanged) {
       u_->assign(*u);
       return true;
     }
   }
-  rec.failure = "no convergence in " + std::to_string(maxIt) + " iterations (Newton/Max Iterations)";
+  rec.failure = "no convergence in " + std::to_string(maxIt) + " iterations (Newton/Max Iterations)" +
+                unmetCriterion(rec.residualHistory, rtol, atol, lastEnergy, etol, e0, lambda1 - lambda0);
   return false;
+}
+
+std::string Analysis::unmetCriterion(const std::vector<double>& residuals, double rtol, double atol, double energy,
+                                     double etol, double e0, double increment) const {
+  if (residuals.size() < 2) return "";
+  const double r0 = residuals.front(), r = residuals.back();
+  const double target = std::max(rtol * r0, atol);
+  std::ostringstream os;
+  os.precision(3);
+  if (r > target)
+    os << ": |r| = " << r << " > max(Residual Tolerance x |r_0|, Absolute Residual Tolerance) = " << target;
+  else if (energy > etol * e0)
+    os << ": |r| met its tolerance, but |du.r| = " << energy << " > Energy Tolerance x |du_0.r_0| = " << etol
+       << " x " << e0 << " = " << etol * e0;
+  else
+    return "";  // the contact state kept changing (reported where it does)
+  // Stagnation: the last kStagnant residuals no lower than a tenth of the
+  // lowest before them. Then more iterations do not help; the tolerance is
+  // below what the arithmetic of this increment resolves.
+  constexpr size_t kStagnant = 5;
+  if (residuals.size() >= 2 * kStagnant) {
+    const auto tail = residuals.end() - kStagnant;
+    const double before = *std::min_element(residuals.begin(), tail);
+    const double recent = *std::min_element(tail, residuals.end());
+    if (recent >= 0.1 * before)
+      os << "; the residual stagnates around " << recent << " (the first was " << r0
+         << "), so more iterations do not help: either the tolerance is below the round-off of this increment "
+            "(load factor increment "
+         << increment
+         << "; fewer 'Load Stepping/Number of Steps' or a larger 'Newton/Absolute Residual Tolerance' / "
+            "'Newton/Energy Tolerance' help then) or the tangent does not fit the residual";
+  }
+  return os.str();
 }
 
 double Analysis::externalWorkIncrement(const Vector& fint0, const Vector& u0, double lambda0, const Vector& fint1,
@@ -788,6 +881,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
   double work = 0.0;
   double lambda = 0.0;
   int vtkCounter = 0;
+  if (!nearlyIncompressible_.empty()) progress("warning: " + nearlyIncompressible_);
   auto contactWarnings = [&] {
     for (const auto& w : model_->takeContactWarnings()) progress("warning: " + w);
   };
@@ -816,6 +910,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
              << ") after " << maxBisect << " bisections (Load Stepping/Max Bisections): " << rec.failure
              << "; residual history:";
           for (double x : rec.residualHistory) os << " " << x;
+          if (!nearlyIncompressible_.empty()) os << "; note: " << nearlyIncompressible_;
           throw SolverError(os.str());
         }
         dl *= 0.5;

@@ -115,6 +115,12 @@ class Analysis {
   std::vector<StepRecord> history_;
   RunTiming timing_;
   MemoryEstimate memoryEstimate_;
+  /// The bodies whose Poisson's ratio makes them nearly incompressible ("" if none).
+  std::string nearlyIncompressible_;
+  /// Why Newton did not converge: the criterion not met, and whether the
+  /// residual stagnated (for the failure message).
+  std::string unmetCriterion(const std::vector<double>& residuals, double rtol, double atol, double energy,
+                             double etol, double e0, double increment) const;
   bool progressEnabled_ = true;
 };
 

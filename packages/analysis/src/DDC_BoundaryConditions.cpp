@@ -75,12 +75,16 @@ Teuchos::RCP<const Teuchos::ParameterList> BoundaryConditions::getValidParameter
           "Components with Z need a 3-D model.",
           enumValidator({"All", "X", "Y", "Z", "XY", "XZ", "YZ", "XYZ"}, "Components"));
   // Every value must be finite (the validators): a NaN or inf would reach the
-  // solver as a non-finite residual and end the run with bisections.
+  // solver as a non-finite residual and end the run with bisections. Values
+  // and tractions also stay below kMaxLoadMagnitude: a traction of 1e300
+  // times an area, or a displacement of 1e300 squared in a strain, overflowed
+  // in the element arithmetic and the message named a node, not the value.
+  constexpr double kMaxLoadMagnitude = 1e100;
   for (const char* a : kAxes)
     pl->set(std::string("Value ") + a, 0.0,
             std::string("Displacement: ") + char(std::tolower(a[0])) +
                 " displacement at load factor 1 (scaled by the load factor)" + (a[0] == 'Z' ? "; 3-D only." : "."),
-            finiteNumber());
+            finiteMagnitude(kMaxLoadMagnitude));
   for (const char* r : kAxes)
     for (const char* c : kAxes)
       pl->set(std::string("Gradient ") + r + c, 0.0,
@@ -112,7 +116,7 @@ Teuchos::RCP<const Teuchos::ParameterList> BoundaryConditions::getValidParameter
             std::string("Traction: ") + char(std::tolower(a[0])) +
                 " force per unit reference length (2-D) or area (3-D) at load factor 1" +
                 (a[0] == 'Z' ? "; 3-D only." : "."),
-            finiteNumber());
+            finiteMagnitude(kMaxLoadMagnitude));
   return pl;
 }
 

@@ -1,6 +1,7 @@
 #include "DDC_OutputDirectory.hpp"
 
 #include <fcntl.h>
+#include <pwd.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -11,6 +12,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <sstream>
 #include <system_error>
@@ -187,6 +189,36 @@ bool isEmptyDirectory(const fs::path& p) {
 /// Removes a directory DDContact wrote (it has a manifest): its files first,
 /// the manifest last, so that an interrupted removal still leaves a
 /// directory the next run recognises as its own.
+/// Why this process could not remove the tree `dir` (a directory whose
+/// entries it may not delete: no write or search permission, typically
+/// another user's result), or "" if it can. Removing a file needs write and
+/// search permission on its directory, so each directory of the tree is
+/// checked (symbolic links are not followed).
+std::string unremovableReason(const fs::path& dir) {
+  std::error_code ec;
+  std::vector<fs::path> dirs{dir};
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec))
+    if (it->is_directory(ec) && !it->is_symlink(ec)) dirs.push_back(it->path());
+  for (const auto& d : dirs) {
+    if (::access(d.c_str(), W_OK | X_OK) == 0) continue;
+    const int err = errno;
+    struct stat st {};
+    std::string owner = "?";
+    if (::lstat(d.c_str(), &st) == 0) {
+      const struct passwd* pw = ::getpwuid(st.st_uid);
+      owner = pw ? std::string(pw->pw_name) : "uid " + std::to_string(st.st_uid);
+    }
+    return "'" + d.string() + "' (owner " + owner + ") does not let this user (" +
+           [] {
+             const struct passwd* me = ::getpwuid(::geteuid());
+             return me ? std::string(me->pw_name) : "uid " + std::to_string(::geteuid());
+           }() +
+           ") delete its entries: " + std::strerror(err);
+  }
+  return "";
+}
+
 void removeResultTree(const fs::path& dir) {
   std::vector<fs::path> dirs;
   bool first = true;
@@ -417,6 +449,27 @@ void prepare(const fs::path& final, const fs::path& staging, const fs::path& old
       return;
     }
   }
+  // A result this user cannot delete (another user's) would be moved to
+  // D.old by the commit and stay there, and every later run would fail on
+  // it: refuse before anything moves.
+  if (fs::exists(final) && !isEmptyDirectory(final)) {
+    const std::string why = unremovableReason(final);
+    if (!why.empty()) {
+      failure = {Failure::Input, "output directory '" + final.string() + "' holds an earlier result that this run "
+                                 "could not remove when it replaces it: " + why +
+                                 "; choose another --output-dir, or have its owner remove it"};
+      return;
+    }
+  }
+  if (fs::exists(old) && !isEmptyDirectory(old)) {
+    const std::string why = unremovableReason(old);
+    if (!why.empty()) {
+      failure = {Failure::Input, "'" + old.string() + "', a previous result of output directory '" +
+                                 final.string() + "' left by an earlier commit, cannot be removed: " + why +
+                                 "; have its owner remove it, or choose another --output-dir"};
+      return;
+    }
+  }
   std::error_code ec;
   // Empty leftovers hold nothing; clear them so the cases below are simple.
   for (const fs::path& p : {staging, old})
@@ -618,7 +671,10 @@ void OutputDirectory::commit() {
       //    fatal (the next run removes it and says so).
       try {
         removeResultTree(old);
-      } catch (const fs::filesystem_error&) {
+      } catch (const fs::filesystem_error& e) {
+        std::cerr << "ddcontact: output: warning: the new result is in '" << finalDir_
+                  << "', but the one it replaced could not be removed from '" << old.string() << "': " << fsError(e)
+                  << " (the next run into this directory removes it)" << std::endl;
       }
     }
     // Committed: the directory is free for the next run as soon as commit()

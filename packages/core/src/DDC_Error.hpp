@@ -11,6 +11,15 @@
 
 namespace ddc {
 
+/// A user-given text as a message repeats it: at most kMaxEchoed characters
+/// (the start, then how many more there are), so that a 1 MB value in a deck
+/// is not printed back in full.
+constexpr std::size_t kMaxEchoed = 200;
+inline std::string echoed(const std::string& text) {
+  if (text.size() <= kMaxEchoed) return text;
+  return text.substr(0, kMaxEchoed) + "... (" + std::to_string(text.size()) + " characters)";
+}
+
 /// Bad user input: malformed XML, unknown names, misspelt parameters, missing
 /// or inconsistent meshes, impossible combinations. The message names the
 /// file / parameter path / mesh entity and what was expected.

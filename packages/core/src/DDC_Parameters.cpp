@@ -78,8 +78,19 @@ bool NumberValidator<T>::accepts(T value) const {
   return true;
 }
 
+namespace {
+/// A closed interval symmetric about 0 (finiteMagnitude()).
+template <class T, class B>
+bool symmetric(const std::optional<B>& lower, const std::optional<B>& upper, bool noExtra) {
+  return noExtra && lower && upper && lower->inclusive && upper->inclusive && lower->value == -upper->value &&
+         upper->value > T(0);
+}
+}  // namespace
+
 template <class T>
 std::string NumberValidator<T>::rule() const {
+  if (symmetric<T>(lower_, upper_, alsoAllowed_.empty()))
+    return "finite with magnitude at most " + formatNumber(upper_->value);
   std::string r;
   for (const T a : alsoAllowed_) r += formatNumber(a) + " or ";
   if (lower_ && upper_) {
@@ -107,6 +118,8 @@ std::string NumberValidator<T>::violation(const Teuchos::ParameterEntry& entry) 
   }
   const T v = Teuchos::any_cast<T>(a);
   if (accepts(v)) return "";
+  if (symmetric<T>(lower_, upper_, alsoAllowed_.empty()))
+    return std::string("must be ") + (isFiniteValue(v) ? rule() : std::string("finite")) + ", got " + formatNumber(v);
   // "must lie in [0, 0.3]" reads better than "must be in [0, 0.3]".
   const bool interval = lower_ && upper_ && alsoAllowed_.empty();
   return std::string("must ") + (interval ? "lie " : "be ") + rule() + ", got " + formatNumber(v);
@@ -164,6 +177,11 @@ template Teuchos::RCP<const NumberValidator<double>> between<double>(double, dou
 
 Teuchos::RCP<const NumberValidator<double>> finiteNumber() {
   return Teuchos::rcp(new NumberValidator<double>(std::nullopt, std::nullopt));
+}
+
+Teuchos::RCP<const NumberValidator<double>> finiteMagnitude(double maxMagnitude) {
+  using B = NumberValidator<double>::Bound;
+  return Teuchos::rcp(new NumberValidator<double>(B{-maxMagnitude, true}, B{maxMagnitude, true}));
 }
 
 // ------------------------------------------------------------- strict parsing
@@ -268,7 +286,9 @@ void validateLevel(Teuchos::ParameterList& user, const Teuchos::ParameterList& v
         os << "invalid value for parameter '" << joinPath(path, n) << "'";
         if (auto sv = Teuchos::rcp_dynamic_cast<const Teuchos::StringValidator>(ve->validator());
             sv.get() || ve->validator()->validStringValues().get()) {
-          os << ": '" << ue.getAny(false) << "'; valid values are";
+          std::ostringstream value;
+          value << ue.getAny(false);
+          os << ": '" << echoed(value.str()) << "'; valid values are";
           auto vals = ve->validator()->validStringValues();
           for (size_t i = 0; vals.get() && i < vals->size(); ++i) os << (i ? ", '" : " '") << (*vals)[i] << "'";
         } else {
@@ -277,10 +297,12 @@ void validateLevel(Teuchos::ParameterList& user, const Teuchos::ParameterList& v
         throw InputError(os.str());
       }
     } else {
-      DDC_INPUT_REQUIRE(ue.getAny(false).type() == ve->getAny(false).type(),
-                        "parameter '" << joinPath(path, n) << "' must be of type " << typeName(*ve)
-                                      << ", got " << typeName(ue) << " (value '" << ue.getAny(false)
-                                      << "')");
+      if (ue.getAny(false).type() != ve->getAny(false).type()) {
+        std::ostringstream value;
+        value << ue.getAny(false);
+        DDC_THROW(InputError, "parameter '" << joinPath(path, n) << "' must be of type " << typeName(*ve) << ", got "
+                                            << typeName(ue) << " (value '" << echoed(value.str()) << "')");
+      }
     }
   }
   // Fill defaults for missing parameters (not sublists).

@@ -109,6 +109,13 @@ Teuchos::RCP<const NumberValidator<T>> between(T lower, T upper, Interval ends =
 /// Any finite double (for coordinates, boundary values, angles).
 Teuchos::RCP<const NumberValidator<double>> finiteNumber();
 
+/// A finite double of magnitude at most `maxMagnitude` (closed interval
+/// [-max, max], read and reported as "finite with magnitude at most max"):
+/// for loads and prescribed values whose products in the element arithmetic
+/// (a traction times an area, a displacement squared in a strain) would
+/// overflow beyond it.
+Teuchos::RCP<const NumberValidator<double>> finiteMagnitude(double maxMagnitude);
+
 /// \brief Parse `text` strictly as a parameter value of type `type`.
 ///
 /// The whole text must be the value (no surrounding blanks, no trailing
