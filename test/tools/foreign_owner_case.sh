@@ -22,7 +22,7 @@ mkdir -p "$work"
 chmod 0777 "$work"  # both users may create entries (no sticky bit: renames allowed)
 out=$work/out
 failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+. "$here/rank_status_lib.sh"
 hashes() { (cd "$1" 2>/dev/null && find . -type f -print0 | sort -z | xargs -0 -r sha256sum) || echo "<no $1>"; }
 
 mpirun --oversubscribe -np "$np" "$app" "$deck" --output-dir "$out" >"$work/earlier.log" 2>&1 ||
@@ -37,17 +37,6 @@ as_nobody() {
   setpriv --reuid=nobody --regid=nogroup --clear-groups env HOME="$work" TMPDIR="$work" \
     mpirun --oversubscribe -np "$np" sh "$here/record_exit_status.sh" "$work/status" "$app" "$deck" --output-dir "$2" \
     >"$1" 2>&1
-}
-every_rank_failed() {
-  local r s
-  for ((r = 0; r < np; r++)); do
-    s=$(cat "$work/status/rank-$r.status" 2>/dev/null || echo missing)
-    if [ "$s" = missing ] || [ "$s" = 0 ]; then
-      fail "rank $r exit status '$s', expected non-zero"
-      sed 's/^/    | /' "$1"
-      return 1
-    fi
-  done
 }
 
 # 1. The result itself belongs to root.

@@ -31,7 +31,7 @@ mkdir -p "$work"
 out=$work/out
 failures=0
 
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+. "$here/rank_status_lib.sh"
 
 # run LOG [ddcontact args...]: runs ddcontact on $np ranks, each rank's exit
 # status recorded in $work/status/rank-R.status; returns mpirun's status.
@@ -41,33 +41,6 @@ run() {
   rm -rf "$work/status"
   mkdir -p "$work/status"
   mpirun --oversubscribe -np "$np" sh "$here/record_exit_status.sh" "$work/status" "$app" "$@" >"$log" 2>&1
-}
-
-# every_rank_failed LOG: each rank recorded a non-zero status.
-every_rank_failed() {
-  local r
-  for ((r = 0; r < np; r++)); do
-    local s
-    s=$(cat "$work/status/rank-$r.status" 2>/dev/null || echo missing)
-    if [ "$s" = missing ] || [ "$s" = 0 ]; then
-      fail "rank $r exit status '$s', expected non-zero ($1)"
-      sed 's/^/    | /' "$1"
-      return 1
-    fi
-  done
-}
-
-every_rank_succeeded() {
-  local r
-  for ((r = 0; r < np; r++)); do
-    local s
-    s=$(cat "$work/status/rank-$r.status" 2>/dev/null || echo missing)
-    if [ "$s" != 0 ]; then
-      fail "rank $r exit status '$s', expected 0 ($1)"
-      sed 's/^/    | /' "$1"
-      return 1
-    fi
-  done
 }
 
 # hashes PATH: checksums of a file or of every file below a directory.
