@@ -51,7 +51,7 @@ Teuchos::RCP<const PL> generatorValidParameters(const std::string& g) {
 /// "Element" sublist: Type plus the union of the element types' parameters.
 Teuchos::RCP<PL> elementValidParameters(const ElementFactory& factory) {
   auto pl = Teuchos::rcp(new PL("Element"));
-  const auto names = factory.names();
+  const auto names = factory.bodyNames();  // contact elements are not body types
   std::string doc = "Element type of the body:";
   for (const auto& n : names) doc += " '" + n + "' (" + factory.entry(n).description + ");";
   pl->set("Type", names.empty() ? std::string() : std::string("Quad4"), doc, enumValidator(names, "Type"));
@@ -258,6 +258,10 @@ std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const Elemen
     PL& elem = body.sublist("Element");
     DDC_INPUT_REQUIRE(elem.isParameter("Type"), "parameter '" << path << "/Element/Type' is required");
     const auto& entry = factory.entry(elem.get<std::string>("Type"), path + "/Element");
+    DDC_INPUT_REQUIRE(!entry.contact, "'" << path << "/Element/Type' = '" << elem.get<std::string>("Type")
+                                          << "' is a contact element (the contact component makes those for "
+                                             "Contact/Pairs); a body needs one of "
+                                          << quotedNames(factory.bodyNames(), "(none registered)"));
     // The mesh cell type of the element: the one of its dimension and node count.
     const auto& cells = elementCellTypes();
     const auto cellIt = std::find_if(cells.begin(), cells.end(), [&](CellType c) {

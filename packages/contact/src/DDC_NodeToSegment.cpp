@@ -139,7 +139,7 @@ void registerContactElements(ElementFactory& f) {
             "Conventional nonlinear node-to-segment contact element with a Lagrange multiplier "
             "(nodes: slave, master 1, master 2; Pi = lambda g_N in contact, lambda^2/2 released; "
             "consistent linearisation incl. projection and normal variation).",
-            3});
+            3, 2, /*contact=*/true});
   f.add("Decomposed NTS Slave",
         ElementFactory::Entry{
             [](const Teuchos::ParameterList&) -> std::shared_ptr<Element> {
@@ -148,7 +148,7 @@ void registerContactElements(ElementFactory& f) {
             DecomposedNtsSlaveElement::getValidParameters(),
             "Slave counterpart of the decomposed node-to-segment element (Fang & Izzuddin 2022, eq. 1): "
             "node: slave; frozen projection and normal; Pi = lambda n^p.x_s in contact, lambda^2/2 released.",
-            1});
+            1, 2, /*contact=*/true});
   f.add("Decomposed NTS Master",
         ElementFactory::Entry{
             [](const Teuchos::ParameterList&) -> std::shared_ptr<Element> {
@@ -158,7 +158,7 @@ void registerContactElements(ElementFactory& f) {
             "Master counterpart of the decomposed node-to-segment element (Fang & Izzuddin 2022, eq. 1): "
             "nodes: master 1, master 2; frozen projection and normal; Pi = -lambda n^p.sum N_i x_i in "
             "contact, 0 released.",
-            2});
+            2, 2, /*contact=*/true});
 }
 
 }  // namespace ddc

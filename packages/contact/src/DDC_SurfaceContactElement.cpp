@@ -81,7 +81,7 @@ void registerSurfaceContactElements(ElementFactory& f) {
                                   none,
                                   what + " on a " + cellTypeName(facet) +
                                       " master facet (doc/contact.md, 'Curved facets and 3-D'); no parameters.",
-                                  prototype->numNodes(), prototype->dim()});
+                                  prototype->numNodes(), prototype->dim(), /*contact=*/true});
     }
 }
 

@@ -110,13 +110,37 @@ std::vector<std::string> ElementFactory::names() const {
   return n;
 }
 
+std::vector<std::string> ElementFactory::bodyNames() const {
+  std::vector<std::string> n;
+  for (const auto& e : entries_)
+    if (!e.second.contact) n.push_back(e.first);
+  return n;
+}
+
+std::vector<std::string> ElementFactory::contactNames() const {
+  std::vector<std::string> n;
+  for (const auto& e : entries_)
+    if (e.second.contact) n.push_back(e.first);
+  return n;
+}
+
+namespace {
+/// "known element types are 'Hex8', ...", and the contact elements apart.
+std::string knownTypes(const ElementFactory& f) {
+  std::string s = "known element types are " + knownNames(f.bodyNames());
+  const auto contact = f.contactNames();
+  if (!contact.empty()) s += " (and the contact elements, made by the contact component: " + knownNames(contact) + ")";
+  return s;
+}
+}  // namespace
+
 const ElementFactory::Entry& ElementFactory::entry(const std::string& typeName, const std::string& where) const {
   auto it = entries_.find(typeName);
   DDC_INPUT_REQUIRE(it != entries_.end(),
                     "unknown element type '" << typeName << "'"
                                              << (where.empty() ? std::string()
                                                                : " in parameter '" + joinPath(where, "Type") + "'")
-                                             << "; known element types are " << knownNames(names()));
+                                             << "; " << knownTypes(*this));
   return it->second;
 }
 
@@ -132,10 +156,9 @@ Teuchos::RCP<const Teuchos::ParameterList> ElementFactory::validParametersFor(co
 std::shared_ptr<Element> ElementFactory::create(Teuchos::ParameterList& params, const std::string& where) const {
   const std::string typePath = joinPath(where, "Type");
   DDC_INPUT_REQUIRE(params.isParameter("Type") && !params.isSublist("Type"),
-                    "missing parameter '" << typePath << "'; known element types are " << knownNames(names()));
+                    "missing parameter '" << typePath << "'; " << knownTypes(*this));
   DDC_INPUT_REQUIRE(params.isType<std::string>("Type"),
-                    "parameter '" << typePath << "' must be a string; known element types are "
-                                  << knownNames(names()));
+                    "parameter '" << typePath << "' must be a string; " << knownTypes(*this));
   const std::string type = params.get<std::string>("Type");
   const Entry& e = entry(type, where);
   const auto valid = validParametersFor(type);

@@ -35,6 +35,10 @@ class ElementFactory {
     int numNodes = 4;
     /// Space dimension of the element (Element::dim()).
     int dim = 2;
+    /// A contact element (the contact component creates it for a pair),
+    /// not a body element type: listed apart in messages and not offered
+    /// as a body's Element/Type.
+    bool contact = false;
   };
 
   /// An empty factory.
@@ -48,6 +52,10 @@ class ElementFactory {
   void add(const std::string& typeName, Entry entry);
   bool has(const std::string& typeName) const { return entries_.count(typeName) != 0; }
   std::vector<std::string> names() const;
+  /// names() of the body element types (Entry::contact false).
+  std::vector<std::string> bodyNames() const;
+  /// names() of the contact elements (Entry::contact true).
+  std::vector<std::string> contactNames() const;
   /// \throws InputError naming `typeName` and listing known types.
   const Entry& entry(const std::string& typeName, const std::string& where = "") const;
 
