@@ -1,5 +1,7 @@
 # Installs DDContact from BUILD_DIR into a temporary prefix, then configures,
-# builds and runs a host program that uses find_package(DDContact).
+# builds and runs the host programs installed with it (EXAMPLES_SUBDIR below
+# the prefix: share/ddcontact/examples/embedding, doc/embedding.md) with
+# find_package(DDContact) and nothing but the installed package.
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
 function(run)
@@ -10,6 +12,10 @@ function(run)
   endif()
 endfunction()
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+set(CONSUMER_SOURCE ${prefix}/${EXAMPLES_SUBDIR})
+if(NOT EXISTS ${CONSUMER_SOURCE}/CMakeLists.txt)
+  message(FATAL_ERROR "the install did not put the host examples in ${CONSUMER_SOURCE}")
+endif()
 run(${CMAKE_COMMAND} -S ${CONSUMER_SOURCE} -B ${WORK_DIR}/build -DCMAKE_PREFIX_PATH=${prefix}
     -DCMAKE_BUILD_TYPE=Release)
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
