@@ -22,6 +22,7 @@ packages=(
   libopenblas0-serial libopenblas-dev   # 2.7x faster MUMPS than reference BLAS
   libgtest-dev libgmock-dev                # GoogleTest + GoogleMock matchers
   gnuplot-nox                           # plots in doc/
+  doxygen                               # API reference of the public headers (target doc, ctest)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -30,15 +30,15 @@ namespace ddc {
 /// One converged (sub)step.
 struct StepRecord {
   int step = 0;              ///< nominal step number (1-based); sub-steps repeat it
-  double loadFactor = 0.0;
-  double strainEnergy = 0.0;
+  double loadFactor = 0.0;    ///< load factor λ at the end of the (sub)step
+  double strainEnergy = 0.0;  ///< total strain energy U (per unit thickness in 2-D)
   int newtonIterations = 0;  ///< linear solves in this (sub)step
   int dualIterations = 0;    ///< Belos iterations of FETI-DP summed over the (sub)step
   int bisections = 0;        ///< bisection depth used to reach this load factor
   double wallSeconds = 0.0;  ///< since the start of run()
   std::vector<double> residualHistory;  ///< ||r|| per Newton iteration
   double externalWork = 0.0;  ///< work of reactions and tractions, trapezoidal in λ, since λ = 0
-  int activeContacts = 0;
+  int activeContacts = 0;  ///< active contact slots at the end of the (sub)step
   double contactForce[3] = {0.0, 0.0, 0.0};  ///< resultant on the slave bodies (Σ −λ n); z = 0 in 2-D
   long contactExchanges = 0;  ///< contact-geometry exchanges in this (sub)step (Model::exchanges())
   long contactBytes = 0;      ///< bytes those exchanges moved between ranks
@@ -50,13 +50,17 @@ struct RunTiming {
   double assembly = 0.0;     ///< element evaluation and global/subdomain assembly
   double linearSetup = 0.0;  ///< factorisations / preconditioner set-up (incl. FETI-DP coarse problem)
   double linearSolve = 0.0;  ///< triangular solves / Krylov iterations
-  int linearSolves = 0;
+  int linearSolves = 0;        ///< number of linear solves (Newton iterations)
   double peakMemoryMiB = 0.0;  ///< peak resident memory, max over ranks
   /// FETI-DP breakdown (this rank): local, coarse, Dirichlet factorisation;
   /// local solves, coarse solves, preconditioner applications.
   std::array<double, 6> feti{{0, 0, 0, 0, 0, 0}};
 };
 
+/// A whole analysis (depth (a) of doc/embedding.md): mesh, partition,
+/// boundary conditions, contact, the solution strategy and the Newton load
+/// stepping built from one parameter list. Every member function is
+/// collective over the communicator given to the constructor.
 class Analysis {
  public:
   /// Every valid parameter, with defaults and doc strings, for the element
@@ -66,6 +70,13 @@ class Analysis {
 
   /// Validate `params` (filled with defaults in place) and build the model.
   /// Collective over `comm`.
+  /// \param comm the ranks of the analysis (the model's DOFs and subdomains
+  ///        are distributed over them)
+  /// \param params the deck's parameters (doc/parameters.md); validated and
+  ///        filled with defaults in place
+  /// \param factory element types for Mesh/Bodies/\<name\>/Element/Type (the
+  ///        built-in continuum elements by default); the contact elements
+  ///        are added to it if missing
   /// \param baseDirectory directory relative mesh file names are resolved in
   ///        (the input deck's directory).
   /// \throws InputError naming the parameter path / file / mesh entity.
@@ -88,12 +99,18 @@ class Analysis {
   /// work). Commits `dir` when the run succeeds.
   void run(OutputDirectory& dir);
 
+  /// The discrete model (mesh, DOF numbering, contact component).
   const Model& model() const { return *model_; }
+  /// The displacements of the last converged step on model().ownedMap()
+  /// (contact multipliers appended; model().dof(node, component) indexes it).
   const Vector& displacement() const { return *u_; }
+  /// One record per converged (sub)step, in order (the rows of history.csv).
   const std::vector<StepRecord>& history() const { return history_; }
+  /// Where the time went (after run(): maxima over ranks).
   const RunTiming& timing() const { return timing_; }
   /// The memory estimate made before the model was built (doc/user-guide.md, "Memory").
   const MemoryEstimate& memoryEstimate() const { return memoryEstimate_; }
+  /// The validated parameters with every default filled in.
   const Teuchos::ParameterList& parameters() const { return params_; }
 
  private:

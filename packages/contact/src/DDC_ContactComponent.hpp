@@ -69,15 +69,15 @@ namespace ddc {
 struct ContactSlot {
   /// Most nodes a master facet has (Quad9).
   static constexpr int kMaxFacetNodes = 9;
-  int pair = 0;
+  int pair = 0;              ///< the pair (registration order)
   int slaveNode = -1;        ///< host node id
   /// The master facet's nodes (host node ids, facet node order; the first
   /// numMaster are used); master[0] = -1: not paired.
   std::array<int, kMaxFacetNodes> master{{-1, -1, -1, -1, -1, -1, -1, -1, -1}};
-  int numMaster = 0;
+  int numMaster = 0;         ///< nodes of the master facet (0: not paired)
   int segment = -1;          ///< index of that facet in the pair's master surface (-1: not paired)
   int masterElement = -1;    ///< the host element whose facet it is (-1: not paired)
-  bool active = false;
+  bool active = false;       ///< in the active set (the constraint g_N = 0 is enforced)
   /// Multiplier; frozen ξ^p / n^p of the 2-D node-to-segment counterparts
   /// (Line2 master facets).
   ContactPairState state;
@@ -91,12 +91,13 @@ struct ContactSlot {
   double tributaryLength = 0.0;
   /// Contact pressure −λ / tributary length (> 0 in compression), 0 when inactive.
   double pressure() const { return active && tributaryLength > 0 ? -state.multiplier / tributaryLength : 0.0; }
+  /// Whether the slot has a master facet.
   bool paired() const { return master[0] >= 0; }
 };
 
 /// Summary of the contact state for output.
 struct ContactSummary {
-  int active = 0;
+  int active = 0;  ///< active slots
   double force[3] = {0.0, 0.0, 0.0};  ///< resultant contact force on the slave bodies, Σ -λ n (z = 0 in 2-D)
 };
 
@@ -105,7 +106,9 @@ struct ContactNode {
   int id = -1;                  ///< the host's node id (≥ 0, unique)
   Eigen::Vector3d X = Eigen::Vector3d::Zero();  ///< reference coordinates (z = 0 in 2-D)
   ContactNode() = default;
+  /// A 2-D node (z = 0).
   ContactNode(int id_, const Eigen::Vector2d& X2) : id(id_), X(X2.x(), X2.y(), 0.0) {}
+  /// A 3-D node.
   ContactNode(int id_, const Eigen::Vector3d& X3) : id(id_), X(X3) {}
 };
 
@@ -143,8 +146,10 @@ struct ContactPairSurfaces {
   std::string path;        ///< where the host defined it (e.g. a parameter path), for errors; default: name
   std::string slaveName;   ///< the slave surface, for messages
   std::string masterName;  ///< the master surface, for messages
-  /// Cell types of the facets (Line2, Line3, Tri3, Tri6, Quad4, Quad8, Quad9).
-  CellType slaveFacetType = CellType::Line2, masterFacetType = CellType::Line2;
+  /// Cell type of the slave facets (Line2, Line3, Tri3, Tri6, Quad4, Quad8, Quad9).
+  CellType slaveFacetType = CellType::Line2;
+  /// Cell type of the master facets (the same choice).
+  CellType masterFacetType = CellType::Line2;
   std::vector<int> slaveNodes;  ///< candidate slave nodes; nodes on the master surface are skipped
   std::vector<ContactFacet> slaveFacets;   ///< oriented with the slave body on the left
   std::vector<ContactFacet> masterFacets;  ///< with depth
@@ -166,7 +171,7 @@ struct ContactRowEntry {
   int slot = -1;       ///< the contact slot (replicated index)
   GO row = -1;         ///< its multiplier id (multiplierMap())
   GO dof = -1;         ///< host DOF id
-  double coefficient = 0.0;
+  double coefficient = 0.0;  ///< multiplies the position x = X + u of that DOF
   bool master = false;  ///< entry of the master counterpart (else the slave's)
   int subdomain = -1;   ///< master: the master facet's subdomain; slave: -1 (any subdomain holding the slave node)
 };
@@ -178,6 +183,8 @@ class ContactComponent {
   /// factory, surfaceContactElementName()).
   using SurfaceElementSource =
       std::function<std::shared_ptr<const SurfaceContactElement>(SurfaceContactRole role, CellType facet)>;
+  /// \param comm the host's ranks (collective calls are collective over it)
+  /// \param options the formulation, search radius and penetration tolerance
   /// \param elements the counterparts {"Decomposed NTS Slave", "Decomposed NTS
   ///        Master"} when options.decomposed, else {"Node-To-Segment"}
   ///        (any ContactElement with those DOF layouts): the elements of
@@ -269,9 +276,13 @@ class ContactComponent {
                 const std::function<void(const std::vector<GO>& dofs, ElementResult& result)>& add) const;
 
   // ---- queries ---------------------------------------------------------------
+  /// Whether the decomposed counterparts are used (options().decomposed).
   bool decomposed() const { return options_.decomposed; }
+  /// The options given to the constructor.
   const ContactComponentOptions& options() const { return options_; }
+  /// Number of registered pairs.
   int numPairs() const;
+  /// Every slot (one per slave node of every pair), replicated on every rank.
   const std::vector<ContactSlot>& slots() const { return slots_; }
   /// Owner rank of slot k (the owner of its slave node).
   int slotOwner(int k) const;
@@ -287,18 +298,23 @@ class ContactComponent {
   /// ([u_s, u_1, ..., u_m, λ]; [λ] when unpaired) and of the decomposed
   /// counterparts ([u_s, λ] / [u_1, ..., u_m, λ]).
   std::vector<GO> slotDofs(int k) const;
+  /// The slave counterpart's DOF ids of slot k ([u_s, λ]).
   std::vector<GO> slaveSideDofs(int k) const;
+  /// The master counterpart's DOF ids of slot k ([u_1, ..., u_m, λ]).
   std::vector<GO> masterSideDofs(int k) const;
   /// True if slot k is paired and all DOFs of its slave node and master
   /// facet are prescribed: its gap is given, contact cannot act on it.
   bool fullyPrescribed(int k) const;
   /// Host node ids of every surface node (slave or master), ascending.
   const std::vector<int>& surfaceNodes() const { return nodeIds_; }
+  /// Whether host node `id` is a registered surface node.
   bool isSurfaceNode(int id) const { return index(id) >= 0; }
   /// Reference coordinates of a surface node (z = 0 in 2-D).
   Eigen::Vector3d referencePosition(int id) const;
   /// Space dimension of the contact surfaces (2 or 3; known after commit()).
   int dim() const { return dim_; }
+  /// Active slots and the resultant contact force, from the replicated slots
+  /// (the same on every rank; not collective).
   ContactSummary summary() const;
   /// "pair 'P' slave node n at (x, y[, z])" for messages.
   std::string describeSlot(int k) const;
@@ -308,6 +324,7 @@ class ContactComponent {
   /// NTS every active-set update) since construction, and the bytes they
   /// moved between ranks.
   long exchanges() const { return exchanges_; }
+  /// Bytes the exchanges() moved between ranks (see exchanges()).
   long bytesExchanged() const { return bytesExchanged_; }
   /// Search work summed over the pairs: {tracking queries, tracking fallbacks, global queries}.
   std::array<long, 3> searchCounters() const;

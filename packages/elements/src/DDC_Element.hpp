@@ -53,6 +53,7 @@ struct ElementPostResult {
 /// an inverted reference element); the analysis answers with a bisection.
 class InadmissibleDeformation : public std::runtime_error {
  public:
+  /// \param w what is inadmissible and where (element, quadrature point)
   explicit InadmissibleDeformation(const std::string& w) : std::runtime_error(w) {}
 };
 

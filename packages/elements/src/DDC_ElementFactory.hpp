@@ -17,13 +17,20 @@
 
 namespace ddc {
 
+/// Element types by name (depth (a) of doc/embedding.md): what a body's
+/// Element/Type may say. withBuiltins() has the continuum elements; a host
+/// adds its own with add(), and the contact package registers the contact
+/// elements (Entry::contact).
 class ElementFactory {
  public:
   /// Builds an element from its parameter list (already validated against
   /// validParameters, defaults filled in).
   using Creator = std::function<std::shared_ptr<Element>(const Teuchos::ParameterList&)>;
 
+  /// One registered element type.
   struct Entry {
+    /// Makes the element from its validated parameters (the body's Element
+    /// sublist without Type).
     Creator create;
     /// Valid parameters of this element type, each with default and doc
     /// string (the "Type" entry itself is added by the factory).
@@ -50,7 +57,9 @@ class ElementFactory {
 
   /// Register (or replace) an element type.
   void add(const std::string& typeName, Entry entry);
+  /// Whether `typeName` is registered.
   bool has(const std::string& typeName) const { return entries_.count(typeName) != 0; }
+  /// Every registered name, sorted.
   std::vector<std::string> names() const;
   /// names() of the body element types (Entry::contact false).
   std::vector<std::string> bodyNames() const;
@@ -62,11 +71,14 @@ class ElementFactory {
   /// Create an element. `params` is the "Element" sublist: it must hold
   /// "Type" and otherwise the type's valid parameters; it is validated
   /// (misspelt names are errors) and defaults are filled in.
+  /// \param params the "Element" sublist (validated and filled in place)
   /// \param where parameter path used in error messages, e.g.
   ///        "Mesh/Bodies/Upper Ring/Element".
+  /// \throws InputError for an unknown or missing Type or a misspelt or
+  ///         out-of-range parameter, naming its path.
   std::shared_ptr<Element> create(Teuchos::ParameterList& params, const std::string& where) const;
 
-  /// (Added) The complete valid list create() checks an "Element" sublist of
+  /// The complete valid list create() checks an "Element" sublist of
   /// this type against: "Type" (doc string lists the known types) plus the
   /// entry's validParameters. For --print-parameters.
   /// \throws InputError if `typeName` is not registered.

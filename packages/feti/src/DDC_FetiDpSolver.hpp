@@ -74,9 +74,9 @@ struct FetiSubdomain {
 /// coefficient `coef` of local DOF `dof` of one subdomain in the row with
 /// global id `row` (a GID of the caller's row map).
 struct ConstraintEntry {
-  GO row;
-  LO dof;
-  double coef;
+  GO row;       ///< the row's global id in the row map
+  LO dof;       ///< local DOF index in the subdomain (FetiSubdomain::dofs order)
+  double coef;  ///< the coefficient of that DOF in the row
 };
 
 /// FETI-DP solver for K u = b, K = sum_s R_s^T K^s R_s (the globally
@@ -156,7 +156,7 @@ class FetiDpSolver {
     /// fewest and the most of any subdomain (all ranks). A linear material
     /// with contact rows is factorised once per analysis (1 and 1).
     int minLocalFactorizations = 0;
-    int maxLocalFactorizations = 0;
+    int maxLocalFactorizations = 0;  ///< see minLocalFactorizations
   };
 
   /// Every parameter with its default and doc string:
