@@ -152,6 +152,13 @@ void ContactComponent::requireCommitted(const char* what) const {
     throw std::logic_error(std::string("ContactComponent::") + what + ": call commit() and setDofs() first");
 }
 
+void ContactComponent::requirePaired(const char* what) const {
+  if (!pairedOnce_)
+    throw std::logic_error(std::string("ContactComponent::") + what +
+                           ": no pairing yet, so no slave node is paired and there is nothing to evaluate; call "
+                           "updatePairing(u, /*global=*/true, /*freeze=*/true) once after setDofs()");
+}
+
 void ContactComponent::requireHostMultipliers() const {
   if (!multipliersInHost_)
     throw std::logic_error("ContactComponent: the multipliers are not in the host's vector (setDofs() got no "
@@ -512,12 +519,24 @@ void ContactComponent::setDofs(Teuchos::RCP<const Map> hostMap, const std::vecto
       error = "contact: rank " + std::to_string(me) + " gives " + std::to_string(multiplierDofs.size()) +
               " multiplier DOFs for its " + std::to_string(localSlots_.size()) + " contact slots";
     } else {
-      for (GO g : multiplierDofs)
+      // A multiplier needs an id of its own: not a surface node's DOF, not
+      // another multiplier's (the DOFs of the host's other nodes are beyond
+      // what the component sees).
+      std::map<GO, std::string> taken;
+      for (const auto& nd : nodeDofs)
+        for (int c = 0; c < dim_; ++c)
+          taken[nd.dofs[c]] = std::string("the u_") + "xyz"[c] + " DOF of surface node " + std::to_string(nd.id);
+      for (size_t i = 0; i < multiplierDofs.size() && error.empty(); ++i) {
+        const GO g = multiplierDofs[i];
         if (!hostMap->isNodeGlobalElement(g)) {
           error = "contact: multiplier DOF id " + std::to_string(g) + " is not owned by rank " + std::to_string(me) +
                   " (the owner of its slave node) in the host's DOF map";
-          break;
+        } else if (const auto it = taken.find(g); it != taken.end()) {
+          error = "contact: multiplier DOF id " + std::to_string(g) + " of " + describeSlot(localSlots_[i]) +
+                  " is also " + it->second + ": each multiplier needs a DOF id of its own in the host's map";
         }
+        taken[g] = "the multiplier of " + describeSlot(localSlots_[i]);
+      }
     }
   }
   raiseCollectively<InputError>(mpi, error);
@@ -694,6 +713,7 @@ const SurfaceContactElement& ContactComponent::surfaceElement(SurfaceContactRole
 void ContactComponent::assemble(const Vector& u, const Vector* multipliers, unsigned what,
                                 const std::function<void(const std::vector<GO>&, ElementResult&)>& add) const {
   requireCommitted("assemble");
+  requirePaired("assemble");
   const Field f = gatherField(u, multipliers);
   ElementResult er;
   std::vector<GO> dofs;
@@ -719,6 +739,7 @@ void ContactComponent::assemble(const Vector& u, const Vector* multipliers, unsi
 
 std::vector<ContactRowEntry> ContactComponent::contactRows() const {
   requireCommitted("contactRows");
+  requirePaired("contactRows");
   std::vector<ContactRowEntry> out;
   if (!options_.decomposed) return out;
   // Zero state: the coefficients do not depend on it (frozen geometry).
@@ -1201,6 +1222,7 @@ bool ContactComponent::updatePairing(const Vector& u, bool global, bool freeze, 
     }
   }
   notePairing(found);
+  pairedOnce_ = true;
   if (changed) buildTopology();
   return changed;
 }

@@ -220,7 +220,8 @@ class ContactComponent {
   /// of multiplierMap() and the host passes them to the calls that read them.
   /// \throws InputError (every rank) if a DOF id is not owned by this rank in
   ///         `hostMap`, a registered node has no DOFs, or the multipliers do
-  ///         not match the owned slots.
+  ///         not match the owned slots, or a multiplier id is also a
+  ///         registered node's DOF id or another multiplier's.
   void setDofs(Teuchos::RCP<const Map> hostMap, const std::vector<ContactNodeDofs>& nodeDofs,
                const std::vector<GO>& multiplierDofs = {});
 
@@ -265,6 +266,7 @@ class ContactComponent {
   /// coefficients are the multiplier row of each counterpart's tangent, so
   /// any registered counterpart pair works; they do not depend on the state
   /// (frozen geometry). Zero coefficients are left out.
+  /// \throws std::logic_error before the first updatePairing().
   std::vector<ContactRowEntry> contactRows() const;
   /// Every contact contribution evaluated on this rank at (u, λ) — the
   /// conventional element of each owned slot, or the two counterparts where
@@ -272,6 +274,7 @@ class ContactComponent {
   /// multiplier — handed to `add` with its DOF ids (host ids; the
   /// multiplier last, its id as in multiplierMap()). `what` as for elements;
   /// the tangent is always computed.
+  /// \throws std::logic_error before the first updatePairing().
   void assemble(const Vector& u, const Vector* multipliers, unsigned what,
                 const std::function<void(const std::vector<GO>& dofs, ElementResult& result)>& add) const;
 
@@ -379,6 +382,9 @@ class ContactComponent {
   void evaluate(int k, int side, const Field& f, bool forceActive, unsigned what, ElementResult& er,
                 std::vector<GO>& dofs) const;
   void requireCommitted(const char* what) const;
+  /// Throws std::logic_error before the first updatePairing() (nothing is
+  /// paired: rows and contributions would be silently empty).
+  void requirePaired(const char* what) const;
   /// Throws std::logic_error unless the host gave multiplier DOFs to setDofs().
   void requireHostMultipliers() const;
   void appendNodeDofs(int node, std::vector<GO>& dofs) const;
@@ -393,6 +399,7 @@ class ContactComponent {
 
   std::vector<ContactNode> myNodes_;  ///< registered here, before commit()
   std::vector<Pair> pairs_;
+  bool pairedOnce_ = false;  ///< updatePairing() has run (requirePaired())
   std::vector<char> everPaired_;      ///< per pair: some slave node has paired (neverPairedPairs())
   std::vector<char> facingReported_;  ///< per pair: the facing warning was given
   std::vector<std::string> warnings_;  ///< takeWarnings()

@@ -5,6 +5,7 @@
 // of a registration that does not match the host's DOF ownership. On 2 ranks
 // the master surface and the slave surface belong to different ranks, so
 // every value that pairs them has crossed ranks.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <Teuchos_DefaultComm.hpp>
@@ -25,6 +26,7 @@ using ddc::ContactComponent;
 using ddc::GO;
 using ddc::InputError;
 using ddc::test::kRoundoff;
+using ::testing::HasSubstr;
 
 // The host: a flat master surface y = 0 (nodes 0, 1, 2 at x = 0, 1, 2; the
 // master body below) and a slave surface y = kGap0 above it (nodes 10, 11 at
@@ -254,6 +256,74 @@ TEST(ContactComponent, MultipliersOfSlotsTheRankDoesNotOwnAreRejected) {
   std::vector<GO> lm = {0};
   ddc::test::expectThrowWith<InputError>([&] { c->setDofs(map, dofsOf(h), h.ownsMaster() ? lm : std::vector<GO>{}); },
                                          {"multiplier"});
+}
+
+// ---- misuse a host meets first ------------------------------------------------
+
+TEST(ContactComponent, RowsAndContributionsBeforeTheFirstPairingAreAnError) {
+  // Nothing is paired before updatePairing(): the rows were silently empty
+  // and the contributions only the released slots' lambda^2/2.
+  Host h;
+  auto c = registered(h, true);
+  auto map = h.map();
+  c->setDofs(map, dofsOf(h));
+  auto u = state(h, map, 0.0);
+  ddc::test::expectThrowWith<std::logic_error>([&] { c->contactRows(); },
+                                               {"contactRows", "no pairing yet", "updatePairing"});
+  ddc::test::expectThrowWith<std::logic_error>(
+      [&] { c->assemble(*u, nullptr, ddc::kResidual, [](const std::vector<GO>&, ddc::ElementResult&) {}); },
+      {"assemble", "no pairing yet"});
+  c->updatePairing(*u, true, true);
+  EXPECT_NO_THROW(c->contactRows());
+}
+
+TEST(ContactComponent, AMultiplierIdThatIsAlsoADisplacementDofIsRejected) {
+  // Host multiplier ids must be DOF ids of their own: the slave owner gives
+  // u_y of node 10 (id 7), or the same id twice.
+  Host h;
+  for (const std::vector<GO>& given : {std::vector<GO>{10, 7}, std::vector<GO>{10, 10}}) {
+    auto c = registered(h, true);
+    std::vector<GO> gids;
+    for (int i = 0; i < 5; ++i)
+      if (h.owns(i)) gids.insert(gids.end(), {GO(2 * i), GO(2 * i + 1)});
+    std::vector<GO> lm;
+    if (h.ownsSlave()) lm = given;
+    if (h.ownsSlave()) gids.push_back(10);
+    auto map = Teuchos::rcp(new ddc::Map(11, Teuchos::ArrayView<const GO>(gids), 0, h.comm));
+    const std::string other = given[1] == 7 ? "is also the u_y DOF of surface node 10" : "is also the multiplier of";
+    ddc::test::expectThrowWith<InputError>([&] { c->setDofs(map, dofsOf(h), lm); },
+                                           {"multiplier DOF id " + std::to_string(given[1]), "slave node 11", other,
+                                            "a DOF id of its own"});
+  }
+}
+
+TEST(ContactComponent, AMasterSurfaceRegisteredWrongSideOutIsReported) {
+  // Both master facets reversed (consistent with each other, so commit()
+  // accepts them): the master body seems above its surface, its normals
+  // point away from the slave surface, and nothing pairs.
+  Host h;
+  auto c = registered(h, true, [&](std::vector<ddc::ContactNode>&, ddc::ContactPairSurfaces& pair) {
+    for (auto& f : pair.masterFacets) std::swap(f.nodes[0], f.nodes[1]);
+  });
+  auto map = h.map();
+  c->setDofs(map, dofsOf(h));
+  auto u = state(h, map, 0.0);
+  c->updatePairing(*u, true, true);
+  const auto warnings = c->takeWarnings();
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_THAT(warnings[0], HasSubstr("contact pair 'P': none of its 2 slave nodes pairs, and 2 of them lie within "
+                                     "the search radius of master facets that do not face them"));
+  EXPECT_THAT(warnings[0], HasSubstr("the master side set 'lower/top' faces away from or across the slave side set "
+                                     "'upper/bottom'"));
+  EXPECT_TRUE(c->takeWarnings().empty());  // once
+  ASSERT_EQ(c->neverPairedPairs().size(), 1u);
+  EXPECT_THAT(c->neverPairedPairs()[0], HasSubstr("contact pair 'P'"));
+  // The right way out pairs both and warns about nothing.
+  auto good = registered(h, true);
+  good->setDofs(map, dofsOf(h));
+  good->updatePairing(*u, true, true);
+  EXPECT_TRUE(good->takeWarnings().empty());
+  EXPECT_TRUE(good->neverPairedPairs().empty());
 }
 
 // ---- 3-D: Quad4 facets --------------------------------------------------------
