@@ -131,7 +131,9 @@ ContactComponent::ContactComponent(Teuchos::RCP<const Teuchos::Comm<int>> comm, 
                                    std::vector<std::shared_ptr<const ContactElement>> elements,
                                    SurfaceElementSource surfaceElements)
     : comm_(std::move(comm)), options_(options), surfaceSource_(std::move(surfaceElements)) {
-  if (options_.decomposed) {
+  // No elements: the host has no Line2 (2-D segment) pairs; commit() checks.
+  if (elements.empty()) {
+  } else if (options_.decomposed) {
     if (elements.size() != 2 || !elements[0] || !elements[1])
       throw std::invalid_argument("ContactComponent: decomposed contact needs the slave and master counterparts "
                                   "(\"Decomposed NTS Slave\", \"Decomposed NTS Master\")");
@@ -205,6 +207,13 @@ int ContactComponent::numPairs() const { return static_cast<int>(pairs_.size());
 
 void ContactComponent::commit() {
   if (committed_) throw std::logic_error("ContactComponent::commit called twice");
+  for (const Pair& pair : pairs_)
+    if (pair.segments() && !(options_.decomposed ? slaveElement_ && masterElement_ : ntsElement_ != nullptr))
+      throw std::invalid_argument("ContactComponent: pair '" + pair.path +
+                                  "' has Line2 master facets, whose elements the constructor takes: give it " +
+                                  (options_.decomposed ? "the counterparts {\"Decomposed NTS Slave\", \"Decomposed "
+                                                         "NTS Master\"}"
+                                                       : "{\"Node-To-Segment\"}"));
   const MPI_Comm mpi = rawComm(comm_);
   const int me = comm_->getRank();
   // 0. The space dimension: every pair's facets agree on it.

@@ -185,10 +185,11 @@ class ContactComponent {
       std::function<std::shared_ptr<const SurfaceContactElement>(SurfaceContactRole role, CellType facet)>;
   /// \param comm the host's ranks (collective calls are collective over it)
   /// \param options the formulation, search radius and penetration tolerance
-  /// \param elements the counterparts {"Decomposed NTS Slave", "Decomposed NTS
-  ///        Master"} when options.decomposed, else {"Node-To-Segment"}
-  ///        (any ContactElement with those DOF layouts): the elements of
-  ///        pairs with Line2 master facets
+  /// \param elements the elements of pairs with Line2 master facets: the
+  ///        counterparts {"Decomposed NTS Slave", "Decomposed NTS Master"}
+  ///        when options.decomposed, else {"Node-To-Segment"} (any
+  ///        ContactElement with those DOF layouts); empty when no pair has
+  ///        Line2 master facets (a 3-D host), which commit() checks
   /// \param surfaceElements the elements of the other facet types
   ///        (default: the built-in ones, makeSurfaceContactElement())
   /// \throws std::invalid_argument if the evaluators do not match the formulation.

@@ -347,12 +347,14 @@ struct Host3 : Host {
 };
 
 std::unique_ptr<ContactComponent> registered3(const Host3& h,
-                                              const std::function<void(ddc::ContactPairSurfaces&)>& tweak = {}) {
+                                              const std::function<void(ddc::ContactPairSurfaces&)>& tweak = {},
+                                              bool segmentElements = true) {
   ddc::ContactComponentOptions o;
   o.decomposed = true;
   o.searchRadius = 0.5;
   o.penetrationTolerance = 1e-12;
-  auto c = std::make_unique<ContactComponent>(h.comm, o, elements(true));
+  auto c = std::make_unique<ContactComponent>(
+      h.comm, o, segmentElements ? elements(true) : std::vector<std::shared_ptr<const ddc::ContactElement>>{});
   std::vector<ddc::ContactNode> nodes;
   for (int i = 0; i < 10; ++i)
     if (h.owns3(i)) nodes.push_back({kNodes3[i], Eigen::Vector3d(kX3[i][0], kX3[i][1], kX3[i][2])});
@@ -412,6 +414,48 @@ TEST(ContactComponent3D, DecomposedRowsGapsAndActiveSetOnQuad4Facets) {
     if (h.owns3(i)) u.replaceGlobalValue(GO(3 * i + 2), -0.15);
   EXPECT_EQ(c->updateActiveSet(u, &lambda).size(), 4u);
   for (const auto& s : c->slots()) EXPECT_NEAR(s.gap, kGap0 - 0.15, kRoundoff);
+}
+
+TEST(ContactComponent3D, AHostWithoutSegmentPairsNeedsNoSegmentElements) {
+  // The Line2 counterparts serve 2-D segment pairs only: a 3-D host passes
+  // none and gets the same rows.
+  Host3 h;
+  auto map = h.map3();
+  std::vector<ddc::ContactNodeDofs> dofs;
+  for (int i = 0; i < 10; ++i)
+    if (h.owns3(i)) dofs.push_back({kNodes3[i], {{GO(3 * i), GO(3 * i + 1), GO(3 * i + 2)}}, {{false, false, false}}});
+  std::vector<std::vector<ddc::ContactRowEntry>> rows;
+  for (bool withSegmentElements : {true, false}) {
+    auto c = registered3(h, {}, withSegmentElements);
+    c->setDofs(map, dofs);
+    ddc::Vector u(map);
+    c->updatePairing(u, true, true);
+    rows.push_back(c->contactRows());
+  }
+  ASSERT_EQ(rows[0].size(), rows[1].size());
+  for (size_t i = 0; i < rows[0].size(); ++i) {
+    EXPECT_EQ(rows[0][i].dof, rows[1][i].dof);
+    EXPECT_EQ(rows[0][i].coefficient, rows[1][i].coefficient);
+  }
+}
+
+TEST(ContactComponent, ASegmentPairWithoutItsElementsIsRefusedAtCommit) {
+  Host h;
+  ddc::ContactComponentOptions o;
+  o.decomposed = true;
+  o.searchRadius = 0.5;
+  ContactComponent c(h.comm, o, {});
+  std::vector<ddc::ContactNode> nodes;
+  for (int i = 0; i < 5; ++i)
+    if (h.owns(i)) nodes.push_back({kNodes[i], Eigen::Vector2d(kX[i][0], kX[i][1])});
+  ddc::ContactPairSurfaces pair;
+  pair.name = "P";
+  if (h.ownsMaster()) pair.masterFacets.push_back({0, {{2, 1}}, 100, 0, 1.0});
+  if (h.ownsSlave()) pair.slaveFacets.push_back({0, {{10, 11}}, 200, 1, 0.0}), pair.slaveNodes = {10, 11};
+  c.registerNodes(nodes);
+  c.registerPair(pair);
+  ddc::test::expectThrowWith<std::invalid_argument>([&] { c.commit(); },
+                                                    {"pair 'P' has Line2 master facets", "Decomposed NTS Slave"});
 }
 
 TEST(ContactComponent3D, AFacetWithAnInwardNormalIsRejected) {
