@@ -24,3 +24,8 @@ run(${MPIRUN} --oversubscribe -np 2 ${WORK_DIR}/build/host_program)
 # Depths (b) and (c): the host's own mesh, element loop and Newton with the
 # contact component and FetiDpSolver reproduce the whole analysis to 1e-10.
 run(${MPIRUN} --oversubscribe -np 2 ${WORK_DIR}/build/host_contact_feti)
+# Depth (c) in 3-D: the contact component alone on two Hex8 blocks, on 1, 2
+# and 3 ranks.
+foreach(np 1 2 3)
+  run(${MPIRUN} --oversubscribe -np ${np} ${WORK_DIR}/build/host_contact_3d)
+endforeach()
