@@ -131,6 +131,12 @@ ContactComponent::ContactComponent(Teuchos::RCP<const Teuchos::Comm<int>> comm, 
                                    std::vector<std::shared_ptr<const ContactElement>> elements,
                                    SurfaceElementSource surfaceElements)
     : comm_(std::move(comm)), options_(options), surfaceSource_(std::move(surfaceElements)) {
+  if (!(options_.searchRadius > 0.0) || !std::isfinite(options_.searchRadius))
+    throw std::invalid_argument("ContactComponent: options.searchRadius must be > 0 and finite (an absolute "
+                                "distance), got " + std::to_string(options_.searchRadius));
+  if (!(options_.penetrationTolerance >= 0.0) || !std::isfinite(options_.penetrationTolerance))
+    throw std::invalid_argument("ContactComponent: options.penetrationTolerance must be >= 0 and finite (an "
+                                "absolute distance), got " + std::to_string(options_.penetrationTolerance));
   // No elements: the host has no Line2 (2-D segment) pairs; commit() checks.
   if (elements.empty()) {
   } else if (options_.decomposed) {

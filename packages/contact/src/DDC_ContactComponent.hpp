@@ -192,7 +192,9 @@ class ContactComponent {
   ///        Line2 master facets (a 3-D host), which commit() checks
   /// \param surfaceElements the elements of the other facet types
   ///        (default: the built-in ones, makeSurfaceContactElement())
-  /// \throws std::invalid_argument if the evaluators do not match the formulation.
+  /// \throws std::invalid_argument if the evaluators do not match the
+  ///         formulation, or options.searchRadius is not > 0 or
+  ///         options.penetrationTolerance not >= 0 (both finite).
   ContactComponent(Teuchos::RCP<const Teuchos::Comm<int>> comm, ContactComponentOptions options,
                    std::vector<std::shared_ptr<const ContactElement>> elements,
                    SurfaceElementSource surfaceElements = makeSurfaceContactElement);

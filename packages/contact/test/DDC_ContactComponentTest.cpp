@@ -439,6 +439,17 @@ TEST(ContactComponent3D, AHostWithoutSegmentPairsNeedsNoSegmentElements) {
   }
 }
 
+TEST(ContactComponent, OptionsOutOfRangeAreRefused) {
+  Host h;
+  ddc::ContactComponentOptions o;  // searchRadius 0: no pair could ever form
+  ddc::test::expectThrowWith<std::invalid_argument>([&] { ContactComponent c(h.comm, o, elements(true)); },
+                                                    {"options.searchRadius must be > 0 and finite", "got 0"});
+  o.searchRadius = 0.5;
+  o.penetrationTolerance = -1.0;
+  ddc::test::expectThrowWith<std::invalid_argument>([&] { ContactComponent c(h.comm, o, elements(true)); },
+                                                    {"options.penetrationTolerance must be >= 0"});
+}
+
 TEST(ContactComponent, ASegmentPairWithoutItsElementsIsRefusedAtCommit) {
   Host h;
   ddc::ContactComponentOptions o;
