@@ -14,8 +14,9 @@ namespace {
 
 // Coefficients measured with examples/block_3d.xml (Hex8, Hex20) and
 // examples/elastic_block.xml (Quad4) on 2 ranks at 8k-527k DOFs, peak
-// resident memory less the 72 MiB of an empty run; the estimate is within
-// about 35 % of those runs (the table in doc/user-guide.md, "Memory").
+// resident memory less that of an empty run (~70 MiB); the estimate is
+// within -20 % to +70 % of those runs (the table in doc/user-guide.md,
+// "Memory", printed by test/benchmark/memory_estimate.sh).
 
 /// Bytes per stored matrix entry: the owned matrix, its overlap copy used in
 /// assembly, their graphs (measured with Belos-MueLu: 21 B).

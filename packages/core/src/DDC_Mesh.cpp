@@ -175,8 +175,9 @@ double Mesh::replicatedBytes(double nodes, double elements, int nodesPerElement)
   // Per node: coordinates (24 B), node sets, the analysis's owner, first
   // DOF, per-DOF flags, sources and entities (~100 B in 3-D), the rigid-
   // motion body index; per element: connectivity, offsets, body, partition,
-  // and the element graph METIS partitions. Measured within 30 % on the
-  // structured bodies (doc/user-guide.md, "Memory").
+  // and the element graph METIS partitions. Counted from those arrays with
+  // room for their overheads, not measured on its own: in the runs of
+  // doc/user-guide.md, "Memory" it is a few per cent of the total.
   return 200.0 * nodes + (64.0 + 24.0 * nodesPerElement) * elements;
 }
 
