@@ -108,9 +108,9 @@ Options parse(const std::vector<std::string>& args) {
   return o;
 }
 
-/// A message or an echoed argument of at most about `max` characters: the
-/// start and the end of a longer one, with the count left out between them
-/// (a 1 MB value given on the command line was repeated in full).
+/// A message of at most about `max` characters: the start and the end of a
+/// longer one, with the count left out between them (a 1 MB value given on
+/// the command line was repeated in full).
 std::string capText(const std::string& text, std::size_t max) {
   if (text.size() <= max) return text;
   const std::size_t head = max * 3 / 4, tail = max / 4;
@@ -118,9 +118,8 @@ std::string capText(const std::string& text, std::size_t max) {
          text.substr(text.size() - tail);
 }
 
-/// Longest message printed, and longest argument echoed in a note.
+/// Longest message printed (a quoted value is capped by ddc::echoed()).
 constexpr std::size_t kMaxMessage = 4000;
-constexpr std::size_t kMaxEchoedArgument = 200;
 
 /// Every rank runs rank 0's command line. An MPMD launch (`mpirun -np 1
 /// ddcontact a.xml : -np 1 ddcontact b.xml`) would otherwise give the ranks
@@ -136,7 +135,7 @@ std::vector<std::string> commandLine(int argc, char** argv, const Teuchos::Comm<
   if (firstDiffering < comm.getSize() && comm.getRank() == 0) {
     std::cerr << "ddcontact: note: rank " << firstDiffering
               << " was started with other arguments than rank 0; every rank runs rank 0's:";
-    for (const auto& a : args) std::cerr << " '" << capText(a, kMaxEchoedArgument) << "'";
+    for (const auto& a : args) std::cerr << " '" << ddc::echoed(a) << "'";
     std::cerr << std::endl;
   }
   return args;
@@ -210,7 +209,7 @@ bool startupHandshake(MPI_Comm comm) {
     if (end == env || *end != '\0' || !(t > 0.0) || t > 1e6) {
       if (rank == 0)
         std::cerr << "ddcontact: error: environment variable DDCONTACT_STARTUP_TIMEOUT = '"
-                  << std::string(env).substr(0, 80) << "': expected a number of seconds in (0, 1e6]" << std::endl;
+                  << ddc::echoed(env) << "': expected a number of seconds in (0, 1e6]" << std::endl;
       return false;
     }
     timeout = t;

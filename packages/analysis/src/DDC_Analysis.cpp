@@ -1,7 +1,6 @@
 #include "DDC_Analysis.hpp"
 
 #include <Teuchos_XMLParameterListHelpers.hpp>
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <array>
@@ -1002,10 +1001,8 @@ void Analysis::runSteps(OutputDirectory* dir) {
                "(doc/contact.md, 'Which slave nodes pair')");
   }
   {
-    // Peak resident memory per rank (Linux ru_maxrss is in KiB).
-    struct rusage ru;
-    getrusage(RUSAGE_SELF, &ru);
-    const double mine = ru.ru_maxrss / 1024.0;
+    // Peak resident memory per rank.
+    const double mine = peakResidentBytes() / (1024.0 * 1024.0);
     Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, mine, Teuchos::outArg(timing_.peakMemoryMiB));
     double t[3] = {timing_.assembly, timing_.linearSetup, timing_.linearSolve}, tmax[3];
     Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 3, t, tmax);
