@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
     options.decomposed = true;
     options.searchRadius = 0.5;           // absolute, about an element
     options.penetrationTolerance = 1e-9;  // absolute
-    ddc::ContactComponent contact(comm, options, {});
+    ddc::ContactComponent contact(comm, options);
 
     // Surface nodes, each registered by the rank that owns its DOFs.
     std::vector<ddc::ContactNode> nodes;

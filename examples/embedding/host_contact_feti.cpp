@@ -17,7 +17,6 @@
 // the Newton and Krylov tolerances (1e-12) separate the two.
 #include <DDC_Analysis.hpp>
 #include <DDC_ContactComponent.hpp>
-#include <DDC_DecomposedNodeToSegment.hpp>
 #include <DDC_Element.hpp>
 #include <DDC_ElementFactory.hpp>
 #include <DDC_Error.hpp>
@@ -209,10 +208,7 @@ class Host {
     o.decomposed = true;
     o.searchRadius = kBlocks[0].lx / kBlocks[0].nx;           // the analysis' default: mean master segment length
     o.penetrationTolerance = 1e-6 * kBlocks[0].lx / kBlocks[0].nx;  // its default: 1e-6 of it
-    contact_ = std::make_unique<ddc::ContactComponent>(
-        comm_, o,
-        std::vector<std::shared_ptr<const ddc::ContactElement>>{std::make_shared<ddc::DecomposedNtsSlaveElement>(),
-                                                                std::make_shared<ddc::DecomposedNtsMasterElement>()});
+    contact_ = std::make_unique<ddc::ContactComponent>(comm_, o);
     ddc::ContactPairSurfaces pair;
     pair.name = "Interface";
     pair.slaveName = "punch bottom";
@@ -353,7 +349,7 @@ class Host {
         const auto& d = subdomains_[i].dofs;
         const auto it = std::lower_bound(d.begin(), d.end(), e.dof);
         if (it == d.end() || *it != e.dof) continue;
-        if (e.master && subdomains_[i].id != e.subdomain) continue;
+        if (e.role == ddc::SurfaceContactRole::Master && subdomains_[i].id != e.subdomain) continue;
         out[i].push_back({e.row, LO(it - d.begin()), e.coefficient});
         break;
       }

@@ -454,20 +454,6 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
                                     "body");
     }
   }
-  std::vector<std::shared_ptr<const ContactElement>> contactElements;
-  if (contact.enabled()) {
-    const std::vector<std::string> types = contact.decomposed
-                                               ? std::vector<std::string>{"Decomposed NTS Slave", "Decomposed NTS Master"}
-                                               : std::vector<std::string>{"Node-To-Segment"};
-    for (const auto& t : types) {
-      Teuchos::ParameterList pl;
-      pl.set("Type", t);
-      auto ce = std::dynamic_pointer_cast<const ContactElement>(factory_.create(pl, "Contact/Formulation"));
-      DDC_INPUT_REQUIRE(ce != nullptr, "element type '" << t << "' registered in the factory is not a contact element");
-      contactElements.push_back(ce);
-    }
-  }
-
   const PL& part = params.sublist("Partition");
   int nsub = part.get<int>("Number of Subdomains");
   if (nsub == 0) nsub = automaticSubdomainCount(*mesh, part, params.sublist("Solver").get<std::string>("Strategy"),
@@ -512,8 +498,8 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
 
   strategy_ = makeSolutionStrategy(comm_, params.sublist("Solver"), contact);
 
-  // The contact elements of facets other than 2-node segments, by role and
-  // facet type, from the factory (host codes may replace them there).
+  // The contact elements by role and facet type, from the factory (host
+  // codes may replace them there).
   auto surfaceElements = [factory = factory_](SurfaceContactRole role, CellType facet) {
     Teuchos::ParameterList pl;
     const std::string type = surfaceContactElementName(role, facet);
@@ -529,7 +515,7 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
   {
     Activity activity("building the model (" + sizes + ")");
     model_ = std::make_shared<Model>(comm_, mesh, std::move(elements), std::move(partition), std::move(bcs),
-                                     std::move(contact), std::move(contactElements), surfaceElements);
+                                     std::move(contact), surfaceElements);
     u_ = model_->createVector();
   }
   Activity activity("setting up the " + strategy_->name() + " solver (" + sizes + ")");

@@ -16,7 +16,6 @@
 #include "DDC_ContactSearch.hpp"
 #include "DDC_ContactSurface.hpp"
 #include "DDC_ContinuumElement.hpp"
-#include "DDC_DecomposedNodeToSegment.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_MpiRecords.hpp"
 #include "DDC_ShapeFunctions.hpp"
@@ -26,8 +25,7 @@ namespace ddc {
 
 Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const Mesh> mesh,
              std::vector<std::shared_ptr<const Element>> elements, Partition partition, BoundaryConditions bcs,
-             ContactOptions contact, std::vector<std::shared_ptr<const ContactElement>> contactElements,
-             ContactComponent::SurfaceElementSource surfaceElements)
+             ContactOptions contact, ContactComponent::SurfaceElementSource surfaceElements)
     : comm_(std::move(comm)),
       mesh_(std::move(mesh)),
       elements_(std::move(elements)),
@@ -43,7 +41,7 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
     if (subdomainRank_[partition_.elementSubdomain[e]] == comm_->getRank()) localElements_.push_back(e);
 
   computeNodeOwners();
-  if (contactOptions_.enabled()) buildContact(std::move(contactElements), std::move(surfaceElements));
+  if (contactOptions_.enabled()) buildContact(std::move(surfaceElements));
   // The formulation alone says nothing about whether the contact maps exist:
   // with no pairs there are none, and the run is a plain analysis.
   decomposed_ = contactOptions_.decomposed && hasContact();
@@ -85,8 +83,7 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
   assembleTractions();
 }
 
-void Model::buildContact(std::vector<std::shared_ptr<const ContactElement>> contactElements,
-                         ContactComponent::SurfaceElementSource surfaceElements) {
+void Model::buildContact(ContactComponent::SurfaceElementSource surfaceElements) {
   // Register the contact surfaces with the component: each rank the surface
   // nodes it owns and the facets of its elements (doc/embedding.md,
   // "(c) The contact component"); the component merges them.
@@ -96,7 +93,7 @@ void Model::buildContact(std::vector<std::shared_ptr<const ContactElement>> cont
   options.decomposed = contactOptions_.decomposed;
   options.searchRadius = contactOptions_.searchRadius;
   options.penetrationTolerance = contactOptions_.penetrationTolerance;
-  contact_ = std::make_unique<ContactComponent>(comm_, options, std::move(contactElements), std::move(surfaceElements));
+  contact_ = std::make_unique<ContactComponent>(comm_, options, std::move(surfaceElements));
   std::vector<char> isSurface(mesh.numNodes(), 0);
   auto facets = [&](const std::string& set, bool master, CellType& type) {
     const ContactSurfaceFacets surface = contactSurfaceFromSideSet(mesh, set);
@@ -660,7 +657,7 @@ std::vector<std::vector<ConstraintEntry>> Model::contactRowEntries(const std::ve
   int slot = -1;
   size_t slaveSystem = systems.size();
   for (const ContactRowEntry& e : contact_->contactRows()) {
-    if (!e.master && e.slot != slot) {
+    if (e.role == SurfaceContactRole::Slave && e.slot != slot) {
       slot = e.slot;
       slaveSystem = systems.size();
       const int n = contact_->slots()[e.slot].slaveNode;
@@ -669,7 +666,7 @@ std::vector<std::vector<ConstraintEntry>> Model::contactRowEntries(const std::ve
           if (slaveSystem == systems.size() && localIndex(systems[i], dof(n, c)) >= 0) slaveSystem = i;
     }
     for (size_t i = 0; i < systems.size(); ++i) {
-      if (e.master ? systems[i].id != e.subdomain : i != slaveSystem) continue;
+      if (e.role == SurfaceContactRole::Master ? systems[i].id != e.subdomain : i != slaveSystem) continue;
       const int l = localIndex(systems[i], e.dof);
       if (l >= 0) out[i].push_back({e.row, LO(l), e.coefficient});
     }

@@ -55,15 +55,11 @@ struct AssemblyResult {
 class Model {
  public:
   /// \param elements one evaluator per body (index = body index)
-  /// \param contactElements evaluators by name: "Node-To-Segment" or the
-  ///        pair "Decomposed NTS Slave" / "Decomposed NTS Master" (only the
-  ///        ones the formulation needs): pairs of 2-node segments
-  /// \param surfaceElements the contact elements of the other facet types
-  ///        (Quad9 sides, 3-D faces; ContactComponent)
+  /// \param surfaceElements the contact elements by role and facet type
+  ///        (ContactComponent)
   Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const Mesh> mesh,
         std::vector<std::shared_ptr<const Element>> elements, Partition partition, BoundaryConditions bcs,
-        ContactOptions contact = {}, std::vector<std::shared_ptr<const ContactElement>> contactElements = {},
-        ContactComponent::SurfaceElementSource surfaceElements = makeSurfaceContactElement);
+        ContactOptions contact = {}, ContactComponent::SurfaceElementSource surfaceElements = makeSurfaceContactElement);
   ~Model();
 
   const Mesh& mesh() const { return *mesh_; }
@@ -184,8 +180,7 @@ class Model {
 
  private:
   void computeNodeOwners();
-  void buildContact(std::vector<std::shared_ptr<const ContactElement>> contactElements,
-                    ContactComponent::SurfaceElementSource surfaceElements);
+  void buildContact(ContactComponent::SurfaceElementSource surfaceElements);
   void buildDofNumbering();
   void buildConstraints();
   void buildTopology();

@@ -675,7 +675,7 @@ TEST(ContactPairing, SlaveOnTheFreeEndOfTheMasterKeepsItsSegmentAgainstRoundOff)
   auto ntsElement = std::dynamic_pointer_cast<const ddc::ContactElement>(factory.create(nts, "Contact/Formulation"));
   ASSERT_NE(ntsElement, nullptr);
   ddc::Model m(worldComm(), mesh, elements, ddc::partitionMetis(*mesh, worldComm()->getSize()),
-               ddc::BoundaryConditions{}, options, {ntsElement});
+               ddc::BoundaryConditions{}, options);
   auto u = m.createVector();
   m.updatePairing(*u, /*global=*/true, /*freeze=*/false);
   int end = -1;

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "DDC_ContactSearch.hpp"  // the facing rule (facingVerdict)
 #include "DDC_Error.hpp"
 #include "DDC_MpiRecords.hpp"
 #include "DDC_ShapeFunctions.hpp"
@@ -79,24 +80,19 @@ std::vector<FacetSide> facetSides(CellType type, const int* nodes) {
 struct ContactComponent::Pair {
   std::string name, path, slaveName, masterName;
   CellType slaveType = CellType::Line2, masterType = CellType::Line2;
-  /// Line2 master facets: the 2-D segment search and elements; otherwise the
-  /// facet search and the surface elements.
-  bool segments() const { return masterType == CellType::Line2; }
   // Registration shares (before commit()).
   std::vector<int> mySlaves;
   std::vector<ContactFacet> mySlaveFacets, myMasterFacets;
   // After commit().
   std::vector<FacetRecord> masterFacets;  ///< in surface (search) order
   std::vector<FacetRecord> slaveFacets;   ///< ascending id
-  FacingRule rule;                        ///< Line2: slave segments, master depths
-  std::unique_ptr<ContactSearch> search;  ///< Line2
-  std::unique_ptr<FacetSearch> facetSearch;  ///< other facet types
+  std::unique_ptr<FacetSearch> facetSearch;
   std::vector<int> slaves;                   ///< slave node ids, in slot order
-  /// Other facet types: per slave node, its slave facets and its local node
-  /// number in each (the nodal normal of the facing rule).
+  /// Per slave node, its slave facets and its local node number in each
+  /// (the nodal normal of the facing rule).
   std::map<int, std::vector<std::pair<int, int>>> slaveFacetsAt;
-  /// Other facet types: per master facet, its sides on the surface's free
-  /// boundary (polylines of node ids).
+  /// Per master facet, its sides on the surface's free boundary (polylines
+  /// of node ids).
   std::vector<std::vector<std::vector<int>>> freeSides;
   std::vector<int> slots;  ///< slots of the pair, in search order
   std::vector<int> facetNodes(int f) const {
@@ -104,15 +100,15 @@ struct ContactComponent::Pair {
   }
 };
 
-/// The pairing of one slave node found by a search (either kind of pair).
+/// The pairing of one slave node found by a search.
 struct ContactComponent::Found {
   int facet = -1;            ///< master facet in the pair (-1: not paired)
   bool pastFreeEnd = false;  ///< nearest point on the master surface's free boundary: not paired
   bool viaCorner = false;    ///< the slave projects outside the facet (corner / edge rule)
-  std::array<double, 2> xi{{0.0, 0.0}};  ///< Line2: ξ ∈ [0, 1] in xi[0]; facets: ξ^p
+  std::array<double, 2> xi{{0.0, 0.0}};  ///< ξ^p (reference coordinates of the facet; xi[1] unused in 2-D)
   double gap = 0.0, distance = 0.0;
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-  Eigen::Vector3d slaveNormal = Eigen::Vector3d::Zero();  ///< replicated search: n_s (hysteresis)
+  Eigen::Vector3d slaveNormal = Eigen::Vector3d::Zero();  ///< replicated search: n_s (hysteresis, messages)
   /// Not paired only because of the facing rule's normal test: a master
   /// facet within the search radius does not face the slave surface.
   bool notFacing = false;
@@ -128,7 +124,6 @@ struct ContactComponent::Field {
 };
 
 ContactComponent::ContactComponent(Teuchos::RCP<const Teuchos::Comm<int>> comm, ContactComponentOptions options,
-                                   std::vector<std::shared_ptr<const ContactElement>> elements,
                                    SurfaceElementSource surfaceElements)
     : comm_(std::move(comm)), options_(options), surfaceSource_(std::move(surfaceElements)) {
   if (!(options_.searchRadius > 0.0) || !std::isfinite(options_.searchRadius))
@@ -137,19 +132,6 @@ ContactComponent::ContactComponent(Teuchos::RCP<const Teuchos::Comm<int>> comm, 
   if (!(options_.penetrationTolerance >= 0.0) || !std::isfinite(options_.penetrationTolerance))
     throw std::invalid_argument("ContactComponent: options.penetrationTolerance must be >= 0 and finite (an "
                                 "absolute distance), got " + std::to_string(options_.penetrationTolerance));
-  // No elements: the host has no Line2 (2-D segment) pairs; commit() checks.
-  if (elements.empty()) {
-  } else if (options_.decomposed) {
-    if (elements.size() != 2 || !elements[0] || !elements[1])
-      throw std::invalid_argument("ContactComponent: decomposed contact needs the slave and master counterparts "
-                                  "(\"Decomposed NTS Slave\", \"Decomposed NTS Master\")");
-    slaveElement_ = elements[0];
-    masterElement_ = elements[1];
-  } else {
-    if (elements.size() != 1 || !elements[0])
-      throw std::invalid_argument("ContactComponent: conventional contact needs the \"Node-To-Segment\" element");
-    ntsElement_ = elements[0];
-  }
   if (!surfaceSource_) throw std::invalid_argument("ContactComponent: no source of surface contact elements");
 }
 
@@ -213,13 +195,6 @@ int ContactComponent::numPairs() const { return static_cast<int>(pairs_.size());
 
 void ContactComponent::commit() {
   if (committed_) throw std::logic_error("ContactComponent::commit called twice");
-  for (const Pair& pair : pairs_)
-    if (pair.segments() && !(options_.decomposed ? slaveElement_ && masterElement_ : ntsElement_ != nullptr))
-      throw std::invalid_argument("ContactComponent: pair '" + pair.path +
-                                  "' has Line2 master facets, whose elements the constructor takes: give it " +
-                                  (options_.decomposed ? "the counterparts {\"Decomposed NTS Slave\", \"Decomposed "
-                                                         "NTS Master\"}"
-                                                       : "{\"Node-To-Segment\"}"));
   const MPI_Comm mpi = rawComm(comm_);
   const int me = comm_->getRank();
   // 0. The space dimension: every pair's facets agree on it.
@@ -244,7 +219,6 @@ void ContactComponent::commit() {
   if (!pairs_.empty()) dim_ = facetSpaceDimension(pairs_[0].masterType);
   // The surface contact elements of the facet types in use.
   for (const auto& pair : pairs_) {
-    if (pair.segments()) continue;
     const auto roles = options_.decomposed
                            ? std::vector<SurfaceContactRole>{SurfaceContactRole::Slave, SurfaceContactRole::Master}
                            : std::vector<SurfaceContactRole>{SurfaceContactRole::Conventional};
@@ -367,15 +341,7 @@ void ContactComponent::commit() {
     }
     pair.slaves = slaves;
     std::map<int, double> tributary;
-    if (pair.segments() && pair.slaveType == CellType::Line2) {
-      for (const auto& f : pair.slaveFacets) {
-        const Eigen::Vector3d& a = X_[index(f.nodes[0])];
-        const Eigen::Vector3d& b = X_[index(f.nodes[1])];
-        const double half = 0.5 * std::hypot(b.x() - a.x(), b.y() - a.y());
-        tributary[f.nodes[0]] += half;
-        tributary[f.nodes[1]] += half;
-      }
-    } else {
+    {  // the slave node's share of the slave surface
       // The facet's measure lumped to its nodes by the HRZ rule (Hinton, Rock
       // & Zienkiewicz 1976): ∫N_i² dA scaled to the facet's measure, positive
       // for quadratic facets too, exact shares on regular linear facets.
@@ -421,46 +387,30 @@ void ContactComponent::commit() {
         }
     pairingMargin_ = std::max(pairingMargin_, options_.searchRadius + 4.0 * longest);
     for (int n : masterNodes) masterSurfaceNodes_.push_back(n);
-    if (pair.segments()) {
-      // The facing rule (doc/contact.md "Which slave nodes pair"): slave nodal
-      // normals from the slave segments, master element depths from the host.
-      std::vector<std::array<int, 2>> masterSegments;
-      for (const auto& f : pair.masterFacets) {
-        masterSegments.push_back({f.nodes[0], f.nodes[1]});
-        pair.rule.masterDepths.push_back(f.depth);
-      }
-      DDC_INPUT_REQUIRE(pair.slaveType == CellType::Line2,
-                        "contact pair '" << pair.path << "': Line2 master facets need Line2 slave facets, not "
-                                         << cellTypeName(pair.slaveType));
-      for (const auto& f : pair.slaveFacets) pair.rule.slaveSegments.push_back({f.nodes[0], f.nodes[1]});
-      pair.search = std::make_unique<ContactSearch>(MasterSurface(masterSegments), slaves, options_.searchRadius,
-                                                    pair.rule);
-    } else {
-      std::vector<std::vector<int>> facets;
-      for (size_t f = 0; f < pair.masterFacets.size(); ++f) {
-        facets.push_back(pair.facetNodes(int(f)));
-        DDC_INPUT_REQUIRE(pair.masterFacets[f].depth > 0.0, "contact pair '" << pair.path << "': master facet "
-                                                                             << pair.masterFacets[f].id
-                                                                             << " has no depth (> 0 expected)");
-      }
-      pair.facetSearch = std::make_unique<FacetSearch>(pair.masterType, facets, options_.searchRadius);
-      for (size_t f = 0; f < pair.slaveFacets.size(); ++f)
-        for (int a = 0; a < pair.slaveFacets[f].numNodes; ++a)
-          pair.slaveFacetsAt[pair.slaveFacets[f].nodes[a]].emplace_back(int(f), a);
-      for (int n : slaves)
-        DDC_INPUT_REQUIRE(pair.slaveFacetsAt.count(n), "contact pair '" << pair.path << "': slave node " << n
-                                                                         << " is on no facet of the slave surface '"
-                                                                         << pair.slaveName
-                                                                         << "' (slave nodes must lie on a surface)");
-      // Free boundary: sides only one master facet has.
-      std::map<std::vector<int>, int> count;
-      for (const auto& f : pair.masterFacets)
-        for (const auto& s : facetSides(pair.masterType, f.nodes.data())) ++count[s.key];
-      for (const auto& f : pair.masterFacets) {
-        pair.freeSides.emplace_back();
-        for (const auto& s : facetSides(pair.masterType, f.nodes.data()))
-          if (count[s.key] == 1) pair.freeSides.back().push_back(s.polyline);
-      }
+    std::vector<std::vector<int>> facets;
+    for (size_t f = 0; f < pair.masterFacets.size(); ++f) {
+      facets.push_back(pair.facetNodes(int(f)));
+      DDC_INPUT_REQUIRE(pair.masterFacets[f].depth > 0.0, "contact pair '" << pair.path << "': master facet "
+                                                                           << pair.masterFacets[f].id
+                                                                           << " has no depth (> 0 expected)");
+    }
+    pair.facetSearch = std::make_unique<FacetSearch>(pair.masterType, facets, options_.searchRadius);
+    for (size_t f = 0; f < pair.slaveFacets.size(); ++f)
+      for (int a = 0; a < pair.slaveFacets[f].numNodes; ++a)
+        pair.slaveFacetsAt[pair.slaveFacets[f].nodes[a]].emplace_back(int(f), a);
+    for (int n : slaves)
+      DDC_INPUT_REQUIRE(pair.slaveFacetsAt.count(n), "contact pair '" << pair.path << "': slave node " << n
+                                                                       << " is on no facet of the slave surface '"
+                                                                       << pair.slaveName
+                                                                       << "' (slave nodes must lie on a surface)");
+    // Free boundary: sides only one master facet has.
+    std::map<std::vector<int>, int> count;
+    for (const auto& f : pair.masterFacets)
+      for (const auto& s : facetSides(pair.masterType, f.nodes.data())) ++count[s.key];
+    for (const auto& f : pair.masterFacets) {
+      pair.freeSides.emplace_back();
+      for (const auto& s : facetSides(pair.masterType, f.nodes.data()))
+        if (count[s.key] == 1) pair.freeSides.back().push_back(s.polyline);
     }
   }
   for (size_t k = 0; k < slots_.size(); ++k)
@@ -685,38 +635,26 @@ ContactComponent::Field ContactComponent::gatherField(const Vector& u, const Vec
   return f;
 }
 
-void ContactComponent::evaluate(int k, int side, const Field& f, bool forceActive, unsigned what, ElementResult& er,
-                                std::vector<GO>& dofs) const {
-  // side: 0 slave counterpart, 1 master counterpart, 2 conventional element.
+void ContactComponent::evaluate(int k, SurfaceContactRole role, const Field& f, bool forceActive, unsigned what,
+                                ElementResult& er, std::vector<GO>& dofs) const {
+  // The slave counterpart on [u_s, λ], the master counterpart on
+  // [u_1..u_m, λ], the conventional element on [u_s, u_1..u_m, λ].
   const ContactSlot& s = slots_[k];
-  dofs = side == 0 ? slaveSideDofs(k) : side == 1 ? masterSideDofs(k) : slotDofs(k);
+  dofs = role == SurfaceContactRole::Slave ? slaveSideDofs(k) : role == SurfaceContactRole::Master ? masterSideDofs(k)
+                                                                                                    : slotDofs(k);
   ContactPairState state = s.state;
   state.active = s.active || forceActive;
   state.multiplier = f.multiplier(k);
   std::vector<int> nodes;
-  if (side != 1) nodes.push_back(s.slaveNode);
-  if (side != 0) nodes.insert(nodes.end(), s.master.begin(), s.master.begin() + s.numMaster);
+  if (role != SurfaceContactRole::Master) nodes.push_back(s.slaveNode);
+  if (role != SurfaceContactRole::Slave) nodes.insert(nodes.end(), s.master.begin(), s.master.begin() + s.numMaster);
   const int nn = int(nodes.size());
-  const Pair& pair = pairs_[s.pair];
-  if (pair.segments()) {
-    Eigen::MatrixX2d X(nn, 2), ue(nn, 2);
-    for (int i = 0; i < nn; ++i) {
-      X.row(i) = X_[index(nodes[i])].head<2>().transpose();
-      for (int c = 0; c < 2; ++c) ue(i, c) = f.at(dofs[2 * i + c]);
-    }
-    const ContactElement& el = side == 0 ? *slaveElement_ : side == 1 ? *masterElement_ : *ntsElement_;
-    el.computeContact(X, ue, state, what, er);
-    return;
-  }
   Eigen::MatrixXd X(nn, dim_), ue(nn, dim_);
   for (int i = 0; i < nn; ++i) {
     X.row(i) = X_[index(nodes[i])].head(dim_).transpose();
     for (int c = 0; c < dim_; ++c) ue(i, c) = f.at(dofs[dim_ * i + c]);
   }
-  const SurfaceContactRole role = side == 0   ? SurfaceContactRole::Slave
-                                  : side == 1 ? SurfaceContactRole::Master
-                                              : SurfaceContactRole::Conventional;
-  surfaceElement(role, pair.masterType).computeSurfaceContact(X, ue, s.frozen, state, what, er);
+  surfaceElement(role, pairs_[s.pair].masterType).computeSurfaceContact(X, ue, s.frozen, state, what, er);
 }
 
 const SurfaceContactElement& ContactComponent::surfaceElement(SurfaceContactRole role, CellType facet) const {
@@ -736,10 +674,10 @@ void ContactComponent::assemble(const Vector& u, const Vector* multipliers, unsi
   // counterparts where they live (the slave's on the owner of the slave node,
   // the master's on the rank of the master facet); they share only the
   // multiplier. Unpaired slots carry only Π = ½λ² (λ = 0).
-  const int side = options_.decomposed ? 0 : 2;
+  const SurfaceContactRole role = options_.decomposed ? SurfaceContactRole::Slave : SurfaceContactRole::Conventional;
   for (int k : localSlots_) {
     if (slots_[k].paired()) {
-      evaluate(k, side, f, false, what | kTangent, er, dofs);
+      evaluate(k, role, f, false, what | kTangent, er, dofs);
     } else {
       dofs.assign(1, lmGid_[k]);
       releasedContribution(1, f.multiplier(k), kAll, er);
@@ -747,7 +685,7 @@ void ContactComponent::assemble(const Vector& u, const Vector* multipliers, unsi
     add(dofs, er);
   }
   for (int k : localMasterSlots_) {
-    evaluate(k, 1, f, false, what | kTangent, er, dofs);
+    evaluate(k, SurfaceContactRole::Master, f, false, what | kTangent, er, dofs);
     add(dofs, er);
   }
 }
@@ -766,16 +704,17 @@ std::vector<ContactRowEntry> ContactComponent::contactRows() const {
   f.l = f.lm->getData();
   ElementResult er;
   std::vector<GO> dofs;
-  auto add = [&](int k, bool master) {
-    evaluate(k, master ? 1 : 0, f, true, kTangent, er, dofs);
+  auto add = [&](int k, SurfaceContactRole role) {
+    evaluate(k, role, f, true, kTangent, er, dofs);
     const int row = int(dofs.size()) - 1;
-    const int sub = master ? pairs_[slots_[k].pair].masterFacets[slots_[k].segment].subdomain : -1;
+    const int sub =
+        role == SurfaceContactRole::Master ? pairs_[slots_[k].pair].masterFacets[slots_[k].segment].subdomain : -1;
     for (int a = 0; a < row; ++a)
-      if (er.tangent(row, a) != 0.0) out.push_back({k, lmGid_[k], dofs[a], er.tangent(row, a), master, sub});
+      if (er.tangent(row, a) != 0.0) out.push_back({k, lmGid_[k], dofs[a], er.tangent(row, a), role, sub});
   };
   for (int k : localSlots_)
-    if (slots_[k].paired()) add(k, false);
-  for (int k : localMasterSlots_) add(k, true);
+    if (slots_[k].paired()) add(k, SurfaceContactRole::Slave);
+  for (int k : localMasterSlots_) add(k, SurfaceContactRole::Master);
   return out;
 }
 
@@ -940,31 +879,11 @@ void ContactComponent::replicatedSearch(const std::function<Eigen::Vector3d(int)
   found.assign(pairs_.size(), {});
   for (size_t p = 0; p < pairs_.size(); ++p) {
     Pair& pair = pairs_[p];
-    if (pair.segments()) {
-      ContactSearch& search = *pair.search;
-      search.update([&](int n) { return Eigen::Vector2d(position(n).head<2>()); }, global);
-      for (const auto& c : search.candidates()) {
-        Found f;
-        f.facet = c.segment;
-        // A slave beyond a free end of the master surface is not in contact
-        // with it (only a convex corner between two segments pairs "via corner").
-        f.pastFreeEnd = c.segment >= 0 && c.viaCorner && search.master().neighbour(c.segment, c.xi < 0.5 ? 0 : 1) < 0;
-        f.viaCorner = c.viaCorner;
-        f.xi[0] = c.xi;
-        f.gap = c.gap;
-        f.distance = c.distance;
-        f.normal << c.normal, 0.0;
-        f.slaveNormal << c.slaveNormal, 0.0;
-        f.notFacing = c.rejection == ContactRejection::NotFacing;
-        found[p].push_back(f);
-      }
-    } else {
-      std::vector<int> all(pair.masterFacets.size());
-      for (size_t g = 0; g < all.size(); ++g) all[g] = int(g);
-      pair.facetSearch->update(
-          pair.slaves, [&](int n) { return Eigen::VectorXd(position(n).head(dim_)); }, global);
-      found[p] = facetPairing(pair, *pair.facetSearch, all, pair.slaves, position);
-    }
+    std::vector<int> all(pair.masterFacets.size());
+    for (size_t g = 0; g < all.size(); ++g) all[g] = int(g);
+    pair.facetSearch->update(
+        pair.slaves, [&](int n) { return Eigen::VectorXd(position(n).head(dim_)); }, global);
+    found[p] = facetPairing(pair, *pair.facetSearch, all, pair.slaves, position);
   }
 }
 
@@ -1056,39 +975,11 @@ void ContactComponent::distributedSearchIn(const Vector& u, std::vector<std::vec
     std::vector<Found> here(localSlaves.size());
     if (!localSlaves.empty() && !globalIndex.empty()) {
       queries += long(localSlaves.size());
-      if (pair.segments()) {
-        // The pair's facing rule on the segments that arrived (same numbers
-        // as the replicated search: the rule needs nothing else).
-        const MasterSurface& whole = pair.search->master();
-        std::vector<std::array<int, 2>> segs;
-        FacingRule rule;
-        rule.slaveSegments = pair.rule.slaveSegments;
-        for (int g : globalIndex) {
-          segs.push_back(whole.segment(g));
-          rule.masterDepths.push_back(pair.rule.masterDepths[g]);
-        }
-        ContactSearch search(MasterSurface(segs), localSlaves, pair.search->searchRadius(), std::move(rule));
-        search.update([&](int n) { return Eigen::Vector2d(known.at(n).head<2>()); }, true);
-        for (size_t i = 0; i < here.size(); ++i) {
-          const ContactCandidate& c = search.candidates()[i];
-          Found& f = here[i];
-          f.facet = c.segment >= 0 ? globalIndex[c.segment] : -1;
-          // Past a free end of the whole surface (not of the part that arrived).
-          f.pastFreeEnd = f.facet >= 0 && c.viaCorner && whole.neighbour(f.facet, c.xi < 0.5 ? 0 : 1) < 0;
-          f.viaCorner = c.viaCorner;
-          f.xi[0] = c.xi;
-          f.gap = c.gap;
-          f.distance = c.distance;
-          f.normal << c.normal, 0.0;
-          f.notFacing = c.rejection == ContactRejection::NotFacing;
-        }
-      } else {
-        std::vector<std::vector<int>> facets;
-        for (int g : globalIndex) facets.push_back(pair.facetNodes(g));
-        FacetSearch search(pair.masterType, facets, options_.searchRadius);
-        search.update(localSlaves, [&](int n) { return Eigen::VectorXd(known.at(n).head(D)); }, true);
-        here = facetPairing(pair, search, globalIndex, localSlaves, position);
-      }
+      std::vector<std::vector<int>> facets;
+      for (int g : globalIndex) facets.push_back(pair.facetNodes(g));
+      FacetSearch search(pair.masterType, facets, options_.searchRadius);
+      search.update(localSlaves, [&](int n) { return Eigen::VectorXd(known.at(n).head(D)); }, true);
+      here = facetPairing(pair, search, globalIndex, localSlaves, position);
     }
     for (size_t i = 0; i < here.size(); ++i) {
       const Found& f = here[i];
@@ -1168,42 +1059,21 @@ bool ContactComponent::updatePairing(const Vector& u, bool global, bool freeze, 
       constexpr double kPairingHysteresis = 1e-2;  // fraction of the facet's reference size
       // The kept facet must pass the facing rule like any pairing.
       if (!distributed && !global && s.paired() && (paired ? c.facet != s.segment : c.pastFreeEnd)) {
-        if (pair.segments()) {
-          const Eigen::Vector2d xs = currentPosition(s.slaveNode, v).head<2>(),
-                                x1 = currentPosition(s.master[0], v).head<2>(),
-                                x2 = currentPosition(s.master[1], v).head<2>();
-          const Eigen::Vector2d t = x2 - x1;
-          const double xi = (xs - x1).dot(t) / t.squaredNorm();
-          const Eigen::Vector2d n = Eigen::Vector2d(t.y(), -t.x()).normalized();
-          const double gap = n.dot(xs - x1);
-          if (xi >= -kPairingHysteresis && xi <= 1.0 + kPairingHysteresis &&
-              facingVerdict(Eigen::Vector2d(c.slaveNormal.head<2>()), n, gap,
-                            pair.search->penetrationLimit(s.segment)) == ContactRejection::None) {
-            s.gap = gap;
-            s.normal << n, 0.0;
-            if (freeze) {
-              s.state.frozenXi = xi;
-              s.state.frozenNormal = n;
-            }
-            continue;
-          }
-        } else {
-          const FacetProjection pr = projectOntoFacet(pair.masterType, facetPositions(pair, s.segment, position),
-                                                      currentPosition(s.slaveNode, v).head(dim_));
-          const double h = 2.0 * kPairingHysteresis;  // reference facets have sides 1 (simplex) or 2
-          const bool near = pr.converged && (referenceCell(pair.masterType).simplex
-                                                 ? pr.xi[0] >= -h / 2 && pr.xi[1] >= -h / 2 &&
-                                                       pr.xi[0] + pr.xi[1] <= 1 + h / 2
-                                                 : std::abs(pr.xi[0]) <= 1 + h &&
-                                                       (dim_ == 2 || std::abs(pr.xi[1]) <= 1 + h));
-          if (near && facingVerdict(c.slaveNormal, pr.normal, pr.gap,
-                                    kFacingDepthFraction * pair.masterFacets[s.segment].depth) ==
-                          ContactRejection::None) {
-            s.gap = pr.gap;
-            s.normal = pr.normal;
-            if (freeze) s.frozen = {pr.xi, pr.normal};
-            continue;
-          }
+        const FacetProjection pr = projectOntoFacet(pair.masterType, facetPositions(pair, s.segment, position),
+                                                    currentPosition(s.slaveNode, v).head(dim_));
+        const double h = 2.0 * kPairingHysteresis;  // reference facets have sides 1 (simplex) or 2
+        const bool near = pr.converged && (referenceCell(pair.masterType).simplex
+                                               ? pr.xi[0] >= -h / 2 && pr.xi[1] >= -h / 2 &&
+                                                     pr.xi[0] + pr.xi[1] <= 1 + h / 2
+                                               : std::abs(pr.xi[0]) <= 1 + h &&
+                                                     (dim_ == 2 || std::abs(pr.xi[1]) <= 1 + h));
+        if (near && facingVerdict(c.slaveNormal, pr.normal, pr.gap,
+                                  kFacingDepthFraction * pair.masterFacets[s.segment].depth) ==
+                        ContactRejection::None) {
+          s.gap = pr.gap;
+          s.normal = pr.normal;
+          if (freeze) s.frozen = {pr.xi, pr.normal};
+          continue;
         }
       }
       const int facet = paired ? c.facet : -1;
@@ -1226,14 +1096,7 @@ bool ContactComponent::updatePairing(const Vector& u, bool global, bool freeze, 
       s.masterElement = r.element;
       s.gap = c.gap;
       s.normal = c.normal;
-      if (freeze) {
-        if (pair.segments()) {
-          s.state.frozenXi = c.xi[0];
-          s.state.frozenNormal = c.normal.head<2>();
-        } else {
-          s.frozen = {c.xi, c.normal};
-        }
-      }
+      if (freeze) s.frozen = {c.xi, c.normal};
     }
   }
   notePairing(found);
@@ -1311,75 +1174,45 @@ void ContactComponent::checkInitialPenetration(
     if (dim_ == 3) where << ", " << xs.z();
     where << ")";
     double depth = std::numeric_limits<double>::infinity();
-    if (pair.segments()) {
-      // Why the first such node is not paired: the pair's search (same
-      // radius, same facing rule) on that node alone.
-      const ContactSearch& whole = *pair.search;
-      auto reference2 = [&](int n) { return Eigen::Vector2d(reference(n).head<2>()); };
-      ContactSearch probe(whole.master(), {node}, whole.searchRadius(), pair.rule);
-      probe.update(reference2, true);
-      const ContactCandidate& c = probe.candidates()[0];
-      // Depth: distance to the nearest point of the master surface.
-      const Eigen::Vector2d x2 = reference2(node);
-      for (int g = 0; g < whole.master().numSegments(); ++g) {
-        const Eigen::Vector2d a = reference2(whole.master().segment(g)[0]), b = reference2(whole.master().segment(g)[1]);
-        const double xi = std::min(1.0, std::max(0.0, (x2 - a).dot(b - a) / (b - a).squaredNorm()));
-        depth = std::min(depth, (x2 - a - xi * (b - a)).norm());
-      }
-      const int seg = c.rejectedSegment >= 0 ? c.rejectedSegment : c.segment;
-      const auto segNodes = [&](int g) {
-        std::ostringstream o;
-        o << "(nodes " << whole.master().segment(g)[0] << ", " << whole.master().segment(g)[1] << ")";
-        return o.str();
-      };
-      if (c.rejection == ContactRejection::TooDeep) {
-        why << "it lies " << -c.gap << " behind its nearest master segment " << segNodes(seg)
-            << ", not less than half the depth of that segment's element (" << whole.penetrationLimit(seg) << " = "
-            << kFacingDepthFraction << " x " << pair.rule.masterDepths[seg] << ")";
-      } else if (c.rejection == ContactRejection::NotFacing) {
-        why << "its outward normal (" << c.slaveNormal.x() << ", " << c.slaveNormal.y()
-            << ") does not face the outward normal (" << c.normal.x() << ", " << c.normal.y()
-            << ") of its nearest master segment " << segNodes(seg);
-      } else if (c.segment < 0) {
-        why << "it is farther than the search radius (" << whole.searchRadius()
-            << ", Contact/Search Radius) from every master segment";
-      } else {
-        // Paired by the search but past a free end of the master surface
-        // (updatePairing()): the only other way a node stays unpaired.
-        why << "it lies beyond a free end of the master surface (nearest segment " << segNodes(seg) << ")";
-      }
+    // Why the first such node is not paired: the nearest point of the
+    // whole surface (all facets: a diagnostic, once), then the pairing
+    // rules on that facet. In 2-D a facet is a segment of the side set.
+    const char* word = referenceCell(pair.masterType).dim == 1 ? "segment" : "facet";
+    auto vec = [&](const Eigen::Vector3d& a) {
+      std::ostringstream o;
+      const Eigen::Vector3d z = a + Eigen::Vector3d::Zero();  // + 0: no "-0"
+      o << "(" << z.x() << ", " << z.y();
+      if (dim_ == 3) o << ", " << z.z();
+      o << ")";
+      return o.str();
+    };
+    FacetCandidate nearest;
+    nearest.distance = std::numeric_limits<double>::infinity();
+    for (int g = 0; g < int(pair.masterFacets.size()); ++g) {
+      FacetCandidate c = nearestPoint(pair.masterType, facetPositions(pair, g, reference), xs.head(dim_));
+      c.facet = g;
+      if (c.distance < nearest.distance) nearest = c;
+    }
+    depth = nearest.distance;
+    FacetSearch probe(pair.masterType, {pair.facetNodes(nearest.facet)},
+                      std::max(2.0 * nearest.distance, std::numeric_limits<double>::min()));
+    probe.update({node}, [&](int n) { return Eigen::VectorXd(reference(n).head(dim_)); }, true);
+    const Found f = facetPairing(pair, probe, {nearest.facet}, {node}, reference)[0];
+    const FacetRecord& r = pair.masterFacets[nearest.facet];
+    std::ostringstream facet;
+    facet << word << " " << r.id << " (element " << r.element << ")";
+    const double limit = kFacingDepthFraction * r.depth;
+    if (nearest.distance > options_.searchRadius) {
+      why << "it is farther than the search radius (" << options_.searchRadius
+          << ", Contact/Search Radius) from every master " << word;
+    } else if (f.pastFreeEnd) {
+      why << "its nearest point of the master surface is on the surface's free boundary (" << facet.str() << ")";
+    } else if (!(f.slaveNormal.dot(f.normal) < 0.0)) {
+      why << "its outward normal " << vec(f.slaveNormal) << " does not face the outward normal " << vec(f.normal)
+          << " of its nearest master " << facet.str();
     } else {
-      // The same for facets: the nearest point of the whole surface (all
-      // facets: a diagnostic, once), then the rules on that facet.
-      FacetCandidate nearest;
-      nearest.distance = std::numeric_limits<double>::infinity();
-      for (int g = 0; g < int(pair.masterFacets.size()); ++g) {
-        FacetCandidate c = nearestPoint(pair.masterType, facetPositions(pair, g, reference), xs.head(dim_));
-        c.facet = g;
-        if (c.distance < nearest.distance) nearest = c;
-      }
-      depth = nearest.distance;
-      FacetSearch probe(pair.masterType, {pair.facetNodes(nearest.facet)},
-                        std::max(2.0 * nearest.distance, std::numeric_limits<double>::min()));
-      probe.update({node}, [&](int n) { return Eigen::VectorXd(reference(n).head(dim_)); }, true);
-      const Found f = facetPairing(pair, probe, {nearest.facet}, {node}, reference)[0];
-      const FacetRecord& r = pair.masterFacets[nearest.facet];
-      std::ostringstream facet;
-      facet << "facet " << r.id << " (element " << r.element << ")";
-      const double limit = kFacingDepthFraction * r.depth;
-      if (nearest.distance > options_.searchRadius) {
-        why << "it is farther than the search radius (" << options_.searchRadius
-            << ", Contact/Search Radius) from every master facet";
-      } else if (f.pastFreeEnd) {
-        why << "its nearest point of the master surface is on the surface's free boundary (" << facet.str() << ")";
-      } else if (!(f.slaveNormal.dot(f.normal) < 0.0)) {
-        why << "its outward normal (" << f.slaveNormal.transpose() << ") does not face the normal ("
-            << f.normal.transpose() << ") of its nearest master " << facet.str();
-      } else {
-        why << "it lies " << -f.gap << " behind its nearest master " << facet.str()
-            << ", not less than half the depth of that facet's element (" << limit << " = " << kFacingDepthFraction
-            << " x " << r.depth << ")";
-      }
+      why << "it lies " << -f.gap << " behind its nearest master " << facet.str() << ", not less than half the depth of that "
+          << word << "'s element (" << limit << " = " << kFacingDepthFraction << " x " << r.depth << ")";
     }
     DDC_THROW(InputError, "contact pair '"
                               << pair.path << "': slave node " << node << " at " << where.str()
@@ -1398,15 +1231,9 @@ void ContactComponent::checkInitialPenetration(
 std::array<long, 3> ContactComponent::searchCounters() const {
   std::array<long, 3> c{0, 0, distributedQueries_};
   for (const auto& p : pairs_) {
-    if (p.search) {
-      c[0] += p.search->counters().trackingCalls;
-      c[1] += p.search->counters().trackingFallbacks;
-      c[2] += p.search->counters().globalSearches;
-    } else {
-      c[0] += p.facetSearch->trackingQueries();
-      c[1] += p.facetSearch->trackingFallbacks();
-      c[2] += p.facetSearch->globalQueries();
-    }
+    c[0] += p.facetSearch->trackingQueries();
+    c[1] += p.facetSearch->trackingFallbacks();
+    c[2] += p.facetSearch->globalQueries();
   }
   return c;
 }
@@ -1440,21 +1267,11 @@ void ContactComponent::refreshSlotGeometry(const std::vector<double>& v) {
     s.state.multiplier = v[base + k];
     if (!s.paired()) continue;
     const Pair& pair = pairs_[s.pair];
-    if (pair.segments()) {
-      const Eigen::Vector2d xs = currentPosition(s.slaveNode, v).head<2>();
-      const Eigen::Vector2d x1 = currentPosition(s.master[0], v).head<2>();
-      const Eigen::Vector2d x2 = currentPosition(s.master[1], v).head<2>();
-      const Eigen::Vector2d t = x2 - x1;
-      const Eigen::Vector2d n = Eigen::Vector2d(t.y(), -t.x()) / t.norm();
-      s.normal << n, 0.0;
-      s.gap = n.dot(xs - x1);
-    } else {
-      // The conventional element's own projection (DDC_NodeToSurface.hpp).
-      const FacetProjection pr = projectOntoFacet(pair.masterType, facetPositions(pair, s.segment, position),
-                                                  position(s.slaveNode).head(dim_));
-      s.normal = pr.normal;
-      s.gap = pr.gap;
-    }
+    // The conventional element's own projection (DDC_NodeToSurface.hpp).
+    const FacetProjection pr = projectOntoFacet(pair.masterType, facetPositions(pair, s.segment, position),
+                                                position(s.slaveNode).head(dim_));
+    s.normal = pr.normal;
+    s.gap = pr.gap;
   }
 }
 
@@ -1470,11 +1287,11 @@ void ContactComponent::assembleFrozenGaps(const Vector& u, const Vector* multipl
     std::vector<GO> dofs;
     for (int k : localSlots_)
       if (slots_[k].paired()) {
-        evaluate(k, 0, f, true, kResidual, er, dofs);
+        evaluate(k, SurfaceContactRole::Slave, f, true, kResidual, er, dofs);
         g[lmOverlapMap_->getLocalElement(lmGid_[k])] += er.residual[er.residual.size() - 1];
       }
     for (int k : localMasterSlots_) {
-      evaluate(k, 1, f, true, kResidual, er, dofs);
+      evaluate(k, SurfaceContactRole::Master, f, true, kResidual, er, dofs);
       g[lmOverlapMap_->getLocalElement(lmGid_[k])] += er.residual[er.residual.size() - 1];
     }
   }
@@ -1494,10 +1311,7 @@ void ContactComponent::assembleFrozenGaps(const Vector& u, const Vector* multipl
     const LO l = multiplierAllMap_->getLocalElement(lmGid_[k]);
     s.state.multiplier = lam[l];
     if (!s.paired()) continue;
-    if (pairs_[s.pair].segments())
-      s.normal << s.state.frozenNormal, 0.0;
-    else
-      s.normal = s.frozen.normal;
+    s.normal = s.frozen.normal;
     s.gap = g[l];
   }
 }

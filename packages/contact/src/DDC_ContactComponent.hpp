@@ -5,7 +5,7 @@
 // (register the surfaces, then the fields; update at step ends; read rows,
 // gaps and contributions):
 //
-//   ContactComponent c(comm, options, {slaveCounterpart, masterCounterpart});
+//   ContactComponent c(comm, options);     // options: formulation, radius, tolerance
 //   c.registerNodes(myOwnedSurfaceNodes);   // id, reference coordinates
 //   c.registerPair(pair);                   // facets of my elements, slave nodes
 //   c.commit();                             // collective: slots, ownership
@@ -29,13 +29,12 @@
 //    no geometry moving (doc/contact.md).
 //
 // Facets. A pair's facets are of one cell type per surface
-// (ContactPairSurfaces::masterFacetType / slaveFacetType): straight 2-node
-// segments (Line2, the 2-D node-to-segment element of DDC_NodeToSegment.hpp
-// and the search of DDC_ContactSearch.hpp) or any other facet type — Line3 in
-// 2-D, Tri3/Tri6/Quad4/Quad8/Quad9 in 3-D — with the node-to-surface elements
-// (DDC_SurfaceContactElement.hpp) and the facet search of DDC_FacetSearch.hpp
-// (doc/contact.md, "Curved facets and 3-D"). Every pair of a component has
-// the same space dimension.
+// (ContactPairSurfaces::masterFacetType / slaveFacetType): Line2 or Line3
+// segments in 2-D, Tri3/Tri6/Quad4/Quad8/Quad9 faces in 3-D. Every facet
+// type takes the same path: the facet search of DDC_FacetSearch.hpp and the
+// node-to-surface elements of DDC_SurfaceContactElement.hpp, one per role
+// and facet type (doc/contact.md, "Curved facets and 3-D"). Every pair of a
+// component has the same space dimension.
 //
 // Ownership. A surface node belongs to the rank that registers it, and its
 // DOF ids must be owned by that rank in the host's map (setDofs() checks).
@@ -55,7 +54,6 @@
 #include <vector>
 
 #include "DDC_ContactElement.hpp"
-#include "DDC_ContactSearch.hpp"
 #include "DDC_DecomposedNodeToSurface.hpp"
 #include "DDC_FacetSearch.hpp"
 #include "DDC_ReferenceCell.hpp"
@@ -78,10 +76,12 @@ struct ContactSlot {
   int segment = -1;          ///< index of that facet in the pair's master surface (-1: not paired)
   int masterElement = -1;    ///< the host element whose facet it is (-1: not paired)
   bool active = false;       ///< in the active set (the constraint g_N = 0 is enforced)
-  /// Multiplier; frozen ξ^p / n^p of the 2-D node-to-segment counterparts
-  /// (Line2 master facets).
+  /// The multiplier λ (state.multiplier; λ < 0 in compression) and the
+  /// state handed to the elements (state.frozenXi/frozenNormal are unused).
   ContactPairState state;
-  /// Frozen ξ^p / n^p of the node-to-surface counterparts (other facet types).
+  /// The frozen projection ξ^p (reference coordinates of the master facet)
+  /// and normal n^p of the decomposed counterparts, from the last pairing
+  /// with freeze (paper eq. 1).
   FrozenFacetProjection frozen;
   double gap = 0.0;          ///< g_N at the last update
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< normal used by the element (z = 0 in 2-D)
@@ -172,7 +172,9 @@ struct ContactRowEntry {
   GO row = -1;         ///< its multiplier id (multiplierMap())
   GO dof = -1;         ///< host DOF id
   double coefficient = 0.0;  ///< multiplies the position x = X + u of that DOF
-  bool master = false;  ///< entry of the master counterpart (else the slave's)
+  /// The counterpart the entry comes from: SurfaceContactRole::Slave or
+  /// SurfaceContactRole::Master.
+  SurfaceContactRole role = SurfaceContactRole::Slave;
   int subdomain = -1;   ///< master: the master facet's subdomain; slave: -1 (any subdomain holding the slave node)
 };
 
@@ -185,18 +187,14 @@ class ContactComponent {
       std::function<std::shared_ptr<const SurfaceContactElement>(SurfaceContactRole role, CellType facet)>;
   /// \param comm the host's ranks (collective calls are collective over it)
   /// \param options the formulation, search radius and penetration tolerance
-  /// \param elements the elements of pairs with Line2 master facets: the
-  ///        counterparts {"Decomposed NTS Slave", "Decomposed NTS Master"}
-  ///        when options.decomposed, else {"Node-To-Segment"} (any
-  ///        ContactElement with those DOF layouts); empty when no pair has
-  ///        Line2 master facets (a 3-D host), which commit() checks
-  /// \param surfaceElements the elements of the other facet types
-  ///        (default: the built-in ones, makeSurfaceContactElement())
-  /// \throws std::invalid_argument if the evaluators do not match the
-  ///         formulation, or options.searchRadius is not > 0 or
-  ///         options.penetrationTolerance not >= 0 (both finite).
+  /// \param surfaceElements the contact elements by role and facet type
+  ///        (default: the built-in ones, makeSurfaceContactElement()); commit()
+  ///        asks it for the roles of the formulation (Conventional, or Slave
+  ///        and Master) on every master facet type in use
+  /// \throws std::invalid_argument if options.searchRadius is not > 0 or
+  ///         options.penetrationTolerance not >= 0 (both finite), or
+  ///         `surfaceElements` is empty.
   ContactComponent(Teuchos::RCP<const Teuchos::Comm<int>> comm, ContactComponentOptions options,
-                   std::vector<std::shared_ptr<const ContactElement>> elements,
                    SurfaceElementSource surfaceElements = makeSurfaceContactElement);
   ~ContactComponent();
 
@@ -382,7 +380,9 @@ class ContactComponent {
   void buildTopology();
   /// Field values at this rank's counterpart DOFs and multipliers.
   Field gatherField(const Vector& u, const Vector* multipliers) const;
-  void evaluate(int k, int side, const Field& f, bool forceActive, unsigned what, ElementResult& er,
+  /// The element of `role` on slot k at the field f (a released slot unless
+  /// forceActive); dofs: its DOF ids, the multiplier last.
+  void evaluate(int k, SurfaceContactRole role, const Field& f, bool forceActive, unsigned what, ElementResult& er,
                 std::vector<GO>& dofs) const;
   void requireCommitted(const char* what) const;
   /// Throws std::logic_error before the first updatePairing() (nothing is
@@ -394,7 +394,6 @@ class ContactComponent {
 
   Teuchos::RCP<const Teuchos::Comm<int>> comm_;
   ContactComponentOptions options_;
-  std::shared_ptr<const ContactElement> ntsElement_, slaveElement_, masterElement_;
   SurfaceElementSource surfaceSource_;
   std::map<std::pair<SurfaceContactRole, CellType>, std::shared_ptr<const SurfaceContactElement>> surfaceElements_;
   bool committed_ = false, hasDofs_ = false, multipliersInHost_ = false;

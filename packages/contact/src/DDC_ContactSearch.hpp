@@ -1,7 +1,10 @@
 // Contact search and tracking for node-to-segment contact in 2-D: which
 // master segment each slave node is paired with, its closest-point projection
 // ξ, outward normal n and normal gap g_N (doc/contact.md). Straight 2-node
-// master segments (sides of Quad4 bodies) only.
+// master segments (sides of Quad4 bodies) only. The contact component pairs
+// every facet type, Line2 included, with the facet search of
+// DDC_FacetSearch.hpp; this closed-form search is its 2-D reference, and the
+// facing rule below (facingVerdict()) serves both.
 //
 // Geometry rules (one place, used by the global search and the tracking alike,
 // so both give bitwise the same numbers for the same pairing):

@@ -1,6 +1,9 @@
 // The decomposed node-to-segment element of Fang & Izzuddin (2022): the
 // slave and master counterparts, which may live in different subdomains and
-// share only the contact Lagrange multiplier λ (doc/contact.md).
+// share only the contact Lagrange multiplier λ (doc/contact.md), in closed
+// form for a straight 2-node segment: the reference of the generic
+// counterparts of DDC_DecomposedNodeToSurface.hpp, which the contact
+// component evaluates on every facet type.
 //
 // With ξ^p and n^p frozen on the last converged configuration (paper eq. 1)
 // the gap is linear in the displacements:

@@ -1,8 +1,9 @@
 // Contact search and tracking over a master surface of facets of any type
 // (3-D faces Tri3/Tri6/Quad4/Quad8/Quad9, or 2-D segments Line2/Line3): which
 // facet each slave node pairs with, the closest point, the normal and the gap
-// (doc/contact.md, "Curved facets and 3-D"). The 2-D straight-segment search
-// of DDC_ContactSearch.hpp is the special case the analysis uses today.
+// (doc/contact.md, "Curved facets and 3-D"). The contact component pairs
+// every facet type with it; the 2-D straight-segment search of
+// DDC_ContactSearch.hpp is its closed-form special case, kept as a reference.
 //
 // Nearest point of one facet (`nearestPoint()`), the rule at facet edges and
 // corners:

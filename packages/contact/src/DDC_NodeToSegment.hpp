@@ -1,6 +1,10 @@
 // The conventional nonlinear node-to-segment (NTS) contact element with a
-// Lagrange multiplier — the monolithic reference of doc/contact.md — and the
-// registration of every contact element type in the element factory.
+// Lagrange multiplier in closed form (doc/contact.md), and its registration
+// in the element factory. The contact component evaluates every facet type,
+// Line2 included, with the node-to-surface elements of
+// DDC_SurfaceContactElement.hpp; on Line2 they equal this element to
+// round-off (ctest contact_node_to_surface), which is its role now: the
+// closed-form reference of the generic element.
 //
 // Geometry (2-D, straight 2-node master segment):
 //   x = X + u,  t = x2 − x1,  L = |t|,  τ = t / L,

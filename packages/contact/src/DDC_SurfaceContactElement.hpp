@@ -1,6 +1,5 @@
 // Contact elements on master facets of any type, as the contact component
-// evaluates them for pairs whose master facets are not straight 2-node
-// segments (3-D faces, and 3-node segments of Quad9 bodies in 2-D): the
+// evaluates them for every pair (2-D segments and 3-D faces): the
 // conventional node-to-surface element (DDC_NodeToSurface.hpp) and the two
 // counterparts of the decomposed element (DDC_DecomposedNodeToSurface.hpp).
 // Like the 2-D node-to-segment elements they register in the element factory
@@ -11,9 +10,10 @@
 //   "Decomposed NTS Slave <Facet>"  nodes [slave]
 //   "Decomposed NTS Master <Facet>" nodes [facet nodes...]
 //
-// with <Facet> one of Line3, Tri3, Tri6, Quad4, Quad8, Quad9 (and Line2, the
-// generic form of the 2-D node-to-segment element). DOFs: dim per node,
-// node-major, the multiplier λ last.
+// with <Facet> one of Line2, Line3, Tri3, Tri6, Quad4, Quad8, Quad9 (on Line2
+// the generic form of the closed-form node-to-segment element of
+// DDC_NodeToSegment.hpp). DOFs: dim per node, node-major, the multiplier λ
+// last.
 #pragma once
 
 #include <Eigen/Dense>

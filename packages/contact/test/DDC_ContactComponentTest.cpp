@@ -14,9 +14,7 @@
 #include <memory>
 
 #include "DDC_ContactComponent.hpp"
-#include "DDC_DecomposedNodeToSegment.hpp"
 #include "DDC_Error.hpp"
-#include "DDC_NodeToSegment.hpp"
 #include "DDC_TestErrors.hpp"
 #include "DDC_TestTolerances.hpp"
 
@@ -51,12 +49,6 @@ struct Host {
   }
 };
 
-std::vector<std::shared_ptr<const ddc::ContactElement>> elements(bool decomposed) {
-  if (decomposed)
-    return {std::make_shared<ddc::DecomposedNtsSlaveElement>(), std::make_shared<ddc::DecomposedNtsMasterElement>()};
-  return {std::make_shared<ddc::NodeToSegmentElement>()};
-}
-
 /// Register the host's surfaces; `tweak` may change this rank's share first.
 std::unique_ptr<ContactComponent> registered(const Host& h, bool decomposed,
                                              const std::function<void(std::vector<ddc::ContactNode>&,
@@ -65,7 +57,7 @@ std::unique_ptr<ContactComponent> registered(const Host& h, bool decomposed,
   o.decomposed = decomposed;
   o.searchRadius = 0.5;
   o.penetrationTolerance = 1e-12;
-  auto c = std::make_unique<ContactComponent>(h.comm, o, elements(decomposed));
+  auto c = std::make_unique<ContactComponent>(h.comm, o);
   std::vector<ddc::ContactNode> nodes;
   for (int i = 0; i < 5; ++i)
     if (h.owns(i)) nodes.push_back({kNodes[i], Eigen::Vector2d(kX[i][0], kX[i][1])});
@@ -119,7 +111,7 @@ TEST(ContactComponent, DecomposedRowsGapsAndActiveSetAcrossRanks) {
     const auto& s = c->slots()[k];
     ASSERT_TRUE(s.paired()) << c->describeSlot(k);
     EXPECT_NEAR(s.gap, kGap0, kRoundoff);
-    EXPECT_NEAR(s.state.frozenXi, 0.5, kRoundoff);
+    EXPECT_NEAR(s.frozen.xi[0], 0.0, kRoundoff) << "the midpoint of the segment (reference coordinate in [-1, 1])";
     EXPECT_EQ(s.masterElement, s.slaveNode == 10 ? 101 : 100);
   }
   // Rows in host DOF ids: n^p = (0, 1) on the slave's u_y, −½ n^p on each
@@ -128,8 +120,9 @@ TEST(ContactComponent, DecomposedRowsGapsAndActiveSetAcrossRanks) {
   double slaveSum = 0, masterSum = 0;
   for (const auto& e : rows) {
     EXPECT_EQ(e.dof % 2, 1) << "only u_y: the normal is vertical";
-    (e.master ? masterSum : slaveSum) += e.coefficient;
-    if (e.master) EXPECT_EQ(e.subdomain, 0);
+    const bool master = e.role == ddc::SurfaceContactRole::Master;
+    (master ? masterSum : slaveSum) += e.coefficient;
+    if (master) EXPECT_EQ(e.subdomain, 0);
   }
   double sums[2] = {slaveSum, masterSum}, total[2];
   Teuchos::reduceAll(*h.comm, Teuchos::REDUCE_SUM, 2, sums, total);
@@ -348,13 +341,13 @@ struct Host3 : Host {
 
 std::unique_ptr<ContactComponent> registered3(const Host3& h,
                                               const std::function<void(ddc::ContactPairSurfaces&)>& tweak = {},
-                                              bool segmentElements = true) {
+                                              ContactComponent::SurfaceElementSource source =
+                                                  ddc::makeSurfaceContactElement) {
   ddc::ContactComponentOptions o;
   o.decomposed = true;
   o.searchRadius = 0.5;
   o.penetrationTolerance = 1e-12;
-  auto c = std::make_unique<ContactComponent>(
-      h.comm, o, segmentElements ? elements(true) : std::vector<std::shared_ptr<const ddc::ContactElement>>{});
+  auto c = std::make_unique<ContactComponent>(h.comm, o, std::move(source));
   std::vector<ddc::ContactNode> nodes;
   for (int i = 0; i < 10; ++i)
     if (h.owns3(i)) nodes.push_back({kNodes3[i], Eigen::Vector3d(kX3[i][0], kX3[i][1], kX3[i][2])});
@@ -403,7 +396,7 @@ TEST(ContactComponent3D, DecomposedRowsGapsAndActiveSetOnQuad4Facets) {
   double sums[2] = {0, 0}, total[2];
   for (const auto& e : c->contactRows()) {
     EXPECT_EQ(e.dof % 3, 2) << "only u_z: the normal is vertical";
-    sums[e.master] += e.coefficient;
+    sums[e.role == ddc::SurfaceContactRole::Master] += e.coefficient;
   }
   Teuchos::reduceAll(*h.comm, Teuchos::REDUCE_SUM, 2, sums, total);
   EXPECT_NEAR(total[0], 4.0, kRoundoff) << "four slave rows with coefficient 1";
@@ -416,22 +409,29 @@ TEST(ContactComponent3D, DecomposedRowsGapsAndActiveSetOnQuad4Facets) {
   for (const auto& s : c->slots()) EXPECT_NEAR(s.gap, kGap0 - 0.15, kRoundoff);
 }
 
-TEST(ContactComponent3D, AHostWithoutSegmentPairsNeedsNoSegmentElements) {
-  // The Line2 counterparts serve 2-D segment pairs only: a 3-D host passes
-  // none and gets the same rows.
+TEST(ContactComponent3D, TheHostsElementSourceGivesTheElements) {
+  // The component evaluates every facet type through the source it is
+  // given: a host's source (here counting, then delegating to the built-in
+  // elements) yields the same rows as the default.
   Host3 h;
   auto map = h.map3();
   std::vector<ddc::ContactNodeDofs> dofs;
   for (int i = 0; i < 10; ++i)
     if (h.owns3(i)) dofs.push_back({kNodes3[i], {{GO(3 * i), GO(3 * i + 1), GO(3 * i + 2)}}, {{false, false, false}}});
   std::vector<std::vector<ddc::ContactRowEntry>> rows;
-  for (bool withSegmentElements : {true, false}) {
-    auto c = registered3(h, {}, withSegmentElements);
+  int asked = 0;
+  auto counting = [&](ddc::SurfaceContactRole role, ddc::CellType facet) {
+    ++asked;
+    return ddc::makeSurfaceContactElement(role, facet);
+  };
+  for (bool host : {false, true}) {
+    auto c = host ? registered3(h, {}, counting) : registered3(h);
     c->setDofs(map, dofs);
     ddc::Vector u(map);
     c->updatePairing(u, true, true);
     rows.push_back(c->contactRows());
   }
+  EXPECT_EQ(asked, 2) << "the slave and master counterparts on Quad4, once each";
   ASSERT_EQ(rows[0].size(), rows[1].size());
   for (size_t i = 0; i < rows[0].size(); ++i) {
     EXPECT_EQ(rows[0][i].dof, rows[1][i].dof);
@@ -442,20 +442,24 @@ TEST(ContactComponent3D, AHostWithoutSegmentPairsNeedsNoSegmentElements) {
 TEST(ContactComponent, OptionsOutOfRangeAreRefused) {
   Host h;
   ddc::ContactComponentOptions o;  // searchRadius 0: no pair could ever form
-  ddc::test::expectThrowWith<std::invalid_argument>([&] { ContactComponent c(h.comm, o, elements(true)); },
+  ddc::test::expectThrowWith<std::invalid_argument>([&] { ContactComponent c(h.comm, o); },
                                                     {"options.searchRadius must be > 0 and finite", "got 0"});
   o.searchRadius = 0.5;
   o.penetrationTolerance = -1.0;
-  ddc::test::expectThrowWith<std::invalid_argument>([&] { ContactComponent c(h.comm, o, elements(true)); },
+  ddc::test::expectThrowWith<std::invalid_argument>([&] { ContactComponent c(h.comm, o); },
                                                     {"options.penetrationTolerance must be >= 0"});
 }
 
-TEST(ContactComponent, ASegmentPairWithoutItsElementsIsRefusedAtCommit) {
+TEST(ContactComponent, ASourceWithoutTheElementsOfAPairIsRefusedAtCommit) {
+  // A Line2 pair takes the one facet path: the source must give its
+  // counterparts, and commit() says which one it did not.
   Host h;
   ddc::ContactComponentOptions o;
   o.decomposed = true;
   o.searchRadius = 0.5;
-  ContactComponent c(h.comm, o, {});
+  ContactComponent c(h.comm, o, [](ddc::SurfaceContactRole, ddc::CellType) {
+    return std::shared_ptr<const ddc::SurfaceContactElement>();
+  });
   std::vector<ddc::ContactNode> nodes;
   for (int i = 0; i < 5; ++i)
     if (h.owns(i)) nodes.push_back({kNodes[i], Eigen::Vector2d(kX[i][0], kX[i][1])});
@@ -466,7 +470,7 @@ TEST(ContactComponent, ASegmentPairWithoutItsElementsIsRefusedAtCommit) {
   c.registerNodes(nodes);
   c.registerPair(pair);
   ddc::test::expectThrowWith<std::invalid_argument>([&] { c.commit(); },
-                                                    {"pair 'P' has Line2 master facets", "Decomposed NTS Slave"});
+                                                    {"gave no 'Decomposed NTS Slave Line2' element"});
 }
 
 TEST(ContactComponent3D, AFacetWithAnInwardNormalIsRejected) {
