@@ -29,16 +29,28 @@ namespace ddc {
 class ElementFactory;
 
 /// What a surface contact element is within the formulation.
-enum class SurfaceContactRole { Conventional, Slave, Master };
+enum class SurfaceContactRole {
+  Conventional,  ///< the conventional element: nodes [slave, facet nodes...]
+  Slave,         ///< the decomposed element's slave counterpart: nodes [slave]
+  Master         ///< the decomposed element's master counterpart: nodes [facet nodes...]
+};
 
 /// A contact element on one facet type (see the top of this file).
 class SurfaceContactElement : public Element {
  public:
+  /// The master facet type the element is made for.
   virtual CellType facet() const = 0;
+  /// The element's role in the formulation (its nodes and DOFs).
   virtual SurfaceContactRole role() const = 0;
   /// Energy, residual and tangent of the element (DOFs as at the top of
-  /// this file). `frozen` is read by the decomposed counterparts only.
+  /// this file). Not collective; called on the rank that evaluates the slot.
   /// \param X, u reference positions and displacements, numNodes() x dim()
+  /// \param frozen ξ^p and n^p (paper eq. 1), read by the decomposed
+  ///        counterparts only
+  /// \param state active or released, and the multiplier λ (λ < 0 in
+  ///        compression); a released element contributes ½λ² only
+  /// \param what which of kEnergy, kResidual, kTangent to compute
+  /// \param out the results, in the element's DOF order
   virtual void computeSurfaceContact(const Eigen::MatrixXd& X, const Eigen::MatrixXd& u,
                                      const FrozenFacetProjection& frozen, const ContactPairState& state,
                                      unsigned what, ElementResult& out) const = 0;

@@ -25,6 +25,7 @@ inline std::string echoed(const std::string& text) {
 /// file / parameter path / mesh entity and what was expected.
 class InputError : public std::runtime_error {
  public:
+  /// \param what the complete message (what() returns it)
   explicit InputError(const std::string& what) : std::runtime_error(what) {}
 };
 
@@ -32,6 +33,7 @@ class InputError : public std::runtime_error {
 /// or active-set non-convergence after all bisections, a failed factorisation.
 class SolverError : public std::runtime_error {
  public:
+  /// \param what the complete message (what() returns it)
   explicit SolverError(const std::string& what) : std::runtime_error(what) {}
 };
 
@@ -42,6 +44,7 @@ class SolverError : public std::runtime_error {
 /// failure (doc/user-guide.md, "The output directory").
 class OutputError : public std::runtime_error {
  public:
+  /// \param what the complete message (what() returns it)
   explicit OutputError(const std::string& what) : std::runtime_error(what) {}
 };
 

@@ -164,7 +164,22 @@ std::shared_ptr<Element> ElementFactory::create(Teuchos::ParameterList& params, 
   const auto valid = validParametersFor(type);
   validateLevel(params, *valid, where);
   validateSublists(params, *valid, where);
-  std::shared_ptr<Element> el = e.create(params);
+  std::shared_ptr<Element> el;
+  try {
+    el = e.create(params);
+  } catch (const Teuchos::Exceptions::InvalidParameter& ex) {
+    // The list was validated and its defaults filled: a parameter the
+    // creator cannot read is one its entry does not declare (or declares
+    // with another type) — a registration mistake of the host code.
+    const std::string what = ex.what();
+    const auto open = what.find('"'), close = open == std::string::npos ? open : what.find('"', open + 1);
+    const std::string name = close == std::string::npos ? std::string("?") : what.substr(open + 1, close - open - 1);
+    DDC_THROW(std::logic_error, "element type '" << type << "' (" << where << "): its creator read the parameter '"
+                                                  << name << "' as a type its factory entry does not declare; every "
+                                                             "parameter an element reads must be in the entry's "
+                                                             "validParameters, with its type and default "
+                                                             "(doc/embedding.md, 'An own element type')");
+  }
   if (!el) DDC_THROW(std::logic_error, "element creator for '" << type << "' returned null");
   if (el->numNodes() != e.numNodes)
     DDC_THROW(std::logic_error, "element type '" << type << "' registered with " << e.numNodes

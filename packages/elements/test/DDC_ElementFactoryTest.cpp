@@ -219,6 +219,37 @@ TEST(ElementFactory, RegisteredDimensionMustMatchTheElement) {
   EXPECT_THROW(f.create(p, kWhere), std::logic_error);
 }
 
+TEST(ElementFactory, ACreatorReadingAnUndeclaredParameterNamesIt) {
+  // A host's creator that reads a parameter its entry does not declare (or
+  // under another type) gets a message naming the type, the path and the
+  // parameter, not Teuchos' exception.
+  auto f = ddc::ElementFactory::withBuiltins();
+  auto valid = Teuchos::rcp(new Teuchos::ParameterList("Element"));
+  valid->set("Stiffness", 1.0, "Spring stiffness k");
+  f.add("Spring", {[](const Teuchos::ParameterList& p) {
+                     return std::make_shared<Spring>(p.get<double>("Stiffness") * p.get<double>("Scale"));
+                   },
+                   valid, "Axial spring (test)", 2});
+  f.add("Typed Spring", {[](const Teuchos::ParameterList& p) {
+                           return std::make_shared<Spring>(double(p.get<int>("Stiffness")));
+                         },
+                         valid, "Axial spring (test)", 2});
+  for (const char* type : {"Spring", "Typed Spring"}) {
+    Teuchos::ParameterList p;
+    p.set("Type", std::string(type));
+    try {
+      f.create(p, kWhere);
+      ADD_FAILURE() << type << ": no error";
+    } catch (const std::logic_error& e) {
+      const std::string msg = e.what();
+      EXPECT_TRUE(contains(msg, std::string("element type '") + type + "' (" + kWhere + ")")) << msg;
+      EXPECT_TRUE(contains(msg, std::string("the parameter '") + (type[0] == 'S' ? "Scale" : "Stiffness") + "'"))
+          << msg;
+      EXPECT_TRUE(contains(msg, "validParameters")) << msg;
+    }
+  }
+}
+
 TEST(ElementFactory, ValidParametersForDocumentation) {
   const auto f = ddc::ElementFactory::withBuiltins();
   auto v = f.validParametersFor("Quad9");

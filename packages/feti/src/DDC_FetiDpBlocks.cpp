@@ -108,7 +108,9 @@ std::string DualOperator::factor(const Context& ctx, Subdomain& s, size_t ls, bo
                           " remainder DOFs, " + std::to_string(s.np) + " primal DOFs)";
   const std::string fix =
       ": its remainder stiffness K_rr is singular; the corner rule could not fix this subdomain's rigid modes "
-      "(give it more primal DOFs: >= 2 distinct primal nodes in 2-D, or Dirichlet data)";
+      "(give it more primal DOFs: >= 2 distinct primal nodes in 2-D, edge or face averages by 'Primal "
+      "Constraints', or Dirichlet data; a host code without the analysis' corner rule chooses its vertices "
+      "with findPrimalVertices())";
   // Values: K_rr (unless schur), K_rPi, K_Pir, K_PiPi, the diagonal and
   // the 1-norm of K_rr (for the condition estimate).
   try {

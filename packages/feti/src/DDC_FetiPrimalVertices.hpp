@@ -12,8 +12,8 @@
 // subdomain edges meet in 3-D, a point where two subdomains only touch.
 // Unlike the analysis' rule (selectPrimalNodes()), the ends of an interface
 // at the mesh boundary are not vertices (they belong to their edge), so the
-// edge / face averages ("Primal Constraints", default "Vertices, Edges and
-// Faces") are what fixes a subdomain with no cross point; with "Vertices"
+// edge / face averages ("Primal Constraints": the default, Automatic, is
+// "Vertices and Edges") are what fixes a subdomain with no cross point; with "Vertices"
 // alone such a subdomain stays floating and FetiDpSolver::numeric() reports
 // it by id.
 #pragma once
