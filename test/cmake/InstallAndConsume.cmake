@@ -21,6 +21,11 @@ run(${CMAKE_COMMAND} -S ${CONSUMER_SOURCE} -B ${WORK_DIR}/build -DCMAKE_PREFIX_P
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 find_program(MPIRUN NAMES mpirun mpiexec REQUIRED)
 run(${MPIRUN} --oversubscribe -np 2 ${WORK_DIR}/build/host_program)
+# Depth (b) alone: the host's own linear system with FetiDpSolver against a
+# direct solve, both subdomains on one rank and one per rank.
+foreach(np 1 2)
+  run(${MPIRUN} --oversubscribe -np ${np} ${WORK_DIR}/build/host_feti)
+endforeach()
 # Depths (b) and (c): the host's own mesh, element loop and Newton with the
 # contact component and FetiDpSolver reproduce the whole analysis to 1e-10.
 run(${MPIRUN} --oversubscribe -np 2 ${WORK_DIR}/build/host_contact_feti)

@@ -29,8 +29,8 @@ class ElementFactory {
 
   /// One registered element type.
   struct Entry {
-    /// Makes the element from its validated parameters (the body's Element
-    /// sublist without Type).
+    /// Makes the element from its validated parameters: the body's whole
+    /// Element sublist, "Type" included, defaults filled in.
     Creator create;
     /// Valid parameters of this element type, each with default and doc
     /// string (the "Type" entry itself is added by the factory).
