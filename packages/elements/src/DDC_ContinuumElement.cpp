@@ -32,7 +32,7 @@ class ContinuumSolid final : public ContinuumElement {
   using MatD = Eigen::Matrix<double, kDofs, kDofs>;
 
   ContinuumSolid(CellType cell, std::shared_ptr<const Material> material)
-      : ContinuumElement(std::move(material)), name_(cellTypeName(cell)) {
+      : ContinuumElement(std::move(material), cell), name_(cellTypeName(cell)) {
     if (!material_) throw std::invalid_argument(std::string(name_) + ": material must not be null");
     const ReferenceCell& ref = referenceCell(cell);
     const QuadratureRule& rule = quadratureRule(cell);
@@ -214,6 +214,48 @@ Teuchos::RCP<const Teuchos::ParameterList> ContinuumElement::getValidParameters(
     return Teuchos::RCP<const Teuchos::ParameterList>(pl);
   }();
   return valid;
+}
+
+void ContinuumElement::mass(const NodalArray& X, MassLumping lumping, Eigen::MatrixXd& M) const {
+  if (!hasMass())
+    throw std::logic_error(std::string(cellTypeName(cell_)) + "::mass: the material has no density (Density = 0)");
+  const int n = numNodes(), d = dim();
+  if (X.rows() != n || X.cols() != d)
+    DDC_THROW(std::invalid_argument, cellTypeName(cell_) << "::mass: X is " << X.rows() << " x " << X.cols()
+                                                         << ", expected " << n << " x " << d);
+  const double rho = material_->density();
+  const QuadratureRule& rule = massQuadratureRule(cell_);
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n);  // the scalar mass ∫ ρ N_a N_b dV
+  Eigen::VectorXd N;
+  Eigen::MatrixXd dN;
+  for (size_t q = 0; q < rule.points.size(); ++q) {
+    shapeFunctions(cell_, rule.points[q], &N, &dN);
+    const double detJ0 = (X.transpose() * dN).determinant();
+    if (!(detJ0 > 0))
+      DDC_THROW(InadmissibleDeformation, cellTypeName(cell_) << "::mass: inverted or degenerate reference element, "
+                                                                "det(dX/dxi) = " << detJ0);
+    m.noalias() += (rho * rule.weights[q] * detJ0) * N * N.transpose();
+  }
+  Eigen::VectorXd diagonal;
+  switch (lumping) {
+    case MassLumping::Consistent:
+      break;
+    case MassLumping::RowSum:
+      diagonal = m.rowwise().sum();
+      break;
+    case MassLumping::HRZ:
+      diagonal = m.diagonal() * (m.sum() / m.diagonal().sum());
+      break;
+  }
+  M.setZero(n * d, n * d);
+  for (int a = 0; a < n; ++a)
+    for (int c = 0; c < d; ++c) {
+      if (lumping != MassLumping::Consistent) {
+        M(d * a + c, d * a + c) = diagonal[a];
+        continue;
+      }
+      for (int b = 0; b < n; ++b) M(d * a + c, d * b + c) = m(a, b);
+    }
 }
 
 std::shared_ptr<ContinuumElement> makeContinuumElement(CellType cell, std::shared_ptr<const Material> material) {

@@ -29,6 +29,11 @@
 // quadrature points weighted by their reference volume w_q detJ0_q (i.e. the
 // reference-volume mean over the element); energyDensity = U_e / reference
 // volume (area in 2-D); minDetJ = smallest det F at the quadrature points.
+//
+// mass(): M = ∫ ρ N_a N_b dV ⊗ I in the reference configuration (constant in
+// the total Lagrangian form), consistent or lumped (MassLumping,
+// DDC_Element.hpp); the rule is massQuadratureRule(), not the stiffness
+// rule (the 1-point Tet4 rule integrates N_a N_b wrongly).
 #pragma once
 
 #include <Teuchos_ParameterList.hpp>
@@ -44,7 +49,10 @@ namespace ddc {
 /// by makeContinuumElement or through the ElementFactory.
 class ContinuumElement : public Element {
  public:
-  explicit ContinuumElement(std::shared_ptr<const Material> material) : material_(std::move(material)) {}
+  /// \param material not null
+  /// \param cell the element cell type (its shape functions give the mass)
+  ContinuumElement(std::shared_ptr<const Material> material, CellType cell)
+      : material_(std::move(material)), cell_(cell) {}
 
   /// Valid parameters of a continuum element type (without "Type", which
   /// the factory adds): a sublist "Material" with Material::getValidParameters().
@@ -55,9 +63,16 @@ class ContinuumElement : public Element {
   /// The small-strain law (Material::isGeometricallyLinear()) gives a
   /// constant tangent.
   bool tangentIsConstant() const override { return material_->isGeometricallyLinear(); }
+  /// The material has a density > 0.
+  bool hasMass() const override { return material_->density() > 0.0; }
+  /// M_ab = ∫ ρ N_a N_b dV over the reference element with
+  /// massQuadratureRule() (exact on affine elements), or its row-sum or HRZ
+  /// lumped diagonal; ρ = material().density().
+  void mass(const NodalArray& X, MassLumping lumping, Eigen::MatrixXd& M) const override;
 
  protected:
   std::shared_ptr<const Material> material_;
+  CellType cell_;
 };
 
 /// The continuum element of an element cell type (Quad4, Quad9, Hex8, Hex20,

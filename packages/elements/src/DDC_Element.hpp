@@ -24,6 +24,17 @@ enum ComputeFlags : unsigned {
 /// caller's MatrixX2d, MatrixX3d or MatrixXd binds to it without a copy.
 using NodalArray = Eigen::Ref<const Eigen::MatrixXd>;
 
+/// How Element::mass() forms the element's mass matrix.
+enum class MassLumping {
+  Consistent,  ///< M_ab = ∫ ρ N_a N_b dV, times the identity over the components
+  /// Diagonal, m_a = Σ_b M_ab. Positive for the linear elements (Quad4, Hex8,
+  /// Tet4) and Quad9/Hex27; zero or negative at the corners of Hex20 and Tet10.
+  RowSum,
+  /// Diagonal, m_a = M_aa · m / Σ_c M_cc with m = ∫ ρ dV (Hinton, Rock &
+  /// Zienkiewicz 1976): positive for every element type.
+  HRZ
+};
+
 /// Results of one element evaluation. Sizes: residual n, tangent n x n with
 /// n = numNodes * dim DOFs ordered node-major (u0x, u0y, [u0z,] u1x, ...).
 struct ElementResult {
@@ -82,6 +93,20 @@ class Element {
   /// materially linear element): a solver may then keep its factorisation
   /// across Newton iterations and load steps. Default false.
   virtual bool tangentIsConstant() const { return false; }
+  /// True if mass() gives a mass matrix (a density > 0). Default false: the
+  /// element has no inertia and a dynamic analysis refuses it.
+  virtual bool hasMass() const { return false; }
+  /// The mass matrix in the reference configuration (total Lagrangian: it
+  /// does not change with the deformation), DOFs node-major as for compute()
+  /// (per unit thickness in 2-D). Not collective.
+  /// \param X reference coordinates, numNodes() x dim()
+  /// \param lumping consistent or one of the diagonal (lumped) forms
+  /// \param M resized to (numNodes() dim()) square
+  /// \throws std::logic_error unless hasMass()
+  virtual void mass(const NodalArray& X, MassLumping lumping, Eigen::MatrixXd& M) const {
+    (void)X, (void)lumping, (void)M;
+    throw std::logic_error("Element::mass: this element type has no mass (hasMass() is false)");
+  }
 };
 
 }  // namespace ddc

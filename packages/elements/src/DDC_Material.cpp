@@ -119,9 +119,10 @@ double linearElasticLaw(const Tensor<dim>& F, double lambda, double mu, VoigtVec
 
 }  // namespace
 
-Material::Material(double youngsModulus, double poissonsRatio)
+Material::Material(double youngsModulus, double poissonsRatio, double density)
     : youngsModulus_(youngsModulus),
       poissonsRatio_(poissonsRatio),
+      density_(density),
       lambda_(youngsModulus * poissonsRatio / ((1 + poissonsRatio) * (1 - 2 * poissonsRatio))),
       mu_(youngsModulus / (2 * (1 + poissonsRatio))) {}
 
@@ -141,6 +142,10 @@ Teuchos::RCP<const Teuchos::ParameterList> Material::getValidParameters() {
             "Poisson's ratio nu; the Lame constants are the 3-D ones (also in plane strain), so nu = 0.5 "
             "(incompressible) and nu = -1 make them infinite.",
             between(-1.0, 0.5, Interval::Open));
+    pl->set("Density", 0.0,
+            "Mass density rho per unit reference volume (2-D: per unit area, the thickness being 1), for the "
+            "element mass matrices; 0: no inertia. Quasi-static analyses do not read it.",
+            atLeast(0.0));
     return Teuchos::RCP<const Teuchos::ParameterList>(pl);
   }();
   return valid;
@@ -151,9 +156,10 @@ std::shared_ptr<Material> createMaterial(Teuchos::ParameterList& params, const s
   const std::string type = params.get<std::string>("Type");
   const double E = params.get<double>("Young's Modulus");
   const double nu = params.get<double>("Poisson's Ratio");
-  if (type == "Neo-Hookean") return std::make_shared<NeoHookean>(E, nu);
-  if (type == "St. Venant-Kirchhoff") return std::make_shared<StVenantKirchhoff>(E, nu);
-  if (type == "Linear Elastic") return std::make_shared<LinearElastic>(E, nu);
+  const double rho = params.get<double>("Density");
+  if (type == "Neo-Hookean") return std::make_shared<NeoHookean>(E, nu, rho);
+  if (type == "St. Venant-Kirchhoff") return std::make_shared<StVenantKirchhoff>(E, nu, rho);
+  if (type == "Linear Elastic") return std::make_shared<LinearElastic>(E, nu, rho);
   // Unreachable after validateLevel (the enumeration validator rejects
   // other names), kept so a new name in the list cannot fall through.
   DDC_THROW(InputError, "parameter '" << joinPath(path, "Type") << "': material type '" << type

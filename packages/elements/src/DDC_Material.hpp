@@ -60,11 +60,12 @@ class Material {
   /// \pre the ranges are checked by the validators of getValidParameters()
   ///      (in createMaterial()); direct construction
   ///      with values out of range is a programming error.
-  Material(double youngsModulus, double poissonsRatio);
+  /// \param density mass per unit reference volume, >= 0 (0: no inertia)
+  Material(double youngsModulus, double poissonsRatio, double density = 0.0);
   virtual ~Material() = default;
 
   /// Valid parameters of the "Material" sublist (defaults and doc strings):
-  /// "Type" (enumeration), "Young's Modulus", "Poisson's Ratio".
+  /// "Type" (enumeration), "Young's Modulus", "Poisson's Ratio", "Density".
   static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
 
   /// The "Type" name this material was created from, e.g. "Neo-Hookean".
@@ -100,6 +101,9 @@ class Material {
   virtual double stressZZ(const Eigen::Matrix2d& F) const = 0;
 
   double youngsModulus() const { return youngsModulus_; }
+  /// Mass density ρ per unit reference volume (0: the material has no
+  /// inertia; quasi-static analyses do not read it).
+  double density() const { return density_; }
   double poissonsRatio() const { return poissonsRatio_; }
   /// Lamé's first constant lambda = E nu / ((1 + nu)(1 - 2 nu)) (3-D value).
   double lambda() const { return lambda_; }
@@ -109,6 +113,7 @@ class Material {
  protected:
   double youngsModulus_;
   double poissonsRatio_;
+  double density_;
   double lambda_;
   double mu_;
 };

@@ -165,6 +165,34 @@ QuadratureRule tetRule(int points) {
   return r;
 }
 
+/// Conical product rule on the reference tetrahedron (vertices 0, e1, e2,
+/// e3): the Gauss-Legendre rule of P points per direction on the unit cube
+/// mapped by ξ1 = a, ξ2 = b (1 − a), ξ3 = c (1 − a)(1 − b), whose Jacobian
+/// (1 − a)² (1 − b) is absorbed in the weights. A polynomial of total degree
+/// p becomes one of degree ≤ p + 2 per direction: exact for p ≤ 2P − 3.
+QuadratureRule collapsedTetRule(int P) {
+  // Gauss-Legendre on [-1, 1]: P = 3 and P = 4.
+  static constexpr double x3[3] = {-0.77459666924148337704, 0.0, 0.77459666924148337704};
+  static constexpr double w3[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  static constexpr double x4[4] = {-0.86113631159405257522, -0.33998104358485626480, 0.33998104358485626480,
+                                   0.86113631159405257522};
+  static constexpr double w4[4] = {0.34785484513745385737, 0.65214515486254614263, 0.65214515486254614263,
+                                   0.34785484513745385737};
+  const double* x = P == 3 ? x3 : x4;
+  const double* w = P == 3 ? w3 : w4;
+  QuadratureRule r;
+  r.degree = 2 * P - 3;
+  r.name = std::to_string(P * P * P) + "-point collapsed Gauss (degree " + std::to_string(r.degree) + ")";
+  for (int i = 0; i < P; ++i)
+    for (int j = 0; j < P; ++j)
+      for (int k = 0; k < P; ++k) {
+        const double a = 0.5 * (1 + x[i]), b = 0.5 * (1 + x[j]), c = 0.5 * (1 + x[k]);
+        r.points.push_back({a, b * (1 - a), c * (1 - a) * (1 - b)});
+        r.weights.push_back(0.125 * w[i] * w[j] * w[k] * (1 - a) * (1 - a) * (1 - b));
+      }
+  return r;
+}
+
 /// Triangle rules on the reference triangle (area 1/2): 3 points of degree
 /// 2 (Strang & Fix 1973) and 6 points of degree 4 (Dunavant 1985).
 QuadratureRule triRule(int points) {
@@ -267,6 +295,28 @@ const QuadratureRule& quadratureRule(CellType cell) {
       return tet4;
     default:
       throw std::invalid_argument(std::string("quadratureRule: ") + cellTypeName(cell) +
+                                  " is not an element cell type");
+  }
+}
+
+const QuadratureRule& massQuadratureRule(CellType cell) {
+  static const QuadratureRule gauss2x2 = gaussBox(2, 2), gauss3x3 = gaussBox(2, 3), gauss3x3x3 = gaussBox(3, 3),
+                              tet27 = collapsedTetRule(3), tet64 = collapsedTetRule(4);
+  switch (cell) {
+    case CellType::Quad4:
+      return gauss2x2;
+    case CellType::Quad9:
+      return gauss3x3;
+    case CellType::Hex8:
+    case CellType::Hex20:
+    case CellType::Hex27:
+      return gauss3x3x3;
+    case CellType::Tet4:
+      return tet27;
+    case CellType::Tet10:
+      return tet64;
+    default:
+      throw std::invalid_argument(std::string("massQuadratureRule: ") + cellTypeName(cell) +
                                   " is not an element cell type");
   }
 }

@@ -62,6 +62,16 @@ struct QuadratureRule {
 /// \throws std::invalid_argument for a facet cell type (Line*, Tri*, Quad8)
 const QuadratureRule& quadratureRule(CellType cell);
 
+/// The quadrature rule of the consistent mass matrix M_ab = ∫ ρ N_a N_b dV,
+/// exact for it on every straight-sided (affine) element and, for Quad4 and
+/// Hex8, on any bilinear / trilinear element:
+///   Quad4 2x2, Quad9 3x3, Hex8, Hex20 and Hex27 3x3x3 Gauss-Legendre;
+///   Tet4 and Tet10: the collapsed (Duffy) product of 3 and 4 Gauss points
+///   per direction, exact for total degree 3 and 5 with positive weights
+///   (Stroud 1971, conical product rules).
+/// \throws std::invalid_argument for a facet cell type
+const QuadratureRule& massQuadratureRule(CellType cell);
+
 /// The quadrature rule for integrals over a facet (tractions on sides and
 /// faces, sum_q w_q |dx/dxi| N_a(xi_q)):
 ///   Line2, Line3   3-point Gauss (exact for N |J| of a quadratic side);
