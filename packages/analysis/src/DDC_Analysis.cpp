@@ -853,10 +853,9 @@ void Analysis::runSteps(OutputDirectory* dir) {
     if (!error.empty()) throw OutputError(error);
     if (out.get<bool>("VTK")) vtk = std::make_unique<VtkWriter>(comm_, dir->path(), "solution.pvd");
   }
-  // The contact state of the last converged step, for contact_nodes.csv
-  // (copied before the step-end re-pairing changes the slots).
+  // contact_nodes.csv holds the contact state of the last converged step
+  // (RunState::convergedSlots, copied before the step-end re-pairing).
   const bool contactNodes = dir && contact && out.get<bool>("Contact Nodes");
-  std::vector<ContactSlot> convergedSlots;
   auto writeVtk = [&](int step, double lambda) {
     if (vtk) writeVtkStep(*vtk, *model_, *u_, step, lambda);
   };
@@ -864,106 +863,102 @@ void Analysis::runSteps(OutputDirectory* dir) {
   u_->putScalar(0.0);
   writeVtk(0, 0.0);
 
-  auto fintPrev = model_->createVector();
-  auto uPrev = model_->createVector();
-  auto fint = model_->createVector();
-  double work = 0.0;
-  double lambda = 0.0;
-  int vtkCounter = 0;
+  // The state the steps carry forward (one object: what a restart saves).
+  RunState st;
+  st.fintPrev = model_->createVector();
+  st.uPrev = model_->createVector();
+  st.fint = model_->createVector();
+  BisectingSteps steps(finalLambda, nsteps, maxBisect);
   if (!nearlyIncompressible_.empty()) progress("warning: " + nearlyIncompressible_);
   auto contactWarnings = [&] {
     for (const auto& w : model_->takeContactWarnings()) progress("warning: " + w);
   };
   contactWarnings();  // from the initial pairing
-  for (int n = 1; n <= nsteps; ++n) {
-    const double target = finalLambda * n / nsteps;
-    double dl = target - lambda;
-    int depth = 0;
-    while (lambda < target - 1e-14 * std::abs(finalLambda)) {
-      const double trial = (target - lambda <= dl * (1 + 1e-12)) ? target : lambda + dl;
-      StepRecord rec;
-      rec.step = n;
-      const long exchanges0 = contact ? model_->exchanges() : 0;
-      const long bytes0 = contact ? model_->bytesExchanged() : 0;
-      const auto savedSlots = contact ? model_->contactSlots() : std::vector<ContactSlot>();
-      if (contact && model_->contactOptions().initialInContact) model_->activateAllPaired();
-      Activity activity("solving step " + std::to_string(n) + " (load factor " + std::to_string(lambda) + " -> " +
-                        std::to_string(trial) + ", " + std::to_string(model_->ownedMap()->getGlobalNumElements()) +
-                        " unknowns; estimated " + formatBytes(memoryEstimate_.total()) + " per rank)");
-      if (!solveIncrement(lambda, trial, rec)) {
-        if (contact) model_->restoreContactState(savedSlots);
-        ++depth;
-        if (depth > maxBisect) {
-          std::ostringstream os;
-          os << "Newton did not converge in step " << n << " (load factor " << lambda << " -> " << trial
-             << ") after " << maxBisect << " bisections (Load Stepping/Max Bisections): " << rec.failure
-             << "; residual history:";
-          for (double x : rec.residualHistory) os << " " << x;
-          if (!nearlyIncompressible_.empty()) os << "; note: " << nearlyIncompressible_;
-          throw SolverError(os.str());
-        }
-        dl *= 0.5;
-        char buf[200];
-        std::snprintf(buf, sizeof buf, "  step %d: Newton failed at load factor %.6g; bisecting (depth %d), next %.6g",
-                      n, trial, depth, lambda + dl);
-        progress(buf);
-        continue;
+  while (!steps.done()) {
+    const StepProposal p = steps.propose();
+    const int n = p.step;
+    StepRecord rec;
+    rec.step = n;
+    const long exchanges0 = contact ? model_->exchanges() : 0;
+    const long bytes0 = contact ? model_->bytesExchanged() : 0;
+    const auto savedSlots = contact ? model_->contactSlots() : std::vector<ContactSlot>();
+    if (contact && model_->contactOptions().initialInContact) model_->activateAllPaired();
+    Activity activity("solving step " + std::to_string(n) + " (load factor " + std::to_string(p.from) + " -> " +
+                      std::to_string(p.to) + ", " + std::to_string(model_->ownedMap()->getGlobalNumElements()) +
+                      " unknowns; estimated " + formatBytes(memoryEstimate_.total()) + " per rank)");
+    if (!solveIncrement(p.from, p.to, rec)) {
+      if (contact) model_->restoreContactState(savedSlots);
+      if (!steps.reject(p)) {
+        std::ostringstream os;
+        os << "Newton did not converge in step " << n << " (load factor " << p.from << " -> " << p.to << ") after "
+           << steps.maxBisections() << " bisections (Load Stepping/Max Bisections): " << rec.failure
+           << "; residual history:";
+        for (double x : rec.residualHistory) os << " " << x;
+        if (!nearlyIncompressible_.empty()) os << "; note: " << nearlyIncompressible_;
+        throw SolverError(os.str());
       }
-      const double lambdaPrev = lambda;
-      lambda = trial;
-      rec.loadFactor = lambda;
-      rec.bisections = depth;
-      rec.strainEnergy = model_->assemble(*u_, lambda, fint.get(), nullptr, nullptr).strainEnergy;
-      work += externalWorkIncrement(*fintPrev, *uPrev, lambdaPrev, *fint, *u_, lambda);
-      rec.externalWork = work;
-      fintPrev->assign(*fint);
-      uPrev->assign(*u_);
-      if (contact) {
-        // Converged: refresh the pairing once per step, with a global search
-        // (tracking cannot see another part of the surface come nearer). The
-        // decomposed element freezes the new projections and normals.
-        // Multipliers, gaps and normals of the converged state are read first:
-        // after re-pairing, the decomposed slots hold the next step's normals.
-        model_->updateActiveSet(*u_);
-        const auto cs = model_->contactSummary();
-        if (contactNodes) convergedSlots = model_->contactSlots();
-        model_->updatePairing(*u_, true, decomposed);
-        contactWarnings();
-        rec.activeContacts = cs.active;
-        rec.contactForce[0] = cs.force[0];
-        rec.contactForce[1] = cs.force[1];
-        rec.contactForce[2] = cs.force[2];
-        rec.contactExchanges = model_->exchanges() - exchanges0;
-        rec.contactBytes = model_->bytesExchanged() - bytes0;
-      }
-      rec.wallSeconds = seconds();
-      history_.push_back(rec);
-      if (hist)
-        hist->appendRow({double(n), lambda, rec.strainEnergy, double(rec.newtonIterations), double(rec.dualIterations),
-                         double(rec.activeContacts), rec.contactForce[0], rec.contactForce[1],
-                         double(rec.contactExchanges), rec.wallSeconds, rec.externalWork, double(rec.contactBytes),
-                         double(rec.bisections), rec.contactForce[2]});
-      char buf[300];
-      std::snprintf(buf, sizeof buf,
-                    "step %3d/%d  load %.6g  Newton %2d  |r| %.3e -> %.3e  energy %.6e  %.2f s", n, nsteps, lambda,
-                    rec.newtonIterations, rec.residualHistory.front(), rec.residualHistory.back(), rec.strainEnergy,
-                    rec.wallSeconds);
-      std::string line = buf;
-      if (contact) {
-        std::snprintf(buf, sizeof buf, "  contacts %d  force (%.4g, %.4g)", rec.activeContacts, rec.contactForce[0],
-                      rec.contactForce[1]);
-        line += buf;
-        // z after the 2-D pair, so the line reads the same in 2-D.
-        if (model_->mesh().dim() == 3) {
-          std::snprintf(buf, sizeof buf, " z %.4g", rec.contactForce[2]);
-          line += buf;
-        }
-      }
-      progress(line);
-      const bool last = n == nsteps && lambda >= target - 1e-14 * std::abs(finalLambda);
-      if (++vtkCounter % out.get<int>("VTK Interval") == 0 || last) writeVtk(static_cast<int>(history_.size()), lambda);
+      const StepProposal next = steps.propose();
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "  step %d: Newton failed at load factor %.6g; bisecting (depth %d), next %.6g",
+                    n, p.to, next.depth, next.to);
+      progress(buf);
+      continue;
     }
+    steps.accept(p);
+    const double lambda = p.to;
+    rec.loadFactor = lambda;
+    rec.bisections = p.depth;
+    rec.strainEnergy = model_->assemble(*u_, lambda, st.fint.get(), nullptr, nullptr).strainEnergy;
+    st.externalWork += externalWorkIncrement(*st.fintPrev, *st.uPrev, p.from, *st.fint, *u_, lambda);
+    rec.externalWork = st.externalWork;
+    st.fintPrev->assign(*st.fint);
+    st.uPrev->assign(*u_);
+    if (contact) {
+      // Converged: refresh the pairing once per step, with a global search
+      // (tracking cannot see another part of the surface come nearer). The
+      // decomposed element freezes the new projections and normals.
+      // Multipliers, gaps and normals of the converged state are read first:
+      // after re-pairing, the decomposed slots hold the next step's normals.
+      model_->updateActiveSet(*u_);
+      const auto cs = model_->contactSummary();
+      if (contactNodes) st.convergedSlots = model_->contactSlots();
+      model_->updatePairing(*u_, true, decomposed);
+      contactWarnings();
+      rec.activeContacts = cs.active;
+      rec.contactForce[0] = cs.force[0];
+      rec.contactForce[1] = cs.force[1];
+      rec.contactForce[2] = cs.force[2];
+      rec.contactExchanges = model_->exchanges() - exchanges0;
+      rec.contactBytes = model_->bytesExchanged() - bytes0;
+    }
+    rec.wallSeconds = seconds();
+    history_.push_back(rec);
+    if (hist)
+      hist->appendRow({double(n), lambda, rec.strainEnergy, double(rec.newtonIterations), double(rec.dualIterations),
+                       double(rec.activeContacts), rec.contactForce[0], rec.contactForce[1],
+                       double(rec.contactExchanges), rec.wallSeconds, rec.externalWork, double(rec.contactBytes),
+                       double(rec.bisections), rec.contactForce[2]});
+    char buf[300];
+    std::snprintf(buf, sizeof buf, "step %3d/%d  load %.6g  Newton %2d  |r| %.3e -> %.3e  energy %.6e  %.2f s", n,
+                  nsteps, lambda, rec.newtonIterations, rec.residualHistory.front(), rec.residualHistory.back(),
+                  rec.strainEnergy, rec.wallSeconds);
+    std::string line = buf;
+    if (contact) {
+      std::snprintf(buf, sizeof buf, "  contacts %d  force (%.4g, %.4g)", rec.activeContacts, rec.contactForce[0],
+                    rec.contactForce[1]);
+      line += buf;
+      // z after the 2-D pair, so the line reads the same in 2-D.
+      if (model_->mesh().dim() == 3) {
+        std::snprintf(buf, sizeof buf, " z %.4g", rec.contactForce[2]);
+        line += buf;
+      }
+    }
+    progress(line);
+    const bool last = steps.done();
+    if (++st.outputCount % out.get<int>("VTK Interval") == 0 || last)
+      writeVtk(static_cast<int>(history_.size()), lambda);
   }
+  const double lambda = steps.current();
   // The validators make every run step (Number of Steps > 0, Final Load
   // Factor > 0 and finite); should anything still leave no converged step,
   // the run must fail rather than commit a history.csv without rows.
@@ -973,7 +968,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
        << ", Load Stepping/Final Load Factor = " << finalLambda << "), so there are no results";
     throw SolverError(os.str());
   }
-  if (contactNodes) writeContactNodes(dir->path() + "/contact_nodes.csv", convergedSlots);
+  if (contactNodes) writeContactNodes(dir->path() + "/contact_nodes.csv", st.convergedSlots);
   if (contact) {
     const auto c = model_->searchCounters();
     std::ostringstream os;

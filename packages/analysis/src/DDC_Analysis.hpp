@@ -24,6 +24,7 @@
 #include "DDC_Model.hpp"
 #include "DDC_OutputDirectory.hpp"
 #include "DDC_SolutionStrategy.hpp"
+#include "DDC_StepController.hpp"
 
 namespace ddc {
 
@@ -114,6 +115,18 @@ class Analysis {
   const Teuchos::ParameterList& parameters() const { return params_; }
 
  private:
+  /// What the steps carry forward besides the displacements u_ and the
+  /// step controller's state: the external-work integral and its last
+  /// point, the output counter and the contact state of the last converged
+  /// step (for contact_nodes.csv).
+  struct RunState {
+    Teuchos::RCP<Vector> fint;      ///< internal force at the step just converged
+    Teuchos::RCP<Vector> fintPrev;  ///< ... and at the one before (trapezoidal work)
+    Teuchos::RCP<Vector> uPrev;     ///< displacements of the step before
+    double externalWork = 0.0;      ///< StepRecord::externalWork so far
+    int outputCount = 0;            ///< converged (sub)steps (Output/VTK Interval)
+    std::vector<ContactSlot> convergedSlots;
+  };
   void runSteps(OutputDirectory* dir);
   /// contact_nodes.csv (Output/Contact Nodes): one row per slot, written by
   /// rank 0 from the replicated slots; errors agreed on every rank.
