@@ -385,11 +385,83 @@ void Model::prescribedIncrement(double lambda0, double lambda, Vector& du) const
   }
 }
 
+void Model::setMassLumping(MassLumping lumping) {
+  if (lumping != massLumping_) elementMass_.clear();
+  massLumping_ = lumping;
+}
+
+std::vector<std::string> Model::bodiesWithoutMass() const {
+  std::vector<std::string> out;
+  for (int b = 0; b < mesh_->numBodies(); ++b)
+    if (!elements_[b]->hasMass()) out.push_back(mesh_->body(b).name);
+  return out;
+}
+
+void Model::requireMass() const {
+  // The bodies are known on every rank: every rank throws alike, also one
+  // without elements (no rank is left waiting in a collective call).
+  const auto missing = bodiesWithoutMass();
+  if (!missing.empty())
+    throw std::logic_error("Model: body '" + missing.front() + "' has no mass (Material/Density = 0)");
+}
+
+const Eigen::MatrixXd& Model::elementMass(size_t i) const {
+  if (elementMass_.size() != localElements_.size()) {
+    requireMass();
+    elementMass_.resize(localElements_.size());
+    Eigen::MatrixXd X;
+    for (size_t k = 0; k < localElements_.size(); ++k) {
+      const int e = localElements_[k];
+      const int nn = mesh_->elementNumNodes(e), d = mesh_->dim();
+      const int* en = mesh_->elementNodes(e);
+      X.resize(nn, d);
+      for (int a = 0; a < nn; ++a)
+        for (int c = 0; c < d; ++c) X(a, c) = mesh_->coord(en[a])[c];
+      elements_[mesh_->elementBody(e)]->mass(X, massLumping_, elementMass_[k]);
+    }
+  }
+  return elementMass_[i];
+}
+
+void Model::applyMass(const Vector& v, Vector& Mv) const {
+  requireMass();
+  auto vov = toOverlap(v);
+  auto vd = vov->getData();
+  Vector ov(overlapMap_);
+  {
+    auto od = ov.getDataNonConst();
+    std::vector<GO> dofs;
+    for (size_t i = 0; i < localElements_.size(); ++i) {
+      const Eigen::MatrixXd& M = elementMass(i);
+      elementDofs(localElements_[i], dofs);
+      Eigen::VectorXd ve(dofs.size());
+      for (size_t a = 0; a < dofs.size(); ++a) ve[a] = vd[overlapMap_->getLocalElement(dofs[a])];
+      const Eigen::VectorXd f = M * ve;
+      for (size_t a = 0; a < dofs.size(); ++a) od[overlapMap_->getLocalElement(dofs[a])] += f[a];
+    }
+  }
+  Mv.putScalar(0.0);
+  Mv.doExport(ov, *exporter_, Tpetra::ADD);
+}
+
+double Model::kineticEnergy(const Vector& v) const {
+  auto Mv = createVector();
+  applyMass(v, *Mv);
+  return 0.5 * v.dot(*Mv);
+}
+
 AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vector* residual, CrsMatrix* K,
-                               const Vector* prescribedStep, SubdomainSink* subdomains) const {
+                               const Vector* prescribedStep, SubdomainSink* subdomains, const Inertia* inertia) const {
   const Mesh& mesh = *mesh_;
   auto uov = toOverlap(u);
   auto ud = uov->getData();
+  Teuchos::RCP<Vector> aov;
+  Teuchos::ArrayRCP<const double> ad;
+  if (inertia) {
+    requireMass();
+    aov = toOverlap(*inertia->acceleration);
+    ad = aov->getData();
+  }
   Teuchos::RCP<Vector> dpov;
   Teuchos::ArrayRCP<const double> dp;
   if (prescribedStep) {
@@ -426,8 +498,10 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
       sys.K->setAllToScalar(0.0);
     }
 
-  // The rigid-motion check (AssemblyResult::freeMotions) with every tangent.
-  RigidMotionCheck* rigid = (K || subdomains) ? rigidCheck_.get() : nullptr;
+  // The rigid-motion check (AssemblyResult::freeMotions) with every tangent,
+  // unless inertia makes the tangent nonsingular.
+  const bool massive = inertia && inertia->tangentFactor > 0.0;
+  RigidMotionCheck* rigid = (K || subdomains) && !massive ? rigidCheck_.get() : nullptr;
   if (rigid) rigid->reset();
   auto position = [&](int n) {  // x = X + u of a node whose DOFs are in the overlap map
     std::array<double, 3> x = mesh.coord(n);
@@ -480,7 +554,9 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
   std::vector<GO> dofs;
   std::vector<LO> cols;  // subdomain scatter buffers, reused across elements
   std::vector<double> vals;
-  for (int e : localElements_) {
+  Eigen::VectorXd inertiaForce;
+  for (size_t local = 0; local < localElements_.size(); ++local) {
+    const int e = localElements_[local];
     const int nn = mesh.elementNumNodes(e);
     const int* en = mesh.elementNodes(e);
     const int d = mesh.dim();
@@ -502,6 +578,14 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
       break;
     }
     energy += er.energy;
+    if (inertia) {
+      // M a into the residual (not fint), c M into every tangent.
+      const Eigen::MatrixXd& Me = elementMass(local);
+      Eigen::VectorXd ae(lids.size());
+      for (size_t a = 0; a < lids.size(); ++a) ae[a] = ad[lids[a]];
+      inertiaForce = inertia->residualFactor * (Me * ae);
+      if (what & kTangent) er.tangent += inertia->tangentFactor * Me;
+    }
     if (subdomains) {
       // Free-DOF block of the element tangent into its subdomain's matrix.
       const auto [sysIndex, pos] = subdomains->where[e];
@@ -520,6 +604,9 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
       }
     }
     scatter(er);
+    if (inertia && residual)
+      for (size_t a = 0; a < lids.size(); ++a)
+        if (!con[a]) rd[lids[a]] += inertiaForce[a];
   }
   if (subdomains)
     for (auto& sys : *subdomains->systems) sys.K->fillComplete(sys.K->getDomainMap(), sys.K->getRangeMap());

@@ -36,6 +36,20 @@ struct SubdomainSink {
   std::vector<std::pair<int, int>> where;
 };
 
+/// Inertia in an assembly (a dynamic analysis' time integrator): the
+/// residual gains M a and the tangent c M, with M the element mass matrices
+/// (Element::mass, Model::setMassLumping()). The external and internal
+/// forces (fint) are unchanged.
+struct Inertia {
+  /// The acceleration a on the owned map (multiplier entries unused).
+  const Vector* acceleration = nullptr;
+  /// c: the derivative of a with respect to u in the integrator (e.g.
+  /// 1/(β h²) for Newmark), times any weight it gives the inertia term.
+  double tangentFactor = 0.0;
+  /// Weight of M a in the residual (1, or 1 − α_m for generalised-α).
+  double residualFactor = 1.0;
+};
+
 /// Results of one assembly.
 struct AssemblyResult {
   double strainEnergy = 0.0;  ///< Σ U_e over the continuum elements (global)
@@ -97,8 +111,27 @@ class Model {
   /// \throws InadmissibleDeformation on every rank if det F <= 0 anywhere.
   /// With `subdomains`, element tangents (free DOFs only) are also summed
   /// into the subdomain stiffness matrices (zeroed first).
+  /// With `inertia` (dynamics) the residual also gets M a and every tangent
+  /// c M; a tangent with c > 0 is then nonsingular, and the rigid-motion
+  /// check is skipped.
   AssemblyResult assemble(const Vector& u, double lambda, Vector* fint, Vector* residual, CrsMatrix* K,
-                          const Vector* prescribedStep = nullptr, SubdomainSink* subdomains = nullptr) const;
+                          const Vector* prescribedStep = nullptr, SubdomainSink* subdomains = nullptr,
+                          const Inertia* inertia = nullptr) const;
+
+  // ---- inertia (dynamic analyses) ----------------------------------------------
+  /// The form of the element mass matrices (default: consistent). Collective
+  /// only in the sense that every rank must choose the same.
+  void setMassLumping(MassLumping lumping);
+  MassLumping massLumping() const { return massLumping_; }
+  /// The bodies whose element has no mass (Element::hasMass() false), by
+  /// name; empty when every body has one (what a dynamic analysis needs).
+  std::vector<std::string> bodiesWithoutMass() const;
+  /// Kinetic energy ½ vᵀ M v of the velocities v (owned map). Collective.
+  /// \throws std::logic_error if a body has no mass
+  double kineticEnergy(const Vector& v) const;
+  /// M v on the owned map (multiplier entries 0). Collective.
+  /// \throws std::logic_error if a body has no mass
+  void applyMass(const Vector& v, Vector& Mv) const;
 
   const Vector& externalForce() const { return *fext_; }
   Teuchos::RCP<Vector> toOverlap(const Vector& owned) const;
@@ -187,6 +220,11 @@ class Model {
   void assembleTractions();
   /// DOF list of one element (global ids).
   void elementDofs(int e, std::vector<GO>& dofs) const;
+  /// The mass matrix of the i-th local element (localElements_[i]), computed
+  /// once per lumping.
+  const Eigen::MatrixXd& elementMass(size_t i) const;
+  /// Throws std::logic_error (on every rank) if a body has no mass.
+  void requireMass() const;
 
   Teuchos::RCP<const Teuchos::Comm<int>> comm_;
   std::shared_ptr<const Mesh> mesh_;
@@ -199,6 +237,8 @@ class Model {
 
   std::vector<int> subdomainRank_;
   std::vector<int> localElements_;
+  MassLumping massLumping_ = MassLumping::Consistent;
+  mutable std::vector<Eigen::MatrixXd> elementMass_;  ///< per local element (elementMass())
   std::vector<int> nodeOwner_;
   std::vector<GO> nodeDof_;  ///< first DOF of each node
   std::vector<GO> lmDof_;    ///< DOF of each contact slot's multiplier
