@@ -120,19 +120,31 @@ double kineticEnergy(CellType type, const Eigen::MatrixXd& X, const Eigen::Vecto
   return T;
 }
 
+/// The element of a type with density kRho on the affine map, and the exact
+/// volume and moments of that element.
+struct AffineCase {
+  std::shared_ptr<ddc::Element> el;
+  Eigen::MatrixXd X;
+  double V = 0.0;
+  Eigen::VectorXd first;
+  Eigen::MatrixXd second;
+  int d = 0, n = 0;
+  explicit AffineCase(CellType type) : el(massElement(type)) {
+    const Affine map(el->dim());
+    X = mappedNodes(type, map);
+    physicalMoments(type, map, V, first, second);
+    d = el->dim();
+    n = el->numNodes();
+  }
+};
+
 class Mass : public testing::TestWithParam<CellType> {};
 
 TEST_P(Mass, TotalMassAndRigidTranslation) {
   const CellType type = GetParam();
-  const auto el = massElement(type);
+  const AffineCase k(type);
+  const auto& [el, X, V, first, second, d, n] = k;
   ASSERT_TRUE(el->hasMass());
-  const Affine map(el->dim());
-  const Eigen::MatrixXd X = mappedNodes(type, map);
-  double V;
-  Eigen::VectorXd first;
-  Eigen::MatrixXd second;
-  physicalMoments(type, map, V, first, second);
-  const int d = el->dim(), n = el->numNodes();
   Eigen::VectorXd c = Eigen::VectorXd::LinSpaced(d, 0.4, -0.7);
   Eigen::VectorXd v(n * d);
   for (int a = 0; a < n; ++a) v.segment(d * a, d) = c;
@@ -156,14 +168,8 @@ TEST_P(Mass, TotalMassAndRigidTranslation) {
 
 TEST_P(Mass, ConsistentMassIsExactForLinearVelocityFields) {
   const CellType type = GetParam();
-  const auto el = massElement(type);
-  const Affine map(el->dim());
-  const Eigen::MatrixXd X = mappedNodes(type, map);
-  double V;
-  Eigen::VectorXd first;
-  Eigen::MatrixXd second;
-  physicalMoments(type, map, V, first, second);
-  const int d = el->dim(), n = el->numNodes();
+  const AffineCase k(type);
+  const auto& [el, X, V, first, second, d, n] = k;
   Eigen::MatrixXd M;
   el->mass(X, MassLumping::Consistent, M);
   double worst = 0.0;
