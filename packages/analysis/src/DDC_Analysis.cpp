@@ -1,5 +1,7 @@
 #include "DDC_Analysis.hpp"
 
+#include "DDC_TimeIntegrator.hpp"
+
 #include <Teuchos_XMLParameterListHelpers.hpp>
 
 #include <algorithm>
@@ -87,6 +89,50 @@ Teuchos::RCP<PL> loadSteppingValidParameters() {
           "limit or inverts an element) before the analysis stops with an error.",
           atLeast(0));
   return pl;
+}
+
+/// "Dynamics": the integrator, the time steps, the Newmark parameters, the
+/// mass matrix and the initial velocities (doc/user-guide.md, "Dynamics").
+Teuchos::RCP<const Teuchos::ParameterList> dynamicsValidParameters() {
+  static const Teuchos::RCP<const Teuchos::ParameterList> valid = [] {
+    auto pl = Teuchos::rcp(new Teuchos::ParameterList("Dynamics"));
+    pl->set("Integrator", std::string("None"),
+            "None: a quasi-static analysis (Load Stepping; no inertia). Newmark: implicit structural dynamics, "
+            "M a + f_int(u) = f_ext(t), integrated by the Newmark scheme (Newmark Beta, Newmark Gamma); the load "
+            "factor of the boundary conditions is then the time t (a Load Curve gives a value as a function "
+            "of time), and Load Stepping is not read.",
+            enumValidator({"None", "Newmark"}, "Integrator"));
+    pl->set("Final Time", 1.0, "Time at the end of a dynamic analysis (it starts at 0).", greaterThan(0.0));
+    pl->set("Time Step", 0.1,
+            "Time step h of a dynamic analysis; Final Time / Time Step must be a whole number of steps. A step "
+            "on which Newton fails is halved (Max Bisections).",
+            greaterThan(0.0));
+    pl->set("Max Bisections", 6, "How many times a time step may be halved when Newton fails.", atLeast(0));
+    pl->set("Newmark Beta", 0.25, "Newmark beta (> 0, 2 beta >= gamma): 1/4 with gamma = 1/2 is the trapezoidal "
+                                  "rule, which conserves the energy of a linear free vibration.",
+            greaterThan(0.0));
+    pl->set("Newmark Gamma", 0.5, "Newmark gamma (>= 1/2): 1/2 has no numerical damping, more damps high "
+                                  "frequencies (first-order accurate).",
+            atLeast(0.5));
+    pl->set("Mass Matrix", std::string("Consistent"),
+            "Element mass matrices: Consistent (int rho N_a N_b dV), HRZ (diagonal, scaled to the element's "
+            "mass; positive for every element type) or Row-Sum (diagonal; zero or negative at the corners of "
+            "Hex20 and Tet10, refused there).",
+            enumValidator({"Consistent", "HRZ", "Row-Sum"}, "Mass Matrix"));
+    Teuchos::ParameterList velocity("<Condition Name>");
+    velocity.set("Set", std::string(""),
+                 "A body's name (every node of it) or a qualified node set 'Body/set'.");
+    for (const char* a : {"X", "Y", "Z"})
+      velocity.set(std::string("Velocity ") + a, 0.0, std::string("Initial velocity along ") + a + " (Z: 3-D only).",
+                   finiteNumber());
+    Teuchos::ParameterList velocities("Initial Velocity");
+    setSublist(velocities, "<Condition Name>", velocity, "One sublist per initial-velocity condition.");
+    setSublist(*pl, "Initial Velocity", velocities,
+               "Velocities at t = 0 by body or node set (default: at rest); later conditions override earlier "
+               "ones on shared nodes. Prescribed DOFs take the velocity of their prescribed motion instead.");
+    return Teuchos::RCP<const Teuchos::ParameterList>(pl);
+  }();
+  return valid;
 }
 
 Teuchos::RCP<PL> newtonValidParameters() {
@@ -211,6 +257,8 @@ Teuchos::RCP<const Teuchos::ParameterList> Analysis::getValidParameters(const El
   setSublist(bcs, "<Condition Name>", *BoundaryConditions::getValidParameters(), "One sublist per condition.");
   setSublist(*pl, "Boundary Conditions", bcs, "Prescribed displacements and tractions, scaled by the load factor.");
   setSublist(*pl, "Load Stepping", *loadSteppingValidParameters(), "Load stepping and bisection.");
+  setSublist(*pl, "Dynamics", *dynamicsValidParameters(),
+             "Implicit structural dynamics (Integrator = Newmark) instead of quasi-static load stepping.");
   setSublist(*pl, "Newton", *newtonValidParameters(), "Newton iteration and convergence criteria.");
   setSublist(*pl, "Solver", *solverValidParameters(), "Solution strategy and linear solvers.");
   setSublist(*pl, "Partition", *partitionValidParameters(), "Domain partitioning.");
@@ -318,8 +366,9 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
     registerSurfaceContactElements(factory_);
   const auto valid = getValidParameters(factory_);
   validateLevel(params, *valid, "");
-  for (const char* s : {"Load Stepping", "Newton", "Solver", "Partition", "Output"})
+  for (const char* s : {"Load Stepping", "Dynamics", "Newton", "Solver", "Partition", "Output"})
     validateLevel(params.sublist(s), valid->sublist(s), s);
+  dynamic_ = params.sublist("Dynamics").get<std::string>("Integrator") != "None";
   DDC_INPUT_REQUIRE(params.isSublist("Mesh"), "sublist 'Mesh' is required");
   {
     const PL& nw = params.sublist("Newton");
@@ -432,7 +481,9 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
       for (int n : nodes) area = std::max(area, (b - a).cross(Eigen::Vector3d(mesh->coord(n).data()) - a).norm());
       return nodes.size() >= 3 && area > 1e-12 * far * far;  // relative to the set's extent: not collinear
     };
-    for (int b = 0; b < mesh->numBodies(); ++b) {
+    // In dynamics the mass holds every body (K + c M is nonsingular): a free
+    // body is legal there.
+    for (int b = 0; b < mesh->numBodies() && !dynamic_; ++b) {
       const bool supported =
           !fixedNodes[b].empty() && enoughNodes(fixedNodes[b]) && fixedDir[b][0] && fixedDir[b][1] && (dim == 2 || fixedDir[b][2]);
       // FETI-DP: contact rows are dual constraints; they cannot remove the
@@ -518,12 +569,85 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
                                      std::move(contact), surfaceElements);
     u_ = model_->createVector();
   }
+  if (dynamic_) setUpDynamics(params.sublist("Dynamics"));
   Activity activity("setting up the " + strategy_->name() + " solver (" + sizes + ")");
   strategy_->setUp(model_, [this](const std::string& line) { progress(line); });
   params_ = params;
 }
 
 Analysis::~Analysis() = default;
+
+void Analysis::setUpDynamics(Teuchos::ParameterList& dyn) {
+  const Mesh& mesh = model_->mesh();
+  // Contact in dynamics needs a treatment that keeps the energy and does
+  // not chatter (doc/user-guide.md, "Dynamics"), which is not built yet.
+  DDC_INPUT_REQUIRE(!model_->hasContact(), "'Dynamics/Integrator' = " << dyn.get<std::string>("Integrator")
+                                               << " with contact pairs (Contact/Pairs): dynamics with contact is "
+                                                  "not available yet; remove the pairs or run quasi-statically "
+                                                  "(Dynamics/Integrator = None)");
+  // Every body needs inertia.
+  for (const auto& name : model_->bodiesWithoutMass())
+    DDC_THROW(InputError, "'Dynamics/Integrator' = " << dyn.get<std::string>("Integrator") << " needs the mass of "
+                          "every body, but body '" << name << "' has none: set 'Mesh/Bodies/" << name
+                          << "/Element/Material/Density' > 0");
+  // A whole number of time steps.
+  const double T = dyn.get<double>("Final Time"), h = dyn.get<double>("Time Step");
+  const double steps = std::round(T / h);
+  DDC_INPUT_REQUIRE(steps >= 1 && std::abs(steps * h - T) <= 1e-9 * T && steps < 1e9,
+                    "'Dynamics/Final Time' = " << T << " is not a whole number of 'Dynamics/Time Step' = " << h
+                                               << " (" << T / h << " steps)");
+  const std::string mass = dyn.get<std::string>("Mass Matrix");
+  const MassLumping lumping = mass == "HRZ"       ? MassLumping::HRZ
+                              : mass == "Row-Sum" ? MassLumping::RowSum
+                                                  : MassLumping::Consistent;
+  if (lumping == MassLumping::RowSum)
+    for (int b = 0; b < mesh.numBodies(); ++b) {
+      const CellType t = mesh.elementType(mesh.body(b).firstElement);
+      DDC_INPUT_REQUIRE(t != CellType::Hex20 && t != CellType::Tet10,
+                        "'Dynamics/Mass Matrix' = Row-Sum gives zero or negative masses at the corners of "
+                            << cellTypeName(t) << " elements (body '" << mesh.body(b).name
+                            << "'); use HRZ or Consistent");
+    }
+  model_->setMassLumping(lumping);
+  integrator_ = std::make_unique<NewmarkIntegrator>(dyn.get<double>("Newmark Beta"), dyn.get<double>("Newmark Gamma"),
+                                                     "Dynamics");
+  // Initial velocities by body or node set; prescribed DOFs start at rest.
+  initialVelocity_ = model_->createVector();
+  auto& conditions = dyn.sublist("Initial Velocity");
+  const auto& valid = dynamicsValidParameters()->sublist("Initial Velocity").sublist("<Condition Name>");
+  for (auto it = conditions.begin(); it != conditions.end(); ++it) {
+    const std::string& name = conditions.name(it);
+    const std::string where = "Dynamics/Initial Velocity/" + name;
+    DDC_INPUT_REQUIRE(conditions.isSublist(name), "'" << where << "' must be a sublist (Set, Velocity X/Y/Z)");
+    auto& c = conditions.sublist(name);
+    validateLevel(c, valid, where);
+    const std::string set = c.get<std::string>("Set");
+    std::vector<int> nodes;
+    try {
+      if (set.find('/') == std::string::npos) {
+        const Body& body = mesh.body(mesh.bodyIndex(set));
+        for (int n = 0; n < body.numNodes; ++n) nodes.push_back(body.firstNode + n);
+      } else {
+        nodes = mesh.nodeSet(set);
+      }
+    } catch (const InputError& e) {
+      throw InputError("'" + where + "/Set' = '" + set + "' is neither a body nor a qualified node set "
+                       "'Body/set': " + e.what());
+    }
+    DDC_INPUT_REQUIRE(mesh.dim() == 3 || c.get<double>("Velocity Z") == 0.0,
+                      "'" << where << "/Velocity Z' is set but the model is 2-D");
+    const double v[3] = {c.get<double>("Velocity X"), c.get<double>("Velocity Y"), c.get<double>("Velocity Z")};
+    for (int n : nodes)
+      for (int k = 0; k < mesh.dim(); ++k) {
+        const GO g = model_->dof(n, k);
+        if (initialVelocity_->getMap()->isNodeGlobalElement(g) && !model_->isConstrained(g))
+          initialVelocity_->replaceGlobalValue(g, v[k]);
+      }
+  }
+  acceleration_ = model_->createVector();
+  inertia_.acceleration = acceleration_.get();
+  strategy_->setInertia(&inertia_);
+}
 
 void Analysis::progress(const std::string& line) const {
   if (comm_->getRank() == 0 && progressEnabled_) {
@@ -579,6 +703,11 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
     // One element pass: the residual and what the strategy solves with (the
     // global tangent, or the subdomain stiffness matrices).
     AssemblyResult assembled;
+    if (integrator_) {
+      // Dynamics: a(u) and the factor of M in the tangent at this iterate.
+      integrator_->acceleration(*u, *acceleration_);
+      inertia_.tangentFactor = integrator_->tangentFactor();
+    }
     try {
       assembled = strategy_->assemble(*u, lambda1, *r, it == 0 ? dp.get() : nullptr);
     } catch (const InadmissibleDeformation& e) {
@@ -821,10 +950,15 @@ void Analysis::run(OutputDirectory& dir) {
 void Analysis::runSteps(OutputDirectory* dir) {
   const auto t0 = std::chrono::steady_clock::now();
   auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  const PL& ls = params_.sublist("Load Stepping");
-  const int nsteps = ls.get<int>("Number of Steps");
-  const double finalLambda = ls.get<double>("Final Load Factor");
+  // Quasi-static: load factors from Load Stepping. Dynamics: the load
+  // factor is the time, in steps of Dynamics/Time Step.
+  const PL& ls = params_.sublist(dynamic_ ? "Dynamics" : "Load Stepping");
+  const double finalLambda = dynamic_ ? ls.get<double>("Final Time") : ls.get<double>("Final Load Factor");
+  const int nsteps = dynamic_ ? static_cast<int>(std::round(finalLambda / ls.get<double>("Time Step")))
+                              : ls.get<int>("Number of Steps");
   const int maxBisect = ls.get<int>("Max Bisections");
+  const char* stepping = dynamic_ ? "Dynamics" : "Load Stepping";
+  const char* factorName = dynamic_ ? "time" : "load factor";
   const PL& out = params_.sublist("Output");
   const bool contact = model_->hasContact();
   const bool decomposed = model_->decomposedContact();
@@ -836,6 +970,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
                                                               << "' was committed already: one run per OutputDirectory");
     auto columns = HistoryWriter::standardColumns();
     columns.insert(columns.end(), {"external_work", "contact_bytes", "bisections", "contact_force_z"});
+    if (dynamic_) columns.insert(columns.end(), {"time", "kinetic_energy", "total_energy"});
     hist = std::make_unique<HistoryWriter>(comm_, dir->path() + "/history.csv", columns);
     // The validated parameters, defaults included; written with every step
     // checked (a full disk must not leave an empty file behind).
@@ -861,6 +996,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
   };
   history_.clear();
   u_->putScalar(0.0);
+  if (integrator_) integrator_->initialise(*model_, *u_, *initialVelocity_);
   writeVtk(0, 0.0);
 
   // The state the steps carry forward (one object: what a restart saves).
@@ -883,15 +1019,16 @@ void Analysis::runSteps(OutputDirectory* dir) {
     const long bytes0 = contact ? model_->bytesExchanged() : 0;
     const auto savedSlots = contact ? model_->contactSlots() : std::vector<ContactSlot>();
     if (contact && model_->contactOptions().initialInContact) model_->activateAllPaired();
-    Activity activity("solving step " + std::to_string(n) + " (load factor " + std::to_string(p.from) + " -> " +
+    if (integrator_) integrator_->beginStep(p.to - p.from);
+    Activity activity("solving step " + std::to_string(n) + " (" + factorName + " " + std::to_string(p.from) + " -> " +
                       std::to_string(p.to) + ", " + std::to_string(model_->ownedMap()->getGlobalNumElements()) +
                       " unknowns; estimated " + formatBytes(memoryEstimate_.total()) + " per rank)");
     if (!solveIncrement(p.from, p.to, rec)) {
       if (contact) model_->restoreContactState(savedSlots);
       if (!steps.reject(p)) {
         std::ostringstream os;
-        os << "Newton did not converge in step " << n << " (load factor " << p.from << " -> " << p.to << ") after "
-           << steps.maxBisections() << " bisections (Load Stepping/Max Bisections): " << rec.failure
+        os << "Newton did not converge in step " << n << " (" << factorName << " " << p.from << " -> " << p.to
+           << ") after " << steps.maxBisections() << " bisections (" << stepping << "/Max Bisections): " << rec.failure
            << "; residual history:";
         for (double x : rec.residualHistory) os << " " << x;
         if (!nearlyIncompressible_.empty()) os << "; note: " << nearlyIncompressible_;
@@ -899,8 +1036,8 @@ void Analysis::runSteps(OutputDirectory* dir) {
       }
       const StepProposal next = steps.propose();
       char buf[200];
-      std::snprintf(buf, sizeof buf, "  step %d: Newton failed at load factor %.6g; bisecting (depth %d), next %.6g",
-                    n, p.to, next.depth, next.to);
+      std::snprintf(buf, sizeof buf, "  step %d: Newton failed at %s %.6g; bisecting (depth %d), next %.6g", n,
+                    factorName, p.to, next.depth, next.to);
       progress(buf);
       continue;
     }
@@ -913,6 +1050,11 @@ void Analysis::runSteps(OutputDirectory* dir) {
     rec.externalWork = st.externalWork;
     st.fintPrev->assign(*st.fint);
     st.uPrev->assign(*u_);
+    if (integrator_) {
+      integrator_->acceptStep(*u_);
+      rec.time = lambda;
+      rec.kineticEnergy = model_->kineticEnergy(integrator_->velocity());
+    }
     if (contact) {
       // Converged: refresh the pairing once per step, with a global search
       // (tracking cannot see another part of the surface come nearer). The
@@ -933,15 +1075,24 @@ void Analysis::runSteps(OutputDirectory* dir) {
     }
     rec.wallSeconds = seconds();
     history_.push_back(rec);
-    if (hist)
-      hist->appendRow({double(n), lambda, rec.strainEnergy, double(rec.newtonIterations), double(rec.dualIterations),
-                       double(rec.activeContacts), rec.contactForce[0], rec.contactForce[1],
-                       double(rec.contactExchanges), rec.wallSeconds, rec.externalWork, double(rec.contactBytes),
-                       double(rec.bisections), rec.contactForce[2]});
+    if (hist) {
+      std::vector<double> row{double(n), lambda, rec.strainEnergy, double(rec.newtonIterations),
+                              double(rec.dualIterations), double(rec.activeContacts), rec.contactForce[0],
+                              rec.contactForce[1], double(rec.contactExchanges), rec.wallSeconds, rec.externalWork,
+                              double(rec.contactBytes), double(rec.bisections), rec.contactForce[2]};
+      if (dynamic_) row.insert(row.end(), {rec.time, rec.kineticEnergy, rec.kineticEnergy + rec.strainEnergy});
+      hist->appendRow(row);
+    }
     char buf[300];
-    std::snprintf(buf, sizeof buf, "step %3d/%d  load %.6g  Newton %2d  |r| %.3e -> %.3e  energy %.6e  %.2f s", n,
-                  nsteps, lambda, rec.newtonIterations, rec.residualHistory.front(), rec.residualHistory.back(),
-                  rec.strainEnergy, rec.wallSeconds);
+    if (dynamic_)
+      std::snprintf(buf, sizeof buf,
+                    "step %3d/%d  time %.6g (dt %.3g)  Newton %2d  |r| %.3e -> %.3e  strain %.6e  kinetic %.6e  %.2f s",
+                    n, nsteps, lambda, p.to - p.from, rec.newtonIterations, rec.residualHistory.front(),
+                    rec.residualHistory.back(), rec.strainEnergy, rec.kineticEnergy, rec.wallSeconds);
+    else
+      std::snprintf(buf, sizeof buf, "step %3d/%d  load %.6g  Newton %2d  |r| %.3e -> %.3e  energy %.6e  %.2f s", n,
+                    nsteps, lambda, rec.newtonIterations, rec.residualHistory.front(), rec.residualHistory.back(),
+                    rec.strainEnergy, rec.wallSeconds);
     std::string line = buf;
     if (contact) {
       std::snprintf(buf, sizeof buf, "  contacts %d  force (%.4g, %.4g)", rec.activeContacts, rec.contactForce[0],
@@ -964,8 +1115,8 @@ void Analysis::runSteps(OutputDirectory* dir) {
   // the run must fail rather than commit a history.csv without rows.
   if (history_.empty() || !(lambda > 0.0)) {
     std::ostringstream os;
-    os << "the analysis made no converged load step (Load Stepping/Number of Steps = " << nsteps
-       << ", Load Stepping/Final Load Factor = " << finalLambda << "), so there are no results";
+    os << "the analysis made no converged step (" << stepping << ": " << nsteps << " steps to " << finalLambda
+       << "), so there are no results";
     throw SolverError(os.str());
   }
   if (contactNodes) writeContactNodes(dir->path() + "/contact_nodes.csv", st.convergedSlots);

@@ -1,5 +1,6 @@
 // The analysis: builds a model from a validated Teuchos::ParameterList and
-// runs load stepping with full Newton and automatic bisection.
+// runs load stepping (or, with Dynamics/Integrator = Newmark, time steps of
+// implicit dynamics) with full Newton and automatic bisection.
 //
 // Embedding lifecycle (Tribol style), for host codes:
 //   1. Analysis a(comm, params);                 // validate + build (collective)
@@ -25,6 +26,7 @@
 #include "DDC_OutputDirectory.hpp"
 #include "DDC_SolutionStrategy.hpp"
 #include "DDC_StepController.hpp"
+#include "DDC_TimeIntegrator.hpp"
 
 namespace ddc {
 
@@ -44,6 +46,8 @@ struct StepRecord {
   long contactExchanges = 0;  ///< contact-geometry exchanges in this (sub)step (Model::exchanges())
   long contactBytes = 0;      ///< bytes those exchanges moved between ranks
   std::string failure;        ///< why the last attempt failed (empty when converged)
+  double time = 0.0;           ///< dynamics: the time at the end of the (sub)step (= loadFactor)
+  double kineticEnergy = 0.0;  ///< dynamics: ½ vᵀ M v at the end of the (sub)step (0 quasi-static)
 };
 
 /// Where the time of a run went (seconds, max over ranks after run()).
@@ -128,6 +132,9 @@ class Analysis {
     std::vector<ContactSlot> convergedSlots;
   };
   void runSteps(OutputDirectory* dir);
+  /// Dynamics: check the masses and the time step, build the integrator and
+  /// the initial velocities from the validated "Dynamics" list.
+  void setUpDynamics(Teuchos::ParameterList& dynamics);
   /// contact_nodes.csv (Output/Contact Nodes): one row per slot, written by
   /// rank 0 from the replicated slots; errors agreed on every rank.
   void writeContactNodes(const std::string& path, const std::vector<ContactSlot>& slots) const;
@@ -152,6 +159,10 @@ class Analysis {
   std::string unmetCriterion(const std::vector<double>& residuals, double rtol, double atol, double energy,
                              double etol, double e0, double increment) const;
   bool progressEnabled_ = true;
+  bool dynamic_ = false;  ///< Dynamics/Integrator is not None
+  std::unique_ptr<NewmarkIntegrator> integrator_;
+  Teuchos::RCP<Vector> initialVelocity_, acceleration_;
+  Inertia inertia_;  ///< the strategy's inertia term (acceleration_ and c, updated per iterate)
 };
 
 /// Build the mesh described by "Mesh" (validated in place). Exposed for tools

@@ -60,7 +60,7 @@ class MonolithicStrategy : public SolutionStrategy {
       topologyVersion_ = model_->topologyVersion();
       symbolicDone_ = false;
     }
-    return model_->assemble(u, lambda, nullptr, &r, K_.get(), prescribedStep);
+    return model_->assemble(u, lambda, nullptr, &r, K_.get(), prescribedStep, nullptr, inertia_);
   }
 
   double linearTolerance() const override { return solver_->relativeTolerance(); }
@@ -74,11 +74,12 @@ class MonolithicStrategy : public SolutionStrategy {
       symbolicDone_ = true;
       factored_ = false;
     }
-    // A constant tangent (linear elasticity without contact) is factorised
-    // once per analysis.
-    if (!factored_ || !model_->tangentIsConstant()) {
+    // A constant tangent (linear elasticity without contact; in dynamics
+    // K + c M at a constant time step) is factorised once per analysis.
+    if (!factored_ || !model_->tangentIsConstant() || factoredMassFactor_ != tangentMassFactor()) {
       solver_->numeric();
       factored_ = true;
+      factoredMassFactor_ = tangentMassFactor();
     }
     info.setupSeconds = lap();
     solver_->solve(b, du);
@@ -94,6 +95,7 @@ class MonolithicStrategy : public SolutionStrategy {
   int topologyVersion_ = -1;
   bool symbolicDone_ = false;
   bool factored_ = false;  ///< numeric() done on the current pattern
+  double factoredMassFactor_ = 0.0;  ///< tangentMassFactor() of that numeric()
 };
 
 // ---- FETI-DP ------------------------------------------------------------------
@@ -168,7 +170,7 @@ class FetiDpStrategy : public SolutionStrategy {
   }
 
   AssemblyResult assemble(const Vector& u, double lambda, Vector& r, const Vector* prescribedStep) override {
-    return model_->assemble(u, lambda, nullptr, &r, nullptr, prescribedStep, &sink_);
+    return model_->assemble(u, lambda, nullptr, &r, nullptr, prescribedStep, &sink_, inertia_);
   }
 
   double linearTolerance() const override { return feti_->convergenceTolerance(); }
@@ -198,10 +200,14 @@ class FetiDpStrategy : public SolutionStrategy {
     // The subdomain matrices hold the element tangents only (contact enters
     // as constraint rows): with a linear material they are factorised once
     // per analysis, contact or not.
-    const bool refactor = !factored_ || !model_->elementTangentsAreConstant();
+    // In dynamics the subdomain matrices are K^s + c M^s: the same holds at
+    // a constant time step (c unchanged).
+    const bool refactor =
+        !factored_ || !model_->elementTangentsAreConstant() || factoredMassFactor_ != tangentMassFactor();
     if (refactor) {
       feti_->numeric();
       factored_ = true;
+      factoredMassFactor_ = tangentMassFactor();
     }
     out.setupSeconds = lap();
     const auto info = feti_->solve(contact ? *b_ : bModel, du);
@@ -257,6 +263,7 @@ class FetiDpStrategy : public SolutionStrategy {
   Teuchos::RCP<Vector> b_;    ///< right-hand side without the multiplier rows
   std::vector<LO> lmLids_;    ///< owned multiplier DOFs (LIDs in the model's map), in row-map order
   bool factored_ = false;     ///< numeric() done once
+  double factoredMassFactor_ = 0.0;  ///< tangentMassFactor() of that numeric()
 };
 
 }  // namespace

@@ -77,6 +77,16 @@ class SolutionStrategy {
     (void)breakdown;
     return "";
   }
+  /// Dynamics: the inertia term of every following assemble() (null: none).
+  /// The pointee stays valid and is updated in place by the caller between
+  /// assemblies; a change of its tangentFactor makes solve() factorise again.
+  void setInertia(const Inertia* inertia) { inertia_ = inertia; }
+
+ protected:
+  /// The factor c of M in the tangent of the last assembly (0 without
+  /// inertia): a factorisation made for another c is stale.
+  double tangentMassFactor() const { return inertia_ ? inertia_->tangentFactor : 0.0; }
+  const Inertia* inertia_ = nullptr;
 };
 
 /// Validate the "Solver" list (in place) against the contact formulation and

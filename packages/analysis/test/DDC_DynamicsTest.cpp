@@ -1,0 +1,219 @@
+// Implicit dynamics without contact (Dynamics/Integrator = Newmark): a
+// linear-elastic bar (E = ρ = 1, ν = 0) clamped at x = 0 and set moving by an
+// initial velocity, on 1 and 2 ranks.
+//  - the trapezoidal rule (β = ¼, γ = ½) conserves kinetic + strain energy;
+//  - γ > ½ damps: the energy never grows and ends lower;
+//  - the error in u(T) against the exact solution of the semi-discrete
+//    system M ü + K u = 0 (its modes, from the model's own M and K) falls
+//    with the time step at order 2;
+//  - FETI-DP (K^s + c M^s per subdomain) = Monolithic per step;
+//  - bad dynamics input stops with the parameter named.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "DDC_Analysis.hpp"
+#include "DDC_AnalysisTestDecks.hpp"
+#include "DDC_Error.hpp"
+#include "DDC_TestErrors.hpp"
+
+namespace {
+
+using PL = Teuchos::ParameterList;
+using namespace ddc::test;
+
+/// Energy drift of the trapezoidal rule on a linear problem: only Newton's
+/// residual tolerance (1e-8 relative, reached in one iteration to round-off)
+/// separates it from exact conservation.
+constexpr double kEnergyConservation = 1e-10;
+/// FETI-DP = Monolithic per step (doc/verification.md, rung 3).
+constexpr double kFetiAgreement = 1e-8;
+
+/// The bar: length 10 (nx x ny Quad4), clamped on the left, initial
+/// velocity 0.1 along x on every other node.
+PL barDeck(int nx, int ny, double finalTime, double dt) {
+  PL deck("DDContact");
+  RectangleSpec s;
+  s.lengthX = 10.0;
+  s.lengthY = 1.0;
+  s.nx = nx;
+  s.ny = ny;
+  s.material = "Linear Elastic";
+  s.E = 1.0;
+  s.nu = 0.0;
+  addRectangle(deck, "Bar", s).sublist("Element").sublist("Material").set("Density", 1.0);
+  addDisplacement(deck, "Clamped", "Bar/left", "XY");
+  PL& dyn = deck.sublist("Dynamics");
+  dyn.set("Integrator", std::string("Newmark"));
+  dyn.set("Final Time", finalTime);
+  dyn.set("Time Step", dt);
+  PL& v = dyn.sublist("Initial Velocity").sublist("Push");
+  v.set("Set", std::string("Bar"));
+  v.set("Velocity X", 0.1);
+  deck.sublist("Output").set("Progress", false);
+  deck.sublist("Output").set("VTK", false);
+  return deck;
+}
+
+double totalEnergy(const ddc::StepRecord& r) { return r.strainEnergy + r.kineticEnergy; }
+
+TEST(Dynamics, TheTrapezoidalRuleConservesTheEnergyOfALinearFreeVibration) {
+  PL deck = barDeck(20, 2, 10.0, 0.25);
+  ddc::Analysis a(worldComm(), deck);
+  a.run("");
+  const auto& h = a.history();
+  ASSERT_EQ(h.size(), 40u);
+  // E0: the kinetic energy of the initial velocity (the clamped nodes at rest).
+  const double E0 = totalEnergy(h.front());
+  ASSERT_GT(E0, 0.0);
+  double worst = 0.0;
+  for (const auto& r : h) worst = std::max(worst, std::abs(totalEnergy(r) - E0) / E0);
+  EXPECT_LT(worst, kEnergyConservation);
+  EXPECT_NEAR(h.back().time, 10.0, 1e-12);
+  // The energy moves between its parts: at least a fifth is strain energy at some step.
+  double maxStrain = 0.0;
+  for (const auto& r : h) maxStrain = std::max(maxStrain, r.strainEnergy);
+  EXPECT_GT(maxStrain, 0.2 * E0);
+  if (isRoot()) std::cout << "[dynamics] trapezoidal energy drift over 40 steps: " << worst << "\n";
+}
+
+TEST(Dynamics, GammaAboveOneHalfDampsTheEnergy) {
+  PL deck = barDeck(20, 2, 10.0, 0.25);
+  deck.sublist("Dynamics").set("Newmark Gamma", 0.6);
+  deck.sublist("Dynamics").set("Newmark Beta", 0.3025);  // (gamma + 1/2)^2 / 4
+  ddc::Analysis a(worldComm(), deck);
+  a.run("");
+  const auto& h = a.history();
+  for (size_t i = 1; i < h.size(); ++i)
+    EXPECT_LE(totalEnergy(h[i]), totalEnergy(h[i - 1]) * (1 + kEnergyConservation)) << "step " << i + 1;
+  EXPECT_LT(totalEnergy(h.back()), 0.99 * totalEnergy(h.front()));
+}
+
+TEST(Dynamics, SecondOrderInTheTimeStep) {
+  // Exact reference: the semi-discrete system of the same (small) model,
+  // u(t) = Σ_k φ_k (φ_kᵀ M v0) sin(ω_k t) / ω_k over its free DOFs.
+  if (worldComm()->getSize() > 1) GTEST_SKIP() << "the dense reference is built on one rank";
+  const double T = 5.0;
+  std::vector<double> errors;
+  for (double dt : {0.5, 0.25, 0.125}) {
+    PL deck = barDeck(4, 1, T, dt);
+    ddc::Analysis a(worldComm(), deck);
+    a.run("");
+    const ddc::Model& m = a.model();
+    const int n = static_cast<int>(m.ownedMap()->getGlobalNumElements());
+    auto K = m.createMatrix();
+    auto zero = m.createVector();
+    m.assemble(*zero, 0.0, nullptr, nullptr, K.get());
+    std::vector<int> free;
+    for (int g = 0; g < n; ++g)
+      if (!m.isConstrained(g)) free.push_back(g);
+    const int f = static_cast<int>(free.size());
+    Eigen::MatrixXd Kf(f, f), Mf(f, f);
+    auto e = m.createVector(), Ke = m.createVector(), Me = m.createVector();
+    for (int j = 0; j < f; ++j) {
+      e->putScalar(0.0);
+      e->replaceGlobalValue(free[j], 1.0);
+      K->apply(*e, *Ke);
+      m.applyMass(*e, *Me);
+      auto kd = Ke->getData(), md = Me->getData();
+      for (int i = 0; i < f; ++i) Kf(i, j) = kd[free[i]], Mf(i, j) = md[free[i]];
+    }
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(Kf, Mf);
+    // The initial velocity: 0.1 on every free x DOF.
+    std::vector<char> isX(n, 0);
+    for (int node = 0; node < m.mesh().numNodes(); ++node) isX[m.dof(node, 0)] = 1;
+    Eigen::VectorXd v(f);
+    for (int i = 0; i < f; ++i) v[i] = isX[free[i]] ? 0.1 : 0.0;
+    Eigen::VectorXd exact = Eigen::VectorXd::Zero(f);
+    for (int k = 0; k < f; ++k) {
+      const Eigen::VectorXd phi = modes.eigenvectors().col(k);  // M-orthonormal
+      const double w = std::sqrt(modes.eigenvalues()[k]);
+      exact += phi * (phi.dot(Mf * v)) * std::sin(w * T) / w;
+    }
+    auto ud = a.displacement().getData();
+    double err = 0.0;
+    for (int i = 0; i < f; ++i) err = std::max(err, std::abs(ud[free[i]] - exact[i]));
+    errors.push_back(err / exact.cwiseAbs().maxCoeff());
+  }
+  const double order1 = std::log2(errors[0] / errors[1]), order2 = std::log2(errors[1] / errors[2]);
+  std::cout << "[dynamics] u(T) errors " << errors[0] << " " << errors[1] << " " << errors[2] << ", observed orders "
+            << order1 << " " << order2 << "\n";
+  EXPECT_NEAR(order2, 2.0, 0.1);
+}
+
+TEST(Dynamics, FetiDpEqualsMonolithic) {
+  std::vector<std::vector<ddc::StepRecord>> runs;
+  for (const char* strategy : {"Monolithic", "FETI-DP"}) {
+    PL deck = barDeck(20, 2, 5.0, 0.25);
+    deck.sublist("Solver").set("Strategy", std::string(strategy));
+    deck.sublist("Partition").set("Number of Subdomains", 4);
+    ddc::Analysis a(worldComm(), deck);
+    a.run("");
+    runs.push_back(a.history());
+  }
+  ASSERT_EQ(runs[0].size(), runs[1].size());
+  double worst = 0.0;
+  for (size_t i = 0; i < runs[0].size(); ++i) {
+    const double E = totalEnergy(runs[0][i]);
+    worst = std::max({worst, std::abs(runs[0][i].strainEnergy - runs[1][i].strainEnergy) / E,
+                      std::abs(runs[0][i].kineticEnergy - runs[1][i].kineticEnergy) / E});
+  }
+  EXPECT_LT(worst, kFetiAgreement);
+  if (isRoot()) std::cout << "[dynamics] FETI-DP vs Monolithic, worst energy difference per step: " << worst << "\n";
+}
+
+TEST(Dynamics, BadInputNamesTheParameter) {
+  {
+    PL deck = barDeck(4, 1, 1.0, 0.25);
+    deck.sublist("Mesh").sublist("Bodies").sublist("Bar").sublist("Element").sublist("Material").set("Density", 0.0);
+    const std::string msg = inputErrorOf([&] { ddc::Analysis a(worldComm(), deck); });
+    EXPECT_NE(msg.find("set 'Mesh/Bodies/Bar/Element/Material/Density' > 0"), std::string::npos) << msg;
+  }
+  {
+    PL deck = barDeck(4, 1, 1.0, 0.3);
+    const std::string msg = inputErrorOf([&] { ddc::Analysis a(worldComm(), deck); });
+    EXPECT_NE(msg.find("'Dynamics/Final Time' = 1 is not a whole number of 'Dynamics/Time Step' = 0.3"),
+              std::string::npos)
+        << msg;
+  }
+  {
+    PL deck = barDeck(4, 1, 1.0, 0.25);
+    deck.sublist("Dynamics").set("Newmark Beta", 0.2);
+    const std::string msg = inputErrorOf([&] { ddc::Analysis a(worldComm(), deck); });
+    EXPECT_NE(msg.find("unconditionally stable only for 2 beta >= gamma >= 1/2"), std::string::npos) << msg;
+  }
+  {
+    PL deck = barDeck(4, 1, 1.0, 0.25);
+    deck.sublist("Dynamics").set("Newmark Gamma", 0.4);
+    const std::string msg = inputErrorOf([&] { ddc::Analysis a(worldComm(), deck); });
+    EXPECT_NE(msg.find("Dynamics/Newmark Gamma"), std::string::npos) << msg;
+  }
+  {
+    PL deck = barDeck(4, 1, 1.0, 0.25);
+    deck.sublist("Dynamics").sublist("Initial Velocity").sublist("Push").set("Set", std::string("Nope"));
+    const std::string msg = inputErrorOf([&] { ddc::Analysis a(worldComm(), deck); });
+    EXPECT_NE(msg.find("'Dynamics/Initial Velocity/Push/Set' = 'Nope' is neither a body"), std::string::npos)
+        << msg;
+  }
+  {
+    PL deck = barDeck(4, 1, 1.0, 0.25);
+    deck.sublist("Dynamics").sublist("Initial Velocity").sublist("Push").set("Velocity Z", 1.0);
+    const std::string msg = inputErrorOf([&] { ddc::Analysis a(worldComm(), deck); });
+    EXPECT_NE(msg.find("'Dynamics/Initial Velocity/Push/Velocity Z' is set but the model is 2-D"),
+              std::string::npos)
+        << msg;
+  }
+  {
+    PL deck = barDeck(4, 1, 1.0, 0.25);
+    deck.sublist("Dynamics").set("Integrator", std::string("Explicit"));
+    const std::string msg = inputErrorOf([&] { ddc::Analysis a(worldComm(), deck); });
+    EXPECT_NE(msg.find("Dynamics/Integrator"), std::string::npos) << msg;
+  }
+}
+
+}  // namespace
