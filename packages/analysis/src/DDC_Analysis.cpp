@@ -97,11 +97,11 @@ Teuchos::RCP<const Teuchos::ParameterList> dynamicsValidParameters() {
   static const Teuchos::RCP<const Teuchos::ParameterList> valid = [] {
     auto pl = Teuchos::rcp(new Teuchos::ParameterList("Dynamics"));
     pl->set("Integrator", std::string("None"),
-            "None: a quasi-static analysis (Load Stepping; no inertia). Newmark: implicit structural dynamics, "
-            "M a + f_int(u) = f_ext(t), integrated by the Newmark scheme (Newmark Beta, Newmark Gamma); the load "
-            "factor of the boundary conditions is then the time t (a Load Curve gives a value as a function "
-            "of time), and Load Stepping is not read.",
-            enumValidator({"None", "Newmark"}, "Integrator"));
+            "None: a quasi-static analysis (Load Stepping; no inertia). Otherwise implicit structural dynamics, "
+            "M a + f_int(u) = f_ext(t), integrated by Newmark (Newmark Beta, Newmark Gamma), HHT-alpha (HHT "
+            "Alpha) or Generalized-alpha (Spectral Radius); the load factor of the boundary conditions is then "
+            "the time t (a Load Curve gives a value as a function of time), and Load Stepping is not read.",
+            enumValidator({"None", "Newmark", "HHT-alpha", "Generalized-alpha"}, "Integrator"));
     pl->set("Final Time", 1.0, "Time at the end of a dynamic analysis (it starts at 0).", greaterThan(0.0));
     pl->set("Time Step", 0.1,
             "Time step h of a dynamic analysis; Final Time / Time Step must be a whole number of steps. A step "
@@ -114,6 +114,14 @@ Teuchos::RCP<const Teuchos::ParameterList> dynamicsValidParameters() {
     pl->set("Newmark Gamma", 0.5, "Newmark gamma (>= 1/2): 1/2 has no numerical damping, more damps high "
                                   "frequencies (first-order accurate).",
             atLeast(0.5));
+    pl->set("HHT Alpha", -0.05,
+            "HHT-alpha's alpha in [-1/3, 0] (Hilber, Hughes & Taylor 1977): 0 is the trapezoidal rule, more "
+            "negative damps high frequencies more; second-order accurate.",
+            between(-1.0 / 3.0, 0.0));
+    pl->set("Spectral Radius", 0.8,
+            "Generalized-alpha's spectral radius at infinite frequency rho_inf in [0, 1] (Chung & Hulbert 1993): "
+            "1 no numerical damping, 0 annihilates the highest modes in one step; second-order accurate.",
+            between(0.0, 1.0));
     pl->set("Mass Matrix", std::string("Consistent"),
             "Element mass matrices: Consistent (int rho N_a N_b dV), HRZ (diagonal, scaled to the element's "
             "mass; positive for every element type) or Row-Sum (diagonal; zero or negative at the corners of "
@@ -609,8 +617,12 @@ void Analysis::setUpDynamics(Teuchos::ParameterList& dyn) {
                             << "'); use HRZ or Consistent");
     }
   model_->setMassLumping(lumping);
-  integrator_ = std::make_unique<NewmarkIntegrator>(dyn.get<double>("Newmark Beta"), dyn.get<double>("Newmark Gamma"),
-                                                     "Dynamics");
+  const std::string scheme = dyn.get<std::string>("Integrator");
+  integrator_ = std::make_unique<NewmarkIntegrator>(
+      scheme == "HHT-alpha"           ? NewmarkParameters::hht(dyn.get<double>("HHT Alpha"), "Dynamics")
+      : scheme == "Generalized-alpha" ? NewmarkParameters::generalisedAlpha(dyn.get<double>("Spectral Radius"), "Dynamics")
+                                      : NewmarkParameters::newmark(dyn.get<double>("Newmark Beta"),
+                                                                   dyn.get<double>("Newmark Gamma"), "Dynamics"));
   // Initial velocities by body or node set; prescribed DOFs start at rest.
   initialVelocity_ = model_->createVector();
   auto& conditions = dyn.sublist("Initial Velocity");
@@ -645,6 +657,7 @@ void Analysis::setUpDynamics(Teuchos::ParameterList& dyn) {
       }
   }
   acceleration_ = model_->createVector();
+  inertia_ = Inertia{};
   inertia_.acceleration = acceleration_.get();
   strategy_->setInertia(&inertia_);
 }
@@ -706,7 +719,7 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
     if (integrator_) {
       // Dynamics: a(u) and the factor of M in the tangent at this iterate.
       integrator_->acceleration(*u, *acceleration_);
-      inertia_.tangentFactor = integrator_->tangentFactor();
+      inertia_ = integrator_->inertia(*acceleration_);
     }
     try {
       assembled = strategy_->assemble(*u, lambda1, *r, it == 0 ? dp.get() : nullptr);
@@ -1019,7 +1032,12 @@ void Analysis::runSteps(OutputDirectory* dir) {
     const long bytes0 = contact ? model_->bytesExchanged() : 0;
     const auto savedSlots = contact ? model_->contactSlots() : std::vector<ContactSlot>();
     if (contact && model_->contactOptions().initialInContact) model_->activateAllPaired();
-    if (integrator_) integrator_->beginStep(p.to - p.from);
+    if (integrator_) {
+      // f_ext(t_n) = λ_n f_ext for the α-methods' previous-step terms.
+      auto externalNow = model_->createVector();
+      externalNow->update(p.from, model_->externalForce(), 0.0);
+      integrator_->beginStep(*model_, p.to - p.from, *st.fint, *externalNow);
+    }
     Activity activity("solving step " + std::to_string(n) + " (" + factorName + " " + std::to_string(p.from) + " -> " +
                       std::to_string(p.to) + ", " + std::to_string(model_->ownedMap()->getGlobalNumElements()) +
                       " unknowns; estimated " + formatBytes(memoryEstimate_.total()) + " per rank)");

@@ -677,6 +677,11 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
     auto f = fext_->getData();
     for (size_t l = 0; l < numOwned; ++l)
       if (!constrained_[first + l]) r[l] -= lambda * f[l];
+    if (inertia && inertia->force) {
+      auto g = inertia->force->getData();
+      for (size_t l = 0; l < numOwned; ++l)
+        if (!constrained_[first + l]) r[l] += g[l];
+    }
   }
   if (K) {
     Kov->fillComplete(ownedMap_, ownedMap_);

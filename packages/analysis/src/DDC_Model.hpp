@@ -46,8 +46,12 @@ struct Inertia {
   /// c: the derivative of a with respect to u in the integrator (e.g.
   /// 1/(β h²) for Newmark), times any weight it gives the inertia term.
   double tangentFactor = 0.0;
-  /// Weight of M a in the residual (1, or 1 − α_m for generalised-α).
+  /// Weight of M a in the residual (1 for Newmark; (1 − α_m)/(1 − α_f) for
+  /// the α-methods).
   double residualFactor = 1.0;
+  /// If given: a force added to the residual's free DOFs (the α-methods'
+  /// terms of the previous step), owned map.
+  const Vector* force = nullptr;
 };
 
 /// Results of one assembly.

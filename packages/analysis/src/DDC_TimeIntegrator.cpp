@@ -5,7 +5,7 @@
 
 namespace ddc {
 
-NewmarkIntegrator::NewmarkIntegrator(double beta, double gamma, const std::string& path) : beta_(beta), gamma_(gamma) {
+NewmarkParameters NewmarkParameters::newmark(double beta, double gamma, const std::string& path) {
   DDC_INPUT_REQUIRE(gamma >= 0.5, "'" << joinPath(path, "Newmark Gamma") << "' = " << gamma
                                       << ": gamma < 1/2 amplifies every mode (unstable); use gamma >= 1/2 "
                                          "(1/2: no numerical damping)");
@@ -14,6 +14,34 @@ NewmarkIntegrator::NewmarkIntegrator(double beta, double gamma, const std::strin
                         << joinPath(path, "Newmark Gamma") << "' = " << gamma
                         << ": the implicit Newmark scheme is unconditionally stable only for 2 beta >= gamma >= "
                            "1/2 (e.g. beta = 1/4, gamma = 1/2, the trapezoidal rule)");
+  NewmarkParameters p;
+  p.beta = beta;
+  p.gamma = gamma;
+  return p;
+}
+
+NewmarkParameters NewmarkParameters::hht(double alpha, const std::string& path) {
+  DDC_INPUT_REQUIRE(alpha >= -1.0 / 3.0 && alpha <= 0.0,
+                    "'" << joinPath(path, "HHT Alpha") << "' = " << alpha
+                        << ": HHT-alpha is unconditionally stable and second-order accurate for alpha in [-1/3, 0]");
+  NewmarkParameters p;
+  p.alphaM = 0.0;
+  p.alphaF = -alpha;
+  p.gamma = 0.5 - alpha;
+  p.beta = 0.25 * (1.0 - alpha) * (1.0 - alpha);
+  return p;
+}
+
+NewmarkParameters NewmarkParameters::generalisedAlpha(double rho, const std::string& path) {
+  DDC_INPUT_REQUIRE(rho >= 0.0 && rho <= 1.0, "'" << joinPath(path, "Spectral Radius") << "' = " << rho
+                                                  << ": the spectral radius at infinite frequency is in [0, 1] "
+                                                     "(1: no numerical damping, 0: the most)");
+  NewmarkParameters p;
+  p.alphaM = (2.0 * rho - 1.0) / (rho + 1.0);
+  p.alphaF = rho / (rho + 1.0);
+  p.gamma = 0.5 - p.alphaM + p.alphaF;
+  p.beta = 0.25 * (1.0 - p.alphaM + p.alphaF) * (1.0 - p.alphaM + p.alphaF);
+  return p;
 }
 
 void NewmarkIntegrator::initialise(const Model& model, const Vector& u0, const Vector& v0) {
@@ -22,27 +50,47 @@ void NewmarkIntegrator::initialise(const Model& model, const Vector& u0, const V
   a_ = model.createVector();
   uTilde_ = model.createVector();
   vTilde_ = model.createVector();
+  g_ = model.createVector();
   u_->assign(u0);
   v_->assign(v0);
   a_->putScalar(0.0);
 }
 
-void NewmarkIntegrator::beginStep(double h) {
+void NewmarkIntegrator::beginStep(const Model& model, double h, const Vector& fintNow, const Vector& externalNow) {
   h_ = h;
+  const double beta = p_.beta, gamma = p_.gamma;
   // ũ = u_n + h v_n + h² (½ − β) a_n;  ṽ = v_n + h (1 − γ) a_n.
   uTilde_->update(1.0, *u_, h, *v_, 0.0);
-  uTilde_->update(h * h * (0.5 - beta_), *a_, 1.0);
-  vTilde_->update(1.0, *v_, h * (1.0 - gamma_), *a_, 0.0);
+  uTilde_->update(h * h * (0.5 - beta), *a_, 1.0);
+  vTilde_->update(1.0, *v_, h * (1.0 - gamma), *a_, 0.0);
+  // g = [α_f (f_int(u_n) − f_ext(t_n)) + α_m M a_n] / (1 − α_f).
+  g_->putScalar(0.0);
+  const double s = 1.0 / (1.0 - p_.alphaF);
+  if (p_.alphaF != 0.0) g_->update(p_.alphaF * s, fintNow, -p_.alphaF * s, externalNow, 0.0);
+  if (p_.alphaM != 0.0) {
+    auto Ma = model.createVector();
+    model.applyMass(*a_, *Ma);
+    g_->update(p_.alphaM * s, *Ma, 1.0);
+  }
 }
 
 void NewmarkIntegrator::acceleration(const Vector& u, Vector& a) const {
-  const double c = tangentFactor();
+  const double c = 1.0 / (p_.beta * h_ * h_);
   a.update(c, u, -c, *uTilde_, 0.0);
+}
+
+Inertia NewmarkIntegrator::inertia(const Vector& a) const {
+  Inertia in;
+  in.acceleration = &a;
+  in.residualFactor = weight();
+  in.tangentFactor = weight() / (p_.beta * h_ * h_);
+  in.force = (p_.alphaF != 0.0 || p_.alphaM != 0.0) ? g_.get() : nullptr;
+  return in;
 }
 
 void NewmarkIntegrator::acceptStep(const Vector& u) {
   acceleration(u, *a_);
-  v_->update(1.0, *vTilde_, gamma_ * h_, *a_, 0.0);
+  v_->update(1.0, *vTilde_, p_.gamma * h_, *a_, 0.0);
   u_->assign(u);
 }
 

@@ -1,63 +1,93 @@
 // Implicit time integration of M ü + f_int(u) = f_ext(t) (doc/user-guide.md,
-// "Dynamics"): the Newmark family (Newmark 1959; Hughes, The Finite Element
-// Method, ch. 9). Over a step t_n → t_{n+1} = t_n + h, with the predictors
+// "Dynamics"): the Newmark family with the α-methods — Newmark (1959),
+// HHT-α (Hilber, Hughes & Taylor 1977) and generalised-α (Chung & Hulbert
+// 1993); Hughes, The Finite Element Method, ch. 9.
+//
+// Over a step t_n → t_{n+1} = t_n + h, with the predictors
 //
 //   ũ = u_n + h v_n + h² (½ − β) a_n,     ṽ = v_n + h (1 − γ) a_n,
 //
 // the acceleration and velocity are functions of the unknown u_{n+1}:
 //
-//   a(u) = (u − ũ) / (β h²),               v(u) = ṽ + γ h a(u),
+//   a(u) = (u − ũ) / (β h²),               v(u) = ṽ + γ h a(u).
 //
-// so Newton on r(u) = f_int(u) − f_ext(t_{n+1}) + M a(u) has the tangent
-// K + c M with c = 1 / (β h²) (Model::assemble with an Inertia term). The
-// step controller chooses h (BisectingSteps: the nominal time steps, halved
-// on Newton failure), so h may change from step to step; the formulas hold
-// for any h.
+// The α-methods balance forces at intermediate points,
 //
-// Stability: unconditionally stable for linear problems when
-// 2β ≥ γ ≥ ½ (Hughes §9.1); γ = ½ has no numerical damping, γ > ½ damps
-// (first-order accurate). β = ¼, γ = ½ (the trapezoidal rule) conserves the
-// energy of a linear free vibration exactly.
+//   (1 − α_m) M a_{n+1} + α_m M a_n + (1 − α_f) f_int(u_{n+1}) + α_f f_int(u_n)
+//     = (1 − α_f) f_ext(t_{n+1}) + α_f f_ext(t_n)
+//
+// (the "generalised trapezoidal" form of the internal force, which keeps
+// f_int an element quantity for any material). Divided by (1 − α_f), Newton
+// solves r(u) = f_int(u) − f_ext(t_{n+1}) + w M a(u) + g = 0 with
+//
+//   w = (1 − α_m)/(1 − α_f),   c = w / (β h²)  (the tangent is K + c M),
+//   g = [α_f (f_int(u_n) − f_ext(t_n)) + α_m M a_n] / (1 − α_f),
+//
+// which is Model::assemble with Inertia{a, c, w, g}. Newmark is α_m = α_f = 0.
+//
+// Parameters and stability (linear problems, unconditional):
+//  - Newmark: 2β ≥ γ ≥ ½; β = ¼, γ = ½ (trapezoidal) conserves the energy of
+//    a linear free vibration; γ > ½ damps at first-order accuracy.
+//  - HHT-α: α ∈ [−⅓, 0], α_m = 0, α_f = −α, γ = ½ − α, β = (1 − α)²/4;
+//    second order; α = 0 is the trapezoidal rule.
+//  - generalised-α from the spectral radius at infinite frequency
+//    ρ∞ ∈ [0, 1]: α_m = (2ρ∞ − 1)/(ρ∞ + 1), α_f = ρ∞/(ρ∞ + 1),
+//    γ = ½ − α_m + α_f, β = (1 − α_m + α_f)²/4; second order, with minimal
+//    low-frequency damping for the high-frequency damping chosen.
+// The step controller chooses h (halved on Newton failure), so h may change
+// from step to step; the formulas hold for any h.
 #pragma once
 
-#include <Teuchos_ParameterList.hpp>
 #include <string>
 
 #include "DDC_Model.hpp"
 
 namespace ddc {
 
-/// The Newmark integrator's parameters and its state (u_n, v_n, a_n).
+/// The parameters of a member of the family (see the top of this file).
+struct NewmarkParameters {
+  double beta = 0.25, gamma = 0.5;
+  double alphaM = 0.0, alphaF = 0.0;
+  /// Newmark; \throws InputError naming `path` unless 2β ≥ γ ≥ ½.
+  static NewmarkParameters newmark(double beta, double gamma, const std::string& path);
+  /// HHT-α; \throws InputError naming `path` unless α ∈ [−⅓, 0].
+  static NewmarkParameters hht(double alpha, const std::string& path);
+  /// Generalised-α; \throws InputError naming `path` unless ρ∞ ∈ [0, 1].
+  static NewmarkParameters generalisedAlpha(double rhoInfinity, const std::string& path);
+};
+
+/// The integrator's state (u_n, v_n, a_n, f_int(u_n)) and its step algebra.
 class NewmarkIntegrator {
  public:
-  /// \param beta β > 0
-  /// \param gamma γ ≥ ½, with 2β ≥ γ (unconditional stability)
-  /// \throws InputError naming `path` and the parameter outside its range
-  NewmarkIntegrator(double beta, double gamma, const std::string& path);
+  explicit NewmarkIntegrator(const NewmarkParameters& p) : p_(p) {}
 
   /// Start from the displacements u0 with velocities v0 and zero
   /// acceleration (no load acts at t = 0: boundary values and tractions are
   /// zero there, see the user guide). Vectors on the model's owned map.
   void initialise(const Model& model, const Vector& u0, const Vector& v0);
-  /// Begin the step t_n → t_n + h from the converged state: the predictors.
-  void beginStep(double h);
+  /// Begin the step t_n → t_n + h from the converged state: the predictors
+  /// and, for the α-methods, the force g of the previous step's terms, from
+  /// f_int(u_n) (`fintNow`, all DOFs) and the external force f_ext(t_n) =
+  /// λ_n f_ext (`externalNow`).
+  void beginStep(const Model& model, double h, const Vector& fintNow, const Vector& externalNow);
   /// a(u) of the current step into `a`.
   void acceleration(const Vector& u, Vector& a) const;
-  /// The factor c = 1/(β h²) of M in the tangent.
-  double tangentFactor() const { return 1.0 / (beta_ * h_ * h_); }
+  /// The inertia term of the current step at the acceleration vector `a`
+  /// (which the caller fills with acceleration() at each iterate).
+  Inertia inertia(const Vector& a) const;
   /// The step converged at u: u_n, v_n, a_n become those of t_{n+1}.
   void acceptStep(const Vector& u);
-  /// The converged velocities v_n and accelerations a_n.
+  /// The converged velocities v_n.
   const Vector& velocity() const { return *v_; }
-  const Vector& accelerationNow() const { return *a_; }
-
-  double beta() const { return beta_; }
-  double gamma() const { return gamma_; }
+  const NewmarkParameters& parameters() const { return p_; }
 
  private:
-  double beta_, gamma_, h_ = 0.0;
+  double weight() const { return (1.0 - p_.alphaM) / (1.0 - p_.alphaF); }
+  NewmarkParameters p_;
+  double h_ = 0.0;
   Teuchos::RCP<Vector> u_, v_, a_;        ///< converged state at t_n
   Teuchos::RCP<Vector> uTilde_, vTilde_;  ///< predictors of the current step
+  Teuchos::RCP<Vector> g_;                ///< α-methods: the previous step's force terms
 };
 
 }  // namespace ddc

@@ -1,11 +1,13 @@
-// Implicit dynamics without contact (Dynamics/Integrator = Newmark): a
+// Implicit dynamics without contact (Newmark, HHT-alpha, generalised-alpha): a
 // linear-elastic bar (E = ρ = 1, ν = 0) clamped at x = 0 and set moving by an
 // initial velocity, on 1 and 2 ranks.
 //  - the trapezoidal rule (β = ¼, γ = ½) conserves kinetic + strain energy;
-//  - γ > ½ damps: the energy never grows and ends lower;
+//  - γ > ½ damps: the energy never grows and ends lower; so do HHT-α and
+//    generalised-α at steps far beyond the periods, more for a more
+//    dissipative parameter;
 //  - the error in u(T) against the exact solution of the semi-discrete
 //    system M ü + K u = 0 (its modes, from the model's own M and K) falls
-//    with the time step at order 2;
+//    with the time step at order 2, for all three schemes;
 //  - FETI-DP (K^s + c M^s per subdomain) = Monolithic per step;
 //  - bad dynamics input stops with the parameter named.
 #include <gtest/gtest.h>
@@ -94,7 +96,22 @@ TEST(Dynamics, GammaAboveOneHalfDampsTheEnergy) {
   EXPECT_LT(totalEnergy(h.back()), 0.99 * totalEnergy(h.front()));
 }
 
-TEST(Dynamics, SecondOrderInTheTimeStep) {
+/// An integrator: Integrator and its parameter, for the parameterised tests.
+struct Scheme {
+  const char* integrator;
+  const char* parameter;  ///< "" for none
+  double value;
+};
+const Scheme kSchemes[] = {{"Newmark", "", 0.0}, {"HHT-alpha", "HHT Alpha", -0.1},
+                           {"Generalized-alpha", "Spectral Radius", 0.8}};
+void setScheme(PL& deck, const Scheme& s) {
+  deck.sublist("Dynamics").set("Integrator", std::string(s.integrator));
+  if (*s.parameter) deck.sublist("Dynamics").set(s.parameter, s.value);
+}
+
+class DynamicsScheme : public testing::TestWithParam<Scheme> {};
+
+TEST_P(DynamicsScheme, SecondOrderInTheTimeStep) {
   // Exact reference: the semi-discrete system of the same (small) model,
   // u(t) = Σ_k φ_k (φ_kᵀ M v0) sin(ω_k t) / ω_k over its free DOFs.
   if (worldComm()->getSize() > 1) GTEST_SKIP() << "the dense reference is built on one rank";
@@ -102,6 +119,7 @@ TEST(Dynamics, SecondOrderInTheTimeStep) {
   std::vector<double> errors;
   for (double dt : {0.5, 0.25, 0.125}) {
     PL deck = barDeck(4, 1, T, dt);
+    setScheme(deck, GetParam());
     ddc::Analysis a(worldComm(), deck);
     a.run("");
     const ddc::Model& m = a.model();
@@ -141,9 +159,44 @@ TEST(Dynamics, SecondOrderInTheTimeStep) {
     errors.push_back(err / exact.cwiseAbs().maxCoeff());
   }
   const double order1 = std::log2(errors[0] / errors[1]), order2 = std::log2(errors[1] / errors[2]);
-  std::cout << "[dynamics] u(T) errors " << errors[0] << " " << errors[1] << " " << errors[2] << ", observed orders "
-            << order1 << " " << order2 << "\n";
+  std::cout << "[dynamics] " << GetParam().integrator << ": u(T) errors " << errors[0] << " " << errors[1] << " "
+            << errors[2] << ", observed orders " << order1 << " " << order2 << "\n";
   EXPECT_NEAR(order2, 2.0, 0.1);
+}
+
+INSTANTIATE_TEST_SUITE_P(Schemes, DynamicsScheme, testing::ValuesIn(kSchemes),
+                         [](const testing::TestParamInfo<Scheme>& i) {
+                           std::string n = i.param.integrator;
+                           for (char& c : n)
+                             if (c == '-') c = '_';
+                           return n;
+                         });
+
+TEST(Dynamics, TheAlphaMethodsDampTheHighFrequenciesAsTheirParameterSays) {
+  // Steps far beyond the bar's periods (h = 100, every mode has ω h > 15):
+  // the α-methods dissipate, more for a smaller spectral radius (a more
+  // negative HHT alpha); the energy never grows.
+  std::vector<double> finalEnergy;
+  for (const Scheme& s : {Scheme{"Generalized-alpha", "Spectral Radius", 0.9},
+                          Scheme{"Generalized-alpha", "Spectral Radius", 0.5}, Scheme{"HHT-alpha", "HHT Alpha", -0.05},
+                          Scheme{"HHT-alpha", "HHT Alpha", -0.3}}) {
+    PL deck = barDeck(20, 2, 1500.0, 100.0);
+    setScheme(deck, s);
+    ddc::Analysis a(worldComm(), deck);
+    a.run("");
+    const auto& h = a.history();
+    for (size_t i = 1; i < h.size(); ++i)
+      EXPECT_LE(totalEnergy(h[i]), totalEnergy(h[i - 1]) * (1 + kEnergyConservation))
+          << s.integrator << " " << s.value << ", step " << i + 1;
+    finalEnergy.push_back(totalEnergy(h.back()) / totalEnergy(h.front()));
+    if (isRoot())
+      std::cout << "[dynamics] " << s.integrator << " " << s.parameter << " = " << s.value
+                << ": energy after 15 steps of h = 100 / first step " << finalEnergy.back() << "\n";
+  }
+  EXPECT_LT(finalEnergy[0], 1.0);
+  EXPECT_LT(finalEnergy[1], finalEnergy[0]) << "rho_inf 0.5 damps more than 0.9";
+  EXPECT_LT(finalEnergy[2], 1.0);
+  EXPECT_LT(finalEnergy[3], finalEnergy[2]) << "HHT alpha -0.3 damps more than -0.05";
 }
 
 TEST(Dynamics, FetiDpEqualsMonolithic) {
@@ -207,6 +260,20 @@ TEST(Dynamics, BadInputNamesTheParameter) {
     EXPECT_NE(msg.find("'Dynamics/Initial Velocity/Push/Velocity Z' is set but the model is 2-D"),
               std::string::npos)
         << msg;
+  }
+  {
+    PL deck = barDeck(4, 1, 1.0, 0.25);
+    deck.sublist("Dynamics").set("Integrator", std::string("HHT-alpha"));
+    deck.sublist("Dynamics").set("HHT Alpha", -0.5);
+    const std::string msg = inputErrorOf([&] { ddc::Analysis a(worldComm(), deck); });
+    EXPECT_NE(msg.find("Dynamics/HHT Alpha"), std::string::npos) << msg;
+  }
+  {
+    PL deck = barDeck(4, 1, 1.0, 0.25);
+    deck.sublist("Dynamics").set("Integrator", std::string("Generalized-alpha"));
+    deck.sublist("Dynamics").set("Spectral Radius", 1.5);
+    const std::string msg = inputErrorOf([&] { ddc::Analysis a(worldComm(), deck); });
+    EXPECT_NE(msg.find("Dynamics/Spectral Radius"), std::string::npos) << msg;
   }
   {
     PL deck = barDeck(4, 1, 1.0, 0.25);
