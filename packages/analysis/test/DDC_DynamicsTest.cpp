@@ -276,6 +276,39 @@ TEST(Dynamics, BadInputNamesTheParameter) {
     EXPECT_NE(msg.find("Dynamics/Spectral Radius"), std::string::npos) << msg;
   }
   {
+    // Row-sum masses are not positive at the corners of Hex20 (and Tet10).
+    PL deck("DDContact");
+    BoxSpec b;
+    b.element = "Hex20";
+    b.elements[0] = 2;  // one element per rank at least
+    b.elements[1] = b.elements[2] = 1;
+    addBox(deck, "Brick", b).sublist("Element").sublist("Material").set("Density", 1.0);
+    addDisplacement(deck, "Clamped", "Brick/left", "XYZ");
+    deck.sublist("Dynamics").set("Integrator", std::string("Newmark"));
+    deck.sublist("Dynamics").set("Mass Matrix", std::string("Row-Sum"));
+    deck.sublist("Output").set("Progress", false);
+    const std::string msg = inputErrorOf([&] { ddc::Analysis a(worldComm(), deck); });
+    EXPECT_NE(msg.find("'Dynamics/Mass Matrix' = Row-Sum gives zero or negative masses at the corners of Hex20"),
+              std::string::npos)
+        << msg;
+  }
+  {
+    // Contact in dynamics is not built yet: refused, not run unverified.
+    PL deck = barDeck(4, 1, 1.0, 0.25);
+    RectangleSpec top;
+    top.originY = 1.0;
+    top.lengthX = 2.0;
+    top.lengthY = 0.5;
+    top.nx = 2;
+    top.ny = 1;
+    addRectangle(deck, "Top", top).sublist("Element").sublist("Material").set("Density", 1.0);
+    PL& pair = deck.sublist("Contact").sublist("Pairs").sublist("P");
+    pair.set("Slave", std::string("Top/bottom"));
+    pair.set("Master", std::string("Bar/top"));
+    const std::string msg = inputErrorOf([&] { ddc::Analysis a(worldComm(), deck); });
+    EXPECT_NE(msg.find("dynamics with contact is not available yet"), std::string::npos) << msg;
+  }
+  {
     PL deck = barDeck(4, 1, 1.0, 0.25);
     deck.sublist("Dynamics").set("Integrator", std::string("Explicit"));
     const std::string msg = inputErrorOf([&] { ddc::Analysis a(worldComm(), deck); });
