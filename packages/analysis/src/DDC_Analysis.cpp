@@ -1005,7 +1005,11 @@ void Analysis::runSteps(OutputDirectory* dir) {
   // (RunState::convergedSlots, copied before the step-end re-pairing).
   const bool contactNodes = dir && contact && out.get<bool>("Contact Nodes");
   auto writeVtk = [&](int step, double lambda) {
-    if (vtk) writeVtkStep(*vtk, *model_, *u_, step, lambda);
+    if (!vtk) return;
+    if (integrator_)
+      writeVtkStep(*vtk, *model_, *u_, step, lambda, &integrator_->velocity(), &integrator_->accelerationNow());
+    else
+      writeVtkStep(*vtk, *model_, *u_, step, lambda);
   };
   history_.clear();
   u_->putScalar(0.0);

@@ -4,10 +4,19 @@
 
 namespace ddc {
 
-void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int step, double time) {
+void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int step, double time,
+                  const Vector* velocity, const Vector* acceleration) {
   const Mesh& mesh = model.mesh();
   auto uov = model.toOverlap(u);
   auto ud = uov->getData();
+  // Nodal vectors besides the displacement (dynamics): name and overlap values.
+  std::vector<std::pair<const char*, Teuchos::ArrayRCP<const double>>> extra;
+  std::vector<Teuchos::RCP<Vector>> keep;
+  for (const auto& [name, v] : {std::make_pair("velocity", velocity), std::make_pair("acceleration", acceleration)})
+    if (v) {
+      keep.push_back(model.toOverlap(*v));
+      extra.emplace_back(name, keep.back()->getData());
+    }
   const auto& ovMap = *model.overlapMap();
   // Contact gap and pressure per mesh node (slave nodes only; replicated).
   std::vector<double> gap(mesh.numNodes(), 0.0), pressure(mesh.numNodes(), 0.0);
@@ -29,6 +38,7 @@ void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int st
       p.id = s;
       p.pointData = {{"displacement", 3, {}}};
       if (contact) p.pointData.insert(p.pointData.end(), {{"contact_gap", 1, {}}, {"contact_pressure", 1, {}}});
+      for (const auto& x : extra) p.pointData.push_back({x.first, 3, {}});
       p.cellData = {{"cauchy_stress", 6, {}},
                     {"strain_energy_density", 1, {}},
                     {"body", 1, {}},
@@ -57,6 +67,11 @@ void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int st
           p.pointData[1].values.push_back(gap[en[i]]);
           p.pointData[2].values.push_back(pressure[en[i]]);
         }
+        const size_t first = contact ? 3 : 1;
+        for (size_t k = 0; k < extra.size(); ++k)
+          for (int c = 0; c < 3; ++c)
+            p.pointData[first + k].values.push_back(
+                c < dim ? extra[k].second[ovMap.getLocalElement(model.dof(en[i], c))] : 0.0);
       }
       p.connectivity.push_back(it->second);
     }

@@ -79,6 +79,8 @@ class NewmarkIntegrator {
   void acceptStep(const Vector& u);
   /// The converged velocities v_n.
   const Vector& velocity() const { return *v_; }
+  /// The converged accelerations a_n.
+  const Vector& accelerationNow() const { return *a_; }
   const NewmarkParameters& parameters() const { return p_; }
 
  private:

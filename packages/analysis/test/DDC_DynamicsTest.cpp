@@ -14,6 +14,9 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <cmath>
 #include <iostream>
 #include <string>
@@ -218,6 +221,56 @@ TEST(Dynamics, FetiDpEqualsMonolithic) {
   }
   EXPECT_LT(worst, kFetiAgreement);
   if (isRoot()) std::cout << "[dynamics] FETI-DP vs Monolithic, worst energy difference per step: " << worst << "\n";
+}
+
+TEST(Dynamics, TheVtkOutputHasVelocityAndAcceleration) {
+  // Step 0: the initial velocity (0.1 along x off the clamped edge, 0 on it)
+  // and zero acceleration; a later step: some acceleration.
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::current_path() / ("dynamics_vtk_np" + std::to_string(worldComm()->getSize()));
+  if (isRoot()) fs::remove_all(dir);
+  worldComm()->barrier();
+  PL deck = barDeck(4, 1, 1.0, 0.25);
+  deck.sublist("Output").set("VTK", true);
+  ddc::Analysis a(worldComm(), deck);
+  a.run(dir.string());
+  if (isRoot()) {
+    auto read = [](const fs::path& f) {
+      std::ifstream in(f);
+      std::stringstream ss;
+      ss << in.rdbuf();
+      return ss.str();
+    };
+    auto arrayOf = [](const std::string& xml, const std::string& name) {
+      const std::size_t tag = xml.find("Name=\"" + name + "\" NumberOfComponents=\"3\"");
+      EXPECT_NE(tag, std::string::npos) << name;
+      std::vector<double> v;
+      if (tag == std::string::npos) return v;
+      const std::size_t open = xml.find('>', tag), close = xml.find("</DataArray>", open);
+      std::istringstream in(xml.substr(open + 1, close - open - 1));
+      for (double x; in >> x;) v.push_back(x);
+      return v;
+    };
+    double maxV0 = 0.0, minV0 = 1.0, maxA0 = 0.0, maxA4 = 0.0;
+    for (const auto& entry : fs::directory_iterator(dir / "vtk")) {
+      const std::string name = entry.path().filename().string();
+      if (entry.path().extension() != ".vtu") continue;
+      const std::string xml = read(entry.path());
+      if (name.rfind("step_00000_", 0) == 0) {
+        const auto v = arrayOf(xml, "velocity"), acc = arrayOf(xml, "acceleration");
+        for (size_t i = 0; i < v.size(); i += 3) maxV0 = std::max(maxV0, v[i]), minV0 = std::min(minV0, v[i]);
+        for (double x : acc) maxA0 = std::max(maxA0, std::abs(x));
+      }
+      if (name.rfind("step_00004_", 0) == 0)
+        for (double x : arrayOf(xml, "acceleration")) maxA4 = std::max(maxA4, std::abs(x));
+    }
+    EXPECT_EQ(maxV0, 0.1) << "the initial velocity";
+    EXPECT_EQ(minV0, 0.0) << "the clamped nodes start at rest";
+    EXPECT_EQ(maxA0, 0.0) << "no load at t = 0";
+    EXPECT_GT(maxA4, 0.0) << "the clamp decelerates the bar";
+    fs::remove_all(dir);
+  }
+  worldComm()->barrier();
 }
 
 TEST(Dynamics, BadInputNamesTheParameter) {
