@@ -1074,7 +1074,6 @@ void Analysis::runSteps(OutputDirectory* dir) {
     st.uPrev->assign(*u_);
     if (integrator_) {
       integrator_->acceptStep(*u_);
-      rec.time = lambda;
       rec.kineticEnergy = model_->kineticEnergy(integrator_->velocity());
     }
     if (contact) {
@@ -1102,7 +1101,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
                               double(rec.dualIterations), double(rec.activeContacts), rec.contactForce[0],
                               rec.contactForce[1], double(rec.contactExchanges), rec.wallSeconds, rec.externalWork,
                               double(rec.contactBytes), double(rec.bisections), rec.contactForce[2]};
-      if (dynamic_) row.insert(row.end(), {rec.time, rec.kineticEnergy, rec.kineticEnergy + rec.strainEnergy});
+      if (dynamic_) row.insert(row.end(), {rec.loadFactor, rec.kineticEnergy, rec.kineticEnergy + rec.strainEnergy});
       hist->appendRow(row);
     }
     char buf[300];

@@ -33,7 +33,7 @@ namespace ddc {
 /// One converged (sub)step.
 struct StepRecord {
   int step = 0;              ///< nominal step number (1-based); sub-steps repeat it
-  double loadFactor = 0.0;    ///< load factor λ at the end of the (sub)step
+  double loadFactor = 0.0;    ///< load factor λ at the end of the (sub)step (dynamics: the time t)
   double strainEnergy = 0.0;  ///< total strain energy U (per unit thickness in 2-D)
   int newtonIterations = 0;  ///< linear solves in this (sub)step
   int dualIterations = 0;    ///< Belos iterations of FETI-DP summed over the (sub)step
@@ -46,7 +46,6 @@ struct StepRecord {
   long contactExchanges = 0;  ///< contact-geometry exchanges in this (sub)step (Model::exchanges())
   long contactBytes = 0;      ///< bytes those exchanges moved between ranks
   std::string failure;        ///< why the last attempt failed (empty when converged)
-  double time = 0.0;           ///< dynamics: the time at the end of the (sub)step (= loadFactor)
   double kineticEnergy = 0.0;  ///< dynamics: ½ vᵀ M v at the end of the (sub)step (0 quasi-static)
 };
 
