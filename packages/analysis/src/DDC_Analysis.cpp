@@ -127,6 +127,12 @@ Teuchos::RCP<const Teuchos::ParameterList> dynamicsValidParameters() {
             "mass; positive for every element type) or Row-Sum (diagonal; zero or negative at the corners of "
             "Hex20 and Tet10, refused there).",
             enumValidator({"Consistent", "HRZ", "Row-Sum"}, "Mass Matrix"));
+    pl->set("Contact Surface Mass", std::string("Redistributed"),
+            "With contact pairs: Redistributed moves the mass of every contact-surface node (slave and master "
+            "surfaces) to the other nodes of its elements, each element keeping its mass (Khenous, Laborde & "
+            "Renard 2008), so an impact does not leave the surface nodes chattering and the energy is kept; "
+            "Kept leaves the mass matrices as they are (doc/user-guide.md, \"Contact in dynamics\").",
+            enumValidator({"Redistributed", "Kept"}, "Contact Surface Mass"));
     Teuchos::ParameterList velocity("<Condition Name>");
     velocity.set("Set", std::string(""),
                  "A body's name (every node of it) or a qualified node set 'Body/set'.");
@@ -587,12 +593,6 @@ Analysis::~Analysis() = default;
 
 void Analysis::setUpDynamics(Teuchos::ParameterList& dyn) {
   const Mesh& mesh = model_->mesh();
-  // Contact in dynamics needs a treatment that keeps the energy and does
-  // not chatter (doc/user-guide.md, "Dynamics"), which is not built yet.
-  DDC_INPUT_REQUIRE(!model_->hasContact(), "'Dynamics/Integrator' = " << dyn.get<std::string>("Integrator")
-                                               << " with contact pairs (Contact/Pairs): dynamics with contact is "
-                                                  "not available yet; remove the pairs or run quasi-statically "
-                                                  "(Dynamics/Integrator = None)");
   // Every body needs inertia.
   for (const auto& name : model_->bodiesWithoutMass())
     DDC_THROW(InputError, "'Dynamics/Integrator' = " << dyn.get<std::string>("Integrator") << " needs the mass of "
@@ -617,6 +617,12 @@ void Analysis::setUpDynamics(Teuchos::ParameterList& dyn) {
                             << "'); use HRZ or Consistent");
     }
   model_->setMassLumping(lumping);
+  try {
+    model_->setContactSurfaceMassRedistributed(dyn.get<std::string>("Contact Surface Mass") == "Redistributed");
+  } catch (const InputError& e) {
+    throw InputError(std::string("'Dynamics/Contact Surface Mass' = Redistributed: ") + e.what() +
+                     " (or set it to Kept)");
+  }
   const std::string scheme = dyn.get<std::string>("Integrator");
   integrator_ = std::make_unique<NewmarkIntegrator>(
       scheme == "HHT-alpha"           ? NewmarkParameters::hht(dyn.get<double>("HHT Alpha"), "Dynamics")

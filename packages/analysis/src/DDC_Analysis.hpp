@@ -108,6 +108,9 @@ class Analysis {
   /// The displacements of the last converged step on model().ownedMap()
   /// (contact multipliers appended; model().dof(node, component) indexes it).
   const Vector& displacement() const { return *u_; }
+  /// Dynamics: the velocities of the last converged step (owned map, like
+  /// displacement()); nullptr in a quasi-static analysis.
+  const Vector* velocity() const { return integrator_ ? &integrator_->velocity() : nullptr; }
   /// One record per converged (sub)step, in order (the rows of history.csv).
   const std::vector<StepRecord>& history() const { return history_; }
   /// Where the time went (after run(): maxima over ranks).

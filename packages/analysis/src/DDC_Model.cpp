@@ -390,6 +390,22 @@ void Model::setMassLumping(MassLumping lumping) {
   massLumping_ = lumping;
 }
 
+void Model::setContactSurfaceMassRedistributed(bool redistributed) {
+  if (redistributed && contact_)
+    for (int e = 0; e < mesh_->numElements(); ++e) {
+      const int nn = mesh_->elementNumNodes(e);
+      const int* en = mesh_->elementNodes(e);
+      int onSurface = 0;
+      for (int a = 0; a < nn; ++a) onSurface += contact_->isSurfaceNode(en[a]) ? 1 : 0;
+      DDC_INPUT_REQUIRE(onSurface < nn, "element " << e << " of body '" << mesh_->body(mesh_->elementBody(e)).name
+                                                   << "' has all its nodes on contact surfaces, so the mass of "
+                                                      "its surface nodes has nowhere to go; use more elements "
+                                                      "across the body or keep the surface mass");
+    }
+  if (redistributed != redistributeSurfaceMass_) elementMass_.clear();
+  redistributeSurfaceMass_ = redistributed && contact_;
+}
+
 std::vector<std::string> Model::bodiesWithoutMass() const {
   std::vector<std::string> out;
   for (int b = 0; b < mesh_->numBodies(); ++b)
@@ -418,6 +434,14 @@ const Eigen::MatrixXd& Model::elementMass(size_t i) const {
       for (int a = 0; a < nn; ++a)
         for (int c = 0; c < d; ++c) X(a, c) = mesh_->coord(en[a])[c];
       elements_[mesh_->elementBody(e)]->mass(X, massLumping_, elementMass_[k]);
+      if (redistributeSurfaceMass_) {
+        std::vector<char> massless(nn);
+        for (int a = 0; a < nn; ++a) massless[a] = contact_->isSurfaceNode(en[a]) ? 1 : 0;
+        // setContactSurfaceMassRedistributed() refused elements without
+        // another node, on every rank.
+        if (!redistributeNodalMass(elementMass_[k], massless, d))
+          throw std::logic_error("Model: element " + std::to_string(e) + " has no node off the contact surfaces");
+      }
     }
   }
   return elementMass_[i];

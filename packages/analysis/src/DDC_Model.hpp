@@ -127,6 +127,14 @@ class Model {
   /// only in the sense that every rank must choose the same.
   void setMassLumping(MassLumping lumping);
   MassLumping massLumping() const { return massLumping_; }
+  /// Move the mass of the contact-surface nodes (slave and master surfaces
+  /// of every pair) to the other nodes of their elements
+  /// (redistributeNodalMass()), or keep it (default). Collective only in the
+  /// sense that every rank must choose the same.
+  /// \throws InputError (on every rank: the mesh is replicated) naming the
+  ///         body and element if an element has only surface nodes
+  void setContactSurfaceMassRedistributed(bool redistributed);
+  bool contactSurfaceMassRedistributed() const { return redistributeSurfaceMass_; }
   /// The bodies whose element has no mass (Element::hasMass() false), by
   /// name; empty when every body has one (what a dynamic analysis needs).
   std::vector<std::string> bodiesWithoutMass() const;
@@ -242,6 +250,7 @@ class Model {
   std::vector<int> subdomainRank_;
   std::vector<int> localElements_;
   MassLumping massLumping_ = MassLumping::Consistent;
+  bool redistributeSurfaceMass_ = false;  ///< setContactSurfaceMassRedistributed()
   mutable std::vector<Eigen::MatrixXd> elementMass_;  ///< per local element (elementMass())
   std::vector<int> nodeOwner_;
   std::vector<GO> nodeDof_;  ///< first DOF of each node

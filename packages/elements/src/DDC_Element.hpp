@@ -8,6 +8,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace ddc {
 
@@ -108,5 +109,38 @@ class Element {
     throw std::logic_error("Element::mass: this element type has no mass (hasMass() is false)");
   }
 };
+
+/// The mass matrix M (node-major, `dim` components per node) with the mass
+/// of the nodes flagged in `massless` moved to the element's other nodes: the
+/// rows and columns of those nodes are zeroed and the rest is scaled so the
+/// element keeps its mass (the sum of M over one component). This is the
+/// mass redistribution of Khenous, Laborde & Renard (2008) for elastodynamic
+/// contact: contact-surface nodes without inertia cannot carry the velocity
+/// jumps of an impact from step to step (doc/user-guide.md, "Dynamics").
+/// A principal submatrix of a positive definite M stays positive definite;
+/// a diagonal (lumped) M stays diagonal.
+/// \returns false, leaving M unchanged, if every node is flagged (there is
+///          nowhere to move the mass)
+inline bool redistributeNodalMass(Eigen::MatrixXd& M, const std::vector<char>& massless, int dim) {
+  const Eigen::Index n = M.rows();
+  bool any = false, all = true;
+  for (Eigen::Index a = 0; a < n; ++a) {
+    const bool off = massless[static_cast<size_t>(a / dim)] != 0;
+    any = any || off;
+    all = all && off;
+  }
+  if (!any) return true;
+  if (all) return false;
+  const double total = M.sum();
+  for (Eigen::Index a = 0; a < n; ++a)
+    if (massless[static_cast<size_t>(a / dim)]) {
+      M.row(a).setZero();
+      M.col(a).setZero();
+    }
+  const double kept = M.sum();
+  if (!(kept > 0.0)) return false;
+  M *= total / kept;
+  return true;
+}
 
 }  // namespace ddc

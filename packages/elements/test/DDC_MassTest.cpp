@@ -238,6 +238,50 @@ TEST_P(Mass, LumpedMatrices) {
       << ddc::cellTypeName(type) << ": row-sum masses " << Mr.diagonal().transpose();
 }
 
+TEST_P(Mass, RedistributionMovesTheMassOfFlaggedNodesAndKeepsTheTotal) {
+  // Contact-surface mass redistribution (Khenous, Laborde & Renard 2008):
+  // the flagged nodes' rows and columns vanish, the element keeps its mass
+  // and a rigid translation its kinetic energy, the rest stays positive
+  // definite, and a lumped matrix stays diagonal.
+  const CellType type = GetParam();
+  const AffineCase k(type);
+  const auto& [el, X, V, first, second, d, n] = k;
+  std::vector<char> flagged(n, 0);
+  flagged[0] = flagged[1] = 1;  // two corners: on one edge of every type
+  for (MassLumping l : {MassLumping::Consistent, MassLumping::HRZ}) {
+    Eigen::MatrixXd M;
+    el->mass(X, l, M);
+    const Eigen::MatrixXd before = M;
+    ASSERT_TRUE(ddc::redistributeNodalMass(M, flagged, d));
+    EXPECT_NEAR(M.sum() / before.sum(), 1.0, kRoundoff) << ddc::cellTypeName(type);
+    const double scale = before.cwiseAbs().maxCoeff();
+    for (int a = 0; a < n * d; ++a)
+      if (flagged[a / d]) {
+        EXPECT_EQ(M.row(a).cwiseAbs().maxCoeff(), 0.0);
+        EXPECT_EQ(M.col(a).cwiseAbs().maxCoeff(), 0.0);
+      }
+    std::vector<int> kept;
+    for (int a = 0; a < n * d; ++a)
+      if (!flagged[a / d]) kept.push_back(a);
+    Eigen::MatrixXd Mk(kept.size(), kept.size());
+    for (size_t i = 0; i < kept.size(); ++i)
+      for (size_t j = 0; j < kept.size(); ++j) Mk(i, j) = M(kept[i], kept[j]);
+    EXPECT_EQ(Eigen::LLT<Eigen::MatrixXd>(Mk).info(), Eigen::Success) << ddc::cellTypeName(type);
+    if (l == MassLumping::HRZ) {
+      EXPECT_LT((M - Eigen::MatrixXd(M.diagonal().asDiagonal())).cwiseAbs().maxCoeff(), kRoundoff * scale);
+    }
+    Eigen::VectorXd v(n * d);
+    for (int a = 0; a < n; ++a) v.segment(d * a, d) = Eigen::VectorXd::Constant(d, 0.3);
+    EXPECT_NEAR(v.dot(M * v) / v.dot(before * v), 1.0, kRoundoff);
+  }
+  // Nowhere to move the mass: refused, M unchanged.
+  Eigen::MatrixXd M;
+  el->mass(X, MassLumping::Consistent, M);
+  const Eigen::MatrixXd before = M;
+  EXPECT_FALSE(ddc::redistributeNodalMass(M, std::vector<char>(n, 1), d));
+  EXPECT_EQ((M - before).cwiseAbs().maxCoeff(), 0.0);
+}
+
 INSTANTIATE_TEST_SUITE_P(EveryElementType, Mass, testing::ValuesIn(kTypes),
                          [](const testing::TestParamInfo<CellType>& i) { return ddc::cellTypeName(i.param); });
 
