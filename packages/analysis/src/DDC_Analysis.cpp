@@ -900,11 +900,11 @@ std::string Analysis::unmetCriterion(const std::vector<double>& residuals, doubl
     const double recent = *std::min_element(tail, residuals.end());
     if (recent >= 0.1 * before)
       os << "; the residual stagnates around " << recent << " (the first was " << r0
-         << "), so more iterations do not help: either the tolerance is below the round-off of this increment "
-            "(load factor increment "
-         << increment
-         << "; fewer 'Load Stepping/Number of Steps' or a larger 'Newton/Absolute Residual Tolerance' / "
-            "'Newton/Energy Tolerance' help then) or the tangent does not fit the residual";
+         << "), so more iterations do not help: either the tolerance is below the round-off of this increment ("
+         << (dynamic_ ? "time step " : "load factor increment ") << increment << "; "
+         << (dynamic_ ? "" : "fewer 'Load Stepping/Number of Steps' or ")
+         << "a larger 'Newton/Absolute Residual Tolerance' / 'Newton/Energy Tolerance' help then) or the tangent "
+            "does not fit the residual";
   }
   return os.str();
 }
