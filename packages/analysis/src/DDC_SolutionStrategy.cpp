@@ -118,7 +118,11 @@ class FetiDpStrategy : public SolutionStrategy {
     // rows are weighted by the stiffness of their sides and split over the
     // copies of shared DOFs (doc/feti-dp.md "Extra rows").
     const bool strong = primalChoice_ == "Vertices";
-    const auto primal = selectPrimalNodes(*model_, &report, strong ? VertexRule::EdgeNodes : VertexRule::EdgeEnds);
+    // In dynamics (inertia set before setUp) K^s + c M^s is nonsingular:
+    // a subdomain may float.
+    const bool massive = inertia_ != nullptr;
+    const auto primal =
+        selectPrimalNodes(*model_, &report, strong ? VertexRule::EdgeNodes : VertexRule::EdgeEnds, massive);
     for (const auto& line : report) progress("FETI-DP: " + line);
     subdomains_ = buildSubdomainSystems(*model_, primal);
     sink_.systems = &subdomains_;

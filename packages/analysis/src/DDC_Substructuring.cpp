@@ -71,7 +71,8 @@ size_t farthestFrom(const Mesh& mesh, const std::vector<int>& candidates, const 
 
 }  // namespace
 
-std::vector<char> selectPrimalNodes(const Model& model, std::vector<std::string>* report, VertexRule rule) {
+std::vector<char> selectPrimalNodes(const Model& model, std::vector<std::string>* report, VertexRule rule,
+                                    bool massive) {
   const Mesh& mesh = model.mesh();
   const auto& part = model.partition();
   const int numNodes = mesh.numNodes();
@@ -240,7 +241,12 @@ std::vector<char> selectPrimalNodes(const Model& model, std::vector<std::string>
       return primalCount >= 2 || (anchors.size() >= 2 && (primalCount >= 1 || (fixedDir[0] && fixedDir[1])));
     };
     int added = 0;
+    bool floating = false;
     while (!anchored()) {
+      if (interface.empty() && massive) {
+        floating = true;  // K^s + c M^s is nonsingular: no anchor needed
+        break;
+      }
       if (interface.empty()) {
         std::ostringstream os;
         os << "subdomain " << s << " (body '" << mesh.body(subBody[s]).name
@@ -260,7 +266,11 @@ std::vector<char> selectPrimalNodes(const Model& model, std::vector<std::string>
     if (added && report) {
       std::ostringstream os;
       os << "subdomain " << s << ": " << added << " interface node(s) made primal to fix its rigid-body modes";
+      if (floating) os << " (not all of them: it floats, which its mass allows)";
       report->push_back(os.str());
+    } else if (floating && report) {
+      report->push_back("subdomain " + std::to_string(s) + " floats (no prescribed displacement or interface "
+                        "node fixes its rigid-body modes); its mass makes K + c M nonsingular");
     }
   }
   return primal;

@@ -51,11 +51,14 @@ enum class VertexRule {
 ///     from those).
 /// \returns per mesh node 1 if primal. `report` receives one line per
 ///          subdomain that needed rule 3.
+/// \param massive the subdomain matrices are K^s + c M^s with c > 0
+///        (dynamics): nonsingular, so a subdomain that rule 3 cannot anchor
+///        is left floating (reported) instead of refused.
 /// \throws InputError for a floating subdomain without interface nodes
 ///         (e.g. a body that is its own subdomain and has no boundary
-///         conditions): no choice of corners can fix it.
+///         conditions) unless `massive`: no choice of corners can fix it.
 std::vector<char> selectPrimalNodes(const Model& model, std::vector<std::string>* report = nullptr,
-                                    VertexRule rule = VertexRule::EdgeNodes);
+                                    VertexRule rule = VertexRule::EdgeNodes, bool massive = false);
 
 /// One subdomain's problem: its free DOFs (global ids, sorted), which are
 /// primal, the local stiffness (MPI_COMM_SELF, local numbering) and, for
