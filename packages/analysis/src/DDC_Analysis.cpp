@@ -1046,7 +1046,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
       // f_ext(t_n) = λ_n f_ext for the α-methods' previous-step terms.
       auto externalNow = model_->createVector();
       externalNow->update(p.from, model_->externalForce(), 0.0);
-      integrator_->beginStep(*model_, p.to - p.from, *st.fint, *externalNow);
+      integrator_->beginStep(*model_, p.size, *st.fint, *externalNow);
     }
     Activity activity("solving step " + std::to_string(n) + " (" + factorName + " " + std::to_string(p.from) + " -> " +
                       std::to_string(p.to) + ", " + std::to_string(model_->ownedMap()->getGlobalNumElements()) +
@@ -1114,7 +1114,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
     if (dynamic_)
       std::snprintf(buf, sizeof buf,
                     "step %3d/%d  time %.6g (dt %.3g)  Newton %2d  |r| %.3e -> %.3e  strain %.6e  kinetic %.6e  %.2f s",
-                    n, nsteps, lambda, p.to - p.from, rec.newtonIterations, rec.residualHistory.front(),
+                    n, nsteps, lambda, p.size, rec.newtonIterations, rec.residualHistory.front(),
                     rec.residualHistory.back(), rec.strainEnergy, rec.kineticEnergy, rec.wallSeconds);
     else
       std::snprintf(buf, sizeof buf, "step %3d/%d  load %.6g  Newton %2d  |r| %.3e -> %.3e  energy %.6e  %.2f s", n,

@@ -21,7 +21,7 @@ BisectingSteps::BisectingSteps(double finalValue, int numSteps, int maxBisection
     throw std::invalid_argument("BisectingSteps: the final value must be > 0 and finite");
   if (numSteps < 1) throw std::invalid_argument("BisectingSteps: at least one step");
   if (maxBisections < 0) throw std::invalid_argument("BisectingSteps: a negative number of bisections");
-  size_ = target(1) - current_;
+  size_ = final_ / numSteps_;
   advance();
 }
 
@@ -31,7 +31,7 @@ void BisectingSteps::advance() {
   while (step_ <= numSteps_ && !(current_ < target(step_) - kReached * std::abs(final_))) {
     ++step_;
     if (step_ <= numSteps_) {
-      size_ = target(step_) - current_;
+      size_ = final_ / numSteps_;
       depth_ = 0;
     }
   }
@@ -46,6 +46,7 @@ StepProposal BisectingSteps::propose() const {
   p.from = current_;
   p.to = (t - current_ <= size_ * (1 + kSnap)) ? t : current_ + size_;
   p.depth = depth_;
+  p.size = size_;
   return p;
 }
 

@@ -22,6 +22,11 @@ struct StepProposal {
   double from = 0.0;
   double to = 0.0;
   int depth = 0;
+  /// The step size: the same number for every step of one size (to − from
+  /// differs from it, and from step to step, by round-off; a time
+  /// integrator whose matrices depend on the step size uses this, so a
+  /// constant step keeps them the same bit for bit).
+  double size = 0.0;
 };
 
 /// Chooses the steps of an analysis (see the top of this file).

@@ -65,6 +65,22 @@ TEST(BisectingSteps, AFailedStepIsHalvedAndTheHalfSizeKeptToTheNominalEnd) {
   EXPECT_TRUE(c.endsNominalStep(steps[2]));
 }
 
+TEST(BisectingSteps, TheStepSizeIsTheSameNumberForEveryStepOfOneSize) {
+  // 0.7 in 70 steps: to - from varies in its last bits from step to step
+  // (0.01 is no binary fraction); size does not, so an integrator's c =
+  // 1/(beta h^2) stays the same bit for bit and a factorisation is kept.
+  ddc::BisectingSteps c(0.7, 70, 2);
+  const auto steps = drive(c, {10});
+  ASSERT_EQ(steps.size(), 71u);
+  bool roundOffSeen = false;
+  for (const auto& p : steps) {
+    EXPECT_EQ(p.size, p.depth == 0 ? 0.7 / 70 : 0.5 * (0.7 / 70)) << "step " << p.step;
+    roundOffSeen = roundOffSeen || (p.to - p.from != p.size);
+  }
+  EXPECT_TRUE(roundOffSeen) << "the case does not show why size is needed";
+  EXPECT_EQ(c.current(), 0.7);
+}
+
 TEST(BisectingSteps, GivesUpAfterMaxBisections) {
   // Every attempt of step 1 fails: the original and two halvings are tried,
   // the third failure exceeds Max Bisections = 2.
