@@ -21,9 +21,22 @@
 // reference coordinates), and the bracket [outermost active node, nearest
 // inactive node beyond it]. --profile writes r, p_fe, p_hertz per slave node.
 //
-// Exit status: 0 done, 1 --tolerance given and |a or p0 relative error| > T,
-// 2 bad input (usage, missing / malformed files, a deck that is no Hertz
-// case, no active node on the axis).
+// A dynamic run (Dynamics/Integrator set: examples/sphere_impact.xml, the
+// sphere given a velocity v_z < 0 by an Initial Velocity condition on the
+// sphere body, touching the block at t = 0) is compared with Hertz's impact
+// solution instead (Johnson 1985, section 11.4): for the modelled
+// hemisphere's mass m = rho 2 pi R^3 / 3 (4 times the quarter model),
+//
+//   delta_max = (15 m v^2 / (16 E* sqrt(R)))^(2/5),
+//   F_max = 4/3 E* sqrt(R) delta_max^(3/2),  t_c = 2.9432 delta_max / v,
+//
+// against the run's history.csv: F_max = 4 x the largest |contact_force_z|,
+// t_c = the last time in contact plus half a step (the release lies within
+// the next step).
+//
+// Exit status: 0 done, 1 --tolerance given and |a or p0 relative error| > T
+// (impact: t_c or F_max), 2 bad input (usage, missing / malformed files, a
+// deck that is no Hertz case, no active node on the axis, no contact).
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_XMLParameterListCoreHelpers.hpp>
 
@@ -53,7 +66,10 @@ const char* kUsage =
     "  --block BODY    the block body (default: Block)\n"
     "  --profile FILE  write r,p_fe,p_hertz for every slave node\n"
     "  --tolerance T   exit 1 if the contact radius or peak pressure differs from Hertz's by\n"
-    "                  more than T (relative)\n";
+    "                  more than T (relative)\n"
+    "\n"
+    "A dynamic run (examples/sphere_impact.xml) is compared with Hertz's impact solution\n"
+    "instead: contact time and peak force from OUT_DIR/history.csv (--tolerance applies to both).\n";
 
 struct BadInput : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -113,6 +129,86 @@ std::vector<Row> readContactNodes(const std::string& file, double cx, double cy)
   return rows;
 }
 
+/// A column of history.csv by name.
+std::vector<double> historyColumn(const std::string& file, const std::string& name) {
+  std::ifstream in(file);
+  if (!in) throw BadInput("cannot read '" + file + "'");
+  std::string line;
+  std::getline(in, line);
+  std::istringstream hs(line);
+  std::string cell;
+  int col = -1;
+  for (int i = 0; std::getline(hs, cell, ','); ++i)
+    if (cell == name) col = i;
+  if (col < 0) throw BadInput(file + ": no column '" + name + "'");
+  std::vector<double> out;
+  int lineNo = 1;
+  while (std::getline(in, line)) {
+    ++lineNo;
+    std::istringstream ls(line);
+    for (int i = 0; std::getline(ls, cell, ','); ++i)
+      if (i == col) {
+        char* end = nullptr;
+        out.push_back(std::strtod(cell.c_str(), &end));
+        if (cell.empty() || *end != '\0')
+          throw BadInput(file + ":" + std::to_string(lineNo) + ": not a number: '" + cell + "'");
+      }
+    if (out.size() != size_t(lineNo - 1)) throw BadInput(file + ":" + std::to_string(lineNo) + ": too few columns");
+  }
+  if (out.size() < 2) throw BadInput(file + ": fewer than two steps");
+  return out;
+}
+
+/// Hertz's impact solution against a dynamic run (see the top of this file).
+int impact(const std::string& dir, const Teuchos::ParameterList& deck, const std::string& xml,
+           const std::string& sphere, const std::string& block, double R, double tolerance) {
+  const Material m1 = materialOf(deck, sphere, xml), m2 = materialOf(deck, block, xml);
+  const auto& mat = deck.sublist("Mesh").sublist("Bodies").sublist(sphere).sublist("Element").sublist("Material");
+  const double rho = mat.isParameter("Density") ? mat.get<double>("Density") : 0.0;
+  if (!(rho > 0)) throw BadInput(xml + ": 'Mesh/Bodies/" + sphere + "/Element/Material/Density' must be > 0");
+  double v = 0.0;
+  const auto& conditions = deck.sublist("Dynamics").sublist("Initial Velocity");
+  for (auto it = conditions.begin(); it != conditions.end(); ++it) {
+    const auto& c = conditions.sublist(conditions.name(it));
+    if (c.get<std::string>("Set") == sphere) v = -c.get<double>("Velocity Z");
+  }
+  if (!(v > 0))
+    throw BadInput(xml + ": no 'Dynamics/Initial Velocity' condition gives the body '" + sphere +
+                   "' a velocity Z < 0 (towards the block)");
+  const std::string file = dir + "/history.csv";
+  const auto t = historyColumn(file, "time"), fz = historyColumn(file, "contact_force_z");
+  const auto active = historyColumn(file, "active_contacts");
+  double fMax = 0.0, last = -1.0;
+  for (size_t i = 0; i < t.size(); ++i) {
+    fMax = std::max(fMax, std::abs(fz[i]));
+    if (active[i] > 0) last = t[i];
+  }
+  if (last < 0) throw BadInput(file + ": no step in contact");
+  if (last == t.back()) throw BadInput(file + ": still in contact at the last step (a longer Final Time)");
+  const double h = t[1] - t[0];
+  const double tc = last + 0.5 * h;
+  fMax *= kQuarterModel;
+  const double m = rho * 2.0 * kPi * R * R * R / 3.0;
+  const double Estar = 1.0 / ((1.0 - m1.nu * m1.nu) / m1.E + (1.0 - m2.nu * m2.nu) / m2.E);
+  const double delta = std::pow(15.0 * m * v * v / (16.0 * Estar * std::sqrt(R)), 0.4);
+  const double fHertz = 4.0 / 3.0 * Estar * std::sqrt(R) * std::pow(delta, 1.5);
+  const double tcHertz = 2.9432 * delta / v;
+  const double errT = (tc - tcHertz) / tcHertz, errF = (fMax - fHertz) / fHertz;
+  std::printf("Hertz impact: hemisphere '%s' R = %g, rho = %g (m = %.6g, 4 x the quarter model), v = %g, on '%s': "
+              "E* = %.6g\n",
+              sphere.c_str(), R, rho, m, v, block.c_str(), Estar);
+  std::printf("delta_max = %.6g (delta_max / R = %.4g), time step %g\n", delta, delta / R, h);
+  std::printf("%-22s %12s %12s %10s\n", "quantity", "ddcontact", "Hertz", "rel. error");
+  std::printf("%-22s %12.6g %12.6g %+10.4f\n", "contact time t_c", tc, tcHertz, errT);
+  std::printf("%-22s %12.6g %12.6g %+10.4f\n", "peak force F_max", fMax, fHertz, errF);
+  if (tolerance > 0) {
+    const bool ok = std::abs(errT) <= tolerance && std::abs(errF) <= tolerance;
+    std::printf("check: |errors| <= %g: %s\n", tolerance, ok ? "passed" : "FAILED");
+    return ok ? 0 : 1;
+  }
+  return 0;
+}
+
 int run(int argc, char** argv) {
   std::string dir, sphere = "Sphere", block = "Block", profile;
   double tolerance = -1.0;
@@ -161,6 +257,9 @@ int run(int argc, char** argv) {
     throw BadInput(xml + ": 'Mesh/Bodies/" + sphere + "/Generator' must be 'Sphere Octant'");
   const auto& oct = sb.sublist("Sphere Octant");
   const double R = oct.get<double>("Radius"), cx = oct.get<double>("Center X"), cy = oct.get<double>("Center Y");
+  if (deck->isSublist("Dynamics") && deck->sublist("Dynamics").isParameter("Integrator") &&
+      deck->sublist("Dynamics").get<std::string>("Integrator") != "None")
+    return impact(dir, *deck, xml, sphere, block, R, tolerance);
   const Material m1 = materialOf(*deck, sphere, xml), m2 = materialOf(*deck, block, xml);
 
   const auto rows = readContactNodes(dir + "/contact_nodes.csv", cx, cy);
