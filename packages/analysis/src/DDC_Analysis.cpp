@@ -144,6 +144,17 @@ Teuchos::RCP<const Teuchos::ParameterList> dynamicsValidParameters() {
     setSublist(*pl, "Initial Velocity", velocities,
                "Velocities at t = 0 by body or node set (default: at rest); later conditions override earlier "
                "ones on shared nodes. Prescribed DOFs take the velocity of their prescribed motion instead.");
+    Teuchos::ParameterList body("<Condition Name>");
+    body.set("Set", std::string(""), "The body's name: the field acts on all of it.");
+    for (const char* a : {"X", "Y", "Z"})
+      body.set(std::string("Acceleration ") + a, 0.0,
+               std::string("Gravitational acceleration along ") + a + " (Z: 3-D only).", finiteNumber());
+    Teuchos::ParameterList gravity("Gravity");
+    setSublist(gravity, "<Condition Name>", body, "One sublist per body force.");
+    setSublist(*pl, "Gravity", gravity,
+               "Body forces by body: a uniform acceleration g (gravity), the force M g with the run's mass "
+               "matrices, constant from t = 0 (not scaled by time); the initial acceleration balances it "
+               "(doc/user-guide.md, \"Dynamics\").");
     return Teuchos::RCP<const Teuchos::ParameterList>(pl);
   }();
   return valid;
@@ -662,6 +673,41 @@ void Analysis::setUpDynamics(Teuchos::ParameterList& dyn) {
           initialVelocity_->replaceGlobalValue(g, v[k]);
       }
   }
+  // Gravity by body: the force M g with the run's mass matrices.
+  auto& gravity = dyn.sublist("Gravity");
+  const auto& validGravity = dynamicsValidParameters()->sublist("Gravity").sublist("<Condition Name>");
+  auto g = model_->createVector();
+  bool anyGravity = false;
+  for (auto it = gravity.begin(); it != gravity.end(); ++it) {
+    const std::string& name = gravity.name(it);
+    const std::string where = "Dynamics/Gravity/" + name;
+    DDC_INPUT_REQUIRE(gravity.isSublist(name), "'" << where << "' must be a sublist (Set, Acceleration X/Y/Z)");
+    auto& c = gravity.sublist(name);
+    validateLevel(c, validGravity, where);
+    const std::string set = c.get<std::string>("Set");
+    int b = -1;
+    try {
+      b = mesh.bodyIndex(set);
+    } catch (const InputError& e) {
+      throw InputError("'" + where + "/Set' = '" + set + "' is not a body: " + e.what());
+    }
+    DDC_INPUT_REQUIRE(mesh.dim() == 3 || c.get<double>("Acceleration Z") == 0.0,
+                      "'" << where << "/Acceleration Z' is set but the model is 2-D");
+    const double a[3] = {c.get<double>("Acceleration X"), c.get<double>("Acceleration Y"),
+                         c.get<double>("Acceleration Z")};
+    const Body& body = mesh.body(b);
+    for (int n = body.firstNode; n < body.firstNode + body.numNodes; ++n)
+      for (int k = 0; k < mesh.dim(); ++k) {
+        const GO gid = model_->dof(n, k);
+        if (g->getMap()->isNodeGlobalElement(gid)) g->replaceGlobalValue(gid, a[k]);
+      }
+    anyGravity = anyGravity || a[0] != 0.0 || a[1] != 0.0 || a[2] != 0.0;
+  }
+  if (anyGravity) {
+    auto f = model_->createVector();
+    model_->applyMass(*g, *f);
+    model_->setBodyForce(*f);
+  }
   acceleration_ = model_->createVector();
   inertia_ = Inertia{};
   inertia_.acceleration = acceleration_.get();
@@ -917,13 +963,15 @@ double Analysis::externalWorkIncrement(const Vector& fint0, const Vector& u0, do
   const GO first = map.getMinGlobalIndex();
   auto f0 = fint0.getData(), f1 = fint1.getData(), a = u0.getData(), b = u1.getData();
   auto fe = model_->externalForce().getData();
+  Teuchos::ArrayRCP<const double> fb;  // the constant body force, if any
+  if (model_->bodyForce()) fb = model_->bodyForce()->getData();
   double w = 0.0;
   for (size_t l = 0; l < map.getNodeNumElements(); ++l) {
     const double step = b[l] - a[l];
     if (model_->isConstrained(first + l))
       w += 0.5 * (f0[l] + f1[l]) * step;
     else
-      w += 0.5 * (lambda0 + lambda1) * fe[l] * step;
+      w += (0.5 * (lambda0 + lambda1) * fe[l] + (fb.is_null() ? 0.0 : fb[l])) * step;
   }
   double sum = 0.0;
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, w, Teuchos::outArg(sum));
@@ -1019,7 +1067,9 @@ void Analysis::runSteps(OutputDirectory* dir) {
   };
   history_.clear();
   u_->putScalar(0.0);
-  if (integrator_) integrator_->initialise(*model_, *u_, *initialVelocity_);
+  // The initial acceleration balances the body force (u = 0 and every
+  // load factor-scaled load 0 at t = 0).
+  if (integrator_) integrator_->initialise(*model_, *u_, *initialVelocity_, model_->bodyForce());
   writeVtk(0, 0.0);
 
   // The state the steps carry forward (one object: what a restart saves).
@@ -1046,6 +1096,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
       // f_ext(t_n) = λ_n f_ext for the α-methods' previous-step terms.
       auto externalNow = model_->createVector();
       externalNow->update(p.from, model_->externalForce(), 0.0);
+      if (model_->bodyForce()) externalNow->update(1.0, *model_->bodyForce(), 1.0);
       integrator_->beginStep(*model_, p.size, *st.fint, *externalNow);
     }
     Activity activity("solving step " + std::to_string(n) + " (" + factorName + " " + std::to_string(p.from) + " -> " +

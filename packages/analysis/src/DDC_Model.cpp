@@ -468,6 +468,27 @@ void Model::applyMass(const Vector& v, Vector& Mv) const {
   Mv.doExport(ov, *exporter_, Tpetra::ADD);
 }
 
+void Model::massDiagonal(Vector& d) const {
+  requireMass();
+  Vector ov(overlapMap_);
+  {
+    auto od = ov.getDataNonConst();
+    std::vector<GO> dofs;
+    for (size_t i = 0; i < localElements_.size(); ++i) {
+      const Eigen::MatrixXd& M = elementMass(i);
+      elementDofs(localElements_[i], dofs);
+      for (size_t a = 0; a < dofs.size(); ++a) od[overlapMap_->getLocalElement(dofs[a])] += M(a, a);
+    }
+  }
+  d.putScalar(0.0);
+  d.doExport(ov, *exporter_, Tpetra::ADD);
+}
+
+void Model::setBodyForce(const Vector& f) {
+  bodyForce_ = createVector();
+  bodyForce_->assign(f);
+}
+
 double Model::kineticEnergy(const Vector& v) const {
   auto Mv = createVector();
   applyMass(v, *Mv);
@@ -701,6 +722,11 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
     auto f = fext_->getData();
     for (size_t l = 0; l < numOwned; ++l)
       if (!constrained_[first + l]) r[l] -= lambda * f[l];
+    if (bodyForce_) {
+      auto b = bodyForce_->getData();
+      for (size_t l = 0; l < numOwned; ++l)
+        if (!constrained_[first + l]) r[l] -= b[l];
+    }
     if (inertia && inertia->force) {
       auto g = inertia->force->getData();
       for (size_t l = 0; l < numOwned; ++l)

@@ -108,7 +108,7 @@ class Model {
 
   /// Assemble at the state u (owned layout, multipliers included):
   ///  - fint: ∂(U + Π_c)/∂u, all DOFs, unmodified (reactions live there);
-  ///  - residual r = fint − λ f_ext on free DOFs, 0 on prescribed DOFs, plus
+  ///  - residual r = fint − λ f_ext − f_body (setBodyForce()) on free DOFs, 0 on prescribed DOFs, plus
   ///    K·prescribedStep if given (consistent predictor of a prescribed
   ///    increment in the first iteration);
   ///  - K: tangent with rows/columns of prescribed DOFs replaced by the identity.
@@ -144,6 +144,16 @@ class Model {
   /// M v on the owned map (multiplier entries 0). Collective.
   /// \throws std::logic_error if a body has no mass
   void applyMass(const Vector& v, Vector& Mv) const;
+
+  /// The diagonal of M on the owned map (multiplier entries 0). Collective.
+  /// \throws std::logic_error if a body has no mass
+  void massDiagonal(Vector& d) const;
+  /// A constant external force (gravity, M g: Analysis "Dynamics/Gravity"),
+  /// subtracted from the residual's free DOFs at every load factor, unlike
+  /// externalForce(), which the load factor scales. Owned map.
+  void setBodyForce(const Vector& f);
+  /// The force of setBodyForce(), or nullptr if none was set.
+  const Vector* bodyForce() const { return bodyForce_.get(); }
 
   const Vector& externalForce() const { return *fext_; }
   Teuchos::RCP<Vector> toOverlap(const Vector& owned) const;
@@ -249,6 +259,7 @@ class Model {
 
   std::vector<int> subdomainRank_;
   std::vector<int> localElements_;
+  Teuchos::RCP<Vector> bodyForce_;  ///< setBodyForce(); null if none
   MassLumping massLumping_ = MassLumping::Consistent;
   bool redistributeSurfaceMass_ = false;  ///< setContactSurfaceMassRedistributed()
   mutable std::vector<Eigen::MatrixXd> elementMass_;  ///< per local element (elementMass())

@@ -44,7 +44,7 @@ NewmarkParameters NewmarkParameters::generalisedAlpha(double rho, const std::str
   return p;
 }
 
-void NewmarkIntegrator::initialise(const Model& model, const Vector& u0, const Vector& v0) {
+void NewmarkIntegrator::initialise(const Model& model, const Vector& u0, const Vector& v0, const Vector* force0) {
   u_ = model.createVector();
   v_ = model.createVector();
   a_ = model.createVector();
@@ -54,6 +54,56 @@ void NewmarkIntegrator::initialise(const Model& model, const Vector& u0, const V
   u_->assign(u0);
   v_->assign(v0);
   a_->putScalar(0.0);
+  cgIterations_ = 0;
+  if (!force0) return;
+  // M a0 = force0 on the free DOFs with mass: preconditioned CG with the
+  // diagonal of M, the other DOFs masked out (M is positive definite on the
+  // rest; on massless DOFs — a redistributed contact surface — the rows of
+  // M vanish and a0 is left 0 there).
+  auto d = model.createVector();
+  model.massDiagonal(*d);
+  const size_t n = d->getLocalLength();
+  const GO first = model.ownedMap()->getMinGlobalIndex();
+  std::vector<double> inv(n, 0.0);
+  {
+    auto dd = d->getData();
+    for (size_t l = 0; l < n; ++l)
+      if (dd[l] > 0.0 && !model.isConstrained(first + GO(l))) inv[l] = 1.0 / dd[l];
+  }
+  auto mask = [&](Vector& x) {
+    auto xd = x.getDataNonConst();
+    for (size_t l = 0; l < n; ++l)
+      if (inv[l] == 0.0) xd[l] = 0.0;
+  };
+  auto r = model.createVector(), z = model.createVector(), p = model.createVector(), q = model.createVector();
+  r->assign(*force0);
+  mask(*r);
+  const double bnorm = r->norm2();
+  if (bnorm == 0.0) return;
+  auto precondition = [&] {
+    auto rd = r->getData();
+    auto zd = z->getDataNonConst();
+    for (size_t l = 0; l < n; ++l) zd[l] = inv[l] * rd[l];
+  };
+  precondition();
+  p->assign(*z);
+  double rz = r->dot(*z);
+  constexpr double kTolerance = 1e-12;
+  constexpr int kMaxIterations = 1000;
+  for (cgIterations_ = 1; cgIterations_ <= kMaxIterations; ++cgIterations_) {
+    model.applyMass(*p, *q);
+    mask(*q);
+    const double alpha = rz / p->dot(*q);
+    a_->update(alpha, *p, 1.0);
+    r->update(-alpha, *q, 1.0);
+    if (r->norm2() <= kTolerance * bnorm) return;
+    precondition();
+    const double rz1 = r->dot(*z);
+    p->update(1.0, *z, rz1 / rz);
+    rz = rz1;
+  }
+  DDC_THROW(SolverError, "the initial acceleration (M a0 = f_ext(0) - f_int(u0)) did not converge in "
+                             << kMaxIterations << " CG iterations");
 }
 
 void NewmarkIntegrator::beginStep(const Model& model, double h, const Vector& fintNow, const Vector& externalNow) {

@@ -61,10 +61,18 @@ class NewmarkIntegrator {
  public:
   explicit NewmarkIntegrator(const NewmarkParameters& p) : p_(p) {}
 
-  /// Start from the displacements u0 with velocities v0 and zero
-  /// acceleration (no load acts at t = 0: boundary values and tractions are
-  /// zero there, see the user guide). Vectors on the model's owned map.
-  void initialise(const Model& model, const Vector& u0, const Vector& v0);
+  /// Start from the displacements u0 with velocities v0 and the
+  /// acceleration that balances `force0` = f_ext(0) − f_int(u0) (e.g.
+  /// gravity; boundary values and tractions are zero at t = 0, see the user
+  /// guide): M a0 = force0 on the free DOFs with mass, solved by
+  /// Jacobi-preconditioned CG (accelerationSolveIterations()); a0 = 0 on
+  /// prescribed and massless DOFs, and everywhere without `force0`.
+  /// Vectors on the model's owned map.
+  /// \throws SolverError if CG does not reach 1e-12 relative in 1000
+  ///         iterations (M is positive definite on those DOFs: it does)
+  void initialise(const Model& model, const Vector& u0, const Vector& v0, const Vector* force0 = nullptr);
+  /// CG iterations of the initial-acceleration solve (0 without force0).
+  int accelerationSolveIterations() const { return cgIterations_; }
   /// Begin the step t_n → t_n + h from the converged state: the predictors
   /// and, for the α-methods, the force g of the previous step's terms, from
   /// f_int(u_n) (`fintNow`, all DOFs) and the external force f_ext(t_n) =
@@ -90,6 +98,7 @@ class NewmarkIntegrator {
   Teuchos::RCP<Vector> u_, v_, a_;        ///< converged state at t_n
   Teuchos::RCP<Vector> uTilde_, vTilde_;  ///< predictors of the current step
   Teuchos::RCP<Vector> g_;                ///< α-methods: the previous step's force terms
+  int cgIterations_ = 0;
 };
 
 }  // namespace ddc
