@@ -467,6 +467,8 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
 
   auto bcs = BoundaryConditions::fromParameters(params.sublist("Boundary Conditions"), *mesh, "Boundary Conditions");
   auto contact = ContactOptions::fromParameters(params.sublist("Contact"), *mesh, "Contact");
+  if (dynamic_ && params.sublist("Contact").get<std::string>("Initial Contact State") == "Automatic")
+    contact.initialInContact = false;  // Previous Step: a time step changes the active set little
   // Every body that no contact pair joins to another body must be supported by its
   // prescribed displacements: both directions and at least two nodes (a
   // single pinned node leaves the rotation free). Otherwise the global

@@ -165,11 +165,12 @@ Teuchos::RCP<const Teuchos::ParameterList> ContactOptions::getValidParameters() 
           enumValidator({"Node-To-Segment", "Decomposed Node-To-Segment", "Node-To-Surface",
                          "Decomposed Node-To-Surface"},
                         "Formulation"));
-  pl->set("Initial Contact State", "In Contact",
+  pl->set("Initial Contact State", "Automatic",
           "Active set at the start of each step: In Contact (every slave node with a master segment within "
           "the search radius starts active, as in the paper) or Previous Step (the converged active set of "
-          "the previous step).",
-          enumValidator({"In Contact", "Previous Step"}, "Initial Contact State"));
+          "the previous step). Automatic: In Contact in a quasi-static analysis, Previous Step in a dynamic "
+          "one, whose time steps change the active set little (doc/user-guide.md, \"Contact in dynamics\").",
+          enumValidator({"Automatic", "In Contact", "Previous Step"}, "Initial Contact State"));
   pl->set("Pairing Cycles", "Freeze",
           "Conventional formulation only (the decomposed one keeps its pairing over each step anyway): what "
           "Newton does when a slave node's pairing returns to a facet it left earlier in the same increment, "
@@ -204,7 +205,9 @@ ContactOptions ContactOptions::fromParameters(Teuchos::ParameterList& list, cons
   ContactOptions o;
   const std::string formulation = list.get<std::string>("Formulation");
   o.decomposed = formulation == "Decomposed Node-To-Segment" || formulation == "Decomposed Node-To-Surface";
-  o.initialInContact = list.get<std::string>("Initial Contact State") == "In Contact";
+  // Automatic is In Contact here; a dynamic analysis turns it into
+  // Previous Step (it knows it is one).
+  o.initialInContact = list.get<std::string>("Initial Contact State") != "Previous Step";
   o.freezeCyclingPairing = list.get<std::string>("Pairing Cycles") == "Freeze";
   const auto& validPair = valid->sublist("Pairs").sublist("<Pair Name>");
   auto& pairs = list.sublist("Pairs");

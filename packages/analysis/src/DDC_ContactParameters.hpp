@@ -34,7 +34,8 @@ struct ContactOptions {
   /// current configuration); true: decomposed NTS (frozen over each step).
   bool decomposed = false;
   /// Start every step with all paired slave nodes active (the paper), or
-  /// with the active set of the previous step.
+  /// with the active set of the previous step. "Automatic" gives true here;
+  /// a dynamic Analysis sets it false.
   bool initialInContact = true;
   double searchRadius = 0.0;          ///< absolute (automatic: h, the file comment)
   double penetrationTolerance = 0.0;  ///< absolute: activate when g_N < -tol (the parameter times h)
