@@ -122,6 +122,14 @@ Teuchos::RCP<const Teuchos::ParameterList> dynamicsValidParameters() {
             "Generalized-alpha's spectral radius at infinite frequency rho_inf in [0, 1] (Chung & Hulbert 1993): "
             "1 no numerical damping, 0 annihilates the highest modes in one step; second-order accurate.",
             between(0.0, 1.0));
+    pl->set("Rayleigh Alpha", 0.0,
+            "Mass-proportional Rayleigh damping alpha_R (1/time): C = alpha_R M + beta_R K, the damping ratio "
+            "of a mode of angular frequency w being alpha_R / (2 w) + beta_R w / 2.",
+            atLeast(0.0));
+    pl->set("Rayleigh Beta", 0.0,
+            "Stiffness-proportional Rayleigh damping beta_R (time), K the element tangents at the current "
+            "state (see Rayleigh Alpha).",
+            atLeast(0.0));
     pl->set("Mass Matrix", std::string("Consistent"),
             "Element mass matrices: Consistent (int rho N_a N_b dV), HRZ (diagonal, scaled to the element's "
             "mass; positive for every element type) or Row-Sum (diagonal; zero or negative at the corners of "
@@ -642,6 +650,7 @@ void Analysis::setUpDynamics(Teuchos::ParameterList& dyn) {
       : scheme == "Generalized-alpha" ? NewmarkParameters::generalisedAlpha(dyn.get<double>("Spectral Radius"), "Dynamics")
                                       : NewmarkParameters::newmark(dyn.get<double>("Newmark Beta"),
                                                                    dyn.get<double>("Newmark Gamma"), "Dynamics"));
+  integrator_->setRayleighDamping(dyn.get<double>("Rayleigh Alpha"), dyn.get<double>("Rayleigh Beta"));
   // Initial velocities by body or node set; prescribed DOFs start at rest.
   initialVelocity_ = model_->createVector();
   auto& conditions = dyn.sublist("Initial Velocity");
@@ -711,6 +720,7 @@ void Analysis::setUpDynamics(Teuchos::ParameterList& dyn) {
     model_->setBodyForce(*f);
   }
   acceleration_ = model_->createVector();
+  velocity_ = model_->createVector();
   inertia_ = Inertia{};
   inertia_.acceleration = acceleration_.get();
   strategy_->setInertia(&inertia_);
@@ -773,7 +783,8 @@ bool Analysis::solveIncrement(double lambda0, double lambda1, StepRecord& rec) {
     if (integrator_) {
       // Dynamics: a(u) and the factor of M in the tangent at this iterate.
       integrator_->acceleration(*u, *acceleration_);
-      inertia_ = integrator_->inertia(*acceleration_);
+      if (integrator_->damped()) integrator_->velocity(*u, *velocity_);
+      inertia_ = integrator_->inertia(*acceleration_, integrator_->damped() ? velocity_.get() : nullptr);
     }
     try {
       assembled = strategy_->assemble(*u, lambda1, *r, it == 0 ? dp.get() : nullptr);

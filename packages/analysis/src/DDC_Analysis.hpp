@@ -163,7 +163,7 @@ class Analysis {
   bool progressEnabled_ = true;
   bool dynamic_ = false;  ///< Dynamics/Integrator is not None
   std::unique_ptr<NewmarkIntegrator> integrator_;
-  Teuchos::RCP<Vector> initialVelocity_, acceleration_;
+  Teuchos::RCP<Vector> initialVelocity_, acceleration_, velocity_;
   Inertia inertia_;  ///< the strategy's inertia term (acceleration_ and c, updated per iterate)
 };
 

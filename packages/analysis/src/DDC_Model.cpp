@@ -489,6 +489,49 @@ void Model::setBodyForce(const Vector& f) {
   bodyForce_->assign(f);
 }
 
+void Model::applyElementTangent(const Vector& u, const Vector& v, Vector& Kv) const {
+  auto uov = toOverlap(u), vov = toOverlap(v);
+  auto ud = uov->getData(), vd = vov->getData();
+  Vector ov(overlapMap_);
+  std::string failure;
+  {
+    auto od = ov.getDataNonConst();
+    std::vector<GO> dofs;
+    Eigen::MatrixXd X, ue;
+    Eigen::VectorXd ve;
+    ElementResult er;
+    const int d = mesh_->dim();
+    for (size_t i = 0; i < localElements_.size() && failure.empty(); ++i) {
+      const int e = localElements_[i];
+      const int nn = mesh_->elementNumNodes(e);
+      const int* en = mesh_->elementNodes(e);
+      elementDofs(e, dofs);
+      X.resize(nn, d);
+      ue.resize(nn, d);
+      ve.resize(nn * d);
+      for (int a = 0; a < nn; ++a)
+        for (int c = 0; c < d; ++c) {
+          const LO l = overlapMap_->getLocalElement(dofs[d * a + c]);
+          X(a, c) = mesh_->coord(en[a])[c];
+          ue(a, c) = ud[l];
+          ve[d * a + c] = vd[l];
+        }
+      try {
+        elements_[mesh_->elementBody(e)]->compute(X, ue, kTangent, er);
+      } catch (const InadmissibleDeformation& ex) {
+        failure = ex.what();
+        break;
+      }
+      const Eigen::VectorXd f = er.tangent * ve;
+      for (size_t a = 0; a < dofs.size(); ++a) od[overlapMap_->getLocalElement(dofs[a])] += f[a];
+    }
+  }
+  failure = firstErrorOnAnyRank(*comm_, failure);
+  if (!failure.empty()) DDC_THROW(InadmissibleDeformation, failure);
+  Kv.putScalar(0.0);
+  Kv.doExport(ov, *exporter_, Tpetra::ADD);
+}
+
 double Model::kineticEnergy(const Vector& v) const {
   auto Mv = createVector();
   applyMass(v, *Mv);
@@ -502,10 +545,16 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
   auto ud = uov->getData();
   Teuchos::RCP<Vector> aov;
   Teuchos::ArrayRCP<const double> ad;
+  Teuchos::RCP<Vector> vov;
+  Teuchos::ArrayRCP<const double> vd;
   if (inertia) {
     requireMass();
     aov = toOverlap(*inertia->acceleration);
     ad = aov->getData();
+    if (inertia->damped()) {
+      vov = toOverlap(*inertia->velocity);
+      vd = vov->getData();
+    }
   }
   Teuchos::RCP<Vector> dpov;
   Teuchos::ArrayRCP<const double> dp;
@@ -537,6 +586,8 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
   unsigned what = kEnergy;
   if (fint || residual) what |= kResidual;
   if (K || prescribedStep || subdomains) what |= kTangent;
+  // Stiffness-proportional damping needs the element tangents for C v.
+  if (residual && inertia && inertia->damped() && inertia->stiffnessDamping != 0.0) what |= kTangent;
   if (subdomains)
     for (auto& sys : *subdomains->systems) {
       sys.K->resumeFill();
@@ -629,7 +680,18 @@ AssemblyResult Model::assemble(const Vector& u, double lambda, Vector* fint, Vec
       Eigen::VectorXd ae(lids.size());
       for (size_t a = 0; a < lids.size(); ++a) ae[a] = ad[lids[a]];
       inertiaForce = inertia->residualFactor * (Me * ae);
-      if (what & kTangent) er.tangent += inertia->tangentFactor * Me;
+      double massFactor = inertia->tangentFactor;
+      if (inertia->damped()) {
+        // C v = (α_R M + β_R K_e) v, K_e the element tangent before the
+        // mass enters it; the tangent gains (dv/du) C.
+        Eigen::VectorXd ve(lids.size());
+        for (size_t a = 0; a < lids.size(); ++a) ve[a] = vd[lids[a]];
+        inertiaForce += inertia->massDamping * (Me * ve);
+        if (inertia->stiffnessDamping != 0.0) inertiaForce += inertia->stiffnessDamping * (er.tangent * ve);
+        if (what & kTangent) er.tangent *= 1.0 + inertia->stiffnessDamping * inertia->velocityFactor;
+        massFactor += inertia->massDamping * inertia->velocityFactor;
+      }
+      if (what & kTangent) er.tangent += massFactor * Me;
     }
     if (subdomains) {
       // Free-DOF block of the element tangent into its subdomain's matrix.

@@ -52,6 +52,16 @@ struct Inertia {
   /// If given: a force added to the residual's free DOFs (the α-methods'
   /// terms of the previous step), owned map.
   const Vector* force = nullptr;
+  /// Rayleigh damping C = massDamping M + stiffnessDamping K, K the element
+  /// tangents at the iterate: with `velocity` (v(u) of the integrator, owned
+  /// map) the residual gains C v and the tangent velocityFactor · C
+  /// (velocityFactor = dv/du, γ/(β h) for Newmark; the change of K with u
+  /// in C v is left out of the tangent).
+  const Vector* velocity = nullptr;
+  double massDamping = 0.0;
+  double stiffnessDamping = 0.0;
+  double velocityFactor = 0.0;
+  bool damped() const { return velocity && (massDamping != 0.0 || stiffnessDamping != 0.0); }
 };
 
 /// Results of one assembly.
@@ -144,6 +154,10 @@ class Model {
   /// M v on the owned map (multiplier entries 0). Collective.
   /// \throws std::logic_error if a body has no mass
   void applyMass(const Vector& v, Vector& Mv) const;
+  /// K(u) v with the element tangents at u (contact and prescribed rows
+  /// aside: the continuum elements only), owned map. Collective.
+  /// \throws InadmissibleDeformation on every rank if det F <= 0 anywhere
+  void applyElementTangent(const Vector& u, const Vector& v, Vector& Kv) const;
 
   /// The diagonal of M on the owned map (multiplier entries 0). Collective.
   /// \throws std::logic_error if a body has no mass

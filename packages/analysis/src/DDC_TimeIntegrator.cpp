@@ -55,7 +55,15 @@ void NewmarkIntegrator::initialise(const Model& model, const Vector& u0, const V
   v_->assign(v0);
   a_->putScalar(0.0);
   cgIterations_ = 0;
-  if (!force0) return;
+  // The force a0 balances: force0, less the damping of the initial velocity.
+  auto b = model.createVector();
+  if (force0) b->assign(*force0);
+  if (damped() && v0.normInf() > 0.0) {
+    auto Cv = model.createVector();
+    applyDamping(model, u0, v0, *Cv);
+    b->update(-1.0, *Cv, 1.0);
+  }
+  if (b->normInf() == 0.0) return;
   // M a0 = force0 on the free DOFs with mass: preconditioned CG with the
   // diagonal of M, the other DOFs masked out (M is positive definite on the
   // rest; on massless DOFs — a redistributed contact surface — the rows of
@@ -76,7 +84,7 @@ void NewmarkIntegrator::initialise(const Model& model, const Vector& u0, const V
       if (inv[l] == 0.0) xd[l] = 0.0;
   };
   auto r = model.createVector(), z = model.createVector(), p = model.createVector(), q = model.createVector();
-  r->assign(*force0);
+  r->assign(*b);
   mask(*r);
   const double bnorm = r->norm2();
   if (bnorm == 0.0) return;
@@ -122,6 +130,28 @@ void NewmarkIntegrator::beginStep(const Model& model, double h, const Vector& fi
     model.applyMass(*a_, *Ma);
     g_->update(p_.alphaM * s, *Ma, 1.0);
   }
+  // ... + α_f C v_n / (1 − α_f).
+  if (p_.alphaF != 0.0 && damped()) {
+    auto Cv = model.createVector();
+    applyDamping(model, *u_, *v_, *Cv);
+    g_->update(p_.alphaF * s, *Cv, 1.0);
+  }
+}
+
+void NewmarkIntegrator::applyDamping(const Model& model, const Vector& u, const Vector& v, Vector& Cv) const {
+  model.applyMass(v, Cv);
+  Cv.scale(dampAlpha_);
+  if (dampBeta_ != 0.0) {
+    auto Kv = model.createVector();
+    model.applyElementTangent(u, v, *Kv);
+    Cv.update(dampBeta_, *Kv, 1.0);
+  }
+}
+
+void NewmarkIntegrator::velocity(const Vector& u, Vector& v) const {
+  const double c = p_.gamma / (p_.beta * h_);
+  v.update(c, u, -c, *uTilde_, 0.0);
+  v.update(1.0, *vTilde_, 1.0);
 }
 
 void NewmarkIntegrator::acceleration(const Vector& u, Vector& a) const {
@@ -129,12 +159,19 @@ void NewmarkIntegrator::acceleration(const Vector& u, Vector& a) const {
   a.update(c, u, -c, *uTilde_, 0.0);
 }
 
-Inertia NewmarkIntegrator::inertia(const Vector& a) const {
+Inertia NewmarkIntegrator::inertia(const Vector& a, const Vector* v) const {
   Inertia in;
   in.acceleration = &a;
   in.residualFactor = weight();
   in.tangentFactor = weight() / (p_.beta * h_ * h_);
-  in.force = (p_.alphaF != 0.0 || p_.alphaM != 0.0) ? g_.get() : nullptr;
+  const bool previous = p_.alphaF != 0.0 || p_.alphaM != 0.0;
+  in.force = previous ? g_.get() : nullptr;
+  if (damped() && v) {
+    in.velocity = v;
+    in.massDamping = dampAlpha_;
+    in.stiffnessDamping = dampBeta_;
+    in.velocityFactor = p_.gamma / (p_.beta * h_);
+  }
   return in;
 }
 

@@ -25,6 +25,9 @@
 //
 // which is Model::assemble with Inertia{a, c, w, g}. Newmark is α_m = α_f = 0.
 //
+// Rayleigh damping C = α_R M + β_R K adds C v(u) + α_f/(1 − α_f) C v_n to r,
+// and (γ/(β h)) C to the tangent (v(u) = ṽ + γ h a(u)).
+//
 // Parameters and stability (linear problems, unconditional):
 //  - Newmark: 2β ≥ γ ≥ ½; β = ¼, γ = ½ (trapezoidal) conserves the energy of
 //    a linear free vibration; γ > ½ damps at first-order accuracy.
@@ -61,6 +64,12 @@ class NewmarkIntegrator {
  public:
   explicit NewmarkIntegrator(const NewmarkParameters& p) : p_(p) {}
 
+  /// Rayleigh damping C = alpha M + beta K (K the element tangents at the
+  /// current state): M a + C v + f_int = f_ext, with C v balanced like f_int
+  /// by the α-methods ((1 − α_f) C v_{n+1} + α_f C v_n). Before initialise().
+  void setRayleighDamping(double alpha, double beta) { dampAlpha_ = alpha, dampBeta_ = beta; }
+  bool damped() const { return dampAlpha_ != 0.0 || dampBeta_ != 0.0; }
+
   /// Start from the displacements u0 with velocities v0 and the
   /// acceleration that balances `force0` = f_ext(0) − f_int(u0) (e.g.
   /// gravity; boundary values and tractions are zero at t = 0, see the user
@@ -80,9 +89,12 @@ class NewmarkIntegrator {
   void beginStep(const Model& model, double h, const Vector& fintNow, const Vector& externalNow);
   /// a(u) of the current step into `a`.
   void acceleration(const Vector& u, Vector& a) const;
+  /// v(u) = ṽ + γ h a(u) of the current step into `v`.
+  void velocity(const Vector& u, Vector& v) const;
   /// The inertia term of the current step at the acceleration vector `a`
-  /// (which the caller fills with acceleration() at each iterate).
-  Inertia inertia(const Vector& a) const;
+  /// and, with damping, the velocity vector `v` (which the caller fills with
+  /// acceleration() and velocity() at each iterate).
+  Inertia inertia(const Vector& a, const Vector* v = nullptr) const;
   /// The step converged at u: u_n, v_n, a_n become those of t_{n+1}.
   void acceptStep(const Vector& u);
   /// The converged velocities v_n.
@@ -99,6 +111,9 @@ class NewmarkIntegrator {
   Teuchos::RCP<Vector> uTilde_, vTilde_;  ///< predictors of the current step
   Teuchos::RCP<Vector> g_;                ///< α-methods: the previous step's force terms
   int cgIterations_ = 0;
+  double dampAlpha_ = 0.0, dampBeta_ = 0.0;  ///< setRayleighDamping()
+  /// C v = alpha M v + beta K(u) v into Cv.
+  void applyDamping(const Model& model, const Vector& u, const Vector& v, Vector& Cv) const;
 };
 
 }  // namespace ddc

@@ -112,59 +112,94 @@ void setScheme(PL& deck, const Scheme& s) {
   if (*s.parameter) deck.sublist("Dynamics").set(s.parameter, s.value);
 }
 
+/// The error of u(T) of a run of barDeck(4, 1, ...) against the exact
+/// solution of its semi-discrete system M ü + C u̇ + K u = 0, C = α_R M +
+/// β_R K, over the free DOFs: with the model's own modes φ_k, ω_k (M- and
+/// K-orthogonal, so C is diagonal too: 2 ζ_k ω_k = α_R + β_R ω_k²),
+/// u(T) = Σ_k φ_k (φ_kᵀ M v0) q_k(T), q_k(T) = e^{−ζ ω T} sin(ω_d T)/ω_d,
+/// ω_d = ω √(1 − ζ²) (sinh and √(ζ² − 1) for an overdamped mode, as the
+/// bar's lowest bending mode is at the test's damping), relative to the
+/// largest |u(T)|.
+double modalError(const ddc::Analysis& a, double T, double alphaR, double betaR) {
+  const ddc::Model& m = a.model();
+  const int n = static_cast<int>(m.ownedMap()->getGlobalNumElements());
+  auto K = m.createMatrix();
+  auto zero = m.createVector();
+  m.assemble(*zero, 0.0, nullptr, nullptr, K.get());
+  std::vector<int> free;
+  for (int g = 0; g < n; ++g)
+    if (!m.isConstrained(g)) free.push_back(g);
+  const int f = static_cast<int>(free.size());
+  Eigen::MatrixXd Kf(f, f), Mf(f, f);
+  auto e = m.createVector(), Ke = m.createVector(), Me = m.createVector();
+  for (int j = 0; j < f; ++j) {
+    e->putScalar(0.0);
+    e->replaceGlobalValue(free[j], 1.0);
+    K->apply(*e, *Ke);
+    m.applyMass(*e, *Me);
+    auto kd = Ke->getData(), md = Me->getData();
+    for (int i = 0; i < f; ++i) Kf(i, j) = kd[free[i]], Mf(i, j) = md[free[i]];
+  }
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(Kf, Mf);
+  // The initial velocity: 0.1 on every free x DOF.
+  std::vector<char> isX(n, 0);
+  for (int node = 0; node < m.mesh().numNodes(); ++node) isX[m.dof(node, 0)] = 1;
+  Eigen::VectorXd v(f);
+  for (int i = 0; i < f; ++i) v[i] = isX[free[i]] ? 0.1 : 0.0;
+  Eigen::VectorXd exact = Eigen::VectorXd::Zero(f);
+  for (int k = 0; k < f; ++k) {
+    const Eigen::VectorXd phi = modes.eigenvectors().col(k);  // M-orthonormal
+    const double w = std::sqrt(modes.eigenvalues()[k]);
+    const double zeta = 0.5 * (alphaR / w + betaR * w);
+    // q(T) for q(0) = 0, q'(0) = 1: under-, over- or critically damped.
+    const double s = w * std::sqrt(std::abs(1.0 - zeta * zeta));
+    const double q = s < 1e-12 * w ? T
+                     : zeta < 1.0  ? std::sin(s * T) / s
+                                   : std::sinh(s * T) / s;
+    exact += phi * (phi.dot(Mf * v)) * std::exp(-zeta * w * T) * q;
+  }
+  auto ud = a.displacement().getData();
+  double err = 0.0;
+  for (int i = 0; i < f; ++i) err = std::max(err, std::abs(ud[free[i]] - exact[i]));
+  return err / exact.cwiseAbs().maxCoeff();
+}
+
+/// The observed order of u(T) in the time step, h = 0.5, 0.25, 0.125, with
+/// Rayleigh damping α_R, β_R.
+void expectSecondOrder(const Scheme& scheme, double alphaR, double betaR) {
+  const double T = 5.0;
+  std::vector<double> errors;
+  for (double dt : {0.5, 0.25, 0.125}) {
+    PL deck = barDeck(4, 1, T, dt);
+    setScheme(deck, scheme);
+    deck.sublist("Dynamics").set("Rayleigh Alpha", alphaR);
+    deck.sublist("Dynamics").set("Rayleigh Beta", betaR);
+    ddc::Analysis a(worldComm(), deck);
+    a.run("");
+    errors.push_back(modalError(a, T, alphaR, betaR));
+  }
+  const double order1 = std::log2(errors[0] / errors[1]), order2 = std::log2(errors[1] / errors[2]);
+  std::cout << "[dynamics] " << scheme.integrator << (alphaR + betaR > 0 ? " (Rayleigh damping)" : "")
+            << ": u(T) errors " << errors[0] << " " << errors[1] << " " << errors[2] << ", observed orders "
+            << order1 << " " << order2 << "\n";
+  EXPECT_NEAR(order2, 2.0, 0.1);
+}
+
 class DynamicsScheme : public testing::TestWithParam<Scheme> {};
 
 TEST_P(DynamicsScheme, SecondOrderInTheTimeStep) {
   // Exact reference: the semi-discrete system of the same (small) model,
   // u(t) = Σ_k φ_k (φ_kᵀ M v0) sin(ω_k t) / ω_k over its free DOFs.
   if (worldComm()->getSize() > 1) GTEST_SKIP() << "the dense reference is built on one rank";
-  const double T = 5.0;
-  std::vector<double> errors;
-  for (double dt : {0.5, 0.25, 0.125}) {
-    PL deck = barDeck(4, 1, T, dt);
-    setScheme(deck, GetParam());
-    ddc::Analysis a(worldComm(), deck);
-    a.run("");
-    const ddc::Model& m = a.model();
-    const int n = static_cast<int>(m.ownedMap()->getGlobalNumElements());
-    auto K = m.createMatrix();
-    auto zero = m.createVector();
-    m.assemble(*zero, 0.0, nullptr, nullptr, K.get());
-    std::vector<int> free;
-    for (int g = 0; g < n; ++g)
-      if (!m.isConstrained(g)) free.push_back(g);
-    const int f = static_cast<int>(free.size());
-    Eigen::MatrixXd Kf(f, f), Mf(f, f);
-    auto e = m.createVector(), Ke = m.createVector(), Me = m.createVector();
-    for (int j = 0; j < f; ++j) {
-      e->putScalar(0.0);
-      e->replaceGlobalValue(free[j], 1.0);
-      K->apply(*e, *Ke);
-      m.applyMass(*e, *Me);
-      auto kd = Ke->getData(), md = Me->getData();
-      for (int i = 0; i < f; ++i) Kf(i, j) = kd[free[i]], Mf(i, j) = md[free[i]];
-    }
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(Kf, Mf);
-    // The initial velocity: 0.1 on every free x DOF.
-    std::vector<char> isX(n, 0);
-    for (int node = 0; node < m.mesh().numNodes(); ++node) isX[m.dof(node, 0)] = 1;
-    Eigen::VectorXd v(f);
-    for (int i = 0; i < f; ++i) v[i] = isX[free[i]] ? 0.1 : 0.0;
-    Eigen::VectorXd exact = Eigen::VectorXd::Zero(f);
-    for (int k = 0; k < f; ++k) {
-      const Eigen::VectorXd phi = modes.eigenvectors().col(k);  // M-orthonormal
-      const double w = std::sqrt(modes.eigenvalues()[k]);
-      exact += phi * (phi.dot(Mf * v)) * std::sin(w * T) / w;
-    }
-    auto ud = a.displacement().getData();
-    double err = 0.0;
-    for (int i = 0; i < f; ++i) err = std::max(err, std::abs(ud[free[i]] - exact[i]));
-    errors.push_back(err / exact.cwiseAbs().maxCoeff());
-  }
-  const double order1 = std::log2(errors[0] / errors[1]), order2 = std::log2(errors[1] / errors[2]);
-  std::cout << "[dynamics] " << GetParam().integrator << ": u(T) errors " << errors[0] << " " << errors[1] << " "
-            << errors[2] << ", observed orders " << order1 << " " << order2 << "\n";
-  EXPECT_NEAR(order2, 2.0, 0.1);
+  expectSecondOrder(GetParam(), 0.0, 0.0);
+}
+
+TEST_P(DynamicsScheme, SecondOrderWithRayleighDamping) {
+  // The same with C = 0.05 M + 0.02 K (the lowest, bending mode
+  // overdamped, the others underdamped), the exact damped modes as
+  // reference.
+  if (worldComm()->getSize() > 1) GTEST_SKIP() << "the dense reference is built on one rank";
+  expectSecondOrder(GetParam(), 0.05, 0.02);
 }
 
 INSTANTIATE_TEST_SUITE_P(Schemes, DynamicsScheme, testing::ValuesIn(kSchemes),
@@ -259,24 +294,35 @@ TEST(Dynamics, GravityOnAClampedBarBalancesTheEnergy) {
 }
 
 TEST(Dynamics, FetiDpEqualsMonolithic) {
-  std::vector<std::vector<ddc::StepRecord>> runs;
-  for (const char* strategy : {"Monolithic", "FETI-DP"}) {
-    PL deck = barDeck(20, 2, 5.0, 0.25);
-    deck.sublist("Solver").set("Strategy", std::string(strategy));
-    deck.sublist("Partition").set("Number of Subdomains", 4);
-    ddc::Analysis a(worldComm(), deck);
-    a.run("");
-    runs.push_back(a.history());
+  // Undamped, and with Rayleigh damping under HHT-alpha (K^s (1 + β_R γ/(βh))
+  // + (c + α_R γ/(βh)) M^s per subdomain, the previous step's C v_n).
+  for (const bool damped : {false, true}) {
+    std::vector<std::vector<ddc::StepRecord>> runs;
+    for (const char* strategy : {"Monolithic", "FETI-DP"}) {
+      PL deck = barDeck(20, 2, 5.0, 0.25);
+      deck.sublist("Solver").set("Strategy", std::string(strategy));
+      deck.sublist("Partition").set("Number of Subdomains", 4);
+      if (damped) {
+        deck.sublist("Dynamics").set("Integrator", std::string("HHT-alpha"));
+        deck.sublist("Dynamics").set("Rayleigh Alpha", 0.05);
+        deck.sublist("Dynamics").set("Rayleigh Beta", 0.02);
+      }
+      ddc::Analysis a(worldComm(), deck);
+      a.run("");
+      runs.push_back(a.history());
+    }
+    ASSERT_EQ(runs[0].size(), runs[1].size());
+    double worst = 0.0;
+    for (size_t i = 0; i < runs[0].size(); ++i) {
+      const double E = totalEnergy(runs[0][i]);
+      worst = std::max({worst, std::abs(runs[0][i].strainEnergy - runs[1][i].strainEnergy) / E,
+                        std::abs(runs[0][i].kineticEnergy - runs[1][i].kineticEnergy) / E});
+    }
+    EXPECT_LT(worst, kFetiAgreement) << (damped ? "damped" : "undamped");
+    if (isRoot())
+      std::cout << "[dynamics] FETI-DP vs Monolithic" << (damped ? " (HHT-alpha, Rayleigh damping)" : "")
+                << ", worst energy difference per step: " << worst << "\n";
   }
-  ASSERT_EQ(runs[0].size(), runs[1].size());
-  double worst = 0.0;
-  for (size_t i = 0; i < runs[0].size(); ++i) {
-    const double E = totalEnergy(runs[0][i]);
-    worst = std::max({worst, std::abs(runs[0][i].strainEnergy - runs[1][i].strainEnergy) / E,
-                      std::abs(runs[0][i].kineticEnergy - runs[1][i].kineticEnergy) / E});
-  }
-  EXPECT_LT(worst, kFetiAgreement);
-  if (isRoot()) std::cout << "[dynamics] FETI-DP vs Monolithic, worst energy difference per step: " << worst << "\n";
 }
 
 TEST(Dynamics, TheVtkOutputHasVelocityAndAcceleration) {
@@ -453,6 +499,12 @@ TEST(Dynamics, BadInputNamesTheParameter) {
     const std::string msg = inputErrorOf([&] { ddc::Analysis a(worldComm(), deck); });
     EXPECT_NE(msg.find("'Dynamics/Gravity/Down/Acceleration Z' is set but the model is 2-D"), std::string::npos)
         << msg;
+  }
+  {
+    PL deck = barDeck(4, 1, 1.0, 0.25);
+    deck.sublist("Dynamics").set("Rayleigh Beta", -0.1);
+    const std::string msg = inputErrorOf([&] { ddc::Analysis a(worldComm(), deck); });
+    EXPECT_NE(msg.find("'Dynamics/Rayleigh Beta' must be >= 0 and finite, got -0.1"), std::string::npos) << msg;
   }
   {
     PL deck = barDeck(4, 1, 1.0, 0.25);
