@@ -971,7 +971,8 @@ std::string Analysis::unmetCriterion(const std::vector<double>& residuals, doubl
 double Analysis::externalWorkIncrement(const Vector& fint0, const Vector& u0, double lambda0, const Vector& fint1,
                                        const Vector& u1, double lambda1) const {
   // Trapezoidal rule in the load factor: reactions at prescribed DOFs (the
-  // internal force there) and applied tractions, times the displacement step.
+  // force there: RunState::reaction) and applied tractions and body forces,
+  // times the displacement step.
   const auto& map = *model_->ownedMap();
   const GO first = map.getMinGlobalIndex();
   auto f0 = fint0.getData(), f1 = fint1.getData(), a = u0.getData(), b = u1.getData();
@@ -1087,9 +1088,11 @@ void Analysis::runSteps(OutputDirectory* dir) {
 
   // The state the steps carry forward (one object: what a restart saves).
   RunState st;
-  st.fintPrev = model_->createVector();
+  st.reactionPrev = model_->createVector();
+  st.reaction = model_->createVector();
   st.uPrev = model_->createVector();
   st.fint = model_->createVector();
+  if (integrator_) integrator_->inertiaForce(*model_, *st.reactionPrev);  // M a0 (+ C v0)
   BisectingSteps steps(finalLambda, nsteps, maxBisect);
   if (!nearlyIncompressible_.empty()) progress("warning: " + nearlyIncompressible_);
   auto contactWarnings = [&] {
@@ -1138,14 +1141,21 @@ void Analysis::runSteps(OutputDirectory* dir) {
     rec.loadFactor = lambda;
     rec.bisections = p.depth;
     rec.strainEnergy = model_->assemble(*u_, lambda, st.fint.get(), nullptr, nullptr).strainEnergy;
-    st.externalWork += externalWorkIncrement(*st.fintPrev, *st.uPrev, p.from, *st.fint, *u_, lambda);
-    rec.externalWork = st.externalWork;
-    st.fintPrev->assign(*st.fint);
-    st.uPrev->assign(*u_);
+    // The forces the prescribed DOFs exert: f_int, and in dynamics also the
+    // inertia and damping of the prescribed nodes (a moving support
+    // accelerates its nodes' mass).
+    st.reaction->assign(*st.fint);
     if (integrator_) {
       integrator_->acceptStep(*u_);
       rec.kineticEnergy = model_->kineticEnergy(integrator_->velocity());
+      auto f = model_->createVector();
+      integrator_->inertiaForce(*model_, *f);
+      st.reaction->update(1.0, *f, 1.0);
     }
+    st.externalWork += externalWorkIncrement(*st.reactionPrev, *st.uPrev, p.from, *st.reaction, *u_, lambda);
+    rec.externalWork = st.externalWork;
+    st.reactionPrev->assign(*st.reaction);
+    st.uPrev->assign(*u_);
     if (contact) {
       // Converged: refresh the pairing once per step, with a global search
       // (tracking cannot see another part of the surface come nearer). The

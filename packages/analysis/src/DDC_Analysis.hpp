@@ -126,9 +126,11 @@ class Analysis {
   /// point, the output counter and the contact state of the last converged
   /// step (for contact_nodes.csv).
   struct RunState {
-    Teuchos::RCP<Vector> fint;      ///< internal force at the step just converged
-    Teuchos::RCP<Vector> fintPrev;  ///< ... and at the one before (trapezoidal work)
-    Teuchos::RCP<Vector> uPrev;     ///< displacements of the step before
+    Teuchos::RCP<Vector> fint;          ///< internal force at the step just converged
+    /// The force at the prescribed DOFs at the step just converged (f_int,
+    /// plus M a + C v in dynamics) and at the one before (trapezoidal work).
+    Teuchos::RCP<Vector> reaction, reactionPrev;
+    Teuchos::RCP<Vector> uPrev;         ///< displacements of the step before
     double externalWork = 0.0;      ///< StepRecord::externalWork so far
     int outputCount = 0;            ///< converged (sub)steps (Output/VTK Interval)
     std::vector<ContactSlot> convergedSlots;

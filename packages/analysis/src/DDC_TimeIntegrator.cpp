@@ -148,6 +148,15 @@ void NewmarkIntegrator::applyDamping(const Model& model, const Vector& u, const 
   }
 }
 
+void NewmarkIntegrator::inertiaForce(const Model& model, Vector& f) const {
+  model.applyMass(*a_, f);
+  if (damped()) {
+    auto Cv = model.createVector();
+    applyDamping(model, *u_, *v_, *Cv);
+    f.update(1.0, *Cv, 1.0);
+  }
+}
+
 void NewmarkIntegrator::velocity(const Vector& u, Vector& v) const {
   const double c = p_.gamma / (p_.beta * h_);
   v.update(c, u, -c, *uTilde_, 0.0);

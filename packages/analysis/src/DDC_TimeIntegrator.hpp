@@ -97,6 +97,9 @@ class NewmarkIntegrator {
   Inertia inertia(const Vector& a, const Vector* v = nullptr) const;
   /// The step converged at u: u_n, v_n, a_n become those of t_{n+1}.
   void acceptStep(const Vector& u);
+  /// M a_n + C v_n of the converged state (C v_n only with damping): with
+  /// f_int, the force the prescribed DOFs exert (their reactions). Owned map.
+  void inertiaForce(const Model& model, Vector& f) const;
   /// The converged velocities v_n.
   const Vector& velocity() const { return *v_; }
   /// The converged accelerations a_n.
