@@ -168,6 +168,22 @@ Teuchos::RCP<const Teuchos::ParameterList> dynamicsValidParameters() {
   return valid;
 }
 
+/// Each condition sublist of "Dynamics/<group>" (Initial Velocity,
+/// Gravity), validated against its template, with its parameter path.
+template <class F>
+void forEachCondition(PL& dyn, const std::string& group, const char* keys, F f) {
+  PL& list = dyn.sublist(group);
+  const PL& valid = dynamicsValidParameters()->sublist(group).sublist("<Condition Name>");
+  for (auto it = list.begin(); it != list.end(); ++it) {
+    const std::string& name = list.name(it);
+    const std::string where = "Dynamics/" + group + "/" + name;
+    DDC_INPUT_REQUIRE(list.isSublist(name), "'" << where << "' must be a sublist (" << keys << ")");
+    PL& c = list.sublist(name);
+    validateLevel(c, valid, where);
+    f(c, where);
+  }
+}
+
 Teuchos::RCP<PL> newtonValidParameters() {
   auto pl = Teuchos::rcp(new PL("Newton"));
   pl->set("Max Iterations", 25, "Maximum Newton iterations (linear solves) per load step.", greaterThan(0));
@@ -653,14 +669,7 @@ void Analysis::setUpDynamics(Teuchos::ParameterList& dyn) {
   integrator_->setRayleighDamping(dyn.get<double>("Rayleigh Alpha"), dyn.get<double>("Rayleigh Beta"));
   // Initial velocities by body or node set; prescribed DOFs start at rest.
   initialVelocity_ = model_->createVector();
-  auto& conditions = dyn.sublist("Initial Velocity");
-  const auto& valid = dynamicsValidParameters()->sublist("Initial Velocity").sublist("<Condition Name>");
-  for (auto it = conditions.begin(); it != conditions.end(); ++it) {
-    const std::string& name = conditions.name(it);
-    const std::string where = "Dynamics/Initial Velocity/" + name;
-    DDC_INPUT_REQUIRE(conditions.isSublist(name), "'" << where << "' must be a sublist (Set, Velocity X/Y/Z)");
-    auto& c = conditions.sublist(name);
-    validateLevel(c, valid, where);
+  forEachCondition(dyn, "Initial Velocity", "Set, Velocity X/Y/Z", [&](PL& c, const std::string& where) {
     const std::string set = c.get<std::string>("Set");
     std::vector<int> nodes;
     try {
@@ -683,18 +692,11 @@ void Analysis::setUpDynamics(Teuchos::ParameterList& dyn) {
         if (initialVelocity_->getMap()->isNodeGlobalElement(g) && !model_->isConstrained(g))
           initialVelocity_->replaceGlobalValue(g, v[k]);
       }
-  }
+  });
   // Gravity by body: the force M g with the run's mass matrices.
-  auto& gravity = dyn.sublist("Gravity");
-  const auto& validGravity = dynamicsValidParameters()->sublist("Gravity").sublist("<Condition Name>");
   auto g = model_->createVector();
   bool anyGravity = false;
-  for (auto it = gravity.begin(); it != gravity.end(); ++it) {
-    const std::string& name = gravity.name(it);
-    const std::string where = "Dynamics/Gravity/" + name;
-    DDC_INPUT_REQUIRE(gravity.isSublist(name), "'" << where << "' must be a sublist (Set, Acceleration X/Y/Z)");
-    auto& c = gravity.sublist(name);
-    validateLevel(c, validGravity, where);
+  forEachCondition(dyn, "Gravity", "Set, Acceleration X/Y/Z", [&](PL& c, const std::string& where) {
     const std::string set = c.get<std::string>("Set");
     int b = -1;
     try {
@@ -713,7 +715,7 @@ void Analysis::setUpDynamics(Teuchos::ParameterList& dyn) {
         if (g->getMap()->isNodeGlobalElement(gid)) g->replaceGlobalValue(gid, a[k]);
       }
     anyGravity = anyGravity || a[0] != 0.0 || a[1] != 0.0 || a[2] != 0.0;
-  }
+  });
   if (anyGravity) {
     auto f = model_->createVector();
     model_->applyMass(*g, *f);

@@ -447,41 +447,40 @@ const Eigen::MatrixXd& Model::elementMass(size_t i) const {
   return elementMass_[i];
 }
 
+void Model::sumOverElementMasses(
+    const std::function<Eigen::VectorXd(const Eigen::MatrixXd&, const std::vector<GO>&)>& perElement,
+    Vector& out) const {
+  requireMass();
+  Vector ov(overlapMap_);
+  {
+    auto od = ov.getDataNonConst();
+    std::vector<GO> dofs;
+    for (size_t i = 0; i < localElements_.size(); ++i) {
+      elementDofs(localElements_[i], dofs);
+      const Eigen::VectorXd f = perElement(elementMass(i), dofs);
+      for (size_t a = 0; a < dofs.size(); ++a) od[overlapMap_->getLocalElement(dofs[a])] += f[a];
+    }
+  }
+  out.putScalar(0.0);
+  out.doExport(ov, *exporter_, Tpetra::ADD);
+}
+
 void Model::applyMass(const Vector& v, Vector& Mv) const {
   requireMass();
   auto vov = toOverlap(v);
   auto vd = vov->getData();
-  Vector ov(overlapMap_);
-  {
-    auto od = ov.getDataNonConst();
-    std::vector<GO> dofs;
-    for (size_t i = 0; i < localElements_.size(); ++i) {
-      const Eigen::MatrixXd& M = elementMass(i);
-      elementDofs(localElements_[i], dofs);
-      Eigen::VectorXd ve(dofs.size());
-      for (size_t a = 0; a < dofs.size(); ++a) ve[a] = vd[overlapMap_->getLocalElement(dofs[a])];
-      const Eigen::VectorXd f = M * ve;
-      for (size_t a = 0; a < dofs.size(); ++a) od[overlapMap_->getLocalElement(dofs[a])] += f[a];
-    }
-  }
-  Mv.putScalar(0.0);
-  Mv.doExport(ov, *exporter_, Tpetra::ADD);
+  sumOverElementMasses(
+      [&](const Eigen::MatrixXd& M, const std::vector<GO>& dofs) {
+        Eigen::VectorXd ve(dofs.size());
+        for (size_t a = 0; a < dofs.size(); ++a) ve[a] = vd[overlapMap_->getLocalElement(dofs[a])];
+        return Eigen::VectorXd(M * ve);
+      },
+      Mv);
 }
 
 void Model::massDiagonal(Vector& d) const {
-  requireMass();
-  Vector ov(overlapMap_);
-  {
-    auto od = ov.getDataNonConst();
-    std::vector<GO> dofs;
-    for (size_t i = 0; i < localElements_.size(); ++i) {
-      const Eigen::MatrixXd& M = elementMass(i);
-      elementDofs(localElements_[i], dofs);
-      for (size_t a = 0; a < dofs.size(); ++a) od[overlapMap_->getLocalElement(dofs[a])] += M(a, a);
-    }
-  }
-  d.putScalar(0.0);
-  d.doExport(ov, *exporter_, Tpetra::ADD);
+  sumOverElementMasses([](const Eigen::MatrixXd& M, const std::vector<GO>&) { return Eigen::VectorXd(M.diagonal()); },
+                       d);
 }
 
 void Model::setBodyForce(const Vector& f) {

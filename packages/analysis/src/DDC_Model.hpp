@@ -8,6 +8,7 @@
 
 #include <Teuchos_Comm.hpp>
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -261,6 +262,11 @@ class Model {
   const Eigen::MatrixXd& elementMass(size_t i) const;
   /// Throws std::logic_error (on every rank) if a body has no mass.
   void requireMass() const;
+  /// Σ over this rank's elements of perElement(M_e, element DOFs) (one
+  /// entry per element DOF), exported to `out` on the owned map. Collective.
+  void sumOverElementMasses(
+      const std::function<Eigen::VectorXd(const Eigen::MatrixXd&, const std::vector<GO>&)>& perElement,
+      Vector& out) const;
 
   Teuchos::RCP<const Teuchos::Comm<int>> comm_;
   std::shared_ptr<const Mesh> mesh_;
