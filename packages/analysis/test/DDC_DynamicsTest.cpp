@@ -112,28 +112,37 @@ void setScheme(PL& deck, const Scheme& s) {
   if (*s.parameter) deck.sublist("Dynamics").set(s.parameter, s.value);
 }
 
-/// The model's K (at u = 0) and M on its free DOFs, dense (one rank).
-void denseFreeSystem(const ddc::Model& m, std::vector<int>& free, Eigen::MatrixXd& Kf, Eigen::MatrixXd& Mf) {
-  const int n = static_cast<int>(m.ownedMap()->getGlobalNumElements());
-  auto K = m.createMatrix();
-  auto zero = m.createVector();
-  m.assemble(*zero, 0.0, nullptr, nullptr, K.get());
-  free.clear();
-  for (int g = 0; g < n; ++g)
-    if (!m.isConstrained(g)) free.push_back(g);
-  const int f = static_cast<int>(free.size());
-  Kf.resize(f, f);
-  Mf.resize(f, f);
-  auto e = m.createVector(), Ke = m.createVector(), Me = m.createVector();
-  for (int j = 0; j < f; ++j) {
-    e->putScalar(0.0);
-    e->replaceGlobalValue(free[j], 1.0);
-    K->apply(*e, *Ke);
-    m.applyMass(*e, *Me);
-    auto kd = Ke->getData(), md = Me->getData();
-    for (int i = 0; i < f; ++i) Kf(i, j) = kd[free[i]], Mf(i, j) = md[free[i]];
+/// The model's K (at u = 0), M and modes on its free DOFs, dense (one
+/// rank), and which free DOFs are x components.
+struct FreeModes {
+  std::vector<int> free;
+  Eigen::MatrixXd K, M;
+  std::vector<char> isX;  ///< per free DOF
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes;  ///< M-orthonormal
+  explicit FreeModes(const ddc::Model& m) {
+    const int n = static_cast<int>(m.ownedMap()->getGlobalNumElements());
+    auto Kg = m.createMatrix();
+    auto zero = m.createVector();
+    m.assemble(*zero, 0.0, nullptr, nullptr, Kg.get());
+    std::vector<char> x(n, 0);
+    for (int node = 0; node < m.mesh().numNodes(); ++node) x[m.dof(node, 0)] = 1;
+    for (int g = 0; g < n; ++g)
+      if (!m.isConstrained(g)) free.push_back(g), isX.push_back(x[g]);
+    const int f = static_cast<int>(free.size());
+    K.resize(f, f);
+    M.resize(f, f);
+    auto e = m.createVector(), Ke = m.createVector(), Me = m.createVector();
+    for (int j = 0; j < f; ++j) {
+      e->putScalar(0.0);
+      e->replaceGlobalValue(free[j], 1.0);
+      Kg->apply(*e, *Ke);
+      m.applyMass(*e, *Me);
+      auto kd = Ke->getData(), md = Me->getData();
+      for (int i = 0; i < f; ++i) K(i, j) = kd[free[i]], M(i, j) = md[free[i]];
+    }
+    modes.compute(K, M);
   }
-}
+};
 
 /// The error of u(T) of a run of barDeck(4, 1, ...) against the exact
 /// solution of its semi-discrete system M ü + C u̇ + K u = 0, C = α_R M +
@@ -144,18 +153,14 @@ void denseFreeSystem(const ddc::Model& m, std::vector<int>& free, Eigen::MatrixX
 /// bar's lowest bending mode is at the test's damping), relative to the
 /// largest |u(T)|.
 double modalError(const ddc::Analysis& a, double T, double alphaR, double betaR) {
-  const ddc::Model& m = a.model();
-  const int n = static_cast<int>(m.ownedMap()->getGlobalNumElements());
-  std::vector<int> free;
-  Eigen::MatrixXd Kf, Mf;
-  denseFreeSystem(m, free, Kf, Mf);
+  const FreeModes fm(a.model());
+  const auto& free = fm.free;
+  const auto& modes = fm.modes;
+  const Eigen::MatrixXd& Mf = fm.M;
   const int f = static_cast<int>(free.size());
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(Kf, Mf);
   // The initial velocity: 0.1 on every free x DOF.
-  std::vector<char> isX(n, 0);
-  for (int node = 0; node < m.mesh().numNodes(); ++node) isX[m.dof(node, 0)] = 1;
   Eigen::VectorXd v(f);
-  for (int i = 0; i < f; ++i) v[i] = isX[free[i]] ? 0.1 : 0.0;
+  for (int i = 0; i < f; ++i) v[i] = fm.isX[i] ? 0.1 : 0.0;
   Eigen::VectorXd exact = Eigen::VectorXd::Zero(f);
   for (int k = 0; k < f; ++k) {
     const Eigen::VectorXd phi = modes.eigenvectors().col(k);  // M-orthonormal
@@ -207,21 +212,14 @@ TEST(Dynamics, TheBarsLongitudinalPeriodConvergesAtSecondOrderInTheMesh) {
   for (int nx : {10, 20, 40}) {
     PL deck = barDeck(nx, 1, 1.0, 0.5);
     ddc::Analysis a(worldComm(), deck);
-    const ddc::Model& m = a.model();
-    const int n = static_cast<int>(m.ownedMap()->getGlobalNumElements());
-    std::vector<int> free;
-    Eigen::MatrixXd Kf, Mf;
-    denseFreeSystem(m, free, Kf, Mf);
-    const int f = static_cast<int>(free.size());
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(Kf, Mf);
-    std::vector<char> isX(n, 0);
-    for (int node = 0; node < m.mesh().numNodes(); ++node) isX[m.dof(node, 0)] = 1;
+    const FreeModes fm(a.model());
+    const int f = static_cast<int>(fm.free.size());
     double omega = -1.0;
     for (int k = 0; k < f && omega < 0.0; ++k) {
-      const Eigen::VectorXd phi = modes.eigenvectors().col(k);
+      const Eigen::VectorXd phi = fm.modes.eigenvectors().col(k);
       double x = 0.0, y = 0.0;
-      for (int i = 0; i < f; ++i) (isX[free[i]] ? x : y) += phi[i] * phi[i];
-      if (y < 1e-20 * x) omega = std::sqrt(modes.eigenvalues()[k]);  // u_x alone: longitudinal
+      for (int i = 0; i < f; ++i) (fm.isX[i] ? x : y) += phi[i] * phi[i];
+      if (y < 1e-20 * x) omega = std::sqrt(fm.modes.eigenvalues()[k]);  // u_x alone: longitudinal
     }
     ASSERT_GT(omega, 0.0) << "no longitudinal mode at nx = " << nx;
     EXPECT_GT(omega, exact) << "consistent mass: from above";
