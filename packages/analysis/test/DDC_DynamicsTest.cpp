@@ -26,6 +26,7 @@
 #include "DDC_AnalysisTestDecks.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_TestErrors.hpp"
+#include "DDC_TimeIntegrator.hpp"
 
 namespace {
 
@@ -338,6 +339,91 @@ TEST(Dynamics, GravityOnAClampedBarBalancesTheEnergy) {
   EXPECT_LT(worst / peak, kEnergyConservation);
   if (worldComm()->getRank() == 0)
     std::cout << "[gravity] clamped bar: |E - W| / max W = " << worst / peak << "\n";
+}
+
+/// One step of the Newmark-α family for the single mode q̈ + ω² q = 0 (the
+/// formulas of DDC_TimeIntegrator.hpp written out for one DOF, independently
+/// of the code): the state (q, q̇, q̈) after one step of h.
+Eigen::Vector3d modalStep(const ddc::NewmarkParameters& p, double w2, double h, const Eigen::Vector3d& x) {
+  const double qt = x[0] + h * x[1] + h * h * (0.5 - p.beta) * x[2], vt = x[1] + h * (1.0 - p.gamma) * x[2];
+  const double a1 = -(p.alphaM * x[2] + (1.0 - p.alphaF) * w2 * qt + p.alphaF * w2 * x[0]) /
+                    ((1.0 - p.alphaM) + (1.0 - p.alphaF) * w2 * p.beta * h * h);
+  return {qt + p.beta * h * h * a1, vt + p.gamma * h * a1, a1};
+}
+
+TEST(Dynamics, TheAlphaMethodsDampAStiffModeAtTheirSpectralRadius) {
+  // One Quad4 (1 x 1, ν = 0) clamped on its left edge, its right edge held
+  // in y and started at q̇ = 1 in x: by symmetry a single mode of frequency
+  // ω moves. At ω h = 1e6 (a mode far beyond the step) the energy per step
+  // of the run equals that of the modal recurrence to round-off, and the
+  // recurrence's spectral radius (of its 3 x 3 amplification matrix) is the
+  // documented high-frequency damping: ρ∞ for generalised-α,
+  // (1 + α)/(1 − α) for HHT-α.
+  if (worldComm()->getSize() > 1) GTEST_SKIP() << "one element";
+  struct Case {
+    Scheme scheme;
+    ddc::NewmarkParameters p;
+    double documented;
+  };
+  const Case cases[] = {
+      {{"Generalized-alpha", "Spectral Radius", 0.5}, ddc::NewmarkParameters::generalisedAlpha(0.5, "t"), 0.5},
+      {{"Generalized-alpha", "Spectral Radius", 0.8}, ddc::NewmarkParameters::generalisedAlpha(0.8, "t"), 0.8},
+      {{"HHT-alpha", "HHT Alpha", -0.3}, ddc::NewmarkParameters::hht(-0.3, "t"), 0.7 / 1.3},
+      {{"HHT-alpha", "HHT Alpha", -0.1}, ddc::NewmarkParameters::hht(-0.1, "t"), 0.9 / 1.1}};
+  for (const Case& c : cases) {
+    // The mode's frequency from the model (any step: the run is rebuilt).
+    auto deckFor = [&](double h, int steps) {
+      PL deck("DDContact");
+      RectangleSpec r;
+      r.nx = r.ny = 1;
+      r.material = "Linear Elastic";
+      r.E = 1.0;
+      r.nu = 0.0;
+      addRectangle(deck, "Cell", r).sublist("Element").sublist("Material").set("Density", 1.0);
+      addDisplacement(deck, "Clamped", "Cell/left", "XY");
+      addDisplacement(deck, "Guided", "Cell/right", "Y");
+      PL& dyn = deck.sublist("Dynamics");
+      dyn.set("Final Time", h * steps);
+      dyn.set("Time Step", h);
+      dyn.sublist("Initial Velocity").sublist("Push").set("Set", std::string("Cell/right"));
+      dyn.sublist("Initial Velocity").sublist("Push").set("Velocity X", 1.0);
+      setScheme(deck, c.scheme);
+      deck.sublist("Output").set("Progress", false);
+      deck.sublist("Output").set("VTK", false);
+      return deck;
+    };
+    PL probe = deckFor(1.0, 1);
+    ddc::Analysis first(worldComm(), probe);
+    const FreeModes fm(first.model());
+    ASSERT_EQ(fm.free.size(), 2u);
+    const double w2 = fm.K.sum() / fm.M.sum();  // the symmetric mode (1, 1)
+    // ω h far beyond 1: the spectral radius tends to its limit slowly near
+    // the (triple) root at infinity (0.537 for ρ∞ = 0.5 at ω h = 100).
+    constexpr double kOmegaH = 1e6;
+    const double h = kOmegaH / std::sqrt(w2);
+    constexpr int kSteps = 12;
+    PL deck = deckFor(h, kSteps);
+    ddc::Analysis a(worldComm(), deck);
+    a.run("");
+    // E_n / E_0 of the run against (q̇_n² + ω² q_n²) / q̇_0² of the recurrence.
+    Eigen::Vector3d x(0.0, 1.0, 0.0);
+    const double E0 = 0.5 * fm.M.sum();  // ½ v0ᵀ M v0 with v0 = (1, 1)
+    double worst = 0.0;
+    for (const auto& r : a.history()) {
+      x = modalStep(c.p, w2, h, x);
+      const double expected = x[1] * x[1] + w2 * x[0] * x[0];
+      worst = std::max(worst, std::abs((r.strainEnergy + r.kineticEnergy) / E0 - expected) / expected);
+    }
+    EXPECT_LT(worst, 1e-8) << c.scheme.integrator << " " << c.scheme.value;
+    // The amplification matrix's spectral radius.
+    Eigen::Matrix3d A;
+    for (int j = 0; j < 3; ++j) A.col(j) = modalStep(c.p, w2, h, Eigen::Vector3d::Unit(j));
+    const double rho = A.eigenvalues().cwiseAbs().maxCoeff();
+    EXPECT_NEAR(rho / c.documented, 1.0, 0.01) << c.scheme.integrator << " " << c.scheme.value;
+    std::cout << "[dynamics] " << c.scheme.integrator << " " << c.scheme.parameter << " = " << c.scheme.value
+              << ": omega h = " << kOmegaH << ", run vs modal recurrence " << worst << ", spectral radius " << rho
+              << " (documented " << c.documented << ")\n";
+  }
 }
 
 TEST(Dynamics, FetiDpEqualsMonolithic) {
