@@ -500,7 +500,7 @@ void Model::applyElementTangent(const Vector& u, const Vector& v, Vector& Kv) co
     Eigen::VectorXd ve;
     ElementResult er;
     const int d = mesh_->dim();
-    for (size_t i = 0; i < localElements_.size() && failure.empty(); ++i) {
+    for (size_t i = 0; i < localElements_.size(); ++i) {
       const int e = localElements_[i];
       const int nn = mesh_->elementNumNodes(e);
       const int* en = mesh_->elementNodes(e);

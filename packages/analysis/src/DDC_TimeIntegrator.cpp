@@ -54,6 +54,7 @@ void NewmarkIntegrator::initialise(const Model& model, const Vector& u0, const V
   u_->assign(u0);
   v_->assign(v0);
   a_->putScalar(0.0);
+  stateForcesCurrent_ = false;
   cgIterations_ = 0;
   // The force a0 balances: force0, less the damping of the initial velocity.
   auto b = model.createVector();
@@ -125,17 +126,21 @@ void NewmarkIntegrator::beginStep(const Model& model, double h, const Vector& fi
   g_->putScalar(0.0);
   const double s = 1.0 / (1.0 - p_.alphaF);
   if (p_.alphaF != 0.0) g_->update(p_.alphaF * s, fintNow, -p_.alphaF * s, externalNow, 0.0);
-  if (p_.alphaM != 0.0) {
-    auto Ma = model.createVector();
-    model.applyMass(*a_, *Ma);
-    g_->update(p_.alphaM * s, *Ma, 1.0);
-  }
+  if (p_.alphaM != 0.0 || (p_.alphaF != 0.0 && damped())) stateForces(model);
+  if (p_.alphaM != 0.0) g_->update(p_.alphaM * s, *Ma_, 1.0);
   // ... + α_f C v_n / (1 − α_f).
-  if (p_.alphaF != 0.0 && damped()) {
-    auto Cv = model.createVector();
-    applyDamping(model, *u_, *v_, *Cv);
-    g_->update(p_.alphaF * s, *Cv, 1.0);
+  if (p_.alphaF != 0.0 && damped()) g_->update(p_.alphaF * s, *Cv_, 1.0);
+}
+
+void NewmarkIntegrator::stateForces(const Model& model) const {
+  if (stateForcesCurrent_) return;
+  if (Ma_.is_null()) Ma_ = model.createVector();
+  model.applyMass(*a_, *Ma_);
+  if (damped()) {
+    if (Cv_.is_null()) Cv_ = model.createVector();
+    applyDamping(model, *u_, *v_, *Cv_);
   }
+  stateForcesCurrent_ = true;
 }
 
 void NewmarkIntegrator::applyDamping(const Model& model, const Vector& u, const Vector& v, Vector& Cv) const {
@@ -149,12 +154,9 @@ void NewmarkIntegrator::applyDamping(const Model& model, const Vector& u, const 
 }
 
 void NewmarkIntegrator::inertiaForce(const Model& model, Vector& f) const {
-  model.applyMass(*a_, f);
-  if (damped()) {
-    auto Cv = model.createVector();
-    applyDamping(model, *u_, *v_, *Cv);
-    f.update(1.0, *Cv, 1.0);
-  }
+  stateForces(model);
+  f.assign(*Ma_);
+  if (damped()) f.update(1.0, *Cv_, 1.0);
 }
 
 void NewmarkIntegrator::velocity(const Vector& u, Vector& v) const {
@@ -188,6 +190,7 @@ void NewmarkIntegrator::acceptStep(const Vector& u) {
   acceleration(u, *a_);
   v_->update(1.0, *vTilde_, p_.gamma * h_, *a_, 0.0);
   u_->assign(u);
+  stateForcesCurrent_ = false;
 }
 
 }  // namespace ddc

@@ -117,6 +117,12 @@ class NewmarkIntegrator {
   double dampAlpha_ = 0.0, dampBeta_ = 0.0;  ///< setRayleighDamping()
   /// C v = alpha M v + beta K(u) v into Cv.
   void applyDamping(const Model& model, const Vector& u, const Vector& v, Vector& Cv) const;
+  /// M a_n and (with damping) C v_n of the converged state, computed once
+  /// per state (an element pass with beta > 0): beginStep() and
+  /// inertiaForce() both need them, and a bisected step begins again.
+  void stateForces(const Model& model) const;
+  mutable Teuchos::RCP<Vector> Ma_, Cv_;
+  mutable bool stateForcesCurrent_ = false;
 };
 
 }  // namespace ddc
