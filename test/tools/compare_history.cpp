@@ -1,8 +1,10 @@
 // compare_history A.csv B.csv RTOL [COLUMN...]
-// Compares two history.csv files column by column: same header, same number
-// of rows, and |a - b| <= RTOL * max(|a|, |b|, FLOOR) for the named columns
-// (default: every column except the rank-dependent wall_seconds and
-// contact_bytes). FLOOR = 1e-4 * the column's largest magnitude: values that
+// Compares two history.csv files column by column: the same number of rows,
+// and |a - b| <= RTOL * max(|a|, |b|, FLOOR) for the named columns, found by
+// name in each file (a run with the decomposed contact element has columns
+// a plain run has not); without named columns the headers must be the same
+// and every column is compared except the rank-dependent wall_seconds and
+// contact_bytes. FLOOR = 1e-4 * the column's largest magnitude: values that
 // are round-off (e.g. 1e-14 strain energy of a rigid motion when the peak is
 // O(1)) then compare absolutely, to RTOL * 1e-4 of the peak.
 // Prints the worst relative difference per column; exit 1 on mismatch.
@@ -50,7 +52,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   const double rtol = std::atof(argv[3]);
-  if (ha != hb) {
+  std::vector<std::string> cols(argv + 4, argv + argc);
+  if (cols.empty() && ha != hb) {
     std::cerr << "compare_history: headers differ\n";
     return 1;
   }
@@ -58,23 +61,27 @@ int main(int argc, char** argv) {
     std::cerr << "compare_history: row counts differ or are zero (" << a.size() << " vs " << b.size() << ")\n";
     return 1;
   }
-  std::vector<std::string> cols(argv + 4, argv + argc);
   if (cols.empty())
     for (const auto& h : ha)
       if (h != "wall_seconds" && h != "contact_bytes") cols.push_back(h);
   bool ok = true;
   for (const auto& c : cols) {
-    const auto it = std::find(ha.begin(), ha.end(), c);
-    if (it == ha.end()) {
-      std::cerr << "compare_history: no column '" << c << "'\n";
+    const auto ia = std::find(ha.begin(), ha.end(), c), ib = std::find(hb.begin(), hb.end(), c);
+    if (ia == ha.end() || ib == hb.end()) {
+      std::cerr << "compare_history: no column '" << c << "' in " << (ia == ha.end() ? argv[1] : argv[2]) << "\n";
       return 1;
     }
-    const size_t j = it - ha.begin();
+    const size_t ja = ia - ha.begin(), jb = ib - hb.begin();
+    for (size_t i = 0; i < a.size(); ++i)
+      if (a[i].size() <= ja || b[i].size() <= jb) {
+        std::cerr << "compare_history: row " << i + 1 << " has too few fields\n";
+        return 1;
+      }
     double scale = 0.0, worst = 0.0;
     for (size_t i = 0; i < a.size(); ++i)
-      scale = std::max({scale, std::abs(std::atof(a[i][j].c_str())), std::abs(std::atof(b[i][j].c_str()))});
+      scale = std::max({scale, std::abs(std::atof(a[i][ja].c_str())), std::abs(std::atof(b[i][jb].c_str()))});
     for (size_t i = 0; i < a.size(); ++i) {
-      const double x = std::atof(a[i][j].c_str()), y = std::atof(b[i][j].c_str());
+      const double x = std::atof(a[i][ja].c_str()), y = std::atof(b[i][jb].c_str());
       const double rel = std::abs(x - y) / std::max({std::abs(x), std::abs(y), 1e-4 * scale, 1e-300});
       worst = std::max(worst, rel);
     }

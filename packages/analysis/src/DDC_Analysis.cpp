@@ -91,6 +91,38 @@ Teuchos::RCP<PL> loadSteppingValidParameters() {
   return pl;
 }
 
+/// "Step Control": steps sized by the frozen-geometry error of the
+/// decomposed contact element (doc/contact.md, "Step control by the
+/// frozen-geometry error").
+Teuchos::RCP<PL> stepControlValidParameters() {
+  auto pl = Teuchos::rcp(new PL("Step Control"));
+  pl->set("Error Tolerance", 0.0,
+          "0 (default): the steps of Load Stepping / Dynamics, halved only when Newton fails. > 0 (needs "
+          "Contact/Formulation = Decomposed ...): each converged step's frozen-geometry error indicator |sum "
+          "lambda (g - g^p)| / (strain + kinetic energy), read at the step-end pairing, must not exceed it; a "
+          "step above it is repeated smaller and a step well below it lets the next one grow (sizes within "
+          "Minimum/Maximum Step Size; the first step is Final Load Factor / Number of Steps, or Dynamics/Time "
+          "Step). The indicator is a first-order estimate of the relative strain-energy error of the step; on "
+          "the two half-rings the error measured was 1-4.5 times the indicator (doc/contact.md), so 0.003 "
+          "keeps it below 1 %.",
+          between(0.0, 1.0, Interval::RightOpen));
+  pl->set("Geometry Corrections", 3,
+          "How many times a step whose indicator exceeds Error Tolerance is solved again with the projections "
+          "and normals of its end (each time one pairing exchange and a Newton solve) before it is repeated "
+          "smaller; 0: repeated smaller at once. The repeats converge to the geometry of the step's end "
+          "(doc/contact.md).",
+          atLeast(0));
+  pl->set("Minimum Step Size", 0.0,
+          "Smallest step (load factor or time) the error control may take; a step at this size is accepted "
+          "whatever its indicator (with a warning). 0 (default): the first step halved Max Bisections times.",
+          atLeast(0.0));
+  pl->set("Maximum Step Size", 0.0,
+          "Largest step the error control may grow to (load factor or time). 0 (default): the first step "
+          "(the steps never grow beyond Final Load Factor / Number of Steps, or Dynamics/Time Step).",
+          atLeast(0.0));
+  return pl;
+}
+
 /// "Dynamics": the integrator, the time steps, the Newmark parameters, the
 /// mass matrix and the initial velocities (doc/user-guide.md, "Dynamics").
 Teuchos::RCP<const Teuchos::ParameterList> dynamicsValidParameters() {
@@ -308,6 +340,8 @@ Teuchos::RCP<const Teuchos::ParameterList> Analysis::getValidParameters(const El
   setSublist(*pl, "Load Stepping", *loadSteppingValidParameters(), "Load stepping and bisection.");
   setSublist(*pl, "Dynamics", *dynamicsValidParameters(),
              "Implicit structural dynamics (Integrator = Newmark) instead of quasi-static load stepping.");
+  setSublist(*pl, "Step Control", *stepControlValidParameters(),
+             "Steps sized by the frozen-geometry error of the decomposed contact element (off by default).");
   setSublist(*pl, "Newton", *newtonValidParameters(), "Newton iteration and convergence criteria.");
   setSublist(*pl, "Solver", *solverValidParameters(), "Solution strategy and linear solvers.");
   setSublist(*pl, "Partition", *partitionValidParameters(), "Domain partitioning.");
@@ -415,7 +449,7 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
     registerSurfaceContactElements(factory_);
   const auto valid = getValidParameters(factory_);
   validateLevel(params, *valid, "");
-  for (const char* s : {"Load Stepping", "Dynamics", "Newton", "Solver", "Partition", "Output"})
+  for (const char* s : {"Load Stepping", "Dynamics", "Step Control", "Newton", "Solver", "Partition", "Output"})
     validateLevel(params.sublist(s), valid->sublist(s), s);
   dynamic_ = params.sublist("Dynamics").get<std::string>("Integrator") != "None";
   DDC_INPUT_REQUIRE(params.isSublist("Mesh"), "sublist 'Mesh' is required");
@@ -621,12 +655,48 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
     u_ = model_->createVector();
   }
   if (dynamic_) setUpDynamics(params.sublist("Dynamics"));
+  setUpStepControl(params);
   Activity activity("setting up the " + strategy_->name() + " solver (" + sizes + ")");
   strategy_->setUp(model_, [this](const std::string& line) { progress(line); });
   params_ = params;
 }
 
 Analysis::~Analysis() = default;
+
+void Analysis::setUpStepControl(const Teuchos::ParameterList& params) {
+  const PL& sc = params.sublist("Step Control");
+  stepControl_ = StepControlSettings{};
+  stepControl_.tolerance = sc.get<double>("Error Tolerance");
+  stepControl_.corrections = sc.get<int>("Geometry Corrections");
+  if (stepControl_.tolerance == 0.0) return;
+  DDC_INPUT_REQUIRE(model_->decomposedContact(),
+                    "'Step Control/Error Tolerance' = "
+                        << stepControl_.tolerance
+                        << " controls the frozen-geometry error of the decomposed contact element, and this run "
+                           "has none (Contact/Formulation = Decomposed Node-To-Segment or Decomposed "
+                           "Node-To-Surface, with a contact pair); set it to 0");
+  const PL& ls = params.sublist(dynamic_ ? "Dynamics" : "Load Stepping");
+  const double first = dynamic_ ? ls.get<double>("Time Step")
+                                : ls.get<double>("Final Load Factor") / ls.get<int>("Number of Steps");
+  const double finalValue = dynamic_ ? ls.get<double>("Final Time") : ls.get<double>("Final Load Factor");
+  const char* firstName = dynamic_ ? "'Dynamics/Time Step'" : "'Load Stepping/Final Load Factor' / 'Number of Steps'";
+  const double minSize = sc.get<double>("Minimum Step Size"), maxSize = sc.get<double>("Maximum Step Size");
+  stepControl_.minSize = minSize > 0.0 ? minSize : std::ldexp(first, -ls.get<int>("Max Bisections"));
+  stepControl_.maxSize = maxSize > 0.0 ? maxSize : first;
+  stepControl_.first = std::clamp(first, stepControl_.minSize, stepControl_.maxSize);
+  DDC_INPUT_REQUIRE(stepControl_.minSize <= stepControl_.maxSize,
+                    "'Step Control/Minimum Step Size' = " << stepControl_.minSize
+                                                          << " exceeds 'Step Control/Maximum Step Size' = "
+                                                          << stepControl_.maxSize
+                                                          << (maxSize > 0.0 ? "" : " (0: the first step)"));
+  DDC_INPUT_REQUIRE(stepControl_.maxSize <= finalValue,
+                    "'Step Control/Maximum Step Size' = " << stepControl_.maxSize << " exceeds the whole analysis ("
+                                                          << (dynamic_ ? "Dynamics/Final Time" : "Load Stepping/Final Load Factor")
+                                                          << " = " << finalValue << ")");
+  DDC_INPUT_REQUIRE(minSize == 0.0 || minSize <= first,
+                    "'Step Control/Minimum Step Size' = " << minSize << " exceeds the first step " << first << " ("
+                                                          << firstName << ")");
+}
 
 void Analysis::setUpDynamics(Teuchos::ParameterList& dyn) {
   const Mesh& mesh = model_->mesh();
@@ -1054,6 +1124,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
     auto columns = HistoryWriter::standardColumns();
     columns.insert(columns.end(), {"external_work", "contact_bytes", "bisections", "contact_force_z"});
     if (dynamic_) columns.insert(columns.end(), {"time", "kinetic_energy", "total_energy"});
+    if (decomposed) columns.insert(columns.end(), {"step_size", "rejected_steps", "geometry_corrections", "geometry_error"});
     hist = std::make_unique<HistoryWriter>(comm_, dir->path() + "/history.csv", columns);
     // The validated parameters, defaults included; written with every step
     // checked (a full disk must not leave an empty file behind).
@@ -1095,7 +1166,36 @@ void Analysis::runSteps(OutputDirectory* dir) {
   st.uPrev = model_->createVector();
   st.fint = model_->createVector();
   if (integrator_) integrator_->inertiaForce(*model_, *st.reactionPrev);  // M a0 (+ C v0)
-  BisectingSteps steps(finalLambda, nsteps, maxBisect);
+  // The steps: equal ones halved on Newton failure, or sized by the
+  // frozen-geometry error (Step Control).
+  std::unique_ptr<StepController> controller;
+  AdaptiveSteps* adaptive = nullptr;
+  if (stepControl_.tolerance > 0.0) {
+    auto a = std::make_unique<AdaptiveSteps>(finalLambda, stepControl_.first, stepControl_.minSize,
+                                             stepControl_.maxSize, stepControl_.tolerance, maxBisect,
+                                             stepControl_.corrections);
+    adaptive = a.get();
+    controller = std::move(a);
+  } else {
+    controller = std::make_unique<BisectingSteps>(finalLambda, nsteps, maxBisect);
+  }
+  StepController& steps = *controller;
+  // Exchanges and error rejections since the last accepted step: a rejected
+  // attempt's pairing exchange is the accepted step's cost.
+  long exchanges0 = contact ? model_->exchanges() : 0;
+  long bytes0 = contact ? model_->bytesExchanged() : 0;
+  int rejections = 0, corrections = 0;
+  std::vector<ContactSlot> savedSlots;
+  bool repeating = false;  ///< the next attempt repeats a step with the geometry of its end
+  // "step   3/10" (equal steps) or "step   3" (their number is not known).
+  auto stepLabel = [&](int n) {
+    char b[40];
+    if (adaptive)
+      std::snprintf(b, sizeof b, "%3d", n);
+    else
+      std::snprintf(b, sizeof b, "%3d/%d", n, nsteps);
+    return std::string(b);
+  };
   if (!nearlyIncompressible_.empty()) progress("warning: " + nearlyIncompressible_);
   auto contactWarnings = [&] {
     for (const auto& w : model_->takeContactWarnings()) progress("warning: " + w);
@@ -1106,9 +1206,10 @@ void Analysis::runSteps(OutputDirectory* dir) {
     const int n = p.step;
     StepRecord rec;
     rec.step = n;
-    const long exchanges0 = contact ? model_->exchanges() : 0;
-    const long bytes0 = contact ? model_->bytesExchanged() : 0;
-    const auto savedSlots = contact ? model_->contactSlots() : std::vector<ContactSlot>();
+    // The contact state at the step's start (a repeat with the geometry of
+    // the step's end keeps the one saved before it).
+    if (contact && !repeating) savedSlots = model_->contactSlots();
+    repeating = false;
     if (contact && model_->contactOptions().initialInContact) model_->activateAllPaired();
     if (integrator_) {
       // f_ext(t_n) = λ_n f_ext for the α-methods' previous-step terms.
@@ -1125,8 +1226,9 @@ void Analysis::runSteps(OutputDirectory* dir) {
       if (!steps.reject(p)) {
         std::ostringstream os;
         os << "Newton did not converge in step " << n << " (" << factorName << " " << p.from << " -> " << p.to
-           << ") after " << steps.maxBisections() << " bisections (" << stepping << "/Max Bisections): " << rec.failure
-           << "; residual history:";
+           << ") after " << p.depth << " bisections (" << stepping << "/Max Bisections = " << maxBisect;
+        if (adaptive) os << ", Step Control/Minimum Step Size = " << adaptive->minSize();
+        os << "): " << rec.failure << "; residual history:";
         for (double x : rec.residualHistory) os << " " << x;
         if (!nearlyIncompressible_.empty()) os << "; note: " << nearlyIncompressible_;
         throw SolverError(os.str());
@@ -1138,11 +1240,73 @@ void Analysis::runSteps(OutputDirectory* dir) {
       progress(buf);
       continue;
     }
-    steps.accept(p);
     const double lambda = p.to;
     rec.loadFactor = lambda;
     rec.bisections = p.depth;
-    rec.strainEnergy = model_->assemble(*u_, lambda, st.fint.get(), nullptr, nullptr).strainEnergy;
+    rec.stepSize = p.size;
+    auto fint = model_->createVector();
+    rec.strainEnergy = model_->assemble(*u_, lambda, fint.get(), nullptr, nullptr).strainEnergy;
+    ContactSummary cs;
+    std::vector<ContactSlot> convergedSlots;
+    if (contact) {
+      // Converged: refresh the pairing once per step, with a global search
+      // (tracking cannot see another part of the surface come nearer). The
+      // decomposed element freezes the new projections and normals.
+      // Multipliers, gaps and normals of the converged state are read first:
+      // after re-pairing, the decomposed slots hold the next step's normals.
+      model_->updateActiveSet(*u_);
+      cs = model_->contactSummary();
+      if (contactNodes || decomposed) convergedSlots = model_->contactSlots();
+      model_->updatePairing(*u_, true, decomposed);
+      contactWarnings();
+      if (decomposed) {
+        // The frozen-geometry error indicator (doc/contact.md, "Step control
+        // by the frozen-geometry error"), relative to the energy of the state.
+        double energy = rec.strainEnergy;
+        if (integrator_) {
+          auto v = model_->createVector();
+          integrator_->velocity(*u_, *v);
+          energy += model_->kineticEnergy(*v);
+        }
+        const double w = model_->contact()->frozenGeometryError(convergedSlots).total();
+        rec.geometryError = energy > 0.0 ? w / energy : 0.0;
+      }
+    }
+    const StepVerdict verdict = steps.judge(p, rec.geometryError);
+    if (verdict != StepVerdict::Accept) {
+      // Back to the step's start: the displacements (the integrator and
+      // f_int were not advanced) and, to try a smaller step, the contact
+      // state; a repeat keeps the pairing just refreshed at the step's end,
+      // so the step is solved again with the projections and normals of
+      // its end.
+      u_->assign(*st.uPrev);
+      const bool repeat = verdict == StepVerdict::Repeat;
+      repeating = repeat;
+      if (repeat)
+        ++corrections;
+      else {
+        model_->restoreContactState(savedSlots);
+        ++rejections;
+      }
+      const StepProposal next = steps.propose();
+      char buf[300];
+      std::snprintf(buf, sizeof buf, "  step %d: frozen-geometry error %.3g above Step Control/Error Tolerance at %s %.6g; %s", n,
+                    rec.geometryError, factorName, p.to,
+                    repeat ? "repeating it with the projections and normals of its end" : "repeating it smaller");
+      std::string line = buf;
+      if (!repeat) {
+        std::snprintf(buf, sizeof buf, " (size %.3g -> %.3g)", p.size, next.size);
+        line += buf;
+      }
+      progress(line);
+      continue;
+    }
+    steps.accept(p);
+    rec.rejections = rejections;
+    rec.corrections = corrections;
+    rejections = corrections = 0;
+    st.fint = fint;
+    if (contactNodes) st.convergedSlots = convergedSlots;
     // The forces the prescribed DOFs exert: f_int, and in dynamics also the
     // inertia and damping of the prescribed nodes (a moving support
     // accelerates its nodes' mass).
@@ -1159,22 +1323,20 @@ void Analysis::runSteps(OutputDirectory* dir) {
     st.reactionPrev->assign(*st.reaction);
     st.uPrev->assign(*u_);
     if (contact) {
-      // Converged: refresh the pairing once per step, with a global search
-      // (tracking cannot see another part of the surface come nearer). The
-      // decomposed element freezes the new projections and normals.
-      // Multipliers, gaps and normals of the converged state are read first:
-      // after re-pairing, the decomposed slots hold the next step's normals.
-      model_->updateActiveSet(*u_);
-      const auto cs = model_->contactSummary();
-      if (contactNodes) st.convergedSlots = model_->contactSlots();
-      model_->updatePairing(*u_, true, decomposed);
-      contactWarnings();
       rec.activeContacts = cs.active;
       rec.contactForce[0] = cs.force[0];
       rec.contactForce[1] = cs.force[1];
       rec.contactForce[2] = cs.force[2];
       rec.contactExchanges = model_->exchanges() - exchanges0;
       rec.contactBytes = model_->bytesExchanged() - bytes0;
+      exchanges0 = model_->exchanges();
+      bytes0 = model_->bytesExchanged();
+    }
+    if (adaptive && adaptive->atMinimum()) {
+      char buf[240];
+      std::snprintf(buf, sizeof buf, "warning: step %d: frozen-geometry error %.3g above Step Control/Error Tolerance at the minimum step size %.3g (Step Control/Minimum Step Size); accepted",
+                    n, rec.geometryError, p.size);
+      progress(buf);
     }
     rec.wallSeconds = seconds();
     history_.push_back(rec);
@@ -1184,19 +1346,25 @@ void Analysis::runSteps(OutputDirectory* dir) {
                               rec.contactForce[1], double(rec.contactExchanges), rec.wallSeconds, rec.externalWork,
                               double(rec.contactBytes), double(rec.bisections), rec.contactForce[2]};
       if (dynamic_) row.insert(row.end(), {rec.loadFactor, rec.kineticEnergy, rec.kineticEnergy + rec.strainEnergy});
+      if (decomposed)
+        row.insert(row.end(), {rec.stepSize, double(rec.rejections), double(rec.corrections), rec.geometryError});
       hist->appendRow(row);
     }
     char buf[300];
     if (dynamic_)
       std::snprintf(buf, sizeof buf,
-                    "step %3d/%d  time %.6g (dt %.3g)  Newton %2d  |r| %.3e -> %.3e  strain %.6e  kinetic %.6e  %.2f s",
-                    n, nsteps, lambda, p.size, rec.newtonIterations, rec.residualHistory.front(),
+                    "step %s  time %.6g (dt %.3g)  Newton %2d  |r| %.3e -> %.3e  strain %.6e  kinetic %.6e  %.2f s",
+                    stepLabel(n).c_str(), lambda, p.size, rec.newtonIterations, rec.residualHistory.front(),
                     rec.residualHistory.back(), rec.strainEnergy, rec.kineticEnergy, rec.wallSeconds);
     else
-      std::snprintf(buf, sizeof buf, "step %3d/%d  load %.6g  Newton %2d  |r| %.3e -> %.3e  energy %.6e  %.2f s", n,
-                    nsteps, lambda, rec.newtonIterations, rec.residualHistory.front(), rec.residualHistory.back(),
+      std::snprintf(buf, sizeof buf, "step %s  load %.6g  Newton %2d  |r| %.3e -> %.3e  energy %.6e  %.2f s",
+                    stepLabel(n).c_str(), lambda, rec.newtonIterations, rec.residualHistory.front(), rec.residualHistory.back(),
                     rec.strainEnergy, rec.wallSeconds);
     std::string line = buf;
+    if (adaptive) {
+      std::snprintf(buf, sizeof buf, "  size %.3g  error %.3g", p.size, rec.geometryError);
+      line += buf;
+    }
     if (contact) {
       std::snprintf(buf, sizeof buf, "  contacts %d  force (%.4g, %.4g)", rec.activeContacts, rec.contactForce[0],
                     rec.contactForce[1]);

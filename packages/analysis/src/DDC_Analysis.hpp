@@ -47,6 +47,18 @@ struct StepRecord {
   long contactBytes = 0;      ///< bytes those exchanges moved between ranks
   std::string failure;        ///< why the last attempt failed (empty when converged)
   double kineticEnergy = 0.0;  ///< dynamics: ½ vᵀ M v at the end of the (sub)step (0 quasi-static)
+  double stepSize = 0.0;       ///< the step's size (StepProposal::size)
+  /// Attempts of this step the step control's error test sent back to be
+  /// tried smaller before it was accepted (Newton failures are counted in
+  /// `bisections`).
+  int rejections = 0;
+  /// Repeats of this step with the geometry of its end (Step Control/Geometry
+  /// Corrections) before it was accepted.
+  int corrections = 0;
+  /// Decomposed contact: the frozen-geometry error indicator of the step,
+  /// |Σ λ (g − g^p)| / (U + kinetic energy) (frozenGeometryEnergy(); 0
+  /// without active contact or without energy).
+  double geometryError = 0.0;
 };
 
 /// Where the time of a run went (seconds, max over ranks after run()).
@@ -136,6 +148,16 @@ class Analysis {
     std::vector<ContactSlot> convergedSlots;
   };
   void runSteps(OutputDirectory* dir);
+  /// Step Control, resolved (setUpStepControl()): tolerance 0 = off.
+  struct StepControlSettings {
+    double tolerance = 0.0;
+    double first = 0.0, minSize = 0.0, maxSize = 0.0;  ///< step sizes (load factor or time)
+    int corrections = 0;  ///< Geometry Corrections
+  };
+  /// Check the "Step Control" list against the run (decomposed contact, the
+  /// sizes) and resolve its defaults.
+  void setUpStepControl(const Teuchos::ParameterList& params);
+  StepControlSettings stepControl_;
   /// Dynamics: check the masses and the time step, build the integrator and
   /// the initial velocities from the validated "Dynamics" list.
   void setUpDynamics(Teuchos::ParameterList& dynamics);

@@ -1,6 +1,8 @@
 #include "DDC_StepController.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace ddc {
@@ -64,6 +66,83 @@ bool BisectingSteps::reject(const StepProposal&) {
 
 bool BisectingSteps::endsNominalStep(const StepProposal& p) const {
   return !(p.to < target(p.step) - kReached * std::abs(final_));
+}
+
+AdaptiveSteps::AdaptiveSteps(double finalValue, double initialSize, double minSize, double maxSize,
+                             double tolerance, int maxHalvings, int maxCorrections)
+    : final_(finalValue), min_(minSize), max_(maxSize), tolerance_(tolerance), maxHalvings_(maxHalvings),
+      maxCorrections_(maxCorrections), size_(initialSize) {
+  if (!(finalValue > 0.0) || !std::isfinite(finalValue))
+    throw std::invalid_argument("AdaptiveSteps: the final value must be > 0 and finite");
+  if (!(minSize > 0.0) || !(minSize <= initialSize) || !(initialSize <= maxSize) || !std::isfinite(maxSize))
+    throw std::invalid_argument("AdaptiveSteps: the sizes must satisfy 0 < minimum <= initial <= maximum < inf");
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance))
+    throw std::invalid_argument("AdaptiveSteps: the tolerance must be > 0 and finite");
+  if (maxHalvings < 0 || maxCorrections < 0)
+    throw std::invalid_argument("AdaptiveSteps: a negative number of halvings or corrections");
+}
+
+bool AdaptiveSteps::done() const { return !(current_ < final_ - kReached * final_); }
+
+StepProposal AdaptiveSteps::propose() const {
+  StepProposal p;
+  p.step = accepted_ + 1;
+  p.from = current_;
+  p.depth = depth_;
+  const double rest = final_ - current_;
+  if (rest <= size_ * (1 + kStretch) && rest <= max_ * (1 + kSnap)) {
+    p.to = final_;
+    p.size = rest;
+  } else if (rest < size_ + min_) {
+    // No sliver below the minimum size at the end: two equal steps.
+    p.size = 0.5 * rest;
+    p.to = current_ + p.size;
+  } else {
+    p.size = size_;
+    p.to = current_ + size_;
+  }
+  return p;
+}
+
+StepVerdict AdaptiveSteps::judge(const StepProposal& p, double error) {
+  if (!(error >= 0.0)) error = std::numeric_limits<double>::infinity();  // NaN: never accepted as small
+  const double ideal = error > 0.0 ? kSafety * std::sqrt(tolerance_ / error) : kMaxGrowth;
+  atMinimum_ = false;
+  if (error > tolerance_) {
+    if (corrections_ < maxCorrections_) {
+      ++corrections_;  // propose() gives the same step again
+      return StepVerdict::Repeat;
+    }
+    if (p.size > min_ * (1 + kSnap)) {
+      corrections_ = 0;
+      size_ = std::max(min_, p.size * std::clamp(ideal, kMinRejectFactor, kMaxRejectFactor));
+      return StepVerdict::Reduce;
+    }
+    atMinimum_ = true;  // nothing smaller is allowed: accepted as it is
+  }
+  double factor = std::min(ideal, kMaxGrowth);
+  if (maxCorrections_ > 0) factor = corrections_ > 0 ? 1.0 : std::max(factor, 1.0);
+  // From the controller's size, not the step's: the last steps may be
+  // stretched or split to meet the end.
+  nextSize_ = std::clamp(size_ * factor, min_, max_);
+  return StepVerdict::Accept;
+}
+
+void AdaptiveSteps::accept(const StepProposal& p) {
+  current_ = p.to;
+  ++accepted_;
+  depth_ = 0;
+  corrections_ = 0;
+  if (nextSize_ > 0.0) size_ = nextSize_;
+  nextSize_ = 0.0;
+}
+
+bool AdaptiveSteps::reject(const StepProposal& p) {
+  if (depth_ >= maxHalvings_ || 0.5 * p.size < min_ * (1 - kSnap)) return false;
+  ++depth_;
+  corrections_ = 0;
+  size_ = 0.5 * p.size;
+  return true;
 }
 
 }  // namespace ddc

@@ -29,6 +29,19 @@ struct StepProposal {
   double size = 0.0;
 };
 
+/// What a controller makes of a converged step's error indicator.
+enum class StepVerdict {
+  Accept,  ///< accept the step: accept() next
+  /// Solve the same step again (propose() returns it): the caller keeps what
+  /// it refreshed at the step's end and measured the error with (the
+  /// decomposed contact element's pairing), and restores the rest of the
+  /// step's start.
+  Repeat,
+  /// Solve a smaller step from the same value (propose()): the caller
+  /// restores the whole state of the step's start.
+  Reduce,
+};
+
 /// Chooses the steps of an analysis (see the top of this file).
 class StepController {
  public:
@@ -50,6 +63,12 @@ class StepController {
   virtual int numSteps() const = 0;
   /// True if the accepted step `p` ended its nominal step.
   virtual bool endsNominalStep(const StepProposal& p) const = 0;
+  /// Whether the controller judges converged steps by an error indicator
+  /// (judge()): the analysis computes the indicator before accepting.
+  virtual bool controlsError() const { return false; }
+  /// The converged step `p` has the error indicator `error`: accept it,
+  /// repeat it, or try a smaller one (StepVerdict). The default accepts.
+  virtual StepVerdict judge(const StepProposal& /*p*/, double /*error*/) { return StepVerdict::Accept; }
 };
 
 /// Nominal steps of equal size up to a final value, each cut in halves on
@@ -86,6 +105,82 @@ class BisectingSteps final : public StepController {
   int step_ = 1;       ///< the nominal step being worked on
   double size_ = 0.0;  ///< the sub-step size within it
   int depth_ = 0;      ///< cuts made in it so far
+};
+
+/// Steps controlled by an error indicator whose error grows as the square
+/// of the step size and that a repeat of the step with what its end
+/// refreshed can reduce: the frozen-geometry error of the decomposed
+/// contact element (doc/contact.md, "Step control by the frozen-geometry
+/// error"). A converged step whose indicator exceeds the tolerance is
+/// repeated with the geometry of its end, up to maxCorrections times
+/// (StepVerdict::Repeat); then, or with maxCorrections = 0 at once, it is
+/// tried again smaller (StepVerdict::Reduce): kSafety·sqrt(tolerance /
+/// error) times the size, between kMinRejectFactor and kMaxRejectFactor
+/// times. After a step accepted without a repeat the next size is
+/// kSafety·sqrt(tolerance / error) times this one, at most kMaxGrowth
+/// times (with repeats allowed it never shrinks then: a repeat is cheaper
+/// than the steps a smaller size would add). Sizes stay within
+/// [minimum, maximum]; a step at the minimum size is accepted whatever its
+/// error (atMinimum()). Newton failure halves the step, up to a number of
+/// consecutive halvings and not below the minimum. Every accepted step is
+/// its own nominal step.
+class AdaptiveSteps final : public StepController {
+ public:
+  /// Next size as a multiple of the size the indicator asks for
+  /// (sqrt(tolerance / error) times the step).
+  static constexpr double kSafety = 0.9;
+  /// Largest growth of the step from one accepted step to the next.
+  static constexpr double kMaxGrowth = 2.0;
+  /// Largest and smallest factor of a reduced step's size (a reduction at
+  /// least halves the step: the indicator varies by a factor of several
+  /// between neighbouring steps, and a barely smaller retry would likely be
+  /// rejected again).
+  static constexpr double kMaxRejectFactor = 0.5, kMinRejectFactor = 0.125;
+  /// The last step may be this fraction longer than the step size rather
+  /// than leave a sliver behind.
+  static constexpr double kStretch = 0.1;
+
+  /// \param finalValue the end value (> 0)
+  /// \param initialSize the first step's size
+  /// \param minSize, maxSize the bounds of the step size,
+  ///        0 < minSize <= initialSize <= maxSize < inf
+  /// \param tolerance the largest accepted indicator (> 0)
+  /// \param maxHalvings consecutive Newton-failure halvings allowed (>= 0)
+  /// \param maxCorrections repeats of a step with its end's geometry
+  ///        before it is reduced (>= 0)
+  /// \throws std::invalid_argument for values out of these ranges
+  AdaptiveSteps(double finalValue, double initialSize, double minSize, double maxSize, double tolerance,
+                int maxHalvings, int maxCorrections);
+
+  bool done() const override;
+  StepProposal propose() const override;
+  void accept(const StepProposal& p) override;
+  bool reject(const StepProposal& p) override;
+  double current() const override { return current_; }
+  /// 0: the number of steps is not known in advance.
+  int numSteps() const override { return 0; }
+  bool endsNominalStep(const StepProposal&) const override { return true; }
+  bool controlsError() const override { return true; }
+  StepVerdict judge(const StepProposal& p, double error) override;
+  /// The last accepted step was accepted at the minimum size with its error
+  /// above the tolerance.
+  bool atMinimum() const { return atMinimum_; }
+  /// Repeats of the step being worked on (StepVerdict::Repeat) so far.
+  int corrections() const { return corrections_; }
+  /// The bounds of the step size.
+  double minSize() const { return min_; }
+  double maxSize() const { return max_; }
+
+ private:
+  double final_, min_, max_, tolerance_;
+  int maxHalvings_, maxCorrections_;
+  double current_ = 0.0;
+  double size_;          ///< the next step's size
+  double nextSize_ = 0;  ///< set by judge() on Accept: the size after the step
+  int accepted_ = 0;     ///< accepted steps
+  int depth_ = 0;        ///< Newton-failure halvings since the last accepted step
+  int corrections_ = 0;  ///< repeats of the current step
+  bool atMinimum_ = false;
 };
 
 }  // namespace ddc

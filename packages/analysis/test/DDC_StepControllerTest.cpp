@@ -1,9 +1,13 @@
 // BisectingSteps, the step controller of the quasi-static analysis: the
 // sequence of (sub)steps it proposes with and without Newton failures, the
 // bisection depth per nominal step, and giving up after Max Bisections.
+// AdaptiveSteps, the controller of Step Control: repeats, reductions and
+// growth from an error indicator, its bounds, and the end of the run.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <vector>
 
@@ -96,6 +100,149 @@ TEST(BisectingSteps, OutOfRangeArgumentsAreRefused) {
   EXPECT_THROW(ddc::BisectingSteps(0.0, 1, 0), std::invalid_argument);
   EXPECT_THROW(ddc::BisectingSteps(1.0, 0, 0), std::invalid_argument);
   EXPECT_THROW(ddc::BisectingSteps(1.0, 1, -1), std::invalid_argument);
+}
+
+/// Drive an AdaptiveSteps whose indicator is `error(p, attempt)` (attempt:
+/// 0 for the first solve of a step, 1, 2, ... for its repeats); returns the
+/// accepted steps and, per accepted step, the verdicts before it.
+struct Driven {
+  std::vector<ddc::StepProposal> accepted;
+  std::vector<std::vector<ddc::StepVerdict>> verdicts;
+};
+Driven driveAdaptive(ddc::AdaptiveSteps& c, const std::function<double(const ddc::StepProposal&, int)>& error,
+                     int maxAttempts = 10000) {
+  Driven d;
+  std::vector<ddc::StepVerdict> before;
+  int repeats = 0;
+  for (int attempt = 0; !c.done() && attempt < maxAttempts; ++attempt) {
+    const ddc::StepProposal p = c.propose();
+    EXPECT_EQ(p.from, c.current());
+    const ddc::StepVerdict v = c.judge(p, error(p, repeats));
+    if (v != ddc::StepVerdict::Accept) {
+      repeats = v == ddc::StepVerdict::Repeat ? repeats + 1 : 0;
+      before.push_back(v);
+      continue;
+    }
+    c.accept(p);
+    d.accepted.push_back(p);
+    d.verdicts.push_back(before);
+    before.clear();
+    repeats = 0;
+  }
+  return d;
+}
+
+/// The frozen-geometry error grows as the square of the step: e = k h^2.
+double quadratic(const ddc::StepProposal& p, double k) { return k * p.size * p.size; }
+
+TEST(AdaptiveSteps, WithoutErrorTheStepsGrowToTheMaximumAndEndExactly) {
+  // Zero error: 0.1, 0.2, 0.4 (doubling), then 0.4 (the maximum) ... and
+  // the run ends on 3.0 exactly.
+  ddc::AdaptiveSteps c(3.0, 0.1, 0.01, 0.4, 1e-3, 4, 0);
+  const auto d = driveAdaptive(c, [](const ddc::StepProposal&, int) { return 0.0; });
+  ASSERT_GE(d.accepted.size(), 3u);
+  EXPECT_EQ(d.accepted[0].size, 0.1);
+  EXPECT_EQ(d.accepted[1].size, 0.2);
+  EXPECT_EQ(d.accepted[2].size, 0.4);
+  EXPECT_EQ(d.accepted.back().to, 3.0);
+  EXPECT_EQ(c.current(), 3.0);
+  EXPECT_TRUE(c.done());
+  for (size_t i = 0; i < d.accepted.size(); ++i) {
+    EXPECT_EQ(d.accepted[i].step, int(i) + 1);
+    EXPECT_LE(d.accepted[i].size, 0.4 * (1 + ddc::AdaptiveSteps::kStretch)) << i;
+  }
+  EXPECT_EQ(c.numSteps(), 0);
+}
+
+TEST(AdaptiveSteps, TheStepSizeSettlesWhereTheErrorMeetsTheTolerance) {
+  // e = k h^2 with k = 10: the tolerance 1e-3 allows h = 0.01. With no
+  // repeats allowed, the first step (0.02, e = 4e-3) is reduced to
+  // kSafety sqrt(1e-3 / 4e-3) = 0.45 of itself, and the accepted steps
+  // settle at kSafety x 0.01.
+  const double k = 10.0, tol = 1e-3, allowed = std::sqrt(tol / k);
+  ddc::AdaptiveSteps c(1.0, 0.02, 1e-4, 0.1, tol, 4, 0);
+  const auto d = driveAdaptive(c, [&](const ddc::StepProposal& p, int) { return quadratic(p, k); });
+  ASSERT_GT(d.accepted.size(), 10u);
+  EXPECT_EQ(d.verdicts[0], std::vector<ddc::StepVerdict>{ddc::StepVerdict::Reduce});
+  EXPECT_NEAR(d.accepted[0].size, 0.45 * 0.02, 1e-15);
+  int reductions = 0;
+  for (size_t i = 0; i < d.accepted.size(); ++i) {
+    const auto& p = d.accepted[i];
+    EXPECT_LE(quadratic(p, k), tol) << "accepted step " << i << " above the tolerance";
+    if (i + 2 < d.accepted.size())  // away from the end
+      EXPECT_GE(p.size, 0.8 * allowed) << i;
+    if (i > 0) reductions += int(d.verdicts[i].size());
+  }
+  EXPECT_EQ(reductions, 0) << "steps sized by a smooth indicator are not rejected";
+}
+
+TEST(AdaptiveSteps, AStepAboveTheToleranceIsRepeatedWithItsGeometryThenReduced) {
+  // The repeats reduce the error by 10 each; two are allowed. Step 1: error
+  // 0.05 -> 0.005 -> 0.0005 <= 1e-3 after two repeats: accepted at full size.
+  // Step 2 (error 1e4 h^2): 100, 10, 1 after two repeats: reduced, and
+  // from the smaller size repeated again.
+  ddc::AdaptiveSteps c(0.3, 0.1, 0.001, 0.1, 1e-3, 4, 2);
+  const auto d = driveAdaptive(c, [&](const ddc::StepProposal& p, int repeats) {
+    const double first = p.step == 1 ? 0.05 : p.step == 2 ? quadratic(p, 1e4) : 0.0;
+    return first * std::pow(0.1, repeats);
+  });
+  ASSERT_GE(d.accepted.size(), 2u);
+  using V = ddc::StepVerdict;
+  EXPECT_EQ(d.verdicts[0], (std::vector<V>{V::Repeat, V::Repeat}));
+  EXPECT_EQ(d.accepted[0].size, 0.1);
+  EXPECT_EQ(d.accepted[0].to, 0.1);
+  // Step 2 at 0.1: 1, 0.1, 0.01: two repeats, then a reduction.
+  ASSERT_GE(d.verdicts[1].size(), 3u);
+  EXPECT_EQ(d.verdicts[1][0], V::Repeat);
+  EXPECT_EQ(d.verdicts[1][1], V::Repeat);
+  EXPECT_EQ(d.verdicts[1][2], V::Reduce);
+  EXPECT_LT(d.accepted[1].size, 0.1);
+  // After a step accepted with repeats the size is kept, not shrunk.
+  EXPECT_EQ(d.accepted[1].size, d.accepted[2].size);
+}
+
+TEST(AdaptiveSteps, AtTheMinimumSizeAStepIsAcceptedWhateverItsError) {
+  ddc::AdaptiveSteps c(1.0, 0.1, 0.05, 0.1, 1e-3, 4, 0);
+  const auto d = driveAdaptive(c, [](const ddc::StepProposal&, int) { return 1.0; });
+  ASSERT_FALSE(d.accepted.empty());
+  EXPECT_EQ(d.verdicts[0], std::vector<ddc::StepVerdict>{ddc::StepVerdict::Reduce});
+  EXPECT_EQ(d.accepted[0].size, 0.05);
+  EXPECT_TRUE(c.atMinimum());
+  EXPECT_EQ(c.current(), 1.0);
+}
+
+TEST(AdaptiveSteps, NewtonFailureHalvesTheStepUpToTheLimits) {
+  // Two halvings allowed: 0.1 -> 0.05 -> 0.025; the third failure gives up.
+  ddc::AdaptiveSteps c(1.0, 0.1, 0.001, 0.1, 1e-3, 2, 0);
+  ddc::StepProposal p = c.propose();
+  EXPECT_TRUE(c.reject(p));
+  p = c.propose();
+  EXPECT_EQ(p.size, 0.05);
+  EXPECT_EQ(p.depth, 1);
+  EXPECT_TRUE(c.reject(p));
+  p = c.propose();
+  EXPECT_EQ(p.size, 0.025);
+  EXPECT_FALSE(c.reject(p));
+  // And not below the minimum size.
+  ddc::AdaptiveSteps m(1.0, 0.1, 0.06, 0.1, 1e-3, 6, 0);
+  EXPECT_FALSE(m.reject(m.propose()));
+}
+
+TEST(AdaptiveSteps, ANanIndicatorIsNeverAccepted) {
+  ddc::AdaptiveSteps c(1.0, 0.1, 0.01, 0.1, 1e-3, 2, 1);
+  const ddc::StepProposal p = c.propose();
+  EXPECT_EQ(c.judge(p, std::nan("")), ddc::StepVerdict::Repeat);
+  EXPECT_EQ(c.judge(c.propose(), std::nan("")), ddc::StepVerdict::Reduce);
+}
+
+TEST(AdaptiveSteps, OutOfRangeArgumentsAreRefused) {
+  EXPECT_THROW(ddc::AdaptiveSteps(0.0, 0.1, 0.01, 0.1, 1e-3, 2, 1), std::invalid_argument);
+  EXPECT_THROW(ddc::AdaptiveSteps(1.0, 0.1, 0.0, 0.1, 1e-3, 2, 1), std::invalid_argument);
+  EXPECT_THROW(ddc::AdaptiveSteps(1.0, 0.1, 0.2, 0.3, 1e-3, 2, 1), std::invalid_argument);  // min > initial
+  EXPECT_THROW(ddc::AdaptiveSteps(1.0, 0.1, 0.01, 0.05, 1e-3, 2, 1), std::invalid_argument);  // initial > max
+  EXPECT_THROW(ddc::AdaptiveSteps(1.0, 0.1, 0.01, 0.1, 0.0, 2, 1), std::invalid_argument);
+  EXPECT_THROW(ddc::AdaptiveSteps(1.0, 0.1, 0.01, 0.1, 1e-3, -1, 1), std::invalid_argument);
+  EXPECT_THROW(ddc::AdaptiveSteps(1.0, 0.1, 0.01, 0.1, 1e-3, 2, -1), std::invalid_argument);
 }
 
 }  // namespace

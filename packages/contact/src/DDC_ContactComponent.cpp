@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 
@@ -1379,6 +1380,33 @@ std::string ContactComponent::describeSlot(int k) const {
   if (dim_ == 3) os << ", " << X.z();
   os << ")";
   return os.str();
+}
+
+FrozenGeometryError ContactComponent::frozenGeometryError(const std::vector<ContactSlot>& converged) const {
+  if (converged.size() != slots_.size())
+    throw std::invalid_argument("frozenGeometryError: " + std::to_string(converged.size()) + " slots for " +
+                                std::to_string(slots_.size()));
+  // Reference position of facet point xi on the master facet with `nodes`.
+  auto referencePoint = [&](CellType type, const ContactSlot& s, const std::array<double, 2>& xi) {
+    Eigen::MatrixXd X(s.numMaster, dim_);
+    for (int a = 0; a < s.numMaster; ++a) X.row(a) = referencePosition(s.master[a]).head(dim_).transpose();
+    Eigen::Vector3d point, normal;
+    return facetPointAndNormal(type, X, xi, point, normal) ? std::optional<Eigen::Vector3d>(point) : std::nullopt;
+  };
+  double gapWork = 0.0, normalWork = 0.0;
+  for (size_t k = 0; k < slots_.size(); ++k) {
+    const ContactSlot& before = converged[k];
+    const ContactSlot& now = slots_[k];
+    if (!before.active || !before.paired()) continue;
+    const double lambda = before.state.multiplier;
+    gapWork += lambda * (now.gap - before.gap);
+    if (!now.paired()) continue;
+    const CellType type = pairs_[before.pair].masterType;
+    const auto from = referencePoint(type, before, before.frozen.xi);
+    const auto to = referencePoint(type, now, now.frozen.xi);
+    if (from && to) normalWork += std::abs(lambda) * (now.normal - before.frozen.normal).norm() * (*to - *from).norm();
+  }
+  return {std::abs(gapWork), normalWork};
 }
 
 }  // namespace ddc

@@ -178,6 +178,22 @@ struct ContactRowEntry {
   int subdomain = -1;   ///< master: the master facet's subdomain; slave: -1 (any subdomain holding the slave node)
 };
 
+/// The frozen-geometry error of a converged step of the decomposed element
+/// in energy units (per unit thickness in 2-D): ContactComponent::
+/// frozenGeometryError(), doc/contact.md "Step control by the
+/// frozen-geometry error".
+struct FrozenGeometryError {
+  /// |Σ λ (g − g^p)| over the slots active at convergence: the gap g^p = 0
+  /// the step enforced against the gap g of the updated projection.
+  double gapWork = 0.0;
+  /// Σ |λ| |n − n^p| s over the same slots: the force the frozen normal n^p
+  /// puts across the updated normal n, over the slip s of the contact point
+  /// along the master surface in the step (reference lengths).
+  double normalWork = 0.0;
+  /// The indicator: gapWork + normalWork.
+  double total() const { return gapWork + normalWork; }
+};
+
 /// The contact component (see the top of this file).
 class ContactComponent {
  public:
@@ -256,6 +272,13 @@ class ContactComponent {
   /// \throws InputError (every rank: the slots are replicated) if a fully
   ///         prescribed slot penetrates.
   std::vector<int> updateActiveSet(const Vector& u, const Vector* multipliers = nullptr);
+  /// Decomposed element, after the step-end pairing: the frozen-geometry
+  /// error of the step, from `converged` (the slots after the step's last
+  /// active-set update, before the pairing) and the slots now. Replicated
+  /// data: the same numbers on every rank, no exchange, not collective.
+  /// \throws std::invalid_argument if `converged` is not a list of this
+  ///         component's slots
+  FrozenGeometryError frozenGeometryError(const std::vector<ContactSlot>& converged) const;
   /// Restore slots saved before a failed increment (pairing and state).
   /// \return true if the pairing differs from the current one (new topology).
   bool restoreSlots(const std::vector<ContactSlot>& saved);

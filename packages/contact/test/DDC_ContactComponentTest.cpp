@@ -145,6 +145,55 @@ TEST(ContactComponent, DecomposedRowsGapsAndActiveSetAcrossRanks) {
   for (const auto& s : c->slots()) EXPECT_FALSE(s.active);
 }
 
+TEST(ContactComponent, TheFrozenGeometryErrorOfAStepAgainstItsClosedForm) {
+  // The step starts paired at u = 0 (n^p = (0, 1), xi^p = 0: the segment
+  // midpoints). It ends with the slave surface moved by (s, -(kGap0 + d))
+  // and master node 2 raised by delta: slave 10 is still over the flat
+  // segment (1, 0), slave 11 over the tilted segment (2, 1). Both are
+  // active with lambda = -1. The step-end pairing gives slave 10 the same
+  // gap and normal (no error), slave 11 the gap and normal of the tilted
+  // segment: gap work |g - g^p|, normal work |n - n^p| times the slip of
+  // its contact point, in reference coordinates.
+  Host h;
+  auto c = registered(h, true);
+  auto map = h.map();
+  c->setDofs(map, dofsOf(h));
+  c->updatePairing(*state(h, map, 0.0), true, true);
+  const double s = 0.2, d = 0.01, delta = 0.1;
+  auto u = state(h, map, kGap0 + d);
+  for (int i = 3; i < 5; ++i)
+    if (h.owns(i)) u->replaceGlobalValue(GO(2 * i), s);
+  if (h.owns(2)) u->replaceGlobalValue(GO(2 * 2 + 1), delta);
+  ddc::Vector lambda(c->multiplierMap());
+  c->updateActiveSet(*u, &lambda);  // both penetrate: active
+  lambda.putScalar(-1.0);
+  c->updateActiveSet(*u, &lambda);  // compression: the multipliers are stored
+  const std::vector<ddc::ContactSlot> converged = c->slots();
+  for (const auto& sl : converged) ASSERT_TRUE(sl.active);
+  c->updatePairing(*u, true, true);
+  const ddc::FrozenGeometryError e = c->frozenGeometryError(converged);
+
+  // Slave 11 at (1.5 + s, -d) against the segment from (1, 0) to (2, delta).
+  const double L = std::sqrt(1 + delta * delta);
+  const double gFrozen = -d - delta / 2;                 // n^p . (x_s - midpoint)
+  const double g = (-delta * (0.5 + s) - d) / L;          // n . (x_s - (1, 0))
+  const double f = ((0.5 + s) - d * delta) / (L * L);     // projection, fraction from node 1
+  const double slip = std::abs(f - 0.5);                  // reference length 1
+  const double rotation = std::hypot(-delta / L, 1 / L - 1);  // |n - n^p|
+  EXPECT_NEAR(e.gapWork, std::abs(g - gFrozen), kRoundoff);
+  EXPECT_NEAR(e.normalWork, rotation * slip, kRoundoff);
+  EXPECT_GT(e.normalWork, 1e-3) << "the case does not test the normal term";
+  EXPECT_NEAR(e.total(), e.gapWork + e.normalWork, 0.0);
+
+  // Nothing moved in a step: no error.
+  const std::vector<ddc::ContactSlot> again = c->slots();
+  c->updatePairing(*u, true, true);
+  const ddc::FrozenGeometryError none = c->frozenGeometryError(again);
+  EXPECT_NEAR(none.gapWork, 0.0, kRoundoff);
+  EXPECT_NEAR(none.normalWork, 0.0, kRoundoff);
+  EXPECT_THROW(c->frozenGeometryError({}), std::invalid_argument);
+}
+
 TEST(ContactComponent, ConventionalContributionsUseHostDofs) {
   Host h;
   auto c = registered(h, false);
