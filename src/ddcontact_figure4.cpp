@@ -4,6 +4,8 @@
 //   ddcontact-figure4 --reference REF/history.csv --run LABEL=DIR/history.csv ...
 //                     [--csv figure4.csv] [--check] [--check-floor F]
 //                     [--decomposed LABEL]... [--monolithic20 LABEL]
+//                     [--adaptive-run LABEL=DIR/history.csv ...] [--max-error E]
+//                     [--max-peak-error P] [--max-exchanges N]
 //
 // For every run it takes the rows at nominal step ends, looks up the
 // reference strain energy at the same load factor (tolerance 1e-9) and
@@ -39,6 +41,8 @@ const char* kUsage =
     "usage: ddcontact-figure4 --reference REF/history.csv --run LABEL=DIR/history.csv [--run ...]\n"
     "                         [--csv FILE] [--check] [--check-floor F]\n"
     "                         [--decomposed LABEL]... [--monolithic20 LABEL]\n"
+    "                         [--adaptive-run LABEL=FILE]... [--max-error E] [--max-peak-error P]\n"
+    "                         [--max-exchanges N]\n"
     "\n"
     "Strain-energy error of ddcontact runs against a reference run (Fang & Izzuddin 2022,\n"
     "Figure 4; doc/figure4.md).\n"
@@ -63,6 +67,15 @@ const char* kUsage =
     "                        default: those of the labels decomposed-20, decomposed-50,\n"
     "                        decomposed-100 that are given\n"
     "  --monolithic20 LABEL  the 20-step monolithic run for the error ratio (default: monolithic-20)\n"
+    "  --adaptive-run LABEL=FILE  a run with Step Control (repeatable): every row is a step end,\n"
+    "                        and where the reference has no row at its load factor, U_ref is the\n"
+    "                        cubic through the four nearest reference rows (its error, estimated\n"
+    "                        from every other reference row, is printed)\n"
+    "  --max-error E         assert (exit 1) that every adaptive run's max error above the check\n"
+    "                        floor is <= E\n"
+    "  --max-peak-error P    assert that every adaptive run's peak strain energy is within P\n"
+    "                        (relative) of the reference's\n"
+    "  --max-exchanges N     assert that every adaptive run made fewer than N contact exchanges\n"
     "  --help                print this text\n"
     "\n"
     "Nominal step ends: history.csv has one row per converged step and per sub-step after\n"
@@ -92,6 +105,8 @@ struct Row {
   double lf = 0, U = 0, wall = 0;
   double newton = 0, dual = 0, exchanges = 0;
   long bisections = 0;
+  long rejected = 0, corrections = 0;  // Step Control columns (0 when absent)
+  double indicator = -1;               // geometry_error (-1 when absent)
   size_t line = 0;
 };
 
@@ -100,6 +115,7 @@ struct History {
   std::vector<Row> rows;
   std::vector<size_t> nominal;  // indices into rows: nominal step ends, in order
   bool hasBisections = false;
+  bool adaptive = false;  // --adaptive-run: every row is a step end
   bool complete = true;  // the last step in the file reached its nominal end
   long stoppedInStep = 0;
 };
@@ -137,9 +153,10 @@ long toLong(const std::string& s, const std::string& file, size_t line, const st
   return static_cast<long>(v);
 }
 
-History readHistory(const std::string& label, const std::string& file) {
+History readHistory(const std::string& label, const std::string& file, bool adaptive = false) {
   History h;
   h.label = label;
+  h.adaptive = adaptive;
   h.file = file;
   std::ifstream in(file);
   if (!in) FIG4_INPUT_ERROR(file << ": cannot open file" << (label.empty() ? "" : " (run '" + label + "')"));
@@ -181,6 +198,10 @@ History readHistory(const std::string& label, const std::string& file) {
     r.exchanges = toDouble(get("contact_exchanges"), file, lineNo, "contact_exchanges");
     r.wall = toDouble(get("wall_seconds"), file, lineNo, "wall_seconds");
     if (h.hasBisections) r.bisections = toLong(get("bisections"), file, lineNo, "bisections");
+    if (col.count("rejected_steps")) r.rejected = toLong(get("rejected_steps"), file, lineNo, "rejected_steps");
+    if (col.count("geometry_error")) r.indicator = toDouble(get("geometry_error"), file, lineNo, "geometry_error");
+    if (col.count("geometry_corrections"))
+      r.corrections = toLong(get("geometry_corrections"), file, lineNo, "geometry_corrections");
     if (!std::isfinite(r.lf) || !std::isfinite(r.U))
       FIG4_INPUT_ERROR(file << ":" << lineNo << ": load_factor / strain_energy not finite");
     if (!h.rows.empty() && r.step < h.rows.back().step)
@@ -189,6 +210,13 @@ History readHistory(const std::string& label, const std::string& file) {
     h.rows.push_back(r);
   }
   if (h.rows.empty()) FIG4_INPUT_ERROR(file << ": no data rows (only a header)");
+  if (adaptive) {
+    // Step Control: the steps have no nominal size, every row ends one.
+    for (size_t i = 0; i < h.rows.size(); ++i)
+      if (h.rows[i].step >= 1) h.nominal.push_back(i);
+    if (h.nominal.empty()) FIG4_INPUT_ERROR(file << ": no step (no row with step >= 1)");
+    return h;
+  }
 
   // Nominal step ends. Rows of one step are consecutive; the end of step s is
   // the row at s * delta, delta = the load factor at the end of the first step.
@@ -223,6 +251,7 @@ History readHistory(const std::string& label, const std::string& file) {
 
 struct Point {
   double lf, U, Uref, e;
+  double indicator = -1;  // the row's geometry_error (-1: none)
 };
 
 struct RunResult {
@@ -234,7 +263,44 @@ struct RunResult {
   size_t steps = 0, subRows = 0;
   long maxDepth = 0;
   double finalLf = 0;
+  long rejected = 0, corrections = 0;  // Step Control: totals over the rows
+  double peakU = 0;                    // max strain energy over the rows
 };
+
+/// U at load factor x from the cubic through the four reference points
+/// nearest to it (fewer at the ends of the table: then the Lagrange
+/// polynomial through what there is). `table` sorted by load factor.
+double interpolateCubic(const std::vector<std::pair<double, double>>& table, double x) {
+  const size_t n = table.size();
+  if (n == 1) return table[0].second;
+  const size_t m = std::min<size_t>(4, n);
+  size_t hi = std::lower_bound(table.begin(), table.end(), std::make_pair(x, -HUGE_VAL)) - table.begin();
+  size_t lo = hi >= m / 2 ? hi - m / 2 : 0;
+  lo = std::min(lo, n - m);
+  double v = 0;
+  for (size_t a = lo; a < lo + m; ++a) {
+    double w = 1;
+    for (size_t b = lo; b < lo + m; ++b)
+      if (a != b) w *= (x - table[b].first) / (table[a].first - table[b].first);
+    v += w * table[a].second;
+  }
+  return v;
+}
+
+/// The error of interpolateCubic() on `table`, estimated from every other
+/// point: the largest relative miss, at the points left out, over the
+/// points with U > thr of a table of twice the spacing, divided by 16 (the
+/// cubic's error falls as the fourth power of the spacing).
+double interpolationErrorEstimate(const std::vector<std::pair<double, double>>& table, double thr) {
+  std::vector<std::pair<double, double>> even;
+  for (size_t i = 0; i < table.size(); i += 2) even.push_back(table[i]);
+  double worst = 0;
+  if (even.size() < 4) return worst;
+  for (size_t i = 1; i < table.size(); i += 2)
+    if (table[i].second > thr)
+      worst = std::max(worst, std::abs(interpolateCubic(even, table[i].first) - table[i].second) / table[i].second);
+  return worst / 16.0;
+}
 
 RunResult analyse(const History& h, const History& ref, double thr) {
   RunResult r;
@@ -246,6 +312,14 @@ RunResult analyse(const History& h, const History& ref, double thr) {
   for (size_t idx : h.nominal) {
     const Row& row = h.rows[idx];
     auto it = std::lower_bound(table.begin(), table.end(), std::make_pair(row.lf - kMatchTol, -HUGE_VAL));
+    if (h.adaptive && (it == table.end() || it->first > row.lf + kMatchTol)) {
+      const double Uref = interpolateCubic(table, row.lf);
+      if (Uref > thr)
+        r.points.push_back({row.lf, row.U, Uref, std::abs(row.U - Uref) / Uref, row.indicator});
+      else
+        r.maxUOff = std::max(r.maxUOff, std::abs(row.U));
+      continue;
+    }
     if (it == table.end() || it->first > row.lf + kMatchTol)
       FIG4_INPUT_ERROR("run '" << h.label << "' (" << h.file << ":" << row.line << "): load factor " << row.lf << " (step "
                                << row.step << ") has no row in the reference " << ref.file << " (tolerance " << kMatchTol
@@ -257,7 +331,7 @@ RunResult analyse(const History& h, const History& ref, double thr) {
       if (std::abs(k->first - row.lf) < std::abs(best->first - row.lf)) best = k;
     const double Uref = best->second;
     if (Uref > thr)
-      r.points.push_back({row.lf, row.U, Uref, std::abs(row.U - Uref) / Uref});
+      r.points.push_back({row.lf, row.U, Uref, std::abs(row.U - Uref) / Uref, row.indicator});
     else
       r.maxUOff = std::max(r.maxUOff, std::abs(row.U));
   }
@@ -272,6 +346,9 @@ RunResult analyse(const History& h, const History& ref, double thr) {
   r.meanErr = r.points.empty() ? 0.0 : sum / r.points.size();
   size_t positiveRows = 0;
   for (const auto& row : h.rows) {
+    r.rejected += row.rejected;
+    r.corrections += row.corrections;
+    r.peakU = std::max(r.peakU, row.U);
     r.newton += row.newton;
     r.dual += row.dual;
     r.exchanges += row.exchanges;
@@ -365,8 +442,10 @@ Phases phases(const RunResult& r, double floorAbs) {
 int main(int argc, char** argv) {
   std::string refFile, csvFile, mono20Label;
   std::vector<std::pair<std::string, std::string>> runSpecs;
+  std::vector<bool> runAdaptive;  // per runSpecs entry: --adaptive-run
   std::vector<std::string> decomposedLabels;
   bool check = false, assertPhases = false;
+  double maxError = HUGE_VAL, maxPeakError = HUGE_VAL, maxExchanges = HUGE_VAL;
   double checkFloor = kReportThreshold;
   try {
     for (int i = 1; i < argc; ++i) {
@@ -380,17 +459,25 @@ int main(int argc, char** argv) {
         return 0;
       } else if (a == "--reference") {
         refFile = value();
-      } else if (a == "--run") {
+      } else if (a == "--run" || a == "--adaptive-run") {
         const std::string v = value();
         const auto eq = v.find('=');
         if (eq == std::string::npos || eq == 0 || eq + 1 == v.size())
-          FIG4_INPUT_ERROR("option --run '" << v << "': expected LABEL=PATH/history.csv");
+          FIG4_INPUT_ERROR("option " << a << " '" << v << "': expected LABEL=PATH/history.csv");
         const std::string label = v.substr(0, eq);
         if (label.find_first_of(",\"\n") != std::string::npos)
-          FIG4_INPUT_ERROR("option --run '" << v << "': the label must not contain ',' or '\"'");
+          FIG4_INPUT_ERROR("option " << a << " '" << v << "': the label must not contain ',' or '\"'");
         for (const auto& rs : runSpecs)
-          if (rs.first == label) FIG4_INPUT_ERROR("option --run: label '" << label << "' given twice");
+          if (rs.first == label) FIG4_INPUT_ERROR("option " << a << ": label '" << label << "' given twice");
         runSpecs.emplace_back(label, v.substr(eq + 1));
+        runAdaptive.push_back(a == "--adaptive-run");
+      } else if (a == "--max-error" || a == "--max-peak-error" || a == "--max-exchanges") {
+        const std::string v = value();
+        char* e = nullptr;
+        const double x = std::strtod(v.c_str(), &e);
+        if (v.empty() || *e != '\0' || !(x > 0) || !std::isfinite(x))
+          FIG4_INPUT_ERROR("option " << a << " '" << v << "': expected a positive number");
+        (a == "--max-error" ? maxError : a == "--max-peak-error" ? maxPeakError : maxExchanges) = x;
       } else if (a == "--csv") {
         csvFile = value();
       } else if (a == "--check") {
@@ -412,12 +499,14 @@ int main(int argc, char** argv) {
       }
     }
     if (refFile.empty()) FIG4_INPUT_ERROR("missing --reference FILE\n\n" << kUsage);
-    if (runSpecs.empty()) FIG4_INPUT_ERROR("missing --run LABEL=FILE (at least one run)\n\n" << kUsage);
+    if (runSpecs.empty())
+      FIG4_INPUT_ERROR("missing --run or --adaptive-run LABEL=FILE (at least one run)\n\n" << kUsage);
 
     const History ref = readHistory("", refFile);
     std::vector<History> runs;
     runs.reserve(runSpecs.size());
-    for (const auto& rs : runSpecs) runs.push_back(readHistory(rs.first, rs.second));
+    for (size_t k = 0; k < runSpecs.size(); ++k)
+      runs.push_back(readHistory(runSpecs[k].first, runSpecs[k].second, runAdaptive[k]));
     auto findRun = [&](const std::string& label, const char* opt) -> const History* {
       for (const auto& h : runs)
         if (h.label == label) return &h;
@@ -535,9 +624,73 @@ int main(int argc, char** argv) {
     }
     if (!csvFile.empty()) std::cout << "Points written to " << csvFile << "\n";
 
-    // ---- check --------------------------------------------------------------
-    if (!check) return 0;
+    // ---- the error indicator ------------------------------------------------
+    // Runs of the decomposed element have the frozen-geometry indicator of
+    // each step (geometry_error): how the error measured here compares.
+    {
+      std::vector<std::vector<std::string>> it = {{"run", "points", "min", "median", "max"}};
+      for (const auto& r : results) {
+        std::vector<double> ratio;
+        for (const auto& p : r.points)
+          if (p.Uref > floorAbs && p.indicator > 0) ratio.push_back(p.e / p.indicator);
+        if (ratio.empty()) continue;
+        std::sort(ratio.begin(), ratio.end());
+        const size_t n = ratio.size();
+        const double median = n % 2 ? ratio[n / 2] : 0.5 * (ratio[n / 2 - 1] + ratio[n / 2]);
+        it.push_back({r.h->label, std::to_string(n), fmtF(ratio.front(), 2), fmtF(median, 2), fmtF(ratio.back(), 2)});
+      }
+      if (it.size() > 1) {
+        std::cout << "\nError / frozen-geometry indicator (geometry_error) at the points with U_ref > "
+                  << fmtE(checkFloor, 1) << " max U_ref:\n";
+        printTable(std::cout, it);
+      }
+    }
+
+    // ---- Step Control runs -----------------------------------------------------
     std::vector<std::string> failures;
+    const bool anyAdaptive = std::find(runAdaptive.begin(), runAdaptive.end(), true) != runAdaptive.end();
+    if (anyAdaptive) {
+      std::vector<std::pair<double, double>> table;
+      for (const auto& row : ref.rows) table.emplace_back(row.lf, row.U);
+      std::sort(table.begin(), table.end());
+      std::cout << "\nStep Control runs (max error over points with U_ref > " << fmtE(checkFloor, 1)
+                << " max U_ref; U_ref interpolated between reference rows, its error estimated at "
+                << fmtE(interpolationErrorEstimate(table, floorAbs), 1) << "):\n";
+      std::vector<std::vector<std::string>> st = {{"run", "steps", "rejected", "corrections", "exchanges", "max error",
+                                                   "at load", "peak U", "peak error", "wall [s]"}};
+      for (const auto& r : results) {
+        if (!r.h->adaptive) continue;
+        const Phases ph = phases(r, floorAbs);
+        const double peakError = (r.peakU - maxUref) / maxUref;
+        st.push_back({r.h->label, std::to_string(r.steps), std::to_string(r.rejected), std::to_string(r.corrections),
+                      fmtF(r.exchanges, 0), ph.all.n ? fmtE(ph.all.v) : "-", ph.all.n ? fmtLf(ph.all.lf) : "-",
+                      fmtE(r.peakU, 4), fmtE(peakError, 2), fmtF(r.wall, 2)});
+        auto assertLe = [&](bool ok, const std::string& what) {
+          std::cout << "  " << (ok ? "PASS " : "FAIL ") << r.h->label << ": " << what << "\n";
+          if (!ok) failures.push_back(r.h->label + ": " + what);
+        };
+        if (maxError < HUGE_VAL)
+          assertLe(ph.all.n && ph.all.v <= maxError, "max error " + (ph.all.n ? fmtE(ph.all.v) : std::string("(no point)")) +
+                                                          " <= " + fmtE(maxError, 2));
+        if (maxPeakError < HUGE_VAL)
+          assertLe(std::abs(peakError) <= maxPeakError,
+                   "peak strain energy error " + fmtE(peakError, 2) + " within " + fmtE(maxPeakError, 2));
+        if (maxExchanges < HUGE_VAL)
+          assertLe(r.exchanges < maxExchanges, "contact exchanges " + fmtF(r.exchanges, 0) + " < " + fmtF(maxExchanges, 0));
+      }
+      printTable(std::cout, st);
+      std::cout << "  (steps: accepted steps; rejected: steps repeated smaller; corrections: steps repeated with the\n"
+                << "   geometry of their end; exchanges include those of rejected and repeated attempts; peak error:\n"
+                << "   (max U - max U_ref) / max U_ref)\n";
+    }
+
+    // ---- check --------------------------------------------------------------
+    if (!check) {
+      if (failures.empty()) return 0;
+      std::cerr << "ddcontact-figure4: check FAILED:\n";
+      for (const auto& f : failures) std::cerr << "  " << f << "\n";
+      return 1;
+    }
     std::cout << "\nCheck (points with U_ref > " << fmtE(checkFloor, 1) << " max U_ref):\n";
     std::vector<std::pair<const History*, Phases>> dph;
     for (const History* h : decomposed)

@@ -1170,7 +1170,10 @@ void Analysis::runSteps(OutputDirectory* dir) {
   // frozen-geometry error (Step Control).
   std::unique_ptr<StepController> controller;
   AdaptiveSteps* adaptive = nullptr;
-  if (stepControl_.tolerance > 0.0) {
+  if (hostController_) {
+    controller = std::move(hostController_);
+    adaptive = dynamic_cast<AdaptiveSteps*>(controller.get());
+  } else if (stepControl_.tolerance > 0.0) {
     auto a = std::make_unique<AdaptiveSteps>(finalLambda, stepControl_.first, stepControl_.minSize,
                                              stepControl_.maxSize, stepControl_.tolerance, maxBisect,
                                              stepControl_.corrections);
@@ -1185,15 +1188,18 @@ void Analysis::runSteps(OutputDirectory* dir) {
   long exchanges0 = contact ? model_->exchanges() : 0;
   long bytes0 = contact ? model_->bytesExchanged() : 0;
   int rejections = 0, corrections = 0;
+  // Newton and dual iterations of the attempts the step control sent back:
+  // the accepted step's cost, like its exchanges.
+  int sentBackNewton = 0, sentBackDual = 0;
   std::vector<ContactSlot> savedSlots;
   bool repeating = false;  ///< the next attempt repeats a step with the geometry of its end
   // "step   3/10" (equal steps) or "step   3" (their number is not known).
   auto stepLabel = [&](int n) {
     char b[40];
-    if (adaptive)
-      std::snprintf(b, sizeof b, "%3d", n);
+    if (steps.numSteps() > 0)
+      std::snprintf(b, sizeof b, "%3d/%d", n, steps.numSteps());
     else
-      std::snprintf(b, sizeof b, "%3d/%d", n, nsteps);
+      std::snprintf(b, sizeof b, "%3d", n);
     return std::string(b);
   };
   if (!nearlyIncompressible_.empty()) progress("warning: " + nearlyIncompressible_);
@@ -1282,6 +1288,8 @@ void Analysis::runSteps(OutputDirectory* dir) {
       u_->assign(*st.uPrev);
       const bool repeat = verdict == StepVerdict::Repeat;
       repeating = repeat;
+      sentBackNewton += rec.newtonIterations;
+      sentBackDual += rec.dualIterations;
       if (repeat)
         ++corrections;
       else {
@@ -1304,7 +1312,9 @@ void Analysis::runSteps(OutputDirectory* dir) {
     steps.accept(p);
     rec.rejections = rejections;
     rec.corrections = corrections;
-    rejections = corrections = 0;
+    rec.newtonIterations += sentBackNewton;
+    rec.dualIterations += sentBackDual;
+    rejections = corrections = sentBackNewton = sentBackDual = 0;
     st.fint = fint;
     if (contactNodes) st.convergedSlots = convergedSlots;
     // The forces the prescribed DOFs exert: f_int, and in dynamics also the

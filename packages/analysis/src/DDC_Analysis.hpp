@@ -35,8 +35,11 @@ struct StepRecord {
   int step = 0;              ///< nominal step number (1-based); sub-steps repeat it
   double loadFactor = 0.0;    ///< load factor λ at the end of the (sub)step (dynamics: the time t)
   double strainEnergy = 0.0;  ///< total strain energy U (per unit thickness in 2-D)
-  int newtonIterations = 0;  ///< linear solves in this (sub)step
-  int dualIterations = 0;    ///< Belos iterations of FETI-DP summed over the (sub)step
+  /// Linear solves in this (sub)step, including those of the attempts Step
+  /// Control repeated or reduced before accepting it (not those of attempts
+  /// Newton failed on).
+  int newtonIterations = 0;
+  int dualIterations = 0;    ///< Belos iterations of FETI-DP summed over the (sub)step (as newtonIterations)
   int bisections = 0;        ///< bisection depth used to reach this load factor
   double wallSeconds = 0.0;  ///< since the start of run()
   std::vector<double> residualHistory;  ///< ||r|| per Newton iteration
@@ -115,6 +118,14 @@ class Analysis {
   /// work). Commits `dir` when the run succeeds.
   void run(OutputDirectory& dir);
 
+  /// Take the steps of the next run() from `controller` instead of the one
+  /// the parameters describe (Load Stepping, Dynamics, Step Control): a
+  /// host's own step-size rule. Its values are load factors (time in
+  /// dynamics) from 0; it is used by one run() and released. With
+  /// controlsError() it is given each step's frozen-geometry indicator
+  /// (StepRecord::geometryError) in judge().
+  void setStepController(std::unique_ptr<StepController> controller) { hostController_ = std::move(controller); }
+
   /// The discrete model (mesh, DOF numbering, contact component).
   const Model& model() const { return *model_; }
   /// The displacements of the last converged step on model().ownedMap()
@@ -158,6 +169,7 @@ class Analysis {
   /// sizes) and resolve its defaults.
   void setUpStepControl(const Teuchos::ParameterList& params);
   StepControlSettings stepControl_;
+  std::unique_ptr<StepController> hostController_;  ///< setStepController()
   /// Dynamics: check the masses and the time step, build the integrator and
   /// the initial velocities from the validated "Dynamics" list.
   void setUpDynamics(Teuchos::ParameterList& dynamics);
