@@ -75,27 +75,11 @@ out=${pos[1]:-ddcontact-out/figure4}
 here=$(cd "$(dirname "$0")" && pwd)
 deck=${deck:-$here/../two_half_rings.xml}
 [[ -f $deck ]] || die "input deck not found: $deck"
-[[ -d $prefix ]] || die "BUILD_OR_INSTALL_DIR '$prefix' is not a directory"
-find_exe() {  # find_exe NAME: PREFIX/src/NAME (build tree) or PREFIX/bin/NAME (install)
-  local d
-  for d in "$prefix/src" "$prefix/bin"; do
-    if [[ -x $d/$1 ]]; then echo "$d/$1"; return 0; fi
-  done
-  return 1
-}
-if [[ -z $ddc ]]; then
-  ddc=$(find_exe ddcontact) || die "no ddcontact in $prefix/src or $prefix/bin (or give --ddcontact EXE)"
-fi
-if [[ -z $fig4 ]]; then
-  fig4=$(find_exe ddcontact-figure4) ||
-    die "no ddcontact-figure4 in $prefix/src or $prefix/bin: build it (cmake --build $prefix --target ddcontact-figure4) or give --figure4-tool EXE"
-fi
-[[ -x $ddc ]] || die "--ddcontact '$ddc' is not an executable"
-[[ -x $fig4 ]] || die "--figure4-tool '$fig4' is not an executable"
+me=run_figure4.sh
+# shellcheck source=lib.sh
+. "$here/lib.sh"
+locate_tools
 command -v gnuplot > /dev/null || die "gnuplot not found (Debian: apt-get install gnuplot-nox; cmake/setup.sh installs it)"
-command -v mpirun > /dev/null || die "mpirun not found"
-
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 OPENBLAS_NUM_THREADS=1
 
 mkdir -p "$out/runs" "$out/logs"
 # The runs: label, steps, formulation, strategy.
@@ -104,23 +88,9 @@ decomposed_partition=(--set "Partition/Method=$partition" --set "Partition/Numbe
 run() {  # run LABEL STEPS FORMULATION STRATEGY [extra ddcontact args...]
   local label=$1 steps=$2 formulation=$3 strat=$4
   shift 4
-  local dir="$out/runs/$label" log="$out/logs/$label.log"
-  if ((skip_runs)); then
-    [[ -f $dir/history.csv ]] || { echo "run_figure4.sh: --skip-runs: $dir/history.csv missing" >&2; exit 1; }
-    return 0
-  fi
-  local t0 t1
-  t0=$(date +%s.%N)
-  if ! mpirun -np "$np" "$ddc" "$deck" --output-dir "$dir" \
-      --set "Load Stepping/Number of Steps=$steps" --set "Contact/Formulation=$formulation" \
-      --set "Solver/Strategy=$strat" --set "Output/VTK=false" "$@" ${extra[@]+"${extra[@]}"} > "$log" 2>&1; then
-    echo "run_figure4.sh: run $label FAILED ($log):" >&2
-    tail -n 20 "$log" >&2
-    exit 1
-  fi
-  t1=$(date +%s.%N)
-  printf "  %-15s %3d steps  %-26s %-10s %6.2f s\n" "$label" "$steps" "$formulation" "$strat" \
-    "$(awk -v a="$t0" -v b="$t1" 'BEGIN {print b - a}')"
+  run_case "$label" "$(printf "%3d steps  %-26s %-10s" "$steps" "$formulation" "$strat")" "$deck" \
+    --set "Load Stepping/Number of Steps=$steps" --set "Contact/Formulation=$formulation" \
+    --set "Solver/Strategy=$strat" "$@" ${extra[@]+"${extra[@]}"}
 }
 echo "== runs ($np ranks, $ddc; decomposed: $strategy, partition $partition${subdomains:+, $subdomains subdomains}; logs in $out/logs)"
 run decomposed-20 20 "Decomposed Node-To-Segment" "$strategy" "${decomposed_partition[@]}"

@@ -76,22 +76,10 @@ done
 here=$(cd "$(dirname "$0")" && pwd)
 deck=${deck:-$here/../two_half_rings_adaptive.xml}
 [[ -f $deck ]] || die "input deck not found: $deck"
-[[ -d $prefix ]] || die "BUILD_OR_INSTALL_DIR '$prefix' is not a directory"
-find_exe() {  # find_exe NAME: PREFIX/src/NAME (build tree) or PREFIX/bin/NAME (install)
-  local d
-  for d in "$prefix/src" "$prefix/bin"; do
-    if [[ -x $d/$1 ]]; then echo "$d/$1"; return 0; fi
-  done
-  return 1
-}
-[[ -n $ddc ]] || ddc=$(find_exe ddcontact) || die "no ddcontact in $prefix/src or $prefix/bin (or give --ddcontact EXE)"
-[[ -n $fig4 ]] || fig4=$(find_exe ddcontact-figure4) ||
-  die "no ddcontact-figure4 in $prefix/src or $prefix/bin (or give --figure4-tool EXE)"
-[[ -x $ddc ]] || die "--ddcontact '$ddc' is not an executable"
-[[ -x $fig4 ]] || die "--figure4-tool '$fig4' is not an executable"
-command -v mpirun > /dev/null || die "mpirun not found"
-
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 OPENBLAS_NUM_THREADS=1
+me=run_step_control.sh
+# shellcheck source=lib.sh
+. "$here/lib.sh"
+locate_tools
 
 mkdir -p "$out/runs" "$out/logs"
 decomposed=()
@@ -100,21 +88,7 @@ decomposed=()
 run() {  # run LABEL [ddcontact args...]
   local label=$1
   shift
-  local dir="$out/runs/$label" log="$out/logs/$label.log"
-  if ((skip_runs)); then
-    [[ -f $dir/history.csv ]] || { echo "run_step_control.sh: --skip-runs: $dir/history.csv missing" >&2; exit 1; }
-    return 0
-  fi
-  local t0 t1
-  t0=$(date +%s.%N)
-  if ! mpirun -np "$np" "$ddc" "$deck" --output-dir "$dir" --set "Output/VTK=false" "$@" \
-      ${extra[@]+"${extra[@]}"} > "$log" 2>&1; then
-    echo "run_step_control.sh: run $label FAILED ($log):" >&2
-    tail -n 20 "$log" >&2
-    exit 1
-  fi
-  t1=$(date +%s.%N)
-  printf "  %-12s %6.2f s\n" "$label" "$(awk -v a="$t0" -v b="$t1" 'BEGIN {print b - a}')"
+  run_case "$label" "" "$deck" "$@" ${extra[@]+"${extra[@]}"}
 }
 echo "== runs ($np ranks, $ddc, $(basename "$deck"); logs in $out/logs)"
 run reference --set "Step Control/Error Tolerance=0" --set "Load Stepping/Number of Steps=100" \
