@@ -98,13 +98,13 @@ Teuchos::RCP<PL> stepControlValidParameters() {
   auto pl = Teuchos::rcp(new PL("Step Control"));
   pl->set("Error Tolerance", 0.0,
           "0 (default): the steps of Load Stepping / Dynamics, halved only when Newton fails. > 0 (needs "
-          "Contact/Formulation = Decomposed ...): each converged step's frozen-geometry error indicator |sum "
-          "lambda (g - g^p)| / (strain + kinetic energy), read at the step-end pairing, must not exceed it; a "
-          "step above it is repeated smaller and a step well below it lets the next one grow (sizes within "
-          "Minimum/Maximum Step Size; the first step is Final Load Factor / Number of Steps, or Dynamics/Time "
-          "Step). The indicator is a first-order estimate of the relative strain-energy error of the step; on "
-          "the two half-rings the error measured was 1-4.5 times the indicator (doc/contact.md), so 0.003 "
-          "keeps it below 1 %.",
+          "Contact/Formulation = Decomposed ...): the largest frozen-geometry error indicator a step may "
+          "have, an estimate of the relative strain-energy error the frozen projection and normal leave, "
+          "read at the step-end pairing (doc/contact.md). A step above it is solved again with the "
+          "projections and normals of its end (Geometry Corrections), then smaller; a step well below it "
+          "lets the next one grow (within Minimum/Maximum Step Size; the first step is Final Load Factor / "
+          "Number of Steps, or Dynamics/Time Step). On the two half-rings the error was 0.4-2.5 times the "
+          "indicator and 0.005 kept it below 0.5 % (doc/figure4.md).",
           between(0.0, 1.0, Interval::RightOpen));
   pl->set("Geometry Corrections", 3,
           "How many times a step whose indicator exceeds Error Tolerance is solved again with the projections "
@@ -1183,16 +1183,25 @@ void Analysis::runSteps(OutputDirectory* dir) {
     controller = std::make_unique<BisectingSteps>(finalLambda, nsteps, maxBisect);
   }
   StepController& steps = *controller;
-  // Exchanges and error rejections since the last accepted step: a rejected
-  // attempt's pairing exchange is the accepted step's cost.
-  long exchanges0 = contact ? model_->exchanges() : 0;
-  long bytes0 = contact ? model_->bytesExchanged() : 0;
-  int rejections = 0, corrections = 0;
-  // Newton and dual iterations of the attempts the step control sent back:
-  // the accepted step's cost, like its exchanges.
-  int sentBackNewton = 0, sentBackDual = 0;
-  std::vector<ContactSlot> savedSlots;
-  bool repeating = false;  ///< the next attempt repeats a step with the geometry of its end
+  // The attempts of the step being worked on: the exchanges (also of
+  // attempts Newton failed on) and the Newton and dual iterations of the
+  // attempts the step control sent back count in the accepted step's row
+  // (its cost); the contact state of the step's start, which a repeat with
+  // the geometry of the step's end keeps.
+  struct Attempts {
+    long exchanges0 = 0, bytes0 = 0;  ///< the model's counters when the step began
+    int rejections = 0, corrections = 0;  ///< sent back smaller / repeated
+    int newton = 0, dual = 0;             ///< iterations of the attempts sent back
+    std::vector<ContactSlot> startSlots;
+    bool repeating = false;  ///< the next attempt repeats the step with the geometry of its end
+  };
+  auto firstAttempt = [&] {
+    Attempts a;
+    a.exchanges0 = contact ? model_->exchanges() : 0;
+    a.bytes0 = contact ? model_->bytesExchanged() : 0;
+    return a;
+  };
+  Attempts att = firstAttempt();
   // "step   3/10" (equal steps) or "step   3" (their number is not known).
   auto stepLabel = [&](int n) {
     char b[40];
@@ -1214,8 +1223,8 @@ void Analysis::runSteps(OutputDirectory* dir) {
     rec.step = n;
     // The contact state at the step's start (a repeat with the geometry of
     // the step's end keeps the one saved before it).
-    if (contact && !repeating) savedSlots = model_->contactSlots();
-    repeating = false;
+    if (contact && !att.repeating) att.startSlots = model_->contactSlots();
+    att.repeating = false;
     if (contact && model_->contactOptions().initialInContact) model_->activateAllPaired();
     if (integrator_) {
       // f_ext(t_n) = λ_n f_ext for the α-methods' previous-step terms.
@@ -1228,7 +1237,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
                       std::to_string(p.to) + ", " + std::to_string(model_->ownedMap()->getGlobalNumElements()) +
                       " unknowns; estimated " + formatBytes(memoryEstimate_.total()) + " per rank)");
     if (!solveIncrement(p.from, p.to, rec)) {
-      if (contact) model_->restoreContactState(savedSlots);
+      if (contact) model_->restoreContactState(att.startSlots);
       if (!steps.reject(p)) {
         std::ostringstream os;
         os << "Newton did not converge in step " << n << " (" << factorName << " " << p.from << " -> " << p.to
@@ -1287,14 +1296,14 @@ void Analysis::runSteps(OutputDirectory* dir) {
       // its end.
       u_->assign(*st.uPrev);
       const bool repeat = verdict == StepVerdict::Repeat;
-      repeating = repeat;
-      sentBackNewton += rec.newtonIterations;
-      sentBackDual += rec.dualIterations;
+      att.repeating = repeat;
+      att.newton += rec.newtonIterations;
+      att.dual += rec.dualIterations;
       if (repeat)
-        ++corrections;
+        ++att.corrections;
       else {
-        model_->restoreContactState(savedSlots);
-        ++rejections;
+        model_->restoreContactState(att.startSlots);
+        ++att.rejections;
       }
       const StepProposal next = steps.propose();
       char buf[300];
@@ -1310,11 +1319,10 @@ void Analysis::runSteps(OutputDirectory* dir) {
       continue;
     }
     steps.accept(p);
-    rec.rejections = rejections;
-    rec.corrections = corrections;
-    rec.newtonIterations += sentBackNewton;
-    rec.dualIterations += sentBackDual;
-    rejections = corrections = sentBackNewton = sentBackDual = 0;
+    rec.rejections = att.rejections;
+    rec.corrections = att.corrections;
+    rec.newtonIterations += att.newton;
+    rec.dualIterations += att.dual;
     st.fint = fint;
     if (contactNodes) st.convergedSlots = convergedSlots;
     // The forces the prescribed DOFs exert: f_int, and in dynamics also the
@@ -1337,11 +1345,10 @@ void Analysis::runSteps(OutputDirectory* dir) {
       rec.contactForce[0] = cs.force[0];
       rec.contactForce[1] = cs.force[1];
       rec.contactForce[2] = cs.force[2];
-      rec.contactExchanges = model_->exchanges() - exchanges0;
-      rec.contactBytes = model_->bytesExchanged() - bytes0;
-      exchanges0 = model_->exchanges();
-      bytes0 = model_->bytesExchanged();
+      rec.contactExchanges = model_->exchanges() - att.exchanges0;
+      rec.contactBytes = model_->bytesExchanged() - att.bytes0;
     }
+    att = firstAttempt();  // of the next step
     if (adaptive && adaptive->atMinimum()) {
       char buf[240];
       std::snprintf(buf, sizeof buf, "warning: step %d: frozen-geometry error %.3g above Step Control/Error Tolerance at the minimum step size %.3g (Step Control/Minimum Step Size); accepted",
