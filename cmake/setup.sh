@@ -23,6 +23,8 @@ packages=(
   libgtest-dev libgmock-dev                # GoogleTest + GoogleMock matchers
   gnuplot-nox                           # plots in doc/
   doxygen                               # API reference of the public headers (target doc, ctest)
+  libexodusii-dev                       # Exodus II results (Output/Exodus)
+  python3-vtk9 python3-meshio python3-netcdf4  # tests: independent readers of the Exodus output
 )
 missing=()
 for p in "${packages[@]}"; do

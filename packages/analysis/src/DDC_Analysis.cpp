@@ -1,5 +1,7 @@
 #include "DDC_Analysis.hpp"
 
+#include "DDC_ExodusWriter.hpp"
+
 #include "DDC_TimeIntegrator.hpp"
 
 #include <Teuchos_XMLParameterListHelpers.hpp>
@@ -312,6 +314,11 @@ Teuchos::RCP<PL> outputValidParameters() {
   pl->set("VTK", true, "Write VTK files (vtk/*.vtu, *.pvtu, solution.pvd).");
   pl->set("VTK Interval", 1, "Write VTK every this many converged steps (the last step is always written).",
           greaterThan(0));
+  pl->set("Exodus", false,
+          "Write results.e, the Exodus II results of the run: the mesh (an element block per body, the node "
+          "and side sets) and every converged step's displacements (velocities and accelerations in "
+          "dynamics), contact gap, pressure and multiplier, element stresses and von Mises stress, and global "
+          "values (doc/user-guide.md, 'The output directory').");
   pl->set("Progress", true, "Print one progress line per converged step on rank 0.");
   pl->set("Contact Nodes", false,
           "Write contact_nodes.csv: one row per contact slave node at the last converged step (pair, node, "
@@ -1118,6 +1125,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
 
   std::unique_ptr<HistoryWriter> hist;
   std::unique_ptr<VtkWriter> vtk;
+  std::unique_ptr<ExodusWriter> exodus;
   if (dir) {
     DDC_INPUT_REQUIRE(!dir->committed(), "output directory '" << dir->finalPath()
                                                               << "' was committed already: one run per OutputDirectory");
@@ -1141,6 +1149,13 @@ void Analysis::runSteps(OutputDirectory* dir) {
     error = firstErrorOnAnyRank(*comm_, error);
     if (!error.empty()) throw OutputError(error);
     if (out.get<bool>("VTK")) vtk = std::make_unique<VtkWriter>(comm_, dir->path(), "solution.pvd");
+    if (out.get<bool>("Exodus")) {
+      std::vector<std::string> globals = {factorName == std::string("time") ? "time" : "load_factor", "strain_energy",
+                                          "external_work", "active_contacts", "contact_force_x", "contact_force_y"};
+      if (model_->mesh().dim() == 3) globals.push_back("contact_force_z");
+      if (dynamic_) globals.push_back("kinetic_energy");
+      exodus = std::make_unique<ExodusWriter>(comm_, dir->path() + "/results.e", *model_, dynamic_, globals);
+    }
   }
   // contact_nodes.csv holds the contact state of the last converged step
   // (RunState::convergedSlots, copied before the step-end re-pairing).
@@ -1393,6 +1408,14 @@ void Analysis::runSteps(OutputDirectory* dir) {
       }
     }
     progress(line);
+    if (exodus) {
+      std::vector<double> g = {lambda, rec.strainEnergy, rec.externalWork, double(rec.activeContacts),
+                               rec.contactForce[0], rec.contactForce[1]};
+      if (model_->mesh().dim() == 3) g.push_back(rec.contactForce[2]);
+      if (dynamic_) g.push_back(rec.kineticEnergy);
+      exodus->writeStep(lambda, *u_, integrator_ ? &integrator_->velocity() : nullptr,
+                        integrator_ ? &integrator_->accelerationNow() : nullptr, g);
+    }
     const bool last = steps.done();
     if (++st.outputCount % out.get<int>("VTK Interval") == 0 || last)
       writeVtk(static_cast<int>(history_.size()), lambda);
@@ -1443,6 +1466,8 @@ void Analysis::runSteps(OutputDirectory* dir) {
     hist->close();
     hist.reset();
     vtk.reset();
+    if (exodus) exodus->close();
+    exodus.reset();
     dir->commit();
     progress("results in " + dir->finalPath());
   }

@@ -4,11 +4,37 @@
 
 namespace ddc {
 
+void forEachLocalElementOutput(const Model& model, const Vector& uOverlap,
+                               const std::function<void(const ElementOutput&)>& f) {
+  const Mesh& mesh = model.mesh();
+  const auto& ovMap = *model.overlapMap();
+  auto ud = uOverlap.getData();
+  const int dim = mesh.dim();
+  Eigen::MatrixXd X, ue;
+  for (int e : model.localElements()) {
+    const int nn = mesh.elementNumNodes(e);
+    const int* en = mesh.elementNodes(e);
+    X.resize(nn, dim);
+    ue.resize(nn, dim);
+    for (int i = 0; i < nn; ++i)
+      for (int c = 0; c < dim; ++c) {
+        X(i, c) = mesh.coord(en[i])[c];
+        ue(i, c) = ud[ovMap.getLocalElement(model.dof(en[i], c))];
+      }
+    ElementPostResult post;
+    try {
+      model.elementOf(e).postprocess(X, ue, post);
+    } catch (const InadmissibleDeformation&) {
+      // Output of a converged state never sees this; keep zeros if it does.
+    }
+    f(ElementOutput{e, en, nn, ue, post});
+  }
+}
+
 void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int step, double time,
                   const Vector* velocity, const Vector* acceleration) {
   const Mesh& mesh = model.mesh();
   auto uov = model.toOverlap(u);
-  auto ud = uov->getData();
   // Nodal vectors besides the displacement (dynamics): name and overlap values.
   std::vector<std::pair<const char*, Teuchos::ArrayRCP<const double>>> extra;
   std::vector<Teuchos::RCP<Vector>> keep;
@@ -27,10 +53,8 @@ void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int st
   const bool contact = model.hasContact();
   std::map<int, VtkPiece> pieces;
   std::map<int, std::map<int, int>> pointIndex;  // subdomain -> (mesh node -> piece point)
-  const int dim = mesh.dim();
-  Eigen::MatrixXd X, ue;
-  ElementPostResult post;
-  for (int e : model.localElements()) {
+  forEachLocalElementOutput(model, *uov, [&](const ElementOutput& o) {
+    const int e = o.element;
     const int s = model.partition().elementSubdomain[e];
     VtkPiece& p = pieces[s];
     auto& index = pointIndex[s];
@@ -45,24 +69,17 @@ void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int st
                     {"subdomain", 1, {}},
                     {"von_mises_stress", 1, {}}};
     }
-    const int nn = mesh.elementNumNodes(e);
-    const int* en = mesh.elementNodes(e);
-    X.resize(nn, dim);
-    ue.resize(nn, dim);
-    for (int i = 0; i < nn; ++i)
-      for (int c = 0; c < dim; ++c) {
-        X(i, c) = mesh.coord(en[i])[c];
-        ue(i, c) = ud[ovMap.getLocalElement(model.dof(en[i], c))];
-      }
+    const int dim = mesh.dim();
+    const int* en = o.nodes;
     // Points in the piece (each mesh node once), cells in VTK node order.
     const ReferenceCell& cell = referenceCell(mesh.elementType(e));
-    for (int v = 0; v < nn; ++v) {
+    for (int v = 0; v < o.numNodes; ++v) {
       const int i = cell.vtkOrder[v];
       auto [it, fresh] = index.emplace(en[i], p.numPoints());
       if (fresh) {
         p.points.insert(p.points.end(), {mesh.coord(en[i])[0], mesh.coord(en[i])[1], mesh.coord(en[i])[2]});
         auto& d = p.pointData[0].values;
-        for (int c = 0; c < 3; ++c) d.push_back(c < dim ? ue(i, c) : 0.0);
+        for (int c = 0; c < 3; ++c) d.push_back(c < dim ? o.ue(i, c) : 0.0);
         if (contact) {
           p.pointData[1].values.push_back(gap[en[i]]);
           p.pointData[2].values.push_back(pressure[en[i]]);
@@ -77,20 +94,14 @@ void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int st
     }
     p.offsets.push_back(static_cast<int>(p.connectivity.size()));
     p.types.push_back(static_cast<unsigned char>(cell.vtkType));
-    post = ElementPostResult();
-    try {
-      model.elementOf(e).postprocess(X, ue, post);
-    } catch (const InadmissibleDeformation&) {
-      // Output of a converged state never sees this; keep zeros if it does.
-    }
-    const double* c = post.cauchy;  // xx, yy, zz, yz, xz, xy
+    const double* c = o.post.cauchy;  // xx, yy, zz, yz, xz, xy
     auto& st = p.cellData[0].values;
     st.insert(st.end(), {c[0], c[1], c[2], c[5], c[3], c[4]});
-    p.cellData[1].values.push_back(post.energyDensity);
+    p.cellData[1].values.push_back(o.post.energyDensity);
     p.cellData[2].values.push_back(mesh.elementBody(e));
     p.cellData[3].values.push_back(s);
-    p.cellData[4].values.push_back(post.vonMises());
-  }
+    p.cellData[4].values.push_back(o.post.vonMises());
+  });
   std::vector<VtkPiece> list;
   for (auto& kv : pieces) list.push_back(std::move(kv.second));
   writer.writeStep(step, time, list);

@@ -1,0 +1,381 @@
+#include "DDC_ExodusWriter.hpp"
+
+#include <exodusII.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+#include "DDC_Error.hpp"
+#include "DDC_ModelOutput.hpp"
+#include "DDC_MpiRecords.hpp"
+
+namespace ddc {
+
+namespace {
+
+/// An Exodus II node as the average of corners of the cell (0-based corner
+/// indices; corners are numbered alike in the mesh's order and Exodus').
+using CornerGroup = std::vector<int>;
+
+/// The Exodus II nodes of each element type, in Exodus order (SAND92-2137;
+/// SEACAS "Element types"): corners, then edge middles, then for HEX27 the
+/// centroid and the face middles of faces 5, 6, 4, 2, 1, 3.
+const std::vector<CornerGroup>& exodusNodes(CellType t) {
+  static const std::map<CellType, std::vector<CornerGroup>> table = [] {
+    std::map<CellType, std::vector<CornerGroup>> m;
+    const std::vector<CornerGroup> quad4 = {{0}, {1}, {2}, {3}};
+    m[CellType::Quad4] = quad4;
+    auto quad9 = quad4;
+    quad9.insert(quad9.end(), {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 1, 2, 3}});
+    m[CellType::Quad9] = quad9;
+    const std::vector<CornerGroup> hex8 = {{0}, {1}, {2}, {3}, {4}, {5}, {6}, {7}};
+    m[CellType::Hex8] = hex8;
+    auto hex20 = hex8;
+    hex20.insert(hex20.end(), {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 4}, {1, 5}, {2, 6}, {3, 7}, {4, 5}, {5, 6},
+                               {6, 7}, {7, 4}});
+    m[CellType::Hex20] = hex20;
+    auto hex27 = hex20;
+    hex27.insert(hex27.end(), {{0, 1, 2, 3, 4, 5, 6, 7},
+                               {0, 1, 2, 3},    // face 5 (z = -1)
+                               {4, 5, 6, 7},    // face 6 (z = +1)
+                               {0, 3, 7, 4},    // face 4 (x = -1)
+                               {1, 2, 6, 5},    // face 2 (x = +1)
+                               {0, 1, 5, 4},    // face 1 (y = -1)
+                               {2, 3, 7, 6}});  // face 3 (y = +1)
+    m[CellType::Hex27] = hex27;
+    const std::vector<CornerGroup> tet4 = {{0}, {1}, {2}, {3}};
+    m[CellType::Tet4] = tet4;
+    auto tet10 = tet4;
+    tet10.insert(tet10.end(), {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}});
+    m[CellType::Tet10] = tet10;
+    return m;
+  }();
+  const auto it = table.find(t);
+  if (it == table.end())
+    throw std::invalid_argument(std::string("Exodus II output: no element type for cell ") + cellTypeName(t));
+  return it->second;
+}
+
+/// The corners of each Exodus II side, side 1 first.
+const std::vector<std::set<int>>& exodusSides(CellType t) {
+  static const std::vector<std::set<int>> quad = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+  static const std::vector<std::set<int>> hex = {{0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6},
+                                                 {0, 4, 7, 3}, {0, 3, 2, 1}, {4, 5, 6, 7}};
+  static const std::vector<std::set<int>> tet = {{0, 1, 3}, {1, 2, 3}, {0, 2, 3}, {0, 1, 2}};
+  switch (t) {
+    case CellType::Quad4:
+    case CellType::Quad9:
+      return quad;
+    case CellType::Hex8:
+    case CellType::Hex20:
+    case CellType::Hex27:
+      return hex;
+    case CellType::Tet4:
+    case CellType::Tet10:
+      return tet;
+    default:
+      throw std::invalid_argument(std::string("Exodus II output: no sides for cell ") + cellTypeName(t));
+  }
+}
+
+/// Nodal values a rank sends to rank 0: displacement, velocity, acceleration.
+struct NodeRecord {
+  int node;
+  double v[9];
+};
+/// Element values: Cauchy stress (xx, yy, zz, xy, yz, xz), von Mises, energy density.
+constexpr int kElementValues = 8;
+struct ElementRecord {
+  int element;
+  double v[kElementValues];
+};
+
+/// The Exodus II library's last error, for messages.
+std::string exodusReason(int status) {
+  const char *msg = nullptr, *func = nullptr;
+  int code = 0;
+  ex_get_err(&msg, &func, &code);
+  std::string why = msg && *msg ? msg : "error " + std::to_string(status);
+  if (func && *func) why += std::string(" (in ") + func + ")";
+  return why;
+}
+
+}  // namespace
+
+const std::vector<int>& exodusNodeOrder(CellType t) {
+  static const std::map<CellType, std::vector<int>> table = [] {
+    std::map<CellType, std::vector<int>> m;
+    for (CellType type : {CellType::Quad4, CellType::Quad9, CellType::Hex8, CellType::Hex20, CellType::Hex27,
+                          CellType::Tet4, CellType::Tet10}) {
+      const ReferenceCell& cell = referenceCell(type);
+      std::vector<int> order;
+      for (const CornerGroup& g : exodusNodes(type)) {
+        std::array<double, 3> x{{0, 0, 0}};
+        for (int c : g)
+          for (int k = 0; k < 3; ++k) x[k] += cell.nodes[c][k] / double(g.size());
+        int found = -1;
+        for (int i = 0; i < cell.numNodes; ++i) {
+          double d = 0;
+          for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(cell.nodes[i][k] - x[k]));
+          if (d < 1e-12) found = i;
+        }
+        if (found < 0 || int(exodusNodes(type).size()) != cell.numNodes)
+          throw std::logic_error(std::string("Exodus II node table does not match the reference cell ") + cell.name);
+        order.push_back(found);
+      }
+      m[type] = order;
+    }
+    return m;
+  }();
+  const auto it = table.find(t);
+  if (it == table.end())
+    throw std::invalid_argument(std::string("Exodus II output: no element type for cell ") + cellTypeName(t));
+  return it->second;
+}
+
+int exodusSideNumber(CellType t, int f) {
+  const ReferenceCell& cell = referenceCell(t);
+  if (f < 0 || f >= int(cell.facets.size()))
+    throw std::invalid_argument("exodusSideNumber: no facet " + std::to_string(f) + " on " + cell.name);
+  const ReferenceFacet& facet = cell.facets[f];
+  const int corners = referenceCell(facet.type).numCorners;
+  const std::set<int> ours(facet.nodes.begin(), facet.nodes.begin() + corners);
+  const auto& sides = exodusSides(t);
+  for (size_t s = 0; s < sides.size(); ++s)
+    if (sides[s] == ours) return int(s) + 1;
+  throw std::logic_error(std::string("Exodus II side table does not match facet ") + std::to_string(f) + " of " +
+                         cell.name);
+}
+
+const char* exodusElementType(CellType t) {
+  switch (t) {
+    case CellType::Quad4: return "QUAD4";
+    case CellType::Quad9: return "QUAD9";
+    case CellType::Hex8: return "HEX8";
+    case CellType::Hex20: return "HEX20";
+    case CellType::Hex27: return "HEX27";
+    case CellType::Tet4: return "TETRA";  // "TETRA4" is not read by every reader (meshio 5)
+    case CellType::Tet10: return "TETRA10";
+    default:
+      throw std::invalid_argument(std::string("Exodus II output: no element type for cell ") + cellTypeName(t));
+  }
+}
+
+ExodusWriter::ExodusWriter(Teuchos::RCP<const Teuchos::Comm<int>> comm, const std::string& path, const Model& model,
+                           bool dynamics, std::vector<std::string> globalNames)
+    : comm_(std::move(comm)), path_(path), model_(model), dynamics_(dynamics), globalNames_(std::move(globalNames)) {
+  const Mesh& mesh = model_.mesh();
+  const int dim = mesh.dim();
+  const bool contact = model_.hasContact();
+  numNodal_ = dim * (dynamics_ ? 3 : 1) + (contact ? 3 : 0);
+  std::string error;
+  if (comm_->getRank() == 0) {
+    // Each call below returns < 0 on failure; the first failure is the message.
+    auto check = [&](int status, const char* what) {
+      if (status < 0 && error.empty())
+        error = "cannot write the Exodus II results '" + path_ + "' (" + what + "): " + exodusReason(status);
+      return status >= 0;
+    };
+    ex_opts(0);  // no messages on stderr, no abort: errors come back here
+    int cpuWordSize = 8, ioWordSize = 8;
+    exoid_ = ex_create(path_.c_str(), EX_CLOBBER, &cpuWordSize, &ioWordSize);
+    if (exoid_ < 0) {
+      check(exoid_, "create");
+    } else {
+      ex_set_max_name_length(exoid_, 80);
+      const auto nodeSets = mesh.nodeSetNames();
+      const auto sideSets = mesh.sideSetNames();
+      bool ok = check(ex_put_init(exoid_, "DDContact results", dim, mesh.numNodes(), mesh.numElements(),
+                                  mesh.numBodies(), int64_t(nodeSets.size()), int64_t(sideSets.size())),
+                      "init");
+      // Reference coordinates.
+      std::vector<double> x(mesh.numNodes()), y(mesh.numNodes()), z(mesh.numNodes());
+      for (int n = 0; n < mesh.numNodes(); ++n) x[n] = mesh.coord(n)[0], y[n] = mesh.coord(n)[1], z[n] = mesh.coord(n)[2];
+      ok = ok && check(ex_put_coord(exoid_, x.data(), y.data(), dim == 3 ? z.data() : nullptr), "coordinates");
+      char cx[] = "x", cy[] = "y", cz[] = "z";
+      char* coordNames[] = {cx, cy, cz};
+      ok = ok && check(ex_put_coord_names(exoid_, coordNames), "coordinate names");
+      // One element block per body.
+      std::vector<std::string> blockNames;
+      for (int b = 0; ok && b < mesh.numBodies(); ++b) {
+        const Body& body = mesh.body(b);
+        const auto& order = exodusNodeOrder(body.cellType);
+        const int nn = int(order.size());
+        ok = check(ex_put_block(exoid_, EX_ELEM_BLOCK, b + 1, exodusElementType(body.cellType), body.numElements, nn,
+                                0, 0, 0),
+                   "element block");
+        std::vector<int> conn;
+        conn.reserve(size_t(body.numElements) * nn);
+        for (int e = body.firstElement; e < body.firstElement + body.numElements; ++e) {
+          const int* en = mesh.elementNodes(e);
+          for (int i = 0; i < nn; ++i) conn.push_back(en[order[i]] + 1);
+        }
+        ok = ok && check(ex_put_conn(exoid_, EX_ELEM_BLOCK, b + 1, conn.data(), nullptr, nullptr), "connectivity");
+        blockNames.push_back(body.name);
+      }
+      auto putNames = [&](ex_entity_type type, const std::vector<std::string>& names, const char* what) {
+        if (names.empty()) return true;
+        std::vector<char*> p;
+        std::vector<std::string> copy = names;
+        for (auto& s : copy) p.push_back(s.data());
+        return check(ex_put_names(exoid_, type, p.data()), what);
+      };
+      ok = ok && putNames(EX_ELEM_BLOCK, blockNames, "block names");
+      // Node sets and side sets, ids from 1 in name order.
+      for (size_t s = 0; ok && s < nodeSets.size(); ++s) {
+        std::vector<int> nodes;
+        for (int n : mesh.nodeSet(nodeSets[s])) nodes.push_back(n + 1);
+        ok = check(ex_put_set_param(exoid_, EX_NODE_SET, int(s) + 1, int64_t(nodes.size()), 0), "node set") &&
+             check(ex_put_set(exoid_, EX_NODE_SET, int(s) + 1, nodes.data(), nullptr), "node set");
+      }
+      ok = ok && putNames(EX_NODE_SET, nodeSets, "node set names");
+      for (size_t s = 0; ok && s < sideSets.size(); ++s) {
+        std::vector<int> elements, sides;
+        for (const Segment& seg : mesh.sideSet(sideSets[s])) {
+          elements.push_back(seg.element + 1);
+          sides.push_back(exodusSideNumber(mesh.elementType(seg.element), seg.localSide));
+        }
+        ok = check(ex_put_set_param(exoid_, EX_SIDE_SET, int(s) + 1, int64_t(elements.size()), 0), "side set") &&
+             check(ex_put_set(exoid_, EX_SIDE_SET, int(s) + 1, elements.data(), sides.data()), "side set");
+      }
+      ok = ok && putNames(EX_SIDE_SET, sideSets, "side set names");
+      // Variable names.
+      const char* axes[] = {"x", "y", "z"};
+      std::vector<std::string> nodal;
+      for (const char* v : {"displ", "vel", "acc"}) {
+        if (std::string(v) != "displ" && !dynamics_) continue;
+        for (int c = 0; c < dim; ++c) nodal.push_back(std::string(v) + "_" + axes[c]);
+      }
+      if (contact) nodal.insert(nodal.end(), {"contact_gap", "contact_pressure", "contact_multiplier"});
+      const std::vector<std::string> element = {"stress_xx", "stress_yy", "stress_zz", "stress_xy",
+                                                "stress_yz", "stress_xz", "von_mises", "strain_energy_density"};
+      auto putVariables = [&](ex_entity_type type, const std::vector<std::string>& names, const char* what) {
+        if (names.empty()) return true;
+        std::vector<std::string> copy = names;
+        std::vector<char*> p;
+        for (auto& s : copy) p.push_back(s.data());
+        return check(ex_put_variable_param(exoid_, type, int(names.size())), what) &&
+               check(ex_put_variable_names(exoid_, type, int(names.size()), p.data()), what);
+      };
+      ok = ok && putVariables(EX_NODAL, nodal, "nodal variables") &&
+           putVariables(EX_ELEM_BLOCK, element, "element variables") &&
+           putVariables(EX_GLOBAL, globalNames_, "global variables");
+      ok = ok && check(ex_update(exoid_), "flush");
+    }
+  }
+  error = firstErrorOnAnyRank(rawComm(*comm_), error);
+  if (!error.empty()) {
+    if (exoid_ >= 0) ex_close(exoid_);
+    exoid_ = -1;
+    throw OutputError(error);
+  }
+}
+
+ExodusWriter::~ExodusWriter() {
+  if (exoid_ >= 0) ex_close(exoid_);
+}
+
+void ExodusWriter::close() {
+  std::string error;
+  if (exoid_ >= 0) {
+    const int status = ex_close(exoid_);
+    exoid_ = -1;
+    if (status < 0) error = "cannot close the Exodus II results '" + path_ + "': " + exodusReason(status);
+  }
+  error = firstErrorOnAnyRank(rawComm(*comm_), error);
+  if (!error.empty()) throw OutputError(error);
+}
+
+void ExodusWriter::writeStep(double time, const Vector& u, const Vector* velocity, const Vector* acceleration,
+                             const std::vector<double>& globals) {
+  const Mesh& mesh = model_.mesh();
+  const int dim = mesh.dim();
+  if (globals.size() != globalNames_.size())
+    throw std::invalid_argument("ExodusWriter::writeStep: " + std::to_string(globals.size()) + " global values for " +
+                                std::to_string(globalNames_.size()) + " names");
+  // The values of this rank's elements and of their nodes, sent to rank 0.
+  const auto& ovMap = *model_.overlapMap();
+  auto uov = model_.toOverlap(u);
+  Teuchos::RCP<Vector> vov = velocity ? model_.toOverlap(*velocity) : Teuchos::null;
+  Teuchos::RCP<Vector> aov = acceleration ? model_.toOverlap(*acceleration) : Teuchos::null;
+  Teuchos::ArrayRCP<const double> vd, ad;
+  if (vov) vd = vov->getData();
+  if (aov) ad = aov->getData();
+  std::vector<std::vector<NodeRecord>> nodeSend(comm_->getSize());
+  std::vector<std::vector<ElementRecord>> elementSend(comm_->getSize());
+  std::vector<char> seen(mesh.numNodes(), 0);
+  forEachLocalElementOutput(model_, *uov, [&](const ElementOutput& o) {
+    for (int i = 0; i < o.numNodes; ++i) {
+      const int n = o.nodes[i];
+      if (seen[n]) continue;
+      seen[n] = 1;
+      NodeRecord r{n, {0, 0, 0, 0, 0, 0, 0, 0, 0}};
+      for (int c = 0; c < dim; ++c) {
+        r.v[c] = o.ue(i, c);
+        const auto l = ovMap.getLocalElement(model_.dof(n, c));
+        if (vov) r.v[3 + c] = vd[l];
+        if (aov) r.v[6 + c] = ad[l];
+      }
+      nodeSend[0].push_back(r);
+    }
+    const double* s = o.post.cauchy;  // xx, yy, zz, yz, xz, xy
+    elementSend[0].push_back({o.element, {s[0], s[1], s[2], s[5], s[3], s[4], o.post.vonMises(), o.post.energyDensity}});
+  });
+  const auto nodes = exchangeRecords(rawComm(*comm_), nodeSend);
+  const auto elements = exchangeRecords(rawComm(*comm_), elementSend);
+  std::string error;
+  if (comm_->getRank() == 0 && exoid_ >= 0) {
+    auto check = [&](int status, const char* what) {
+      if (status < 0 && error.empty())
+        error = "cannot write step " + std::to_string(steps_ + 1) + " of the Exodus II results '" + path_ + "' (" +
+                what + "): " + exodusReason(status);
+      return status >= 0;
+    };
+    const int step = steps_ + 1;
+    bool ok = check(ex_put_time(exoid_, step, &time), "time");
+    // Nodal variables, in the order of the names.
+    std::vector<std::vector<double>> nodal(numNodal_, std::vector<double>(mesh.numNodes(), 0.0));
+    for (const NodeRecord& r : nodes)
+      for (int c = 0; c < dim; ++c) {
+        nodal[c][r.node] = r.v[c];
+        if (dynamics_) {
+          nodal[dim + c][r.node] = r.v[3 + c];
+          nodal[2 * dim + c][r.node] = r.v[6 + c];
+        }
+      }
+    if (model_.hasContact()) {
+      const int g = dim * (dynamics_ ? 3 : 1);
+      for (const ContactSlot& s : model_.contactSlots()) {
+        nodal[g][s.slaveNode] = s.paired() ? s.gap : 0.0;
+        nodal[g + 1][s.slaveNode] = s.pressure();
+        nodal[g + 2][s.slaveNode] = s.active ? s.state.multiplier : 0.0;
+      }
+    }
+    for (int k = 0; ok && k < numNodal_; ++k)
+      ok = check(ex_put_var(exoid_, step, EX_NODAL, k + 1, 1, mesh.numNodes(), nodal[k].data()), "nodal variable");
+    // Element variables per block.
+    std::vector<std::array<double, kElementValues>> values(mesh.numElements());
+    for (const ElementRecord& r : elements) std::copy(r.v, r.v + kElementValues, values[r.element].begin());
+    for (int b = 0; ok && b < mesh.numBodies(); ++b) {
+      const Body& body = mesh.body(b);
+      std::vector<double> column(body.numElements);
+      for (int k = 0; ok && k < kElementValues; ++k) {
+        for (int i = 0; i < body.numElements; ++i) column[i] = values[body.firstElement + i][k];
+        ok = check(ex_put_var(exoid_, step, EX_ELEM_BLOCK, k + 1, b + 1, body.numElements, column.data()),
+                   "element variable");
+      }
+    }
+    if (ok && !globals.empty())
+      ok = check(ex_put_var(exoid_, step, EX_GLOBAL, 1, 0, int64_t(globals.size()), globals.data()), "global variables");
+    ok = ok && check(ex_update(exoid_), "flush");
+  }
+  error = firstErrorOnAnyRank(rawComm(*comm_), error);
+  if (!error.empty()) throw OutputError(error);
+  ++steps_;
+}
+
+}  // namespace ddc
