@@ -21,6 +21,7 @@
 #include "DDC_Error.hpp"
 #include "DDC_Substructuring.hpp"
 #include "DDC_NodeToSegment.hpp"
+#include "DDC_ExodusMesh.hpp"
 #include "DDC_Gmsh.hpp"
 #include "DDC_HistoryWriter.hpp"
 #include "DDC_InputDeck.hpp"
@@ -40,7 +41,7 @@ namespace {
 using PL = Teuchos::ParameterList;
 
 const std::vector<std::string> kGenerators = {"Rectangle", "Annular Sector", "Box", "Cylindrical Shell Sector",
-                                              "Sphere Octant", "Gmsh"};
+                                              "Sphere Octant", "Gmsh", "Exodus"};
 
 Teuchos::RCP<const PL> generatorValidParameters(const std::string& g) {
   if (g == "Rectangle") return RectangleGenerator::getValidParameters();
@@ -48,6 +49,7 @@ Teuchos::RCP<const PL> generatorValidParameters(const std::string& g) {
   if (g == "Box") return BoxGenerator::getValidParameters();
   if (g == "Cylindrical Shell Sector") return CylindricalShellSectorGenerator::getValidParameters();
   if (g == "Sphere Octant") return SphereOctantGenerator::getValidParameters();
+  if (g == "Exodus") return ExodusMeshReader::getValidParameters();
   return GmshReader::getValidParameters();
 }
 
@@ -69,7 +71,7 @@ Teuchos::RCP<PL> elementValidParameters(const ElementFactory& factory) {
 Teuchos::RCP<PL> bodyValidParameters(const ElementFactory& factory) {
   auto pl = Teuchos::rcp(new PL("<Body Name>"));
   pl->set("Generator", "Rectangle",
-          "How the body's mesh is made: a built-in generator or a Gmsh file; its parameters go in the "
+          "How the body's mesh is made: a built-in generator, a Gmsh file or an Exodus II file; its parameters go in the "
           "sublist of the same name.",
           enumValidator(kGenerators, "Generator"));
   for (const auto& g : kGenerators)
@@ -421,6 +423,8 @@ std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const Elemen
       generateCylindricalShellSector(*mesh, name, cell, gp, path + "/Cylindrical Shell Sector");
     else if (gen == "Sphere Octant")
       generateSphereOctant(*mesh, name, cell, gp, path + "/Sphere Octant");
+    else if (gen == "Exodus")
+      readExodusBody(*mesh, name, cell, gp, path + "/Exodus", baseDirectory);
     else
       readGmshBody(*mesh, name, cell, gp, path + "/Gmsh", baseDirectory);
     // Lengths far from 1 under- or overflow in the element arithmetic
@@ -616,7 +620,7 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
   } else if (method == "Element Map File") {
     std::string file = part.get<std::string>("Element Map File");
     DDC_INPUT_REQUIRE(!file.empty(), "parameter 'Partition/Element Map File' is required with Method = Element Map File");
-    if (!file.empty() && file[0] != '/') file = baseDirectory + "/" + file;
+    file = resolveDeckFile(file, baseDirectory);
     partition = partitionFromFile(*mesh, file);
     requireCount(partition.numSubdomains);
   } else if (method == "By Body") {

@@ -14,8 +14,8 @@
 // are contiguous element ranges in body order). Element node order and side
 // numbering follow Exodus II (Schoof & Yarberry, "EXODUS II: A Finite
 // Element Data Model", SAND92-2137; Sjaardema et al., SEACAS), which differs
-// from the Gmsh order of the mesh for Hex20, Hex27 and Tet10; the tables
-// are in DDC_ExodusWriter.cpp.
+// from the Gmsh order of the mesh for Hex20, Hex27 and Tet10
+// (DDC_ExodusCells.hpp).
 //
 // Rank 0 writes the file with the Exodus II library; the other ranks send it
 // their elements' values and the displacements of their elements' nodes.
@@ -26,19 +26,10 @@
 #include <string>
 #include <vector>
 
+#include "DDC_ExodusCells.hpp"
 #include "DDC_Model.hpp"
 
 namespace ddc {
-
-/// Exodus II node permutation of a cell type: exodus[i] = ours[order[i]]
-/// (mesh node order: DDC_ReferenceCell.hpp), computed from the reference
-/// coordinates. \throws std::invalid_argument for a facet cell type.
-const std::vector<int>& exodusNodeOrder(CellType t);
-/// Exodus II side number (1-based) of facet `f` of a cell type (its local
-/// facet index in referenceCell(t).facets).
-int exodusSideNumber(CellType t, int f);
-/// The Exodus II element type name ("QUAD4", "HEX20", "TETRA10", ...).
-const char* exodusElementType(CellType t);
 
 /// Writes the Exodus II results of one run (see the top of this file).
 class ExodusWriter {

@@ -308,15 +308,14 @@ std::vector<std::pair<std::string, std::string>> namedInputFiles(const Teuchos::
     const auto& bodies = params.sublist("Mesh").sublist("Bodies");
     for (auto it = bodies.begin(); it != bodies.end(); ++it) {
       const std::string& body = bodies.name(it);
-      if (!bodies.isSublist(body) || !bodies.sublist(body).isSublist("Gmsh")) continue;
-      if (stringAt(bodies.sublist(body), "Generator") != "Gmsh") continue;
-      const std::string file = stringAt(bodies.sublist(body).sublist("Gmsh"), "File");
+      // Mesh files: Gmsh and Exodus II bodies.
+      if (!bodies.isSublist(body)) continue;
+      const std::string gen = stringAt(bodies.sublist(body), "Generator");
+      if ((gen != "Gmsh" && gen != "Exodus") || !bodies.sublist(body).isSublist(gen)) continue;
+      const std::string file = stringAt(bodies.sublist(body).sublist(gen), "File");
       if (file.empty()) continue;
-      // As readGmshBody() resolves it.
-      std::string resolved = file;
-      if (file[0] != '/' && !baseDirectory.empty())
-        resolved = baseDirectory + (baseDirectory.back() == '/' ? "" : "/") + file;
-      files.emplace_back("Mesh/Bodies/" + body + "/Gmsh/File", resolved);
+      // As readGmshBody() / readExodusBody() resolve it.
+      files.emplace_back("Mesh/Bodies/" + body + "/" + gen + "/File", resolveDeckFile(file, baseDirectory));
     }
   }
   if (params.isSublist("Partition")) {
@@ -324,7 +323,7 @@ std::vector<std::pair<std::string, std::string>> namedInputFiles(const Teuchos::
     const std::string file = stringAt(part, "Element Map File");
     if (stringAt(part, "Method") == "Element Map File" && !file.empty())
       // As the Analysis constructor resolves it.
-      files.emplace_back("Partition/Element Map File", file[0] == '/' ? file : baseDirectory + "/" + file);
+      files.emplace_back("Partition/Element Map File", resolveDeckFile(file, baseDirectory));
   }
   return files;
 }

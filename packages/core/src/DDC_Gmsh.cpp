@@ -465,9 +465,7 @@ int readGmshBody(Mesh& mesh, const std::string& bodyName, CellType type, Teuchos
                                   << "': its element type " << cellTypeName(type) << " is "
                                   << cellDimension(type) << "-D, so '" << used << "' selects its elements"
                                   << (solid ? " (its physical surfaces become side sets)" : ""));
-  std::string resolved = file;
-  if (file[0] != '/' && !baseDirectory.empty())
-    resolved = baseDirectory + (baseDirectory.back() == '/' ? "" : "/") + file;
+  const std::string resolved = resolveDeckFile(file, baseDirectory);
   try {
     return readGmshFile(mesh, bodyName, type, resolved, params.get<std::string>(used));
   } catch (const InputError& e) {

@@ -17,6 +17,11 @@
 
 namespace ddc {
 
+std::string resolveDeckFile(const std::string& file, const std::string& baseDirectory) {
+  if (file.empty() || file[0] == '/' || baseDirectory.empty()) return file;
+  return baseDirectory + (baseDirectory.back() == '/' ? "" : "/") + file;
+}
+
 std::string joinPath(const std::string& a, const std::string& b) {
   if (a.empty()) return b;
   return a + "/" + b;

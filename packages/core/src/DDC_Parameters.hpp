@@ -162,6 +162,11 @@ std::string templateName(const Teuchos::ParameterList& valid);
 /// Join a parameter path: joinPath("Mesh", "Bodies") == "Mesh/Bodies".
 std::string joinPath(const std::string& a, const std::string& b);
 
+/// A file named in a deck as the readers resolve it: an absolute path as
+/// given, a relative one against the deck's directory `baseDirectory` ("":
+/// the current directory).
+std::string resolveDeckFile(const std::string& file, const std::string& baseDirectory);
+
 /// Add `list` as sublist `name` of `pl` with a doc string. (Teuchos'
 /// ParameterList::set(name, list, doc) silently drops the doc string of a
 /// sublist, so --print-parameters would lose it.)
