@@ -32,12 +32,11 @@ locate_tools() {
 # run_case LABEL DESCRIPTION DECK [ddcontact args...]: one run on np ranks
 # into OUT_DIR/runs/LABEL (log OUT_DIR/logs/LABEL.log), timed; with
 # skip_runs only checks that its history is there. Exits 1 with the log's
-# tail when the run fails.
+# tail when the run fails. The caller creates OUT_DIR/runs and OUT_DIR/logs.
 run_case() {
   local label=$1 description=$2 deck=$3
   shift 3
   local dir="$out/runs/$label" log="$out/logs/$label.log"
-  mkdir -p "$out/runs" "$out/logs"
   if ((skip_runs)); then
     [[ -f $dir/history.csv ]] || { echo "$me: --skip-runs: $dir/history.csv missing" >&2; exit 1; }
     return 0

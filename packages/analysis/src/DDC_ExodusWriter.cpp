@@ -4,9 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
-#include <map>
-#include <set>
 #include <stdexcept>
 
 #include "DDC_Error.hpp"
@@ -16,6 +13,16 @@
 namespace ddc {
 
 namespace {
+
+/// Writable copies of `names` and pointers to them, for the Exodus II
+/// calls that take char*[].
+struct NameList {
+  explicit NameList(std::vector<std::string> names) : copies(std::move(names)) {
+    for (auto& c : copies) pointers.push_back(c.data());
+  }
+  std::vector<std::string> copies;
+  std::vector<char*> pointers;
+};
 
 /// Nodal values a rank sends to rank 0: displacement, velocity, acceleration.
 struct NodeRecord {
@@ -85,10 +92,8 @@ ExodusWriter::ExodusWriter(Teuchos::RCP<const Teuchos::Comm<int>> comm, const st
       }
       auto putNames = [&](ex_entity_type type, const std::vector<std::string>& names, const char* what) {
         if (names.empty()) return true;
-        std::vector<char*> p;
-        std::vector<std::string> copy = names;
-        for (auto& s : copy) p.push_back(s.data());
-        return check(ex_put_names(exoid_, type, p.data()), what);
+        NameList list(names);
+        return check(ex_put_names(exoid_, type, list.pointers.data()), what);
       };
       ok = ok && putNames(EX_ELEM_BLOCK, blockNames, "block names");
       // Node sets and side sets, ids from 1 in name order.
@@ -121,11 +126,9 @@ ExodusWriter::ExodusWriter(Teuchos::RCP<const Teuchos::Comm<int>> comm, const st
                                                 "stress_yz", "stress_xz", "von_mises", "strain_energy_density"};
       auto putVariables = [&](ex_entity_type type, const std::vector<std::string>& names, const char* what) {
         if (names.empty()) return true;
-        std::vector<std::string> copy = names;
-        std::vector<char*> p;
-        for (auto& s : copy) p.push_back(s.data());
+        NameList list(names);
         return check(ex_put_variable_param(exoid_, type, int(names.size())), what) &&
-               check(ex_put_variable_names(exoid_, type, int(names.size()), p.data()), what);
+               check(ex_put_variable_names(exoid_, type, int(names.size()), list.pointers.data()), what);
       };
       ok = ok && putVariables(EX_NODAL, nodal, "nodal variables") &&
            putVariables(EX_ELEM_BLOCK, element, "element variables") &&
