@@ -1,5 +1,6 @@
 #include "DDC_ExodusWriter.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
 #include <exodusII.h>
 
 #include <algorithm>
@@ -7,6 +8,7 @@
 #include <stdexcept>
 
 #include "DDC_Error.hpp"
+#include "DDC_InputDeck.hpp"
 #include "DDC_ModelOutput.hpp"
 #include "DDC_MpiRecords.hpp"
 
@@ -146,6 +148,72 @@ ExodusWriter::ExodusWriter(Teuchos::RCP<const Teuchos::Comm<int>> comm, const st
 
 ExodusWriter::~ExodusWriter() {
   if (exoid_ >= 0) ex_close(exoid_);
+}
+
+std::pair<int, std::string> ExodusWriter::copySteps(const std::string& source, int count) {
+  const Mesh& mesh = model_.mesh();
+  std::string error, shortfall;
+  int copied = 0;
+  if (comm_->getRank() == 0 && exoid_ >= 0) {
+    int cpuWordSize = 8, ioWordSize = 0;
+    float version = 0.0f;
+    const int in = ex_open(source.c_str(), EX_READ, &cpuWordSize, &ioWordSize, &version);
+    if (in < 0) {
+      shortfall = "cannot read '" + source + "': " + exodusLibraryError(in);
+    } else {
+      // The same variables (the same model and kind of analysis).
+      auto variables = [](int id, ex_entity_type type) {
+        int n = 0;
+        return ex_get_variable_param(id, type, &n) < 0 ? -1 : n;
+      };
+      const int available = int(ex_inquire_int(in, EX_INQ_TIME));
+      if (variables(in, EX_NODAL) != numNodal_ || variables(in, EX_ELEM_BLOCK) != kElementValues ||
+          variables(in, EX_GLOBAL) != int(globalNames_.size()) ||
+          int(ex_inquire_int(in, EX_INQ_NODES)) != mesh.numNodes() ||
+          int(ex_inquire_int(in, EX_INQ_ELEM_BLK)) != mesh.numBodies()) {
+        shortfall = "'" + source + "' has other variables or another mesh";
+      } else {
+        const int n = std::min(count, available);
+        if (n < count)
+          shortfall = "'" + source + "' has " + std::to_string(available) + " of the " + std::to_string(count) +
+                      " steps before the checkpoint";
+        std::vector<double> values;
+        auto copy = [&](int step, ex_entity_type type, int var, int64_t id, int64_t length) {
+          values.resize(size_t(length));
+          const int r = ex_get_var(in, step, type, var, id, length, values.data());
+          if (r < 0) {
+            error = "cannot read step " + std::to_string(step) + " of '" + source + "': " + exodusLibraryError(r);
+            return false;
+          }
+          const int w = ex_put_var(exoid_, step, type, var, id, length, values.data());
+          if (w < 0)
+            error = "cannot write step " + std::to_string(step) + " of the Exodus II results '" + path_ +
+                    "': " + exodusLibraryError(w);
+          return w >= 0;
+        };
+        bool ok = true;
+        for (int step = 1; ok && step <= n; ++step) {
+          double time = 0.0;
+          ok = ex_get_time(in, step, &time) >= 0 && ex_put_time(exoid_, step, &time) >= 0;
+          if (!ok) error = "cannot copy the time of step " + std::to_string(step) + " from '" + source + "'";
+          for (int k = 0; ok && k < numNodal_; ++k) ok = copy(step, EX_NODAL, k + 1, 1, mesh.numNodes());
+          for (int b = 0; ok && b < mesh.numBodies(); ++b)
+            for (int k = 0; ok && k < kElementValues; ++k)
+              ok = copy(step, EX_ELEM_BLOCK, k + 1, b + 1, mesh.body(b).numElements);
+          if (ok && !globalNames_.empty()) ok = copy(step, EX_GLOBAL, 1, 0, int64_t(globalNames_.size()));
+          if (ok) copied = step;
+        }
+        if (ok && ex_update(exoid_) < 0) error = "cannot flush the Exodus II results '" + path_ + "'";
+      }
+      ex_close(in);
+    }
+  }
+  error = firstErrorOnAnyRank(rawComm(*comm_), error);
+  if (!error.empty()) throw OutputError(error);
+  shortfall = broadcastStrings(*comm_, {shortfall}).front();
+  Teuchos::broadcast(*comm_, 0, Teuchos::outArg(copied));
+  steps_ = copied;
+  return {copied, shortfall};
 }
 
 void ExodusWriter::close() {

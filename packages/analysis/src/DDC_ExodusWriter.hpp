@@ -24,6 +24,7 @@
 #include <Teuchos_Comm.hpp>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "DDC_ExodusCells.hpp"
@@ -52,6 +53,15 @@ class ExodusWriter {
   /// \throws OutputError (every rank) when the step cannot be written.
   void writeStep(double time, const Vector& u, const Vector* velocity, const Vector* acceleration,
                  const std::vector<double>& globals);
+  /// Continue the results of an earlier run of the same model (a restart,
+  /// collective): copy its first `count` time steps (time values and every
+  /// variable) from the Exodus II file `source`, which must not be path().
+  /// Copies fewer if `source` has fewer; none if it is missing, unreadable
+  /// or has other variables.
+  /// \return the steps copied and, when fewer than `count`, why (the same
+  ///         on every rank)
+  /// \throws OutputError (every rank) when this file cannot be written
+  std::pair<int, std::string> copySteps(const std::string& source, int count);
   /// Close the file (collective; also done by the destructor, which does
   /// not throw). \throws OutputError when closing fails.
   void close();

@@ -105,6 +105,14 @@ class Model {
   GO dof(int n, int c) const { return nodeDof_[n] + c; }
   /// Global DOF id of the multiplier of contact slot k.
   GO multiplierDof(int k) const { return lmDof_[k]; }
+  /// The id of DOF g that does not depend on the partition or the number of
+  /// ranks (a checkpoint's): node·dim + component for a node's DOF,
+  /// numNodes·dim + k for the multiplier of contact slot k.
+  GO partitionFreeDof(GO g) const {
+    const int e = dofEntity_[g];
+    const GO d = mesh_->dim();
+    return e >= 0 ? GO(e) * d + (g - nodeDof_[e]) : GO(mesh_->numNodes()) * d + (-1 - e);
+  }
   bool isConstrained(GO g) const { return constrained_[g] != 0; }
 
   Teuchos::RCP<Vector> createVector() const;

@@ -430,8 +430,8 @@ bool checkOwned(const fs::path& p, const fs::path& final, const std::string& rol
 }
 
 /// The checks and recovery of the constructor (rank 0, lock held).
-void prepare(const fs::path& final, const fs::path& staging, const fs::path& old, std::vector<std::string>& notes,
-             Failure& failure) {
+void prepare(const fs::path& final, const fs::path& staging, const fs::path& old, const std::string& resumeWith,
+             std::vector<std::string>& notes, Failure& failure) {
   if (!checkOwned(final, final, "the output directory", failure) ||
       !checkOwned(staging, final, "the staging directory of a run", failure) ||
       !checkOwned(old, final, "the previous result during a commit", failure))
@@ -517,6 +517,9 @@ void prepare(const fs::path& final, const fs::path& staging, const fs::path& old
       if (fs::exists(old)) removeResultTree(old);
       notes.push_back("completed a commit interrupted in an earlier run: its complete result is now '" +
                       final.string() + "'");
+    } else if (!resumeWith.empty() && fs::is_regular_file(staging / resumeWith)) {
+      notes.push_back("continuing in '" + staging.string() + "', the staging directory of the earlier run that did "
+                      "not finish");
     } else {
       removeResultTree(staging);
       notes.push_back("removed '" + staging.string() + "', the staging directory of an earlier run that did not "
@@ -527,6 +530,8 @@ void prepare(const fs::path& final, const fs::path& staging, const fs::path& old
 }
 
 }  // namespace
+
+std::string OutputDirectory::normalisedPath(const std::string& dir) { return normalisedFinalDir(dir).string(); }
 
 OutputDirectory::OutputDirectory(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::string finalDir, RunDescription run)
     : comm_(std::move(comm)), run_(std::move(run)) {
@@ -564,9 +569,9 @@ OutputDirectory::OutputDirectory(Teuchos::RCP<const Teuchos::Comm<int>> comm, st
       if (failure.kind == Failure::None) fs::create_directories(final.parent_path());
       if (failure.kind == Failure::None) lockFd_ = acquireLock(lockPath(), final, run_, started_, failure);
       if (failure.kind == Failure::None) faultInjectionStage("locked");
-      if (failure.kind == Failure::None) prepare(final, staging, old, notes_, failure);
+      if (failure.kind == Failure::None) prepare(final, staging, old, run_.resumeWith, notes_, failure);
       if (failure.kind == Failure::None) {
-        fs::create_directory(staging);
+        fs::create_directory(staging);  // kept (resumeWith) or new
         // Fault-injection name "...:start" tells this write from the commit's.
         const std::string manifest = (staging / manifestFileName()).string();
         writeFileAtomically(manifest, manifestHeader(run_, started_, c.getSize()) + "status: running\n",

@@ -20,6 +20,12 @@ namespace ddc {
 struct RunDescription {
   std::string input;    ///< the input deck (absolute path), "" for an in-memory parameter list
   std::string command;  ///< the command line, "" if not a command-line run
+  /// A restart continuing the unfinished run whose staging directory this
+  /// is (doc/user-guide.md, "Checkpoints and restart"): the name of its
+  /// checkpoint file. A staging directory of an unfinished run that holds
+  /// that file is kept as this run's staging directory instead of being
+  /// removed. Empty: never kept.
+  std::string resumeWith;
 };
 
 /// \brief The output directory of one run, written through a staging directory.
@@ -66,6 +72,11 @@ class OutputDirectory {
  public:
   /// Name of the manifest inside a result directory.
   static constexpr const char* manifestFileName() { return "ddcontact-result.txt"; }
+
+  /// The final directory finalPath() names for `dir` (absolute, `.`, `..`
+  /// and symbolic links resolved, no trailing separator); not collective.
+  /// \throws InputError for a path that does not end in a directory name
+  static std::string normalisedPath(const std::string& dir);
 
   /// Collective. See the class documentation.
   /// \throws InputError on every rank for an unusable path (empty, ending in

@@ -68,6 +68,41 @@ bool BisectingSteps::endsNominalStep(const StepProposal& p) const {
   return !(p.to < target(p.step) - kReached * std::abs(final_));
 }
 
+namespace {
+/// The first number of a saved state: which controller saved it.
+constexpr double kBisectingKind = 1.0, kAdaptiveKind = 2.0;
+/// The current value of a saved state of either kind; NaN if it is neither.
+double savedCurrent(const std::vector<double>& s) {
+  if (s.size() == 7 && s[0] == kBisectingKind) return s[3];
+  if (s.size() == 4 && s[0] == kAdaptiveKind) return s[1];
+  return std::numeric_limits<double>::quiet_NaN();
+}
+}  // namespace
+
+std::vector<double> BisectingSteps::saveState() const {
+  return {kBisectingKind, final_, double(numSteps_), current_, double(step_), size_, double(depth_)};
+}
+
+bool BisectingSteps::restoreState(const std::vector<double>& s, int) {
+  const double current = savedCurrent(s);
+  if (std::isnan(current)) return false;
+  current_ = current;
+  if (s[0] == kBisectingKind && s[1] == final_ && s[2] == double(numSteps_)) {
+    // The same steps: where the saved controller was, bisected sub-steps
+    // included.
+    step_ = int(s[4]);
+    size_ = s[5];
+    depth_ = int(s[6]);
+    return true;
+  }
+  // Other steps: the nominal step the current value lies in, at full size.
+  step_ = 1;
+  size_ = final_ / numSteps_;
+  depth_ = 0;
+  advance();
+  return true;
+}
+
 AdaptiveSteps::AdaptiveSteps(double finalValue, double initialSize, double minSize, double maxSize,
                              double tolerance, int maxHalvings, int maxCorrections)
     : final_(finalValue), min_(minSize), max_(maxSize), tolerance_(tolerance), maxHalvings_(maxHalvings),
@@ -135,6 +170,25 @@ void AdaptiveSteps::accept(const StepProposal& p) {
   corrections_ = 0;
   if (nextSize_ > 0.0) size_ = nextSize_;
   nextSize_ = 0.0;
+}
+
+std::vector<double> AdaptiveSteps::saveState() const {
+  return {kAdaptiveKind, current_, size_, double(accepted_)};
+}
+
+bool AdaptiveSteps::restoreState(const std::vector<double>& s, int acceptedSteps) {
+  const double current = savedCurrent(s);
+  if (std::isnan(current)) return false;
+  current_ = current;
+  // The saved size, within the bounds (they may have changed); from the
+  // other kind, the initial size.
+  if (s[0] == kAdaptiveKind) size_ = std::clamp(s[2], min_, max_);
+  accepted_ = acceptedSteps;
+  depth_ = 0;
+  corrections_ = 0;
+  nextSize_ = 0.0;
+  atMinimum_ = false;
+  return true;
 }
 
 bool AdaptiveSteps::reject(const StepProposal& p) {

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace ddc {
 
@@ -69,6 +70,17 @@ class StepController {
   /// The converged step `p` has the error indicator `error`: accept it,
   /// repeat it, or try a smaller one (StepVerdict). The default accepts.
   virtual StepVerdict judge(const StepProposal& /*p*/, double /*error*/) { return StepVerdict::Accept; }
+  /// The state after an accepted step, for a checkpoint: numbers that
+  /// restoreState() of a controller of the same kind takes back. Empty: this
+  /// controller cannot be checkpointed (the default).
+  virtual std::vector<double> saveState() const { return {}; }
+  /// Continue from `state` (saveState() of a built-in controller, possibly
+  /// built with other settings: a restart may change the final value and
+  /// the step sizes) after `acceptedSteps` accepted steps. From a controller
+  /// of the same kind and settings, the steps that follow are those the
+  /// saved one would have proposed; otherwise they start afresh from the
+  /// saved current value. Returns false if `state` is not a saved state.
+  virtual bool restoreState(const std::vector<double>& /*state*/, int /*acceptedSteps*/) { return false; }
 };
 
 /// Nominal steps of equal size up to a final value, each cut in halves on
@@ -92,6 +104,8 @@ class BisectingSteps final : public StepController {
   bool endsNominalStep(const StepProposal& p) const override;
   /// Cuts allowed per nominal step.
   int maxBisections() const { return maxBisections_; }
+  std::vector<double> saveState() const override;
+  bool restoreState(const std::vector<double>& state, int acceptedSteps) override;
 
  private:
   /// The end of nominal step n.
@@ -170,6 +184,8 @@ class AdaptiveSteps final : public StepController {
   /// The bounds of the step size.
   double minSize() const { return min_; }
   double maxSize() const { return max_; }
+  std::vector<double> saveState() const override;
+  bool restoreState(const std::vector<double>& state, int acceptedSteps) override;
 
  private:
   double final_, min_, max_, tolerance_;

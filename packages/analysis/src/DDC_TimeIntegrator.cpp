@@ -1,5 +1,7 @@
 #include "DDC_TimeIntegrator.hpp"
 
+#include <stdexcept>
+
 #include "DDC_Error.hpp"
 #include "DDC_Parameters.hpp"
 
@@ -184,6 +186,14 @@ Inertia NewmarkIntegrator::inertia(const Vector& a, const Vector* v) const {
     in.velocityFactor = p_.gamma / (p_.beta * h_);
   }
   return in;
+}
+
+void NewmarkIntegrator::restoreState(const Vector& u, const Vector& v, const Vector& a) {
+  if (u_.is_null()) throw std::logic_error("NewmarkIntegrator::restoreState before initialise()");
+  u_->assign(u);
+  v_->assign(v);
+  a_->assign(a);
+  stateForcesCurrent_ = false;
 }
 
 void NewmarkIntegrator::acceptStep(const Vector& u) {

@@ -80,6 +80,9 @@ class NewmarkIntegrator {
   /// \throws SolverError if CG does not reach 1e-12 relative in 1000
   ///         iterations (M is positive definite on those DOFs: it does)
   void initialise(const Model& model, const Vector& u0, const Vector& v0, const Vector* force0 = nullptr);
+  /// Continue from a converged state saved by a checkpoint (displacements,
+  /// velocity() and accelerationNow() of that state), after initialise().
+  void restoreState(const Vector& u, const Vector& v, const Vector& a);
   /// CG iterations of the initial-acceleration solve (0 without force0).
   int accelerationSolveIterations() const { return cgIterations_; }
   /// Begin the step t_n → t_n + h from the converged state: the predictors

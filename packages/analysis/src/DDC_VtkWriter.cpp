@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cctype>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -326,6 +328,87 @@ std::string VtkWriter::vtuFileName(int step, int pieceId) {
   char buf[64];
   std::snprintf(buf, sizeof(buf), "step_%05d_piece_%04d.vtu", step, pieceId);
   return buf;
+}
+
+namespace {
+/// The step number of a file name "step_SSSSS.pvtu" or
+/// "step_SSSSS_piece_PPPP.vtu" (-1 for any other name).
+int stepOfFileName(const std::string& name) {
+  if (name.compare(0, 5, "step_") != 0) return -1;
+  size_t end = 5;
+  while (end < name.size() && std::isdigit(static_cast<unsigned char>(name[end]))) ++end;
+  if (end == 5 || end - 5 > 9) return -1;
+  const std::string rest = name.substr(end);
+  if (rest != ".pvtu" && (rest.compare(0, 7, "_piece_") != 0 || rest.size() < 11 ||
+                          rest.compare(rest.size() - 4, 4, ".vtu") != 0))
+    return -1;
+  return std::stoi(name.substr(5, end - 5));
+}
+
+std::string readWholeFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream os;
+  os << in.rdbuf();
+  if (!in.good() && !in.eof()) throw OutputError("cannot read '" + path.string() + "'");
+  return os.str();
+}
+}  // namespace
+
+std::vector<int> VtkWriter::adoptSteps(const std::string& sourceDirectory,
+                                       const std::vector<std::pair<int, double>>& steps) {
+  std::string error;
+  std::vector<int> missing;
+  std::vector<std::pair<int, double>> kept;
+  if (comm_->getRank() == 0) {
+    try {
+      const fs::path source = fs::path(sourceDirectory) / "vtk", target(vtkDir_);
+      std::error_code ec;
+      const bool same = fs::equivalent(source, target, ec);
+      std::set<int> wanted;
+      for (const auto& [step, time] : steps) {
+        if (fs::exists(source / pvtuFileName(step))) {
+          wanted.insert(step);
+          kept.emplace_back(step, time);
+        } else {
+          missing.push_back(step);
+        }
+      }
+      std::vector<fs::path> files;
+      if (fs::is_directory(source))
+        for (const auto& entry : fs::directory_iterator(source)) files.push_back(entry.path());
+      for (const fs::path& file : files) {
+        const std::string name = file.filename().string();
+        const int step = stepOfFileName(name);
+        if (step < 0) continue;
+        if (!wanted.count(step)) {
+          if (same) fs::remove(file);  // written after the checkpoint
+        } else if (!same) {
+          writeFileAtomically((target / name).string(), readWholeFile(file));
+        }
+      }
+      writePvd(pvdPath(), kept);
+    } catch (const OutputError& e) {
+      error = std::string("VtkWriter: continuing the series of '") + sourceDirectory + "': " + e.what();
+    } catch (const fs::filesystem_error& e) {
+      error = std::string("VtkWriter: continuing the series of '") + sourceDirectory + "': " + e.what();
+    }
+  }
+  error = firstErrorOnAnyRank(*comm_, error);
+  if (!error.empty()) throw OutputError(error);
+  // Every rank keeps the list (writeStep() extends it).
+  std::vector<double> flat;
+  for (const auto& [step, time] : kept) flat.insert(flat.end(), {double(step), time});
+  int n = int(flat.size());
+  Teuchos::broadcast(*comm_, 0, Teuchos::outArg(n));
+  flat.resize(n);
+  if (n > 0) Teuchos::broadcast(*comm_, 0, n, flat.data());
+  steps_.clear();
+  for (int i = 0; i + 1 < n; i += 2) steps_.emplace_back(int(flat[i]), flat[i + 1]);
+  int m = int(missing.size());
+  Teuchos::broadcast(*comm_, 0, Teuchos::outArg(m));
+  missing.resize(m);
+  if (m > 0) Teuchos::broadcast(*comm_, 0, m, missing.data());
+  return missing;
 }
 
 void VtkWriter::writeStep(int step, double time, const std::vector<VtkPiece>& localPieces) {

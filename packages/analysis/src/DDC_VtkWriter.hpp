@@ -81,6 +81,17 @@ class VtkWriter {
   ///   operating system's reason if a file cannot be written, synced or closed.
   void writeStep(int step, double time, const std::vector<VtkPiece>& localPieces);
 
+  /// Continue the series of an earlier run (a restart, collective): the
+  /// steps `steps` of `sourceDirectory`/vtk (the files of each step, copied
+  /// here unless that is this writer's directory) become the first of this
+  /// series, and files of other steps in this writer's directory are
+  /// removed (steps the earlier run wrote after its checkpoint). A step
+  /// whose .pvtu is missing is left out.
+  /// \return the steps left out (the same on every rank)
+  /// \throws OutputError (every rank) naming the file that cannot be copied
+  ///         or removed
+  std::vector<int> adoptSteps(const std::string& sourceDirectory, const std::vector<std::pair<int, double>>& steps);
+
   /// `directory/vtk`.
   const std::string& vtkDirectory() const { return vtkDir_; }
 

@@ -3,6 +3,8 @@
 // bisection depth per nominal step, and giving up after Max Bisections.
 // AdaptiveSteps, the controller of Step Control: repeats, reductions and
 // growth from an error indicator, its bounds, and the end of the run.
+// Both: a state saved after an accepted step restores into a new controller
+// (a restart), which then proposes what the saved one would have.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -243,6 +245,92 @@ TEST(AdaptiveSteps, OutOfRangeArgumentsAreRefused) {
   EXPECT_THROW(ddc::AdaptiveSteps(1.0, 0.1, 0.01, 0.1, 0.0, 2, 1), std::invalid_argument);
   EXPECT_THROW(ddc::AdaptiveSteps(1.0, 0.1, 0.01, 0.1, 1e-3, -1, 1), std::invalid_argument);
   EXPECT_THROW(ddc::AdaptiveSteps(1.0, 0.1, 0.01, 0.1, 1e-3, 2, -1), std::invalid_argument);
+}
+
+/// The proposals of `c` to its end (accepting every step; `error` judges
+/// each if the controller controls the error).
+std::vector<ddc::StepProposal> rest(ddc::StepController& c, double error = 0.0) {
+  std::vector<ddc::StepProposal> out;
+  while (!c.done()) {
+    const ddc::StepProposal p = c.propose();
+    if (c.controlsError()) EXPECT_EQ(c.judge(p, error), ddc::StepVerdict::Accept);
+    c.accept(p);
+    out.push_back(p);
+  }
+  return out;
+}
+
+void expectSame(const std::vector<ddc::StepProposal>& a, const std::vector<ddc::StepProposal>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].step, b[i].step) << i;
+    EXPECT_EQ(a[i].from, b[i].from) << i;
+    EXPECT_EQ(a[i].to, b[i].to) << i;
+    EXPECT_EQ(a[i].size, b[i].size) << i;
+    EXPECT_EQ(a[i].depth, b[i].depth) << i;
+  }
+}
+
+TEST(BisectingSteps, ARestoredStateProposesTheStepsTheSavedControllerWould) {
+  // Stopped within a bisected nominal step: the restored controller goes on
+  // with the halved size and the depth of that step.
+  ddc::BisectingSteps saved(1.0, 10, 4);
+  for (int k = 0; k < 3; ++k) saved.accept(saved.propose());
+  ASSERT_TRUE(saved.reject(saved.propose()));
+  saved.accept(saved.propose());  // the first half of step 4
+  const auto state = saved.saveState();
+  ddc::BisectingSteps restored(1.0, 10, 4);
+  ASSERT_TRUE(restored.restoreState(state, 4));
+  EXPECT_EQ(restored.current(), saved.current());
+  expectSame(rest(restored), rest(saved));
+}
+
+TEST(BisectingSteps, ARestoredStateWithOtherStepsGoesOnFromItsValue) {
+  ddc::BisectingSteps saved(1.0, 10, 4);
+  for (int k = 0; k < 3; ++k) saved.accept(saved.propose());  // at 0.3
+  ddc::BisectingSteps finer(2.0, 40, 4);  // steps of 0.05 to 2
+  ASSERT_TRUE(finer.restoreState(saved.saveState(), 3));
+  EXPECT_EQ(finer.current(), saved.current());
+  const auto steps = rest(finer);
+  ASSERT_FALSE(steps.empty());
+  EXPECT_EQ(steps.front().from, saved.current());
+  EXPECT_EQ(steps.front().step, 7);  // 0.3 is the end of nominal step 6 of 40 to 2
+  EXPECT_EQ(steps.back().to, 2.0);
+  EXPECT_EQ(steps.size(), 34u);
+  // Another controller's state: from its value, at the full size.
+  ddc::AdaptiveSteps adaptive(1.0, 0.1, 0.01, 0.2, 1e-3, 2, 1);
+  adaptive.accept(adaptive.propose());
+  ddc::BisectingSteps equal(1.0, 10, 4);
+  ASSERT_TRUE(equal.restoreState(adaptive.saveState(), 1));
+  EXPECT_EQ(equal.current(), adaptive.current());
+  EXPECT_EQ(equal.propose().size, 0.1);
+  // Not a saved state.
+  EXPECT_FALSE(equal.restoreState({}, 1));
+  EXPECT_FALSE(equal.restoreState({7.0, 1.0, 2.0}, 1));
+}
+
+TEST(AdaptiveSteps, ARestoredStateProposesTheStepsTheSavedControllerWould) {
+  ddc::AdaptiveSteps saved(1.0, 0.05, 0.01, 0.2, 1e-3, 2, 1);
+  for (int k = 0; k < 3; ++k) {
+    const ddc::StepProposal p = saved.propose();
+    ASSERT_EQ(saved.judge(p, 2e-4), ddc::StepVerdict::Accept);  // grows the next step
+    saved.accept(p);
+  }
+  ddc::AdaptiveSteps restored(1.0, 0.05, 0.01, 0.2, 1e-3, 2, 1);
+  ASSERT_TRUE(restored.restoreState(saved.saveState(), 3));
+  EXPECT_EQ(restored.current(), saved.current());
+  expectSame(rest(restored, 2e-4), rest(saved, 2e-4));
+  // Tighter bounds: the saved size clamped into them.
+  ddc::AdaptiveSteps tight(1.0, 0.02, 0.01, 0.02, 1e-3, 2, 1);
+  ddc::AdaptiveSteps again(1.0, 0.05, 0.01, 0.2, 1e-3, 2, 1);
+  for (int k = 0; k < 3; ++k) {
+    const ddc::StepProposal p = again.propose();
+    again.judge(p, 2e-4);
+    again.accept(p);
+  }
+  ASSERT_TRUE(tight.restoreState(again.saveState(), 3));
+  EXPECT_EQ(tight.propose().size, 0.02);
+  EXPECT_EQ(tight.propose().step, 4);
 }
 
 }  // namespace

@@ -95,6 +95,12 @@ struct ContactSlot {
   bool paired() const { return master[0] >= 0; }
 };
 
+/// The slots as numbers, for a checkpoint (every field; integers exactly).
+std::vector<double> packSlots(const std::vector<ContactSlot>& slots);
+/// The slots packSlots() gave.
+/// \throws std::invalid_argument if `packed` is not a whole number of slots
+std::vector<ContactSlot> unpackSlots(const std::vector<double>& packed);
+
 /// Summary of the contact state for output.
 struct ContactSummary {
   int active = 0;  ///< active slots

@@ -48,6 +48,21 @@ class OutputError : public std::runtime_error {
   explicit OutputError(const std::string& what) : std::runtime_error(what) {}
 };
 
+/// The run stopped on request (a signal, requestStop()) at the end of a
+/// converged step, after writing its checkpoint; not a failure of the input,
+/// the solver or the output.
+class RunInterrupted : public std::runtime_error {
+ public:
+  /// \param what the complete message (what() returns it)
+  /// \param signal the signal the stop was requested with (e.g. SIGTERM)
+  RunInterrupted(const std::string& what, int signal) : std::runtime_error(what), signal_(signal) {}
+  /// The signal the stop was requested with.
+  int signal() const { return signal_; }
+
+ private:
+  int signal_;
+};
+
 /// "'a', 'b', 'c'": the names quoted and comma separated, or `none` when there
 /// are none; how error messages list the valid choices.
 template <class Names>
