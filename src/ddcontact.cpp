@@ -21,6 +21,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <new>
 #include <sstream>
 #include <thread>
@@ -33,11 +34,13 @@
 #include "DDC_OutputDirectory.hpp"
 #include "DDC_Parameters.hpp"
 #include "DDC_ResultFile.hpp"
+#include "DDC_Restart.hpp"
+#include "DDC_StopRequest.hpp"
 
 namespace {
 
 const char* kUsage =
-    "usage: ddcontact INPUT.xml [--output-dir DIR] [--set PATH=VALUE]...\n"
+    "usage: ddcontact INPUT.xml [--output-dir DIR] [--restart DIR] [--set PATH=VALUE]...\n"
     "       ddcontact --help | --print-parameters\n"
     "\n"
     "Runs the analysis described by the Teuchos XML parameter file INPUT.xml. Rank 0 reads it\n"
@@ -49,16 +52,23 @@ const char* kUsage =
     "                      so a failed run never overwrites earlier results; DIR must be\n"
     "                      new, empty or an earlier ddcontact result (DIR/ddcontact-result.txt),\n"
     "                      and one run at a time may use it (DIR.lock)\n"
+    "  --restart DIR       continue the run whose output directory was DIR from its last\n"
+    "                      checkpoint (DIR.partial/checkpoint.ddc if that run did not finish,\n"
+    "                      else DIR/checkpoint.ddc), into --output-dir (default: DIR itself);\n"
+    "                      the deck may change only the steps, Newton, Solver, Partition and\n"
+    "                      Output settings (doc/user-guide.md, 'Checkpoints and restart')\n"
     "  --set PATH=VALUE    override a parameter, e.g. --set \"Load Stepping/Number of Steps=50\"\n"
     "                      (sublists joined by '/', VALUE parsed with the parameter's type)\n"
     "  --print-parameters  print every valid parameter with its default and description\n"
     "  --help              print this text\n"
     "\n"
     "Output: DIR/history.csv (one row per converged step), DIR/vtk/ (ParaView: solution.pvd),\n"
-    "DIR/parameters.xml (the validated parameters, defaults included).\n";
+    "DIR/parameters.xml (the validated parameters, defaults included), DIR/checkpoint.ddc.\n"
+    "SIGTERM, SIGINT or SIGUSR1 (which mpirun forwards) stops the run after its current step,\n"
+    "with a checkpoint (a second signal ends it at once).\n";
 
 struct Options {
-  std::string input, outputDir;
+  std::string input, outputDir, restart;
   std::vector<std::string> sets;
   bool help = false, printParameters = false;
 };
@@ -72,6 +82,9 @@ void checkOptionValue(const std::string& option, const std::string& value) {
   if (option == "--output-dir")
     DDC_INPUT_REQUIRE(!value.empty(), "option --output-dir needs a directory, got an empty name (an unset shell "
                                       "variable?); leave the option out for the default ddcontact-out/<input stem>");
+  if (option == "--restart")
+    DDC_INPUT_REQUIRE(!value.empty(), "option --restart needs the output directory of the run to continue, got an "
+                                      "empty name (an unset shell variable?)");
   if (option == "--set")
     DDC_INPUT_REQUIRE(value.find('=') != std::string::npos && value.find('=') > 0,
                       "option --set needs PATH=VALUE in one argument, got '"
@@ -87,10 +100,13 @@ Options parse(const std::vector<std::string>& args) {
       o.help = true;
     } else if (a == "--print-parameters") {
       o.printParameters = true;
-    } else if (a == "--output-dir" || a == "--set") {
+    } else if (a == "--output-dir" || a == "--set" || a == "--restart") {
       DDC_INPUT_REQUIRE(i + 1 < argc, "option " << a << " needs a value\n" << kUsage);
-      (a == "--set" ? o.sets.emplace_back() : o.outputDir) = args[++i];
+      (a == "--set" ? o.sets.emplace_back() : a == "--restart" ? o.restart : o.outputDir) = args[++i];
       checkOptionValue(a, args[i]);
+    } else if (a.rfind("--restart=", 0) == 0) {
+      o.restart = a.substr(10);
+      checkOptionValue("--restart", o.restart);
     } else if (a.rfind("--output-dir=", 0) == 0) {
       o.outputDir = a.substr(13);
       checkOptionValue("--output-dir", o.outputDir);
@@ -163,29 +179,50 @@ int run(const std::vector<std::string>& args, const Teuchos::RCP<const Teuchos::
   for (const auto& s : o.sets) ddc::applyOverride(*params, *valid, s);
 
   const std::filesystem::path inputPath(o.input);
+  // A restart reads its checkpoint first: continuing in the same directory,
+  // opening it would otherwise remove the unfinished run's staging directory.
+  std::unique_ptr<ddc::RestartSource> restart;
+  if (!o.restart.empty()) restart = std::make_unique<ddc::RestartSource>(ddc::findRestartSource(comm, o.restart));
   const std::string outDir =
-      o.outputDir.empty() ? (std::filesystem::path("ddcontact-out") / inputPath.stem()).string() : o.outputDir;
+      !o.outputDir.empty() ? o.outputDir
+      : restart            ? restart->finalPath
+                           : (std::filesystem::path("ddcontact-out") / inputPath.stem()).string();
   std::string base = inputPath.parent_path().string();
   if (base.empty()) base = ".";
 
-  // The output directory first: a directory in use by another run, or one
-  // DDContact did not write, stops the run before any work is done.
   std::string command = "ddcontact";
   for (const auto& a : args) command += " " + a;
   std::error_code ec;
-  ddc::OutputDirectory dir(comm, outDir, {std::filesystem::absolute(inputPath, ec).lexically_normal().string(), command});
+  ddc::RunDescription description{std::filesystem::absolute(inputPath, ec).lexically_normal().string(), command, ""};
+  if (restart && restart->unfinished && ddc::OutputDirectory::normalisedPath(outDir) == restart->finalPath)
+    description.resumeWith = ddc::kCheckpointFileName;
+  std::unique_ptr<ddc::Analysis> analysis;
+  auto build = [&] {
+    analysis = std::make_unique<ddc::Analysis>(comm, *params, ddc::ElementFactory::withBuiltins(), base);
+    if (comm->getRank() == 0) {
+      const auto& m = analysis->model().mesh();
+      std::cout << "ddcontact: " << o.input << ": " << m.numBodies() << " bodies, " << m.numElements()
+                << " elements, " << m.dim() * m.numNodes() << " DOFs, "
+                << analysis->model().partition().numSubdomains << " subdomains on " << comm->getSize()
+                << " ranks; estimated memory " << ddc::formatBytes(analysis->memoryEstimate().total()) << " per rank"
+                << std::endl;
+    }
+  };
+  // A restart checks the deck against the checkpoint before the output
+  // directory is opened: a refused restart leaves the directory it would
+  // continue in as it was.
+  if (restart) {
+    build();
+    analysis->setRestart(std::move(*restart));
+  }
+  // Otherwise the output directory first: a directory in use by another
+  // run, or one DDContact did not write, stops the run before any work is
+  // done.
+  ddc::OutputDirectory dir(comm, outDir, description);
   if (comm->getRank() == 0)
     for (const auto& note : dir.recoveryNotes()) std::cout << "ddcontact: output: " << note << std::endl;
-
-  ddc::Analysis analysis(comm, *params, ddc::ElementFactory::withBuiltins(), base);
-  if (comm->getRank() == 0) {
-    const auto& m = analysis.model().mesh();
-    std::cout << "ddcontact: " << o.input << ": " << m.numBodies() << " bodies, " << m.numElements()
-              << " elements, " << m.dim() * m.numNodes() << " DOFs, " << analysis.model().partition().numSubdomains
-              << " subdomains on " << comm->getSize() << " ranks; estimated memory "
-              << ddc::formatBytes(analysis.memoryEstimate().total()) << " per rank" << std::endl;
-  }
-  analysis.run(dir);
+  if (!analysis) build();
+  analysis->run(dir);
   return 0;
 }
 
@@ -280,7 +317,7 @@ bool startupHandshake(MPI_Comm comm) {
 /// identically on all ranks) they meet in a barrier and exit cleanly, rank 0
 /// printing the message. If only some ranks failed, the others are stuck in
 /// a collective: abort the job so that nothing hangs.
-int fail(const std::string& fullMessage, MPI_Comm comm) {
+int fail(const std::string& fullMessage, MPI_Comm comm, const char* label = "error") {
   const std::string msg = capText(fullMessage, kMaxMessage);
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
@@ -293,7 +330,7 @@ int fail(const std::string& fullMessage, MPI_Comm comm) {
     if (!done) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   if (done) {
-    if (rank == 0) std::cerr << "ddcontact: error: " << msg << std::endl;
+    if (rank == 0) std::cerr << "ddcontact: " << label << (*label ? ": " : "") << msg << std::endl;
     return 1;
   }
   std::cerr << "ddcontact: error on rank " << rank << ": " << msg << std::endl;
@@ -310,11 +347,17 @@ int main(int argc, char** argv) {
   auto comm = Tpetra::getDefaultComm();
   int status = 0;
   std::string msg;
+  int stopSignal = 0;
+  // SIGTERM / SIGINT / SIGUSR1: stop after the current step, with a checkpoint.
+  ddc::installStopHandlers();
   if (ddc::faultInjectionActive() && comm->getRank() == 0)
     std::cerr << "ddcontact: test fault injection active: DDCONTACT_FAULT_INJECTION="
               << std::getenv("DDCONTACT_FAULT_INJECTION") << std::endl;
   try {
     status = run(commandLine(argc, argv, *comm), comm);
+  } catch (const ddc::RunInterrupted& e) {
+    msg = e.what();
+    stopSignal = e.signal();
   } catch (const ddc::InputError& e) {
     msg = e.what();
   } catch (const ddc::SolverError& e) {
@@ -328,6 +371,9 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     msg = std::string("unexpected: ") + e.what();
   }
-  if (!msg.empty()) status = fail(msg, MPI_COMM_WORLD);
+  // A stop exits with 128 + the signal, as a shell reports a process the
+  // signal ended.
+  if (stopSignal) status = fail(msg, MPI_COMM_WORLD, "") == 0 ? 0 : 128 + stopSignal;
+  else if (!msg.empty()) status = fail(msg, MPI_COMM_WORLD);
   return status;
 }

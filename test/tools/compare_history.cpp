@@ -8,6 +8,10 @@
 // are round-off (e.g. 1e-14 strain energy of a rigid motion when the peak is
 // O(1)) then compare absolutely, to RTOL * 1e-4 of the peak.
 // Prints the worst relative difference per column; exit 1 on mismatch.
+//
+// compare_history A.csv B.csv exact
+// The same header, and every field the same text except wall_seconds (a
+// restarted run's history against the uninterrupted run's).
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -42,7 +46,7 @@ bool read(const char* file, std::vector<std::string>& header, Table& rows) {
 
 int main(int argc, char** argv) {
   if (argc < 4) {
-    std::cerr << "usage: compare_history A.csv B.csv RTOL [COLUMN...]\n";
+    std::cerr << "usage: compare_history A.csv B.csv RTOL [COLUMN...] | compare_history A.csv B.csv exact\n";
     return 2;
   }
   std::vector<std::string> ha, hb;
@@ -50,6 +54,24 @@ int main(int argc, char** argv) {
   if (!read(argv[1], ha, a) || !read(argv[2], hb, b)) {
     std::cerr << "compare_history: cannot read " << argv[1] << " or " << argv[2] << "\n";
     return 1;
+  }
+  if (std::string(argv[3]) == "exact") {
+    if (ha != hb || a.size() != b.size() || a.empty()) {
+      std::cerr << "compare_history: headers or row counts differ (" << a.size() << " vs " << b.size() << " rows)\n";
+      return 1;
+    }
+    const size_t wall = std::find(ha.begin(), ha.end(), "wall_seconds") - ha.begin();
+    int differences = 0;
+    for (size_t i = 0; i < a.size(); ++i)
+      for (size_t j = 0; j < std::max(a[i].size(), b[i].size()); ++j) {
+        const std::string x = j < a[i].size() ? a[i][j] : "(none)", y = j < b[i].size() ? b[i][j] : "(none)";
+        if (j == wall || x == y) continue;
+        if (++differences <= 10)
+          std::cerr << "compare_history: row " << i + 1 << ", " << (j < ha.size() ? ha[j] : "column " + std::to_string(j))
+                    << ": " << x << " vs " << y << "\n";
+      }
+    std::cout << differences << " fields differ (wall_seconds not compared)\n";
+    return differences == 0 ? 0 : 1;
   }
   const double rtol = std::atof(argv[3]);
   std::vector<std::string> cols(argv + 4, argv + argc);

@@ -23,7 +23,6 @@ chmod 0777 "$work"  # both users may create entries (no sticky bit: renames allo
 out=$work/out
 failures=0
 . "$here/rank_status_lib.sh"
-hashes() { (cd "$1" 2>/dev/null && find . -type f -print0 | sort -z | xargs -0 -r sha256sum) || echo "<no $1>"; }
 
 mpirun --oversubscribe -np "$np" "$app" "$deck" --output-dir "$out" >"$work/earlier.log" 2>&1 ||
   { fail "the earlier run (as root) failed"; cat "$work/earlier.log"; exit 1; }

@@ -43,15 +43,6 @@ run() {
   mpirun --oversubscribe -np "$np" sh "$here/record_exit_status.sh" "$work/status" "$app" "$@" >"$log" 2>&1
 }
 
-# hashes PATH: checksums of a file or of every file below a directory.
-hashes() {
-  if [ -f "$1" ]; then
-    sha256sum <"$1"
-  else
-    (cd "$1" 2>/dev/null && find . -type f -print0 | sort -z | xargs -0 -r sha256sum) || echo "<no directory $1>"
-  fi
-}
-
 # data rows of the history in $1
 rows() { echo $(($(wc -l <"$1/history.csv") - 1)); }
 

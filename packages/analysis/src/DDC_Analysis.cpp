@@ -12,7 +12,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -32,6 +34,7 @@
 #include "DDC_Parameters.hpp"
 #include "DDC_Partition.hpp"
 #include "DDC_ResultFile.hpp"
+#include "DDC_StopRequest.hpp"
 #include "DDC_VtkWriter.hpp"
 
 namespace ddc {
@@ -322,6 +325,12 @@ Teuchos::RCP<PL> outputValidParameters() {
           "dynamics), contact gap, pressure and multiplier, element stresses and von Mises stress, and global "
           "values (doc/user-guide.md, 'The output directory').");
   pl->set("Progress", true, "Print one progress line per converged step on rank 0.");
+  pl->set("Checkpoint Interval", 10,
+          "Write checkpoint.ddc, the state a restart continues from (ddcontact --restart), after every this many "
+          "converged steps, after the last one, and when the run fails or is stopped by SIGTERM, SIGINT or SIGUSR1 (at the "
+          "end of its current step); it replaces the previous one. 0: no checkpoints (doc/user-guide.md, "
+          "'Checkpoints and restart').",
+          atLeast(0));
   pl->set("Contact Nodes", false,
           "Write contact_nodes.csv: one row per contact slave node at the last converged step (pair, node, "
           "reference x y z, gap, multiplier, tributary area, pressure, active), for contact-pressure "
@@ -1097,12 +1106,191 @@ void Analysis::writeContactNodes(const std::string& path, const std::vector<Cont
   if (!error.empty()) throw OutputError(error);
 }
 
+namespace {
+
+/// The history rows as numbers, for a checkpoint: the fields of each
+/// StepRecord, then its residual history (count, values). Every number
+/// round-trips exactly (integers are far below 2^53).
+std::vector<double> packHistory(const std::vector<StepRecord>& history) {
+  std::vector<double> out;
+  for (const StepRecord& r : history) {
+    out.insert(out.end(), {double(r.step), r.loadFactor, r.strainEnergy, double(r.newtonIterations),
+                           double(r.dualIterations), double(r.bisections), r.wallSeconds, r.externalWork,
+                           double(r.activeContacts), r.contactForce[0], r.contactForce[1], r.contactForce[2],
+                           double(r.contactExchanges), double(r.contactBytes), r.kineticEnergy, r.stepSize,
+                           double(r.rejections), double(r.corrections), r.geometryError,
+                           double(r.residualHistory.size())});
+    out.insert(out.end(), r.residualHistory.begin(), r.residualHistory.end());
+  }
+  return out;
+}
+
+/// Fields of a packed StepRecord before its residual history.
+constexpr size_t kPackedRecord = 20;
+
+std::vector<StepRecord> unpackHistory(const std::vector<double>& packed, const std::string& file) {
+  std::vector<StepRecord> history;
+  size_t i = 0;
+  while (i < packed.size()) {
+    DDC_INPUT_REQUIRE(i + kPackedRecord <= packed.size(), "checkpoint '" << file << "': history row "
+                                                                         << history.size() + 1 << " is cut short");
+    const double* p = packed.data() + i;
+    StepRecord r;
+    r.step = int(p[0]);
+    r.loadFactor = p[1];
+    r.strainEnergy = p[2];
+    r.newtonIterations = int(p[3]);
+    r.dualIterations = int(p[4]);
+    r.bisections = int(p[5]);
+    r.wallSeconds = p[6];
+    r.externalWork = p[7];
+    r.activeContacts = int(p[8]);
+    r.contactForce[0] = p[9], r.contactForce[1] = p[10], r.contactForce[2] = p[11];
+    r.contactExchanges = long(p[12]);
+    r.contactBytes = long(p[13]);
+    r.kineticEnergy = p[14];
+    r.stepSize = p[15];
+    r.rejections = int(p[16]);
+    r.corrections = int(p[17]);
+    r.geometryError = p[18];
+    const size_t n = size_t(p[19]);
+    i += kPackedRecord;
+    DDC_INPUT_REQUIRE(n <= packed.size() - i, "checkpoint '" << file << "': history row " << history.size() + 1
+                                                              << " is cut short");
+    r.residualHistory.assign(packed.begin() + long(i), packed.begin() + long(i + n));
+    i += n;
+    history.push_back(std::move(r));
+  }
+  return history;
+}
+
+/// "SIGTERM", "SIGINT", "SIGUSR1", or "signal N".
+std::string signalName(int signal) {
+  if (signal == SIGTERM) return "SIGTERM";
+  if (signal == SIGINT) return "SIGINT";
+  if (signal == SIGUSR1) return "SIGUSR1";
+  return "signal " + std::to_string(signal);
+}
+
+/// The same entries as `v` (on model.ownedMap()) on a map of the
+/// partition-free DOF ids (Model::partitionFreeDof()), in the same local
+/// order: a checkpoint's vectors read back on any number of ranks.
+Teuchos::RCP<Vector> partitionFreeVector(const Model& model, const Vector& v) {
+  const Map& owned = *model.ownedMap();
+  std::vector<GO> ids(owned.getNodeNumElements());
+  for (size_t i = 0; i < ids.size(); ++i) ids[i] = model.partitionFreeDof(owned.getGlobalElement(LO(i)));
+  const Teuchos::ArrayView<const GO> view(ids.data(), ids.size());
+  auto map = Teuchos::rcp(new Map(owned.getGlobalNumElements(), view, 0, owned.getComm()));
+  auto out = Teuchos::rcp(new Vector(map));
+  auto src = v.getData();
+  auto dst = out->getDataNonConst();
+  for (size_t i = 0; i < ids.size(); ++i) dst[i] = src[i];
+  return out;
+}
+
+/// The checkpoint's record of the run: its layout version, the ranks that
+/// wrote it, the output counter and the external work.
+constexpr double kCheckpointLayout = 1.0;
+
+}  // namespace
+
+void Analysis::setRestart(RestartSource source) {
+  DDC_INPUT_REQUIRE(source.checkpoint, "setRestart: no checkpoint");
+  const CheckpointReader& c = *source.checkpoint;
+  const auto saved = Teuchos::getParametersFromXmlString(c.bytes("parameters"));
+  checkRestartParameters(*saved, params_, c.path());
+  restart_ = std::make_unique<RestartSource>(std::move(source));
+}
+
+void Analysis::writeCheckpoint(const std::string& path, const RunState& st, const std::vector<double>& controllerState,
+                               const std::vector<std::pair<int, double>>& vtkSteps) const {
+  CheckpointWriter w(comm_);
+  std::ostringstream xml;
+  Teuchos::writeParameterListToXmlOStream(params_, xml);
+  w.putBytes("parameters", xml.str());
+  w.putDoubles("run", {kCheckpointLayout, double(comm_->getSize()), double(st.outputCount), st.externalWork});
+  w.putDoubles("controller", controllerState);
+  w.putDoubles("history", packHistory(history_));
+  std::vector<double> vtk;
+  for (const auto& [step, time] : vtkSteps) vtk.insert(vtk.end(), {double(step), time});
+  w.putDoubles("vtk steps", vtk);
+  auto put = [&](const std::string& name, const Vector& v) { w.putVector(name, *partitionFreeVector(*model_, v)); };
+  put("displacement", *u_);
+  put("internal force", *st.fint);
+  put("reaction", *st.reaction);
+  if (integrator_) {
+    put("velocity", integrator_->velocity());
+    put("acceleration", integrator_->accelerationNow());
+  }
+  if (model_->hasContact()) {
+    w.putDoubles("contact slots", packSlots(model_->contactSlots()));
+    w.putDoubles("converged contact slots", packSlots(st.convergedSlots));
+  }
+  w.write(path);
+}
+
+std::vector<std::pair<int, double>> Analysis::restoreCheckpoint(RunState& st, StepController& steps) {
+  const CheckpointReader& c = *restart_->checkpoint;
+  const std::string& file = c.path();
+  const auto run = c.doubles("run");
+  DDC_INPUT_REQUIRE(run.size() == 4 && run[0] == kCheckpointLayout,
+                    "checkpoint '" << file << "': written by another version of DDContact (section 'run')");
+  st.outputCount = int(run[2]);
+  st.externalWork = run[3];
+  history_ = unpackHistory(c.doubles("history"), file);
+  DDC_INPUT_REQUIRE(!history_.empty(), "checkpoint '" << file << "' holds no converged step");
+  DDC_INPUT_REQUIRE(steps.restoreState(c.doubles("controller"), int(history_.size())),
+                    "checkpoint '" << file
+                                   << "': its step controller cannot be restored (a host's own controller "
+                                      "(Analysis::setStepController()) saves none)");
+  // Read on this model's partition-free ids, kept in the owned map's order.
+  auto get = [&](const std::string& name, Vector& v) {
+    auto tmp = partitionFreeVector(*model_, v);
+    c.vector(name, *tmp);
+    auto src = tmp->getData();
+    auto dst = v.getDataNonConst();
+    for (size_t i = 0; i < v.getLocalLength(); ++i) dst[i] = src[i];
+  };
+  get("displacement", *u_);
+  get("internal force", *st.fint);
+  get("reaction", *st.reaction);
+  st.reactionPrev->assign(*st.reaction);
+  st.uPrev->assign(*u_);
+  if (integrator_) {
+    DDC_INPUT_REQUIRE(c.has("velocity") && c.has("acceleration"),
+                      "checkpoint '" << file << "' is of a quasi-static run; this one is dynamic");
+    auto v = model_->createVector(), a = model_->createVector();
+    get("velocity", *v);
+    get("acceleration", *a);
+    integrator_->restoreState(*u_, *v, *a);
+  }
+  if (model_->hasContact()) {
+    auto slots = unpackSlots(c.doubles("contact slots"));
+    const auto& now = model_->contactSlots();
+    bool same = slots.size() == now.size();
+    for (size_t k = 0; same && k < slots.size(); ++k)
+      same = slots[k].pair == now[k].pair && slots[k].slaveNode == now[k].slaveNode;
+    DDC_INPUT_REQUIRE(same, "checkpoint '" << file << "': its contact slave nodes are not this model's");
+    model_->restoreContactState(slots);
+    st.convergedSlots = unpackSlots(c.doubles("converged contact slots"));
+  }
+  const auto vtk = c.doubles("vtk steps");
+  std::vector<std::pair<int, double>> series;
+  for (size_t i = 0; i + 1 < vtk.size(); i += 2) series.emplace_back(int(vtk[i]), vtk[i + 1]);
+  return series;
+}
+
 void Analysis::run(const std::string& outputDirectory) {
   if (outputDirectory.empty()) {
     runSteps(nullptr);
     return;
   }
-  OutputDirectory dir(comm_, outputDirectory);
+  // A restart continuing in the directory of the unfinished run it
+  // continues keeps that run's staging directory (its files are read).
+  RunDescription description;
+  if (restart_ && restart_->unfinished && OutputDirectory::normalisedPath(outputDirectory) == restart_->finalPath)
+    description.resumeWith = kCheckpointFileName;
+  OutputDirectory dir(comm_, outputDirectory, description);
   run(dir);
 }
 
@@ -1126,6 +1314,31 @@ void Analysis::runSteps(OutputDirectory* dir) {
   const PL& out = params_.sublist("Output");
   const bool contact = model_->hasContact();
   const bool decomposed = model_->decomposedContact();
+  // Checkpoints (Output/Checkpoint Interval) need a directory to go to.
+  const int checkpointInterval = dir ? out.get<int>("Checkpoint Interval") : 0;
+  const std::string checkpointPath = checkpointInterval > 0 ? dir->path() + "/" + kCheckpointFileName : "";
+  // A restart continuing in the staging directory of the run it continues
+  // (RunDescription::resumeWith): that run's results.e is moved aside
+  // before this run's is created, copied from and removed (a restart that
+  // failed before that finds it aside).
+  std::string exodusSource;
+  bool exodusAside = false;
+  if (restart_ && dir && out.get<bool>("Exodus")) {
+    exodusSource = restart_->directory + "/results.e";
+    std::string error;
+    std::error_code ec;
+    if (comm_->getRank() == 0 && std::filesystem::equivalent(restart_->directory, dir->path(), ec)) {
+      const std::string aside = dir->path() + "/results.e.before-restart";
+      if (!std::filesystem::exists(aside, ec) && std::filesystem::exists(exodusSource, ec))
+        std::filesystem::rename(exodusSource, aside, ec);
+      if (ec) error = "cannot move '" + exodusSource + "' aside for the restart: " + ec.message();
+      exodusSource = aside;
+      exodusAside = true;
+    }
+    error = firstErrorOnAnyRank(*comm_, error);
+    if (!error.empty()) throw OutputError(error);
+    exodusSource = broadcastStrings(*comm_, {exodusSource}).front();
+  }
 
   std::unique_ptr<HistoryWriter> hist;
   std::unique_ptr<VtkWriter> vtk;
@@ -1176,7 +1389,6 @@ void Analysis::runSteps(OutputDirectory* dir) {
   // The initial acceleration balances the body force (u = 0 and every
   // load factor-scaled load 0 at t = 0).
   if (integrator_) integrator_->initialise(*model_, *u_, *initialVelocity_, model_->bodyForce());
-  writeVtk(0, 0.0);
 
   // The state the steps carry forward (one object: what a restart saves).
   RunState st;
@@ -1202,6 +1414,51 @@ void Analysis::runSteps(OutputDirectory* dir) {
     controller = std::make_unique<BisectingSteps>(finalLambda, nsteps, maxBisect);
   }
   StepController& steps = *controller;
+  // history.csv's row of a converged (sub)step.
+  auto historyRow = [&](const StepRecord& rec) {
+    std::vector<double> row{double(rec.step), rec.loadFactor, rec.strainEnergy, double(rec.newtonIterations),
+                            double(rec.dualIterations), double(rec.activeContacts), rec.contactForce[0],
+                            rec.contactForce[1], double(rec.contactExchanges), rec.wallSeconds, rec.externalWork,
+                            double(rec.contactBytes), double(rec.bisections), rec.contactForce[2]};
+    if (dynamic_) row.insert(row.end(), {rec.loadFactor, rec.kineticEnergy, rec.kineticEnergy + rec.strainEnergy});
+    if (decomposed)
+      row.insert(row.end(), {rec.stepSize, double(rec.rejections), double(rec.corrections), rec.geometryError});
+    return row;
+  };
+  // The checkpoint's state: the step controller's after the last accepted
+  // step, the history rows of the checkpoint last written.
+  std::vector<double> acceptedState = steps.saveState();
+  size_t checkpointRows = 0;
+  double wallOffset = 0.0;  // a restart's wall times go on from the checkpoint's
+  if (restart_) {
+    auto series = restoreCheckpoint(st, steps);
+    acceptedState = steps.saveState();
+    wallOffset = history_.back().wallSeconds;
+    if (hist)
+      for (const StepRecord& r : history_) hist->appendRow(historyRow(r));
+    if (vtk) {
+      const auto missing = vtk->adoptSteps(restart_->directory, series);
+      if (!missing.empty())
+        progress("warning: restart: " + std::to_string(missing.size()) + " VTK steps of the checkpointed run are "
+                 "missing in '" + restart_->directory + "/vtk' (VTK was off, or the files were removed); the series "
+                 "goes on without them");
+    }
+    if (exodus) {
+      const auto [copied, why] = exodus->copySteps(exodusSource, int(history_.size()));
+      if (copied < int(history_.size()))
+        progress("warning: restart: results.e holds " + std::to_string(copied) + " of the " +
+                 std::to_string(history_.size()) + " steps before the checkpoint (" + why + ")");
+      std::error_code ec;
+      if (exodusAside) std::filesystem::remove(exodusSource, ec);  // rank 0's flag
+    }
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "restart: continuing after step %d (%s %.6g) from ", history_.back().step,
+                  factorName, history_.back().loadFactor);
+    progress(buf + restart_->checkpoint->path());
+    restart_.reset();  // one run continues from it
+  } else {
+    writeVtk(0, 0.0);
+  }
   // The attempts of the step being worked on: the exchanges (also of
   // attempts Newton failed on) and the Newton and dual iterations of the
   // attempts the step control sent back count in the accepted step's row
@@ -1235,194 +1492,234 @@ void Analysis::runSteps(OutputDirectory* dir) {
     for (const auto& w : model_->takeContactWarnings()) progress("warning: " + w);
   };
   contactWarnings();  // from the initial pairing
-  while (!steps.done()) {
-    const StepProposal p = steps.propose();
-    const int n = p.step;
-    StepRecord rec;
-    rec.step = n;
-    // The contact state at the step's start (a repeat with the geometry of
-    // the step's end keeps the one saved before it).
-    if (contact && !att.repeating) att.startSlots = model_->contactSlots();
-    att.repeating = false;
-    if (contact && model_->contactOptions().initialInContact) model_->activateAllPaired();
-    if (integrator_) {
-      // f_ext(t_n) = λ_n f_ext for the α-methods' previous-step terms.
-      auto externalNow = model_->createVector();
-      externalNow->update(p.from, model_->externalForce(), 0.0);
-      if (model_->bodyForce()) externalNow->update(1.0, *model_->bodyForce(), 1.0);
-      integrator_->beginStep(*model_, p.size, *st.fint, *externalNow);
-    }
-    Activity activity("solving step " + std::to_string(n) + " (" + factorName + " " + std::to_string(p.from) + " -> " +
-                      std::to_string(p.to) + ", " + std::to_string(model_->ownedMap()->getGlobalNumElements()) +
-                      " unknowns; estimated " + formatBytes(memoryEstimate_.total()) + " per rank)");
-    if (!solveIncrement(p.from, p.to, rec)) {
-      if (contact) model_->restoreContactState(att.startSlots);
-      if (!steps.reject(p)) {
-        std::ostringstream os;
-        os << "Newton did not converge in step " << n << " (" << factorName << " " << p.from << " -> " << p.to
-           << ") after " << p.depth << " bisections (" << stepping << "/Max Bisections = " << maxBisect;
-        if (adaptive) os << ", Step Control/Minimum Step Size = " << adaptive->minSize();
-        os << "): " << rec.failure << "; residual history:";
-        for (double x : rec.residualHistory) os << " " << x;
-        if (!nearlyIncompressible_.empty()) os << "; note: " << nearlyIncompressible_;
-        throw SolverError(os.str());
+  try {
+    while (!steps.done()) {
+      const StepProposal p = steps.propose();
+      const int n = p.step;
+      StepRecord rec;
+      rec.step = n;
+      // The contact state at the step's start (a repeat with the geometry of
+      // the step's end keeps the one saved before it).
+      if (contact && !att.repeating) att.startSlots = model_->contactSlots();
+      att.repeating = false;
+      if (contact && model_->contactOptions().initialInContact) model_->activateAllPaired();
+      if (integrator_) {
+        // f_ext(t_n) = λ_n f_ext for the α-methods' previous-step terms.
+        auto externalNow = model_->createVector();
+        externalNow->update(p.from, model_->externalForce(), 0.0);
+        if (model_->bodyForce()) externalNow->update(1.0, *model_->bodyForce(), 1.0);
+        integrator_->beginStep(*model_, p.size, *st.fint, *externalNow);
       }
-      const StepProposal next = steps.propose();
-      char buf[200];
-      std::snprintf(buf, sizeof buf, "  step %d: Newton failed at %s %.6g; bisecting (depth %d), next %.6g", n,
-                    factorName, p.to, next.depth, next.to);
-      progress(buf);
-      continue;
-    }
-    const double lambda = p.to;
-    rec.loadFactor = lambda;
-    rec.bisections = p.depth;
-    rec.stepSize = p.size;
-    auto fint = model_->createVector();
-    rec.strainEnergy = model_->assemble(*u_, lambda, fint.get(), nullptr, nullptr).strainEnergy;
-    ContactSummary cs;
-    std::vector<ContactSlot> convergedSlots;
-    if (contact) {
-      // Converged: refresh the pairing once per step, with a global search
-      // (tracking cannot see another part of the surface come nearer). The
-      // decomposed element freezes the new projections and normals.
-      // Multipliers, gaps and normals of the converged state are read first:
-      // after re-pairing, the decomposed slots hold the next step's normals.
-      model_->updateActiveSet(*u_);
-      cs = model_->contactSummary();
-      if (contactNodes || decomposed) convergedSlots = model_->contactSlots();
-      model_->updatePairing(*u_, true, decomposed);
-      contactWarnings();
-      if (decomposed) {
-        // The frozen-geometry error indicator (doc/contact.md, "Step control
-        // by the frozen-geometry error"), relative to the energy of the state.
-        double energy = rec.strainEnergy;
-        if (integrator_) {
-          auto v = model_->createVector();
-          integrator_->velocity(*u_, *v);
-          energy += model_->kineticEnergy(*v);
+      Activity activity("solving step " + std::to_string(n) + " (" + factorName + " " + std::to_string(p.from) + " -> " +
+                        std::to_string(p.to) + ", " + std::to_string(model_->ownedMap()->getGlobalNumElements()) +
+                        " unknowns; estimated " + formatBytes(memoryEstimate_.total()) + " per rank)");
+      // Test seams (DDCONTACT_FAULT_INJECTION): SIGTERM to rank 0 when step
+      // n is first tried (once: a second SIGTERM ends the process); every
+      // attempt of step n failing as Newton does.
+      static bool raised = false;
+      if (faultInjectionActive() && comm_->getRank() == 0 && !raised && faultInjection("sigterm", std::to_string(n))) {
+        raised = true;
+        std::raise(SIGTERM);
+      }
+      const bool injectedFailure = faultInjectionActive() && faultInjection("newton-failure", std::to_string(n));
+      if (injectedFailure) rec.failure = "test fault injection: newton-failure@" + std::to_string(n);
+      if (injectedFailure || !solveIncrement(p.from, p.to, rec)) {
+        if (contact) model_->restoreContactState(att.startSlots);
+        if (!steps.reject(p)) {
+          std::ostringstream os;
+          os << "Newton did not converge in step " << n << " (" << factorName << " " << p.from << " -> " << p.to
+             << ") after " << p.depth << " bisections (" << stepping << "/Max Bisections = " << maxBisect;
+          if (adaptive) os << ", Step Control/Minimum Step Size = " << adaptive->minSize();
+          os << "): " << rec.failure << "; residual history:";
+          for (double x : rec.residualHistory) os << " " << x;
+          if (!nearlyIncompressible_.empty()) os << "; note: " << nearlyIncompressible_;
+          throw SolverError(os.str());
         }
-        const double w = model_->contact()->frozenGeometryError(convergedSlots).total();
-        rec.geometryError = energy > 0.0 ? w / energy : 0.0;
+        const StepProposal next = steps.propose();
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "  step %d: Newton failed at %s %.6g; bisecting (depth %d), next %.6g", n,
+                      factorName, p.to, next.depth, next.to);
+        progress(buf);
+        continue;
       }
-    }
-    const StepVerdict verdict = steps.judge(p, rec.geometryError);
-    if (verdict != StepVerdict::Accept) {
-      // Back to the step's start: the displacements (the integrator and
-      // f_int were not advanced) and, to try a smaller step, the contact
-      // state; a repeat keeps the pairing just refreshed at the step's end,
-      // so the step is solved again with the projections and normals of
-      // its end.
-      u_->assign(*st.uPrev);
-      const bool repeat = verdict == StepVerdict::Repeat;
-      att.repeating = repeat;
-      att.newton += rec.newtonIterations;
-      att.dual += rec.dualIterations;
-      if (repeat)
-        ++att.corrections;
-      else {
-        model_->restoreContactState(att.startSlots);
-        ++att.rejections;
+      const double lambda = p.to;
+      rec.loadFactor = lambda;
+      rec.bisections = p.depth;
+      rec.stepSize = p.size;
+      auto fint = model_->createVector();
+      rec.strainEnergy = model_->assemble(*u_, lambda, fint.get(), nullptr, nullptr).strainEnergy;
+      ContactSummary cs;
+      std::vector<ContactSlot> convergedSlots;
+      if (contact) {
+        // Converged: refresh the pairing once per step, with a global search
+        // (tracking cannot see another part of the surface come nearer). The
+        // decomposed element freezes the new projections and normals.
+        // Multipliers, gaps and normals of the converged state are read first:
+        // after re-pairing, the decomposed slots hold the next step's normals.
+        model_->updateActiveSet(*u_);
+        cs = model_->contactSummary();
+        if (contactNodes || decomposed) convergedSlots = model_->contactSlots();
+        model_->updatePairing(*u_, true, decomposed);
+        contactWarnings();
+        if (decomposed) {
+          // The frozen-geometry error indicator (doc/contact.md, "Step control
+          // by the frozen-geometry error"), relative to the energy of the state.
+          double energy = rec.strainEnergy;
+          if (integrator_) {
+            auto v = model_->createVector();
+            integrator_->velocity(*u_, *v);
+            energy += model_->kineticEnergy(*v);
+          }
+          const double w = model_->contact()->frozenGeometryError(convergedSlots).total();
+          rec.geometryError = energy > 0.0 ? w / energy : 0.0;
+        }
       }
-      const StepProposal next = steps.propose();
+      const StepVerdict verdict = steps.judge(p, rec.geometryError);
+      if (verdict != StepVerdict::Accept) {
+        // Back to the step's start: the displacements (the integrator and
+        // f_int were not advanced) and, to try a smaller step, the contact
+        // state; a repeat keeps the pairing just refreshed at the step's end,
+        // so the step is solved again with the projections and normals of
+        // its end.
+        u_->assign(*st.uPrev);
+        const bool repeat = verdict == StepVerdict::Repeat;
+        att.repeating = repeat;
+        att.newton += rec.newtonIterations;
+        att.dual += rec.dualIterations;
+        if (repeat)
+          ++att.corrections;
+        else {
+          model_->restoreContactState(att.startSlots);
+          ++att.rejections;
+        }
+        const StepProposal next = steps.propose();
+        char buf[300];
+        std::snprintf(buf, sizeof buf, "  step %d: frozen-geometry error %.3g above Step Control/Error Tolerance at %s %.6g; %s", n,
+                      rec.geometryError, factorName, p.to,
+                      repeat ? "repeating it with the projections and normals of its end" : "repeating it smaller");
+        std::string line = buf;
+        if (!repeat) {
+          std::snprintf(buf, sizeof buf, " (size %.3g -> %.3g)", p.size, next.size);
+          line += buf;
+        }
+        progress(line);
+        continue;
+      }
+      steps.accept(p);
+      acceptedState = steps.saveState();
+      rec.rejections = att.rejections;
+      rec.corrections = att.corrections;
+      rec.newtonIterations += att.newton;
+      rec.dualIterations += att.dual;
+      st.fint = fint;
+      if (contactNodes) st.convergedSlots = convergedSlots;
+      // The forces the prescribed DOFs exert: f_int, and in dynamics also the
+      // inertia and damping of the prescribed nodes (a moving support
+      // accelerates its nodes' mass).
+      st.reaction->assign(*st.fint);
+      if (integrator_) {
+        integrator_->acceptStep(*u_);
+        rec.kineticEnergy = model_->kineticEnergy(integrator_->velocity());
+        auto f = model_->createVector();
+        integrator_->inertiaForce(*model_, *f);
+        st.reaction->update(1.0, *f, 1.0);
+      }
+      st.externalWork += externalWorkIncrement(*st.reactionPrev, *st.uPrev, p.from, *st.reaction, *u_, lambda);
+      rec.externalWork = st.externalWork;
+      st.reactionPrev->assign(*st.reaction);
+      st.uPrev->assign(*u_);
+      if (contact) {
+        rec.activeContacts = cs.active;
+        rec.contactForce[0] = cs.force[0];
+        rec.contactForce[1] = cs.force[1];
+        rec.contactForce[2] = cs.force[2];
+        rec.contactExchanges = model_->exchanges() - att.exchanges0;
+        rec.contactBytes = model_->bytesExchanged() - att.bytes0;
+      }
+      att = firstAttempt();  // of the next step
+      if (adaptive && adaptive->atMinimum()) {
+        char buf[240];
+        std::snprintf(buf, sizeof buf, "warning: step %d: frozen-geometry error %.3g above Step Control/Error Tolerance at the minimum step size %.3g (Step Control/Minimum Step Size); accepted",
+                      n, rec.geometryError, p.size);
+        progress(buf);
+      }
+      rec.wallSeconds = seconds() + wallOffset;
+      history_.push_back(rec);
+      if (hist) hist->appendRow(historyRow(rec));
       char buf[300];
-      std::snprintf(buf, sizeof buf, "  step %d: frozen-geometry error %.3g above Step Control/Error Tolerance at %s %.6g; %s", n,
-                    rec.geometryError, factorName, p.to,
-                    repeat ? "repeating it with the projections and normals of its end" : "repeating it smaller");
+      if (dynamic_)
+        std::snprintf(buf, sizeof buf,
+                      "step %s  time %.6g (dt %.3g)  Newton %2d  |r| %.3e -> %.3e  strain %.6e  kinetic %.6e  %.2f s",
+                      stepLabel(n).c_str(), lambda, p.size, rec.newtonIterations, rec.residualHistory.front(),
+                      rec.residualHistory.back(), rec.strainEnergy, rec.kineticEnergy, rec.wallSeconds);
+      else
+        std::snprintf(buf, sizeof buf, "step %s  load %.6g  Newton %2d  |r| %.3e -> %.3e  energy %.6e  %.2f s",
+                      stepLabel(n).c_str(), lambda, rec.newtonIterations, rec.residualHistory.front(), rec.residualHistory.back(),
+                      rec.strainEnergy, rec.wallSeconds);
       std::string line = buf;
-      if (!repeat) {
-        std::snprintf(buf, sizeof buf, " (size %.3g -> %.3g)", p.size, next.size);
+      if (adaptive) {
+        std::snprintf(buf, sizeof buf, "  size %.3g  error %.3g", p.size, rec.geometryError);
         line += buf;
+      }
+      if (contact) {
+        std::snprintf(buf, sizeof buf, "  contacts %d  force (%.4g, %.4g)", rec.activeContacts, rec.contactForce[0],
+                      rec.contactForce[1]);
+        line += buf;
+        // z after the 2-D pair, so the line reads the same in 2-D.
+        if (model_->mesh().dim() == 3) {
+          std::snprintf(buf, sizeof buf, " z %.4g", rec.contactForce[2]);
+          line += buf;
+        }
       }
       progress(line);
-      continue;
-    }
-    steps.accept(p);
-    rec.rejections = att.rejections;
-    rec.corrections = att.corrections;
-    rec.newtonIterations += att.newton;
-    rec.dualIterations += att.dual;
-    st.fint = fint;
-    if (contactNodes) st.convergedSlots = convergedSlots;
-    // The forces the prescribed DOFs exert: f_int, and in dynamics also the
-    // inertia and damping of the prescribed nodes (a moving support
-    // accelerates its nodes' mass).
-    st.reaction->assign(*st.fint);
-    if (integrator_) {
-      integrator_->acceptStep(*u_);
-      rec.kineticEnergy = model_->kineticEnergy(integrator_->velocity());
-      auto f = model_->createVector();
-      integrator_->inertiaForce(*model_, *f);
-      st.reaction->update(1.0, *f, 1.0);
-    }
-    st.externalWork += externalWorkIncrement(*st.reactionPrev, *st.uPrev, p.from, *st.reaction, *u_, lambda);
-    rec.externalWork = st.externalWork;
-    st.reactionPrev->assign(*st.reaction);
-    st.uPrev->assign(*u_);
-    if (contact) {
-      rec.activeContacts = cs.active;
-      rec.contactForce[0] = cs.force[0];
-      rec.contactForce[1] = cs.force[1];
-      rec.contactForce[2] = cs.force[2];
-      rec.contactExchanges = model_->exchanges() - att.exchanges0;
-      rec.contactBytes = model_->bytesExchanged() - att.bytes0;
-    }
-    att = firstAttempt();  // of the next step
-    if (adaptive && adaptive->atMinimum()) {
-      char buf[240];
-      std::snprintf(buf, sizeof buf, "warning: step %d: frozen-geometry error %.3g above Step Control/Error Tolerance at the minimum step size %.3g (Step Control/Minimum Step Size); accepted",
-                    n, rec.geometryError, p.size);
-      progress(buf);
-    }
-    rec.wallSeconds = seconds();
-    history_.push_back(rec);
-    if (hist) {
-      std::vector<double> row{double(n), lambda, rec.strainEnergy, double(rec.newtonIterations),
-                              double(rec.dualIterations), double(rec.activeContacts), rec.contactForce[0],
-                              rec.contactForce[1], double(rec.contactExchanges), rec.wallSeconds, rec.externalWork,
-                              double(rec.contactBytes), double(rec.bisections), rec.contactForce[2]};
-      if (dynamic_) row.insert(row.end(), {rec.loadFactor, rec.kineticEnergy, rec.kineticEnergy + rec.strainEnergy});
-      if (decomposed)
-        row.insert(row.end(), {rec.stepSize, double(rec.rejections), double(rec.corrections), rec.geometryError});
-      hist->appendRow(row);
-    }
-    char buf[300];
-    if (dynamic_)
-      std::snprintf(buf, sizeof buf,
-                    "step %s  time %.6g (dt %.3g)  Newton %2d  |r| %.3e -> %.3e  strain %.6e  kinetic %.6e  %.2f s",
-                    stepLabel(n).c_str(), lambda, p.size, rec.newtonIterations, rec.residualHistory.front(),
-                    rec.residualHistory.back(), rec.strainEnergy, rec.kineticEnergy, rec.wallSeconds);
-    else
-      std::snprintf(buf, sizeof buf, "step %s  load %.6g  Newton %2d  |r| %.3e -> %.3e  energy %.6e  %.2f s",
-                    stepLabel(n).c_str(), lambda, rec.newtonIterations, rec.residualHistory.front(), rec.residualHistory.back(),
-                    rec.strainEnergy, rec.wallSeconds);
-    std::string line = buf;
-    if (adaptive) {
-      std::snprintf(buf, sizeof buf, "  size %.3g  error %.3g", p.size, rec.geometryError);
-      line += buf;
-    }
-    if (contact) {
-      std::snprintf(buf, sizeof buf, "  contacts %d  force (%.4g, %.4g)", rec.activeContacts, rec.contactForce[0],
-                    rec.contactForce[1]);
-      line += buf;
-      // z after the 2-D pair, so the line reads the same in 2-D.
-      if (model_->mesh().dim() == 3) {
-        std::snprintf(buf, sizeof buf, " z %.4g", rec.contactForce[2]);
-        line += buf;
+      if (exodus) {
+        std::vector<double> g = {lambda, rec.strainEnergy, rec.externalWork, double(rec.activeContacts),
+                                 rec.contactForce[0], rec.contactForce[1]};
+        if (model_->mesh().dim() == 3) g.push_back(rec.contactForce[2]);
+        if (dynamic_) g.push_back(rec.kineticEnergy);
+        exodus->writeStep(lambda, *u_, integrator_ ? &integrator_->velocity() : nullptr,
+                          integrator_ ? &integrator_->accelerationNow() : nullptr, g);
+      }
+      const bool last = steps.done();
+      if (++st.outputCount % out.get<int>("VTK Interval") == 0 || last)
+        writeVtk(static_cast<int>(history_.size()), lambda);
+      if (!checkpointPath.empty() && (history_.size() % size_t(checkpointInterval) == 0 || last)) {
+        writeCheckpoint(checkpointPath, st, acceptedState, vtk ? vtk->steps() : std::vector<std::pair<int, double>>());
+        checkpointRows = history_.size();
+      }
+      // A stop requested by a signal on any rank (requestStop()): after this
+      // step, on every rank.
+      int stop = stopRequested(), stopAll = 0;
+      Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, stop, Teuchos::outArg(stopAll));
+      if (stopAll && !last) {
+        std::ostringstream os;
+        os << "stopped by " << signalName(stopAll) << " after step " << n << " (" << factorName << " " << lambda << ")";
+        if (!checkpointPath.empty()) {
+          if (checkpointRows != history_.size())
+            writeCheckpoint(checkpointPath, st, acceptedState, vtk ? vtk->steps() : std::vector<std::pair<int, double>>());
+          os << "; its checkpoint is '" << checkpointPath << "': continue with --restart '" << dir->finalPath() << "'";
+        } else {
+          os << "; no checkpoint (" << (dir ? "Output/Checkpoint Interval = 0" : "no output directory") << ")";
+        }
+        throw RunInterrupted(os.str(), stopAll);
       }
     }
-    progress(line);
-    if (exodus) {
-      std::vector<double> g = {lambda, rec.strainEnergy, rec.externalWork, double(rec.activeContacts),
-                               rec.contactForce[0], rec.contactForce[1]};
-      if (model_->mesh().dim() == 3) g.push_back(rec.contactForce[2]);
-      if (dynamic_) g.push_back(rec.kineticEnergy);
-      exodus->writeStep(lambda, *u_, integrator_ ? &integrator_->velocity() : nullptr,
-                        integrator_ ? &integrator_->accelerationNow() : nullptr, g);
+  } catch (const SolverError& e) {
+    // A failed step: the checkpoint of the last converged one, unless it
+    // is on disk already (the state is that step's: a failed attempt
+    // leaves the displacements, and its contact state is restored here).
+    if (checkpointPath.empty() || history_.empty()) throw;
+    std::string message = e.what();
+    if (checkpointRows != history_.size()) {
+      u_->assign(*st.uPrev);
+      if (contact && !att.startSlots.empty()) model_->restoreContactState(att.startSlots);
+      writeCheckpoint(checkpointPath, st, acceptedState, vtk ? vtk->steps() : std::vector<std::pair<int, double>>());
     }
-    const bool last = steps.done();
-    if (++st.outputCount % out.get<int>("VTK Interval") == 0 || last)
-      writeVtk(static_cast<int>(history_.size()), lambda);
+    std::ostringstream os;
+    os << message << "; the checkpoint of step " << history_.back().step << " (" << factorName << " "
+       << history_.back().loadFactor << ") is '" << checkpointPath << "': continue with --restart '"
+       << dir->finalPath() << "' (changing the steps or the solver settings)";
+    throw SolverError(os.str());
   }
   const double lambda = steps.current();
   // The validators make every run step (Number of Steps > 0, Final Load

@@ -24,6 +24,7 @@
 #include "DDC_MemoryEstimate.hpp"
 #include "DDC_Model.hpp"
 #include "DDC_OutputDirectory.hpp"
+#include "DDC_Restart.hpp"
 #include "DDC_SolutionStrategy.hpp"
 #include "DDC_StepController.hpp"
 #include "DDC_TimeIntegrator.hpp"
@@ -126,6 +127,19 @@ class Analysis {
   /// (StepRecord::geometryError) in judge().
   void setStepController(std::unique_ptr<StepController> controller) { hostController_ = std::move(controller); }
 
+  /// Continue the next run() from the checkpoint of an earlier run of this
+  /// model (findRestartSource(); doc/user-guide.md, "Checkpoints and
+  /// restart") instead of from the unloaded state: its displacements,
+  /// velocities, contact state, step controller, history rows and output
+  /// series. The run's output directory may be the earlier run's (then
+  /// opened with RunDescription::resumeWith = kCheckpointFileName) or
+  /// another. Collective.
+  /// \throws InputError when this analysis' parameters differ from the
+  ///         checkpointed run's beyond what a restart may change
+  ///         (checkRestartParameters()), or the checkpoint does not fit
+  ///         this model
+  void setRestart(RestartSource source);
+
   /// The discrete model (mesh, DOF numbering, contact component).
   const Model& model() const { return *model_; }
   /// The displacements of the last converged step on model().ownedMap()
@@ -159,6 +173,15 @@ class Analysis {
     std::vector<ContactSlot> convergedSlots;
   };
   void runSteps(OutputDirectory* dir);
+  /// The checkpoint of the state after the last accepted step (collective):
+  /// `controllerState` is the step controller's saveState() then,
+  /// `vtkSteps` the VTK series written so far.
+  void writeCheckpoint(const std::string& path, const RunState& st, const std::vector<double>& controllerState,
+                       const std::vector<std::pair<int, double>>& vtkSteps) const;
+  /// Restore what writeCheckpoint() saved from restart_ (collective);
+  /// returns the VTK series to continue.
+  std::vector<std::pair<int, double>> restoreCheckpoint(RunState& st, StepController& steps);
+  std::unique_ptr<RestartSource> restart_;  ///< setRestart()
   /// Step Control, resolved (setUpStepControl()): tolerance 0 = off.
   struct StepControlSettings {
     double tolerance = 0.0;

@@ -70,7 +70,7 @@ std::string reason(int err) { return err ? std::strerror(err) : "unknown I/O err
 bool faultInjection(const std::string& action, const std::string& target, std::string* argument) {
   for (const FaultItem& f : faultItems()) {
     if (f.action != action) continue;
-    const bool stage = action == "kill" || action == "pause";
+    const bool stage = action == "kill" || action == "pause" || action == "sigterm" || action == "newton-failure";
     if (stage ? f.target == target : nameMatches(target, f.target)) {
       if (argument) *argument = f.argument;
       return true;

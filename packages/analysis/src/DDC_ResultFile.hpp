@@ -77,10 +77,14 @@ void syncDirectory(const std::string& directory);
 ///    named stage of the output directory's lifecycle (OutputDirectory);
 ///  - `pause@STAGE=FILE`: the process waits at STAGE until FILE exists (at
 ///    most 120 s), so that a test can run a second program meanwhile.
+///  - `sigterm@N`: rank 0 raises SIGTERM while the analysis solves step N
+///    (a stop request, DDC_StopRequest.hpp);
+///  - `newton-failure@N`: every attempt at step N fails as a Newton failure
+///    does (the analysis' failure path, its checkpoint).
 /// Names are matched against the file's path relative to the result
 /// directory, e.g. `history.csv`, `vtk/step_00002_piece_0001.vtu`.
 /// A file NAME matches a path equal to it or ending in "/NAME"; a STAGE
-/// matches exactly.
+/// and a step N match exactly.
 /// \return whether an item `action@target` is configured for `target`; for
 ///         `pause` the FILE after '=' is stored in `argument`.
 bool faultInjection(const std::string& action, const std::string& target, std::string* argument = nullptr);

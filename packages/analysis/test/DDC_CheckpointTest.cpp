@@ -1,7 +1,9 @@
 // Checkpoint files (DDC_Checkpoint.hpp): sections round-trip bit for bit, a
 // distributed vector reads back on another number of ranks, and a file that
 // is not a checkpoint, truncated or corrupted is refused on every rank with
-// a message naming it.
+// a message naming it. What a restart checks: contact slots round-trip
+// bit for bit (packSlots()), and a deck may change only the parameters
+// restartChangeableParameters() names.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -14,6 +16,8 @@
 #include <vector>
 
 #include "DDC_Checkpoint.hpp"
+#include "DDC_ContactComponent.hpp"
+#include "DDC_Restart.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_MpiRecords.hpp"
 #include "DDC_TestErrors.hpp"
@@ -152,6 +156,87 @@ TEST(Checkpoint, AFailedWriteLeavesTheEarlierCheckpoint) {
   EXPECT_EQ(r.doubles("scalars").size(), 3u) << "the earlier checkpoint was replaced";
   if (world()->getRank() == 0) std::filesystem::remove(path + ".tmp");
   EXPECT_THROW(w.putDoubles("scalars", {2.0}), std::invalid_argument) << "a section given twice";
+}
+
+TEST(Checkpoint, ContactSlotsRoundTripBitForBit) {
+  ddc::ContactSlot a;
+  a.pair = 2;
+  a.slaveNode = 4711;
+  for (int i = 0; i < ddc::ContactSlot::kMaxFacetNodes; ++i) a.master[i] = 100 + i;
+  a.numMaster = 9;
+  a.segment = 17;
+  a.masterElement = 3;
+  a.active = true;
+  a.state.active = true;
+  a.state.multiplier = -std::nextafter(1.0 / 3.0, 1.0);
+  a.state.frozenXi = 0.1;
+  a.state.frozenNormal = {0.6, -0.8};
+  a.frozen.xi = {{-0.25, 1.0 / 7.0}};
+  a.frozen.normal = {0.0, std::sqrt(0.5), -std::sqrt(0.5)};
+  a.gap = -1e-300;
+  a.normal = {1e-17, 2.0, -3.0};
+  a.tributaryLength = 0.125;
+  ddc::ContactSlot b;  // unpaired, defaults
+  const auto back = ddc::unpackSlots(ddc::packSlots({a, b}));
+  ASSERT_EQ(back.size(), 2u);
+  const ddc::ContactSlot& c = back[0];
+  EXPECT_EQ(c.pair, a.pair);
+  EXPECT_EQ(c.slaveNode, a.slaveNode);
+  EXPECT_EQ(c.master, a.master);
+  EXPECT_EQ(c.numMaster, a.numMaster);
+  EXPECT_EQ(c.segment, a.segment);
+  EXPECT_EQ(c.masterElement, a.masterElement);
+  EXPECT_EQ(c.active, a.active);
+  EXPECT_EQ(c.state.active, a.state.active);
+  EXPECT_EQ(c.state.multiplier, a.state.multiplier);
+  EXPECT_EQ(c.state.frozenXi, a.state.frozenXi);
+  EXPECT_EQ(c.state.frozenNormal, a.state.frozenNormal);
+  EXPECT_EQ(c.frozen.xi, a.frozen.xi);
+  EXPECT_EQ(c.frozen.normal, a.frozen.normal);
+  EXPECT_EQ(c.gap, a.gap);
+  EXPECT_EQ(c.normal, a.normal);
+  EXPECT_EQ(c.tributaryLength, a.tributaryLength);
+  EXPECT_FALSE(back[1].paired());
+  EXPECT_EQ(back[1].slaveNode, -1);
+  EXPECT_THROW(ddc::unpackSlots(std::vector<double>(31, 0.0)), std::invalid_argument);
+}
+
+TEST(Restart, ADeckMayChangeOnlyTheStepsTheSolutionMethodAndTheOutput) {
+  Teuchos::ParameterList saved;
+  saved.sublist("Load Stepping").set("Number of Steps", 10);
+  saved.sublist("Dynamics").set("Integrator", std::string("None"));
+  saved.sublist("Dynamics").set("Time Step", 0.1);
+  saved.sublist("Solver").sublist("FETI-DP").set("Preconditioner", std::string("Dirichlet"));
+  saved.sublist("Contact").set("Penetration Tolerance", 1e-6);
+  saved.sublist("Boundary Conditions").sublist("Fix").set("Set", std::string("Block/left"));
+  saved.sublist("Output").set("VTK", true);
+  const std::string file = "run/checkpoint.ddc";
+  // Allowed: steps, time step, solver, output (also sublists added there).
+  Teuchos::ParameterList now = saved;
+  now.sublist("Load Stepping").set("Number of Steps", 40);
+  now.sublist("Dynamics").set("Time Step", 0.05);
+  now.sublist("Solver").sublist("FETI-DP").set("Preconditioner", std::string("Lumped"));
+  now.sublist("Solver").sublist("Linear Solver").set("Type", std::string("Amesos2"));
+  now.sublist("Output").set("VTK", false);
+  EXPECT_NO_THROW(ddc::checkRestartParameters(saved, now, file));
+  // Not allowed: each names the parameter, both values and the checkpoint.
+  Teuchos::ParameterList contact = saved;
+  contact.sublist("Contact").set("Penetration Tolerance", 2e-6);
+  EXPECT_THAT(ddc::test::inputErrorOf([&] { ddc::checkRestartParameters(saved, contact, file); }),
+              HasSubstr("parameter 'Contact/Penetration Tolerance' is '2e-06' in this deck but was '1e-06' in the "
+                        "run that wrote the checkpoint 'run/checkpoint.ddc'"));
+  Teuchos::ParameterList integrator = saved;
+  integrator.sublist("Dynamics").set("Integrator", std::string("Newmark"));
+  EXPECT_THAT(ddc::test::inputErrorOf([&] { ddc::checkRestartParameters(saved, integrator, file); }),
+              HasSubstr("parameter 'Dynamics/Integrator' is 'Newmark'"));
+  Teuchos::ParameterList added = saved;
+  added.sublist("Boundary Conditions").sublist("Push").set("Set", std::string("Block/right"));
+  EXPECT_THAT(ddc::test::inputErrorOf([&] { ddc::checkRestartParameters(saved, added, file); }),
+              HasSubstr("parameter 'Boundary Conditions/Push' is a sublist in this deck but was (none)"));
+  Teuchos::ParameterList removed = saved;
+  removed.sublist("Boundary Conditions").remove("Fix");
+  EXPECT_THAT(ddc::test::inputErrorOf([&] { ddc::checkRestartParameters(saved, removed, file); }),
+              HasSubstr("parameter 'Boundary Conditions/Fix' is (none) in this deck but was a sublist"));
 }
 
 }  // namespace

@@ -1,0 +1,244 @@
+#!/usr/bin/env bash
+# System tests of checkpoints and restart (doc/user-guide.md, "Checkpoints
+# and restart"): a run stopped after step K continues from its checkpoint
+# and ends as the uninterrupted run does.
+#
+#   restart_cases.sh CASE NP DDCONTACT COMPARE_HISTORY DECK WORKDIR [ddcontact args...]
+#
+# The ddcontact args (e.g. --set overrides) go to every run of the case.
+# CASE:
+#   sigterm         SIGTERM to rank 0 while step 5 is solved (the test seam
+#                   DDCONTACT_FAULT_INJECTION=sigterm@5): every rank exits
+#                   143 after step 5 naming the checkpoint; `--restart DIR`
+#                   on NP ranks continues in DIR. history.csv equals the
+#                   uninterrupted run's field for field except wall_seconds;
+#                   the VTK series and results.e (if written) are the same
+#                   bytes.
+#   newton-failure  every attempt at step 8 fails as Newton does (seam
+#                   newton-failure@8): every rank exits 1 naming the
+#                   checkpoint of step 7; then as sigterm.
+#   kill            a real SIGTERM sent to every rank from outside once the
+#                   run is past step 20 (the step it stops at is not known in
+#                   advance); then as sigterm.
+#   usr1-to-mpirun  SIGUSR1 sent to mpirun once the run is past step 20 (Open
+#                   MPI forwards it to the ranks); then as sigterm.
+#   other-ranks:M   stopped on NP ranks (sigterm@5), restarted on M ranks into
+#                   another directory: history.csv equals the uninterrupted
+#                   NP-rank run's to 1e-10 (summation order only; the dual
+#                   iterations are not compared, they may differ by one).
+#   corrupted       the checkpoint with a flipped byte, then cut short, then
+#                   replaced by another file: every rank exits non-zero
+#                   naming the file, and the interrupted run's directory is
+#                   unchanged (byte for byte); the intact checkpoint then
+#                   restarts.
+#   deck-change     a restart whose deck changes a parameter a restart may
+#                   not change (Contact/Penetration Tolerance, a body's
+#                   mesh): refused naming the parameter, nothing changed; a
+#                   change it may make (more steps) works.
+#   no-checkpoint   Output/Checkpoint Interval = 0: a stopped run says it
+#                   has no checkpoint, and --restart says so naming the
+#                   directory.
+set -u
+case_name=$1 np=$2 app=$3 compare=$4 deck=$5 work=$6
+shift 6
+extra=("$@")
+here=$(cd "$(dirname "$0")" && pwd)
+rm -rf "$work"
+mkdir -p "$work"
+failures=0
+
+. "$here/rank_status_lib.sh"
+
+# run LOG NP [ddcontact args...]: every rank's exit status in $work/status.
+run() {
+  local log=$1 ranks=$2
+  shift 2
+  rm -rf "$work/status"
+  mkdir -p "$work/status"
+  mpirun --oversubscribe -np "$ranks" sh "$here/record_exit_status.sh" "$work/status" "$app" "$deck" "${extra[@]}" \
+    "$@" >"$log" 2>&1
+}
+
+# expect_in LOG REGEX WHAT
+expect_in() {
+  grep -Eq -e "$2" "$1" || { fail "$3: no match for '$2'"; sed 's/^/    | /' "$1"; }
+}
+
+# The uninterrupted run.
+reference() {
+  run "$work/reference.log" "$np" --output-dir "$work/reference" ||
+    true
+  every_rank_succeeded "$work/reference.log" || exit 1
+}
+
+# same_results DIR: DIR's results are the reference's (history field for
+# field but wall_seconds; the VTK series and the Exodus file byte for byte).
+same_results() {
+  "$compare" "$work/reference/history.csv" "$1/history.csv" exact || fail "history.csv of $1 differs"
+  if [ -d "$work/reference/vtk" ]; then
+    [ "$(hashes "$work/reference/vtk")" = "$(hashes "$1/vtk")" ] || fail "the VTK series of $1 differs"
+  fi
+  if [ -f "$work/reference/results.e" ]; then
+    cmp -s "$work/reference/results.e" "$1/results.e" || fail "results.e of $1 differs"
+  fi
+  [ -f "$1/checkpoint.ddc" ] || fail "no checkpoint.ddc in the committed result $1"
+}
+
+# wait_for_rows N PID: until the stopped run's history has N rows (at most
+# 60 s), or process PID has ended.
+wait_for_rows() {
+  local i rows
+  for ((i = 0; i < 1200; i++)); do
+    rows=$(($(wc -l <"$work/stopped.partial/history.csv" 2>/dev/null || echo 1) - 1))
+    [ "$rows" -ge "$1" ] && return
+    kill -0 "$2" 2>/dev/null || return
+    sleep 0.05
+  done
+}
+
+# restart_in_place LOG: continue the stopped run in its own directory.
+restart_in_place() {
+  run "$1" "$np" --restart "$work/stopped"
+  every_rank_succeeded "$1" || return 1
+  expect_in "$1" "continuing in '.*stopped.partial'" "restart in the same directory"
+  expect_in "$1" "restart: continuing after step" "restart"
+  [ ! -e "$work/stopped.partial" ] || fail "stopped.partial is still there after the restart committed"
+  same_results "$work/stopped"
+}
+
+case "$case_name" in
+sigterm)
+  reference
+  DDCONTACT_FAULT_INJECTION=sigterm@5 run "$work/stopped.log" "$np" --output-dir "$work/stopped"
+  every_rank_status "$work/stopped.log" 143
+  expect_in "$work/stopped.log" "stopped by SIGTERM after step 5 .*checkpoint is '.*stopped.partial/checkpoint.ddc'" \
+    "the stop message"
+  [ "$(($(wc -l <"$work/stopped.partial/history.csv") - 1))" = 5 ] || fail "the stopped run's history has not 5 rows"
+  restart_in_place "$work/restart.log"
+  ;;
+newton-failure)
+  reference
+  DDCONTACT_FAULT_INJECTION=newton-failure@8 run "$work/stopped.log" "$np" --output-dir "$work/stopped"
+  every_rank_failed "$work/stopped.log"
+  expect_in "$work/stopped.log" "Newton did not converge in step 8 .*the checkpoint of step 7 .* is '.*stopped.partial/checkpoint.ddc'" \
+    "the failure message"
+  restart_in_place "$work/restart.log"
+  ;;
+kill)
+  reference
+  rm -rf "$work/status"
+  mkdir -p "$work/status"
+  mpirun --oversubscribe -np "$np" sh "$here/record_exit_status.sh" "$work/status" "$app" "$deck" "${extra[@]}" \
+    --output-dir "$work/stopped" >"$work/stopped.log" 2>&1 &
+  launcher=$!
+  wait_for_rows 20 "$launcher"
+  # Every rank's ddcontact process (found by its output directory; not the
+  # record_exit_status.sh around it, nor mpirun).
+  pkill -TERM -f "^$app .*--output-dir $work/stopped\$" || fail "no ddcontact process to signal"
+  wait "$launcher"
+  every_rank_status "$work/stopped.log" 143
+  expect_in "$work/stopped.log" "stopped by SIGTERM after step [0-9]+ " "the stop message"
+  rows=$(($(wc -l <"$work/stopped.partial/history.csv") - 1))
+  total=$(($(wc -l <"$work/reference/history.csv") - 1))
+  [ "$rows" -lt "$total" ] || fail "the run was not stopped before its end ($rows of $total rows)"
+  echo "stopped after $rows of $total steps"
+  restart_in_place "$work/restart.log"
+  ;;
+usr1-to-mpirun)
+  reference
+  # ddcontact directly under mpirun: the signal goes to the processes mpirun
+  # started (a record_exit_status.sh around them would die of it).
+  mpirun --oversubscribe -np "$np" "$app" "$deck" "${extra[@]}" --output-dir "$work/stopped" >"$work/stopped.log" 2>&1 &
+  launcher=$!
+  wait_for_rows 20 "$launcher"
+  kill -USR1 "$launcher" || fail "mpirun had ended"
+  wait "$launcher" && fail "mpirun exited 0 after SIGUSR1"
+  expect_in "$work/stopped.log" "stopped by SIGUSR1 after step [0-9]+ " "the stop message"
+  restart_in_place "$work/restart.log"
+  ;;
+other-ranks:*)
+  ranks=${case_name#other-ranks:}
+  reference
+  DDCONTACT_FAULT_INJECTION=sigterm@5 run "$work/stopped.log" "$np" --output-dir "$work/stopped"
+  every_rank_status "$work/stopped.log" 143
+  run "$work/restart.log" "$ranks" --restart "$work/stopped" --output-dir "$work/continued"
+  np=$ranks every_rank_succeeded "$work/restart.log"
+  expect_in "$work/restart.log" "restart: continuing after step 5 " "restart"
+  # The physics (the dual iterations may differ by one with the rank count).
+  "$compare" "$work/reference/history.csv" "$work/continued/history.csv" 1e-10 load_factor strain_energy \
+    newton_iterations active_contacts contact_force_x contact_force_y contact_exchanges external_work ||
+    fail "history.csv differs above 1e-10"
+  [ -f "$work/stopped.partial/checkpoint.ddc" ] || fail "the stopped run's checkpoint is gone"
+  ;;
+corrupted)
+  DDCONTACT_FAULT_INJECTION=sigterm@5 run "$work/stopped.log" "$np" --output-dir "$work/stopped"
+  every_rank_status "$work/stopped.log" 143
+  checkpoint=$work/stopped.partial/checkpoint.ddc
+  cp "$checkpoint" "$work/intact.ddc"
+  before=$(hashes "$work/stopped.partial")
+  size=$(stat -c %s "$checkpoint")
+  # A flipped byte in the middle.
+  printf "$(printf '\\%03o' $(($(od -An -tu1 -j $((size / 2)) -N1 "$checkpoint") ^ 1)))" |
+    dd of="$checkpoint" bs=1 seek=$((size / 2)) conv=notrunc status=none
+  broken=$(hashes "$work/stopped.partial")
+  run "$work/flipped.log" "$np" --restart "$work/stopped"
+  every_rank_failed "$work/flipped.log"
+  expect_in "$work/flipped.log" "checkpoint '.*stopped.partial/checkpoint.ddc' is corrupted or truncated" "a flipped byte"
+  [ "$(hashes "$work/stopped.partial")" = "$broken" ] || fail "the stopped run's directory changed (flipped byte)"
+  # Cut short.
+  head -c $((size - 100)) "$work/intact.ddc" >"$checkpoint"
+  broken=$(hashes "$work/stopped.partial")
+  run "$work/truncated.log" "$np" --restart "$work/stopped"
+  every_rank_failed "$work/truncated.log"
+  expect_in "$work/truncated.log" "checkpoint '.*stopped.partial/checkpoint.ddc' is corrupted or truncated" "cut short"
+  [ "$(hashes "$work/stopped.partial")" = "$broken" ] || fail "the stopped run's directory changed (cut short)"
+  # Not a checkpoint at all.
+  cp "$work/stopped.partial/history.csv" "$checkpoint"
+  run "$work/foreign.log" "$np" --restart "$work/stopped"
+  every_rank_failed "$work/foreign.log"
+  expect_in "$work/foreign.log" "stopped.partial/checkpoint.ddc.* not a DDContact checkpoint" "a foreign file"
+  # The intact one restarts.
+  cp "$work/intact.ddc" "$checkpoint"
+  [ "$(hashes "$work/stopped.partial")" = "$before" ] || fail "the stopped run's directory changed"
+  run "$work/restart.log" "$np" --restart "$work/stopped"
+  every_rank_succeeded "$work/restart.log"
+  ;;
+deck-change)
+  DDCONTACT_FAULT_INJECTION=sigterm@5 run "$work/stopped.log" "$np" --output-dir "$work/stopped"
+  every_rank_status "$work/stopped.log" 143
+  before=$(hashes "$work/stopped.partial")
+  run "$work/penetration.log" "$np" --restart "$work/stopped" --set "Contact/Penetration Tolerance=2e-6"
+  every_rank_failed "$work/penetration.log"
+  expect_in "$work/penetration.log" \
+    "restart: parameter 'Contact/Penetration Tolerance' is '2e-06' in this deck but was '1e-06' in the run that wrote the checkpoint '.*stopped.partial/checkpoint.ddc'; .* may change only Load Stepping, " \
+    "a changed contact parameter"
+  run "$work/mesh.log" "$np" --restart "$work/stopped" --set "Mesh/Bodies/Lower Ring/Annular Sector/Refinement=2"
+  every_rank_failed "$work/mesh.log"
+  expect_in "$work/mesh.log" "restart: parameter 'Mesh/Bodies/Lower Ring/Annular Sector/Refinement' is '2' in this deck but was '1'" \
+    "a changed mesh"
+  [ "$(hashes "$work/stopped.partial")" = "$before" ] || fail "the stopped run's directory changed"
+  # Allowed: more steps for the rest of the run, into another directory.
+  run "$work/steps.log" "$np" --restart "$work/stopped" --set "Load Stepping/Number of Steps=40" \
+    --output-dir "$work/finer"
+  every_rank_succeeded "$work/steps.log"
+  expect_in "$work/steps.log" "step  40/40  load 1 " "the rest of the run in 40 steps"
+  [ "$(hashes "$work/stopped.partial")" = "$before" ] || fail "the stopped run's directory changed"
+  ;;
+no-checkpoint)
+  DDCONTACT_FAULT_INJECTION=sigterm@5 run "$work/stopped.log" "$np" --output-dir "$work/stopped" \
+    --set "Output/Checkpoint Interval=0"
+  every_rank_status "$work/stopped.log" 143
+  expect_in "$work/stopped.log" "stopped by SIGTERM after step 5 .*; no checkpoint \(Output/Checkpoint Interval = 0\)" \
+    "the stop message"
+  run "$work/restart.log" "$np" --restart "$work/stopped"
+  every_rank_failed "$work/restart.log"
+  expect_in "$work/restart.log" "--restart '.*stopped': no checkpoint in '.*stopped.partial' or '.*stopped'" \
+    "restart without a checkpoint"
+  ;;
+*)
+  echo "unknown case $case_name"
+  exit 2
+  ;;
+esac
+[ "$failures" = 0 ] && echo "PASS: $case_name on $np ranks" || echo "$failures failed checks"
+exit $((failures > 0))
