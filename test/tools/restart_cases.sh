@@ -35,6 +35,10 @@
 #                   not change (Contact/Penetration Tolerance, a body's
 #                   mesh): refused naming the parameter, nothing changed; a
 #                   change it may make (more steps) works.
+#   extend          a finished run (20 steps to load factor 1) continued in
+#                   its directory to 1.1 (22 steps): its 20 rows stay as
+#                   they were, two follow, and no warning says a contact
+#                   pair never paired (it paired before the restart).
 #   no-checkpoint   Output/Checkpoint Interval = 0: a stopped run says it
 #                   has no checkpoint, and --restart says so naming the
 #                   directory.
@@ -223,6 +227,19 @@ deck-change)
   every_rank_succeeded "$work/steps.log"
   expect_in "$work/steps.log" "step  40/40  load 1 " "the rest of the run in 40 steps"
   [ "$(hashes "$work/stopped.partial")" = "$before" ] || fail "the stopped run's directory changed"
+  ;;
+extend)
+  reference
+  cp "$work/reference/history.csv" "$work/finished.csv"
+  run "$work/extend.log" "$np" --restart "$work/reference" --set "Load Stepping/Final Load Factor=1.1" \
+    --set "Load Stepping/Number of Steps=22"
+  every_rank_succeeded "$work/extend.log"
+  expect_in "$work/extend.log" "restart: continuing after step 20 \(load factor 1\) from .*reference/checkpoint.ddc" \
+    "restart from the finished run"
+  expect_in "$work/extend.log" "step  22/22  load 1.1 " "the two further steps"
+  grep -q "never paired" "$work/extend.log" && fail "a pair that paired before the restart is reported as never paired"
+  head -n 21 "$work/reference/history.csv" >"$work/first20.csv"
+  "$compare" "$work/finished.csv" "$work/first20.csv" exact || fail "the finished run's rows changed"
   ;;
 no-checkpoint)
   DDCONTACT_FAULT_INJECTION=sigterm@5 run "$work/stopped.log" "$np" --output-dir "$work/stopped" \

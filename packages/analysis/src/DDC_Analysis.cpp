@@ -1225,6 +1225,8 @@ void Analysis::writeCheckpoint(const std::string& path, const RunState& st, cons
   if (model_->hasContact()) {
     w.putDoubles("contact slots", packSlots(model_->contactSlots()));
     w.putDoubles("converged contact slots", packSlots(st.convergedSlots));
+    const auto paired = model_->contact()->pairedRecord();
+    w.putBytes("paired contact pairs", std::string(paired.begin(), paired.end()));
   }
   w.write(path);
 }
@@ -1273,6 +1275,10 @@ std::vector<std::pair<int, double>> Analysis::restoreCheckpoint(RunState& st, St
     DDC_INPUT_REQUIRE(same, "checkpoint '" << file << "': its contact slave nodes are not this model's");
     model_->restoreContactState(slots);
     st.convergedSlots = unpackSlots(c.doubles("converged contact slots"));
+    const std::string& paired = c.bytes("paired contact pairs");
+    DDC_INPUT_REQUIRE(paired.size() == model_->contact()->pairedRecord().size(),
+                      "checkpoint '" << file << "': its contact pairs are not this model's");
+    model_->addPairedRecord(std::vector<char>(paired.begin(), paired.end()));
   }
   const auto vtk = c.doubles("vtk steps");
   std::vector<std::pair<int, double>> series;

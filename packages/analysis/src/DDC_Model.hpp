@@ -204,6 +204,10 @@ class Model {
   /// node ids, its DOF ids this model's, its multipliers the model's
   /// multiplier DOFs (multiplierDof()).
   const ContactComponent* contact() const { return contact_.get(); }
+  /// A restart: add the earlier run's ContactComponent::pairedRecord().
+  void addPairedRecord(const std::vector<char>& record) {
+    if (contact_) contact_->addPairedRecord(record);
+  }
   const std::vector<ContactSlot>& contactSlots() const;
   /// ContactComponent::updatePairing(); rebuilds the model's sparsity
   /// pattern when the pairing changes.

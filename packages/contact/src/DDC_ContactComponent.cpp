@@ -1149,6 +1149,21 @@ std::vector<std::string> ContactComponent::neverPairedPairs() const {
   return out;
 }
 
+std::vector<char> ContactComponent::pairedRecord() const {
+  std::vector<char> out(pairs_.size(), 0);
+  for (size_t p = 0; p < pairs_.size() && p < everPaired_.size(); ++p) out[p] = everPaired_[p];
+  return out;
+}
+
+void ContactComponent::addPairedRecord(const std::vector<char>& record) {
+  if (record.size() != pairs_.size())
+    throw std::invalid_argument("addPairedRecord: " + std::to_string(record.size()) + " entries for " +
+                                std::to_string(pairs_.size()) + " pairs");
+  everPaired_.resize(pairs_.size(), 0);
+  for (size_t p = 0; p < pairs_.size(); ++p)
+    if (record[p]) everPaired_[p] = 1;
+}
+
 void ContactComponent::checkInitialPenetration(
     const std::vector<std::function<int(const Eigen::VectorXd&)>>& locate) const {
   // doc/contact.md "Which slave nodes pair": a slave node inside the master

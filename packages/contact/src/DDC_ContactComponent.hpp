@@ -267,6 +267,12 @@ class ContactComponent {
   /// The pairs (path and side sets) none of whose slave nodes any pairing so
   /// far has paired: contact was never enforced on them.
   std::vector<std::string> neverPairedPairs() const;
+  /// Per pair, 1 if some pairing so far paired a slave node: the record
+  /// behind neverPairedPairs(), for a checkpoint.
+  std::vector<char> pairedRecord() const;
+  /// Add the record of the run a restart continues (pairedRecord() of it).
+  /// \throws std::invalid_argument if it is not one entry per pair
+  void addPairedRecord(const std::vector<char>& record);
   /// Activate every paired slot (Initial Contact State = In Contact), except
   /// the fully prescribed ones (fullyPrescribed()).
   void activateAllPaired();
