@@ -17,6 +17,10 @@
 #   newton-failure  every attempt at step 8 fails as Newton does (seam
 #                   newton-failure@8): every rank exits 1 naming the
 #                   checkpoint of step 7; then as sigterm.
+#   unwritable      the same failure with a full disk for checkpoint.ddc
+#                   (seam enospc@checkpoint.ddc): the error is the Newton
+#                   failure, and says that the checkpoint could not be
+#                   written and why.
 #   kill            a real SIGTERM sent to every rank from outside once the
 #                   run is past step 20 (the step it stops at is not known in
 #                   advance); then as sigterm.
@@ -127,6 +131,15 @@ newton-failure)
   expect_in "$work/stopped.log" "Newton did not converge in step 8 .*the checkpoint of step 7 .* is '.*stopped.partial/checkpoint.ddc'" \
     "the failure message"
   restart_in_place "$work/restart.log"
+  ;;
+unwritable)
+  DDCONTACT_FAULT_INJECTION=newton-failure@8,enospc@checkpoint.ddc run "$work/stopped.log" "$np" \
+    --output-dir "$work/stopped"
+  every_rank_failed "$work/stopped.log"
+  expect_in "$work/stopped.log" \
+    "error: solver failure: Newton did not converge in step 8 .*; the checkpoint of the last converged step could not be written: .*checkpoint.ddc.*No space left on device" \
+    "the failure message"
+  [ ! -e "$work/stopped.partial/checkpoint.ddc" ] || fail "a checkpoint.ddc was left behind"
   ;;
 kill)
   reference

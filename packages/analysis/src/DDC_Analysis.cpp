@@ -1715,16 +1715,21 @@ void Analysis::runSteps(OutputDirectory* dir) {
     // is on disk already (the state is that step's: a failed attempt
     // leaves the displacements, and its contact state is restored here).
     if (checkpointPath.empty() || history_.empty()) throw;
-    std::string message = e.what();
-    if (checkpointRows != history_.size()) {
-      u_->assign(*st.uPrev);
-      if (contact && !att.startSlots.empty()) model_->restoreContactState(att.startSlots);
-      writeCheckpoint(checkpointPath, st, acceptedState, vtk ? vtk->steps() : std::vector<std::pair<int, double>>());
-    }
     std::ostringstream os;
-    os << message << "; the checkpoint of step " << history_.back().step << " (" << factorName << " "
-       << history_.back().loadFactor << ") is '" << checkpointPath << "': continue with --restart '"
-       << dir->finalPath() << "' (changing the steps or the solver settings)";
+    os << e.what();
+    try {
+      if (checkpointRows != history_.size()) {
+        u_->assign(*st.uPrev);
+        if (contact && !att.startSlots.empty()) model_->restoreContactState(att.startSlots);
+        writeCheckpoint(checkpointPath, st, acceptedState, vtk ? vtk->steps() : std::vector<std::pair<int, double>>());
+      }
+      os << "; the checkpoint of step " << history_.back().step << " (" << factorName << " "
+         << history_.back().loadFactor << ") is '" << checkpointPath << "': continue with --restart '"
+         << dir->finalPath() << "' (changing the steps or the solver settings)";
+    } catch (const OutputError& w) {
+      // The failure is the news; that its checkpoint is missing comes second.
+      os << "; the checkpoint of the last converged step could not be written: " << w.what();
+    }
     throw SolverError(os.str());
   }
   const double lambda = steps.current();
