@@ -1297,11 +1297,11 @@ void Analysis::run(const std::string& outputDirectory) {
   if (restart_ && restart_->unfinished && OutputDirectory::normalisedPath(outputDirectory) == restart_->finalPath)
     description.resumeWith = kCheckpointFileName;
   OutputDirectory dir(comm_, outputDirectory, description);
+  for (const auto& note : dir.recoveryNotes()) progress("output: " + note);
   run(dir);
 }
 
 void Analysis::run(OutputDirectory& dir) {
-  for (const auto& note : dir.recoveryNotes()) progress("output: " + note);
   runSteps(&dir);
 }
 
@@ -1536,7 +1536,8 @@ void Analysis::runSteps(OutputDirectory* dir) {
           os << "Newton did not converge in step " << n << " (" << factorName << " " << p.from << " -> " << p.to
              << ") after " << p.depth << " bisections (" << stepping << "/Max Bisections = " << maxBisect;
           if (adaptive) os << ", Step Control/Minimum Step Size = " << adaptive->minSize();
-          os << "): " << rec.failure << "; residual history:";
+          os << "): " << rec.failure;
+          if (!rec.residualHistory.empty()) os << "; residual history:";
           for (double x : rec.residualHistory) os << " " << x;
           if (!nearlyIncompressible_.empty()) os << "; note: " << nearlyIncompressible_;
           throw SolverError(os.str());

@@ -116,7 +116,8 @@ class Analysis {
   /// Run every load step, writing into `dir` (opened by the caller, e.g. the
   /// ddcontact application before it builds the analysis, so that a
   /// directory in use or not written by DDContact stops the run before any
-  /// work). Commits `dir` when the run succeeds.
+  /// work). Commits `dir` when the run succeeds. The caller prints
+  /// dir.recoveryNotes() (run(const std::string&) does).
   void run(OutputDirectory& dir);
 
   /// Take the steps of the next run() from `controller` instead of the one
