@@ -6,7 +6,7 @@
 # working directories here, as ranks on nodes without a shared file system
 # see different files.
 #   -DMPIEXEC=<mpirun> -DAPP=<ddcontact> -DINPUTS=<test/inputs>
-#   -DMESHES=<packages/core/test/data> -DWORK_DIR=<scratch directory>
+#   -DMESHES=<packages/io/test/data> -DWORK_DIR=<scratch directory>
 # Each launch must end within TIMEOUT seconds (a hang is a failure).
 set(TIMEOUT 120)
 file(REMOVE_RECURSE ${WORK_DIR})

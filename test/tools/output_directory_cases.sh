@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # System tests of the output directory's failure paths (doc/user-guide.md,
 # "The output directory"), driven through the test seam
-# DDCONTACT_FAULT_INJECTION (packages/analysis/src/DDC_ResultFile.hpp).
+# DDCONTACT_FAULT_INJECTION (packages/io/src/DDC_ResultFile.hpp).
 #
 #   output_directory_cases.sh CASE NP DDCONTACT DECK WORKDIR
 #

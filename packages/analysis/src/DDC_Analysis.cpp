@@ -1377,7 +1377,8 @@ void Analysis::runSteps(OutputDirectory* dir) {
                                           "external_work", "active_contacts", "contact_force_x", "contact_force_y"};
       if (model_->mesh().dim() == 3) globals.push_back("contact_force_z");
       if (dynamic_) globals.push_back("kinetic_energy");
-      exodus = std::make_unique<ExodusWriter>(comm_, dir->path() + "/results.e", *model_, dynamic_, globals);
+      exodus = std::make_unique<ExodusWriter>(comm_, dir->path() + "/results.e", model_->mesh(),
+                                              exodusVariables(*model_, dynamic_, globals));
     }
   }
   // contact_nodes.csv holds the contact state of the last converged step
@@ -1684,7 +1685,7 @@ void Analysis::runSteps(OutputDirectory* dir) {
                                  rec.contactForce[0], rec.contactForce[1]};
         if (model_->mesh().dim() == 3) g.push_back(rec.contactForce[2]);
         if (dynamic_) g.push_back(rec.kineticEnergy);
-        exodus->writeStep(lambda, *u_, integrator_ ? &integrator_->velocity() : nullptr,
+        writeExodusStep(*exodus, *model_, lambda, *u_, integrator_ ? &integrator_->velocity() : nullptr,
                           integrator_ ? &integrator_->accelerationNow() : nullptr, g);
       }
       const bool last = steps.done();

@@ -107,4 +107,63 @@ void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int st
   writer.writeStep(step, time, list);
 }
 
+ExodusVariables exodusVariables(const Model& model, bool dynamics, std::vector<std::string> globals) {
+  ExodusVariables v;
+  const char* axes[] = {"x", "y", "z"};
+  for (const char* field : {"displ", "vel", "acc"}) {
+    if (std::string(field) != "displ" && !dynamics) continue;
+    for (int c = 0; c < model.dim(); ++c) v.nodal.push_back(std::string(field) + "_" + axes[c]);
+  }
+  if (model.hasContact()) v.nodal.insert(v.nodal.end(), {"contact_gap", "contact_pressure", "contact_multiplier"});
+  v.element = {"stress_xx", "stress_yy", "stress_zz", "stress_xy",
+               "stress_yz", "stress_xz", "von_mises", "strain_energy_density"};
+  v.global = std::move(globals);
+  return v;
+}
+
+void writeExodusStep(ExodusWriter& writer, const Model& model, double time, const Vector& u,
+                     const Vector* velocity, const Vector* acceleration, const std::vector<double>& globals) {
+  const Mesh& mesh = model.mesh();
+  const int dim = mesh.dim();
+  const auto& ovMap = *model.overlapMap();
+  auto uov = model.toOverlap(u);
+  // The nodal fields after the displacement, in the order of exodusVariables().
+  std::vector<Teuchos::ArrayRCP<const double>> fields;
+  std::vector<Teuchos::RCP<Vector>> keep;
+  for (const Vector* f : {velocity, acceleration})
+    if (f) {
+      keep.push_back(model.toOverlap(*f));
+      fields.push_back(keep.back()->getData());
+    }
+  // The contact values of each slave node (the slots are replicated).
+  std::vector<int> slotOf(model.hasContact() ? mesh.numNodes() : 0, -1);
+  const auto& slots = model.contactSlots();
+  for (size_t k = 0; k < slots.size(); ++k) slotOf[slots[k].slaveNode] = int(k);
+  ExodusStepValues values;
+  values.global = globals;
+  std::vector<char> seen(mesh.numNodes(), 0);
+  forEachLocalElementOutput(model, *uov, [&](const ElementOutput& o) {
+    for (int i = 0; i < o.numNodes; ++i) {
+      const int n = o.nodes[i];
+      if (seen[n]) continue;
+      seen[n] = 1;
+      values.nodes.push_back(n);
+      for (int c = 0; c < dim; ++c) values.nodal.push_back(o.ue(i, c));
+      for (const auto& f : fields)
+        for (int c = 0; c < dim; ++c) values.nodal.push_back(f[ovMap.getLocalElement(model.dof(n, c))]);
+      if (!slotOf.empty()) {
+        const ContactSlot* s = slotOf[n] >= 0 ? &slots[size_t(slotOf[n])] : nullptr;
+        values.nodal.push_back(s && s->paired() ? s->gap : 0.0);
+        values.nodal.push_back(s ? s->pressure() : 0.0);
+        values.nodal.push_back(s && s->active ? s->state.multiplier : 0.0);
+      }
+    }
+    const double* s = o.post.cauchy;  // xx, yy, zz, yz, xz, xy
+    values.elements.push_back(o.element);
+    values.element.insert(values.element.end(), {s[0], s[1], s[2], s[5], s[3], s[4], o.post.vonMises(),
+                                                 o.post.energyDensity});
+  });
+  writer.writeStep(time, values);
+}
+
 }  // namespace ddc

@@ -184,7 +184,7 @@ int ContactComponent::index(int id) const {
 
 Eigen::Vector3d ContactComponent::referencePosition(int id) const {
   const int i = index(id);
-  DDC_ASSERT(i >= 0, "node " << id << " is not on a contact surface");
+  DDC_CHECK(i >= 0, "node " << id << " is not on a contact surface");
   return X_[i];
 }
 
@@ -660,7 +660,7 @@ void ContactComponent::evaluate(int k, SurfaceContactRole role, const Field& f, 
 
 const SurfaceContactElement& ContactComponent::surfaceElement(SurfaceContactRole role, CellType facet) const {
   const auto it = surfaceElements_.find({role, facet});
-  DDC_ASSERT(it != surfaceElements_.end(), "no " << surfaceContactElementName(role, facet) << " element");
+  DDC_CHECK(it != surfaceElements_.end(), "no " << surfaceContactElementName(role, facet) << " element");
   return *it->second;
 }
 
@@ -746,7 +746,7 @@ void ContactComponent::gatherSurface(const Vector& u, const Vector* multipliers,
 
 Eigen::Vector3d ContactComponent::currentPosition(int id, const std::vector<double>& v) const {
   const int i = index(id);
-  DDC_ASSERT(i >= 0, "node " << id << " is not on a contact surface");
+  DDC_CHECK(i >= 0, "node " << id << " is not on a contact surface");
   Eigen::Vector3d x = X_[i];
   for (int c = 0; c < dim_; ++c) x[c] += v[size_t(dim_) * i + c];
   return x;
@@ -1378,7 +1378,7 @@ ContactSummary ContactComponent::summary() const {
 }
 
 bool ContactComponent::restoreSlots(const std::vector<ContactSlot>& saved) {
-  DDC_ASSERT(saved.size() == slots_.size(), "restoreSlots: " << saved.size() << " slots for " << slots_.size());
+  DDC_CHECK(saved.size() == slots_.size(), "restoreSlots: " << saved.size() << " slots for " << slots_.size());
   bool changed = false;
   for (size_t k = 0; k < slots_.size(); ++k)
     if (saved[k].segment != slots_[k].segment) changed = true;

@@ -1,8 +1,8 @@
 // Error handling for DDContact.
 //
 // Two levels, as in deal.II / MFEM: user input and run-time failures throw an
-// exception that carries full context (always on); internal invariants use
-// DDC_ASSERT (debug builds only).
+// exception that carries full context; internal invariants use DDC_CHECK,
+// which throws std::logic_error. Both are on in every build type.
 #pragma once
 
 #include <sstream>
@@ -107,18 +107,17 @@ inline std::string lastLineOf(const std::exception& e) {
     throw Type(ddc_oss_.str());                            \
   } while (0)
 
-#ifndef NDEBUG
-#define DDC_ASSERT(cond, msg)                                                   \
-  do {                                                                          \
-    if (!(cond)) {                                                              \
-      std::ostringstream ddc_oss_;                                              \
-      ddc_oss_ << "internal error at " << __FILE__ << ":" << __LINE__ << ": " \
-               << msg;                                                          \
-      throw std::logic_error(ddc_oss_.str());                                   \
-    }                                                                           \
+/// Throw std::logic_error ("internal error at FILE:LINE: check 'cond'
+/// failed: msg") if `cond` is false. Always on, in every build type: it
+/// guards what must hold before an index or a dereference, where a wrong
+/// value would otherwise read or write out of bounds. Input is checked by
+/// DDC_INPUT_REQUIRE, with a message for the user.
+#define DDC_CHECK(cond, msg)                                                      \
+  do {                                                                            \
+    if (!(cond)) {                                                                \
+      std::ostringstream ddc_oss_;                                                \
+      ddc_oss_ << "internal error at " << __FILE__ << ":" << __LINE__ << ": check '" \
+               << #cond << "' failed: " << msg;                                    \
+      throw std::logic_error(ddc_oss_.str());                                     \
+    }                                                                             \
   } while (0)
-#else
-#define DDC_ASSERT(cond, msg) \
-  do {                        \
-  } while (0)
-#endif

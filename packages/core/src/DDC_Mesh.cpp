@@ -36,15 +36,15 @@ int Mesh::beginBody(const std::string& name, CellType cellType) {
 }
 
 int Mesh::addNode(double x, double y, double z) {
-  DDC_ASSERT(!bodies_.empty(), "addNode before beginBody");
-  DDC_ASSERT(dim_ == 3 || z == 0.0, "addNode: z = " << z << " in a 2-D mesh");
+  DDC_CHECK(!bodies_.empty(), "addNode before beginBody");
+  DDC_CHECK(dim_ == 3 || z == 0.0, "addNode: z = " << z << " in a 2-D mesh");
   coords_.push_back({x, y, z});
   bodies_.back().numNodes++;
   return numNodes() - 1;
 }
 
 int Mesh::addElement(const int* nodes) {
-  DDC_ASSERT(!bodies_.empty(), "addElement before beginBody");
+  DDC_CHECK(!bodies_.empty(), "addElement before beginBody");
   const int nn = numCellNodes(bodies_.back().cellType);
   elemNodes_.insert(elemNodes_.end(), nodes, nodes + nn);
   elemOffset_.push_back(static_cast<int>(elemNodes_.size()));
@@ -73,7 +73,7 @@ void Mesh::addSideSet(int body, const std::string& localName, std::vector<Segmen
 
 Segment Mesh::makeSegment(int e, int localSide) const {
   const auto& facets = referenceCell(elementType(e)).facets;
-  DDC_ASSERT(localSide >= 0 && localSide < static_cast<int>(facets.size()), "bad local side " << localSide);
+  DDC_CHECK(localSide >= 0 && localSide < static_cast<int>(facets.size()), "bad local side " << localSide);
   const auto& f = facets[localSide];
   Segment s;
   s.element = e;

@@ -76,7 +76,7 @@ int pointsPerCell(CellType t) { return numCellNodes(t) == referenceCell(t).numCo
 /// two corners.
 std::vector<std::vector<Index>> gridCells(const Grid& g, CellType t, bool reversed) {
   const ReferenceCell& ref = referenceCell(t);
-  DDC_ASSERT(ref.dim == g.dim && (!ref.simplex || g.dim == 3), "grid of dimension " << g.dim << " for " << ref.name);
+  DDC_CHECK(ref.dim == g.dim && (!ref.simplex || g.dim == 3), "grid of dimension " << g.dim << " for " << ref.name);
   std::vector<std::vector<Index>> cells;
   static const std::array<Index, 6> orders = {{{{0, 1, 2}}, {{0, 2, 1}}, {{1, 0, 2}}, {{1, 2, 0}}, {{2, 0, 1}}, {{2, 1, 0}}}};
   static const std::array<int, 6> orderSign = {{1, -1, -1, 1, 1, -1}};
@@ -132,7 +132,7 @@ std::vector<Index> cellNodePoints(CellType t, const std::vector<Index>& corners)
     Index q;
     for (int d = 0; d < 3; ++d) {
       q[d] = static_cast<int>(std::lround(p[d]));
-      DDC_ASSERT(std::abs(p[d] - q[d]) < 1e-9, ref.name << " node off the grid");
+      DDC_CHECK(std::abs(p[d] - q[d]) < 1e-9, ref.name << " node off the grid");
     }
     points.push_back(q);
   }
@@ -168,7 +168,7 @@ std::vector<Segment> chainSegments(std::vector<Segment> segs) {
         found = true;
       }
     }
-    DDC_ASSERT(found, "structured boundary is not a chain");
+    DDC_CHECK(found, "structured boundary is not a chain");
   }
   return out;
 }
@@ -185,7 +185,7 @@ std::vector<Segment> chainSegments(std::vector<Segment> segs) {
 /// \return the node number of every grid point (-1 if it is no node).
 std::vector<int> addStructuredBody(Mesh& mesh, int body, const Grid& g, CellType type, bool reversed,
                                    const std::vector<Point>& x, const std::vector<std::string>& sideNames) {
-  DDC_ASSERT(static_cast<int>(sideNames.size()) == 2 * g.dim, "one side name per grid side");
+  DDC_CHECK(static_cast<int>(sideNames.size()) == 2 * g.dim, "one side name per grid side");
   const ReferenceCell& ref = referenceCell(type);
   const auto cells = gridCells(g, type, reversed);
   std::vector<std::vector<Index>> cellPoints;
@@ -225,7 +225,7 @@ std::vector<int> addStructuredBody(Mesh& mesh, int body, const Grid& g, CellType
     if (static_cast<std::size_t>(first) != side) continue;
     for (std::size_t other = side + 1; other < sides.size(); ++other)
       if (sideNames[other] == sideNames[side]) {
-        DDC_ASSERT(g.dim == 3, "only 3-D side sets can merge grid sides");
+        DDC_CHECK(g.dim == 3, "only 3-D side sets can merge grid sides");
         sides[side].insert(sides[side].end(), sides[other].begin(), sides[other].end());
       }
     mesh.addSideSet(body, sideNames[side], g.dim == 2 ? chainSegments(std::move(sides[side])) : std::move(sides[side]));

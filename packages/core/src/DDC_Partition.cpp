@@ -78,7 +78,7 @@ void fillEmptySubdomains(const std::vector<std::vector<int>>& nb, Partition& p) 
         bestInside = inside;
       }
     }
-    DDC_ASSERT(best >= 0 && count[donor] > 1, "no donor element for empty subdomain");
+    DDC_CHECK(best >= 0 && count[donor] > 1, "no donor element for empty subdomain");
     p.elementSubdomain[best] = s;
     --count[donor];
     ++count[s];
@@ -142,7 +142,7 @@ Partition partitionMetis(const Mesh& mesh, int numSubdomains) {
                                                                   << ne << " elements into " << numSubdomains
                                                                   << " subdomains");
   for (int e = 0; e < ne; ++e) {
-    DDC_ASSERT(epart[e] >= 0 && epart[e] < numSubdomains, "METIS part out of range");
+    DDC_CHECK(epart[e] >= 0 && epart[e] < numSubdomains, "METIS part out of range");
     p.elementSubdomain[e] = static_cast<int>(epart[e]);
   }
   fillEmptySubdomains(nb, p);

@@ -29,7 +29,7 @@ std::vector<int> identity(int n) {
 int edgeMiddle(const std::vector<ReferenceEdge>& edges, int a, int b) {
   for (const auto& e : edges)
     if ((e.start == a && e.end == b) || (e.start == b && e.end == a)) return e.middle;
-  DDC_ASSERT(false, "reference cell: no edge " << a << "-" << b);
+  DDC_CHECK(false, "reference cell: no edge " << a << "-" << b);
   return -1;
 }
 
@@ -163,7 +163,7 @@ std::vector<ReferenceCell> makeTable() {
   t.push_back(triangle(true));
   t.push_back(quadrilateral(CellType::Quad8));
   for (std::size_t i = 0; i < t.size(); ++i)
-    DDC_ASSERT(static_cast<std::size_t>(t[i].type) == i, "reference cell table out of enum order at " << i);
+    DDC_CHECK(static_cast<std::size_t>(t[i].type) == i, "reference cell table out of enum order at " << i);
   return t;
 }
 
@@ -222,7 +222,7 @@ void cornerMapJacobian(const ReferenceCell& c, const std::array<double, 3>* x, c
 CornerJacobian cornerJacobian(CellType t, const std::array<double, 3>* corners) {
   const ReferenceCell& c = referenceCell(t);
   const int d = c.dim;
-  DDC_ASSERT(d >= 2, "cornerJacobian: " << c.name << " is not a 2-D or 3-D cell");
+  DDC_CHECK(d >= 2, "cornerJacobian: " << c.name << " is not a 2-D or 3-D cell");
   double h = 0.0;
   for (int a = 0; a < c.numCorners; ++a)
     for (int b = a + 1; b < c.numCorners; ++b) {

@@ -166,3 +166,16 @@ TEST(Mesh, CheckRefusesInvertedAndDegenerate3DElements) {
     EXPECT_THAT(inputErrorOf([&] { m.check(); }), HasSubstr("element 0 of body 'T' (Tet4, first node 0 at (0, 0, 0)) is degenerate"));
   }
 }
+
+// DDC_CHECK guards invariants in every build type (the default build is
+// Release): a node added before any body is a logic error naming the check,
+// not a write past the end of the body list.
+TEST(Mesh, InvariantChecksStayOnInEveryBuildType) {
+  Mesh m;
+  try {
+    m.addNode(0.0, 0.0);
+    FAIL() << "addNode before beginBody did not throw";
+  } catch (const std::logic_error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("check '!bodies_.empty()' failed: addNode before beginBody"));
+  }
+}

@@ -36,7 +36,7 @@ class ContinuumSolid final : public ContinuumElement {
     if (!material_) throw std::invalid_argument(std::string(name_) + ": material must not be null");
     const ReferenceCell& ref = referenceCell(cell);
     const QuadratureRule& rule = quadratureRule(cell);
-    DDC_ASSERT(ref.dim == kDim && ref.numNodes == kN && static_cast<int>(rule.points.size()) == kQ,
+    DDC_CHECK(ref.dim == kDim && ref.numNodes == kN && static_cast<int>(rule.points.size()) == kQ,
                name_ << ": element instantiated with the wrong sizes");
     Eigen::MatrixXd dN;
     for (int q = 0; q < kQ; ++q) {

@@ -1,4 +1,4 @@
-// Boundary conditions in 2-D and 3-D (packages/analysis/src/DDC_BoundaryConditions.hpp):
+// Boundary conditions in 2-D and 3-D (packages/model/src/DDC_BoundaryConditions.hpp):
 // the prescribed field u(X, λ) = λ(v + H(X − c)) + (R(λθ, a) − I)(X − c),
 // component selection and the dimension checks.
 #include <gmock/gmock.h>

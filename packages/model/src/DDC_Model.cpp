@@ -32,9 +32,9 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
       partition_(std::move(partition)),
       bcs_(std::move(bcs)),
       contactOptions_(std::move(contact)) {
-  DDC_ASSERT(static_cast<int>(elements_.size()) == mesh_->numBodies(), "one element evaluator per body");
+  DDC_CHECK(static_cast<int>(elements_.size()) == mesh_->numBodies(), "one element evaluator per body");
   for (int b = 0; b < mesh_->numBodies(); ++b)
-    DDC_ASSERT(elements_[b]->dim() == mesh_->dim(), "body '" << mesh_->body(b).name << "': a " << elements_[b]->dim()
+    DDC_CHECK(elements_[b]->dim() == mesh_->dim(), "body '" << mesh_->body(b).name << "': a " << elements_[b]->dim()
                                                               << "-D element on a " << mesh_->dim() << "-D mesh");
   subdomainRank_ = subdomainOwnerRank(partition_.numSubdomains, comm_->getSize());
   for (int e = 0; e < mesh_->numElements(); ++e)

@@ -283,7 +283,7 @@ std::vector<SubdomainSystem> buildSubdomainSystems(const Model& model, const std
   std::map<int, SubdomainSystem> byId;
   for (int e : model.localElements()) {
     const int s = part.elementSubdomain[e];
-    DDC_ASSERT(model.subdomainRank(s) == me, "local element of a foreign subdomain");
+    DDC_CHECK(model.subdomainRank(s) == me, "local element of a foreign subdomain");
     auto& sys = byId[s];
     sys.id = s;
     sys.elements.push_back(e);

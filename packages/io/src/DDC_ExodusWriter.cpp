@@ -9,7 +9,6 @@
 
 #include "DDC_Error.hpp"
 #include "DDC_InputDeck.hpp"
-#include "DDC_ModelOutput.hpp"
 #include "DDC_MpiRecords.hpp"
 
 namespace ddc {
@@ -26,27 +25,33 @@ struct NameList {
   std::vector<char*> pointers;
 };
 
-/// Nodal values a rank sends to rank 0: displacement, velocity, acceleration.
-struct NodeRecord {
-  int node;
-  double v[9];
-};
-/// Element values: Cauchy stress (xx, yy, zz, xy, yz, xz), von Mises, energy density.
-constexpr int kElementValues = 8;
-struct ElementRecord {
-  int element;
-  double v[kElementValues];
-};
+/// Rows of `width` values, each after its entity id, gathered on rank 0 as
+/// columns over `count` entities (entities no rank sent stay 0).
+/// Collective.
+std::vector<std::vector<double>> gatherColumns(const Teuchos::Comm<int>& comm, const std::vector<int>& ids,
+                                               const std::vector<double>& rows, size_t width, int count) {
+  std::vector<std::vector<double>> send(comm.getSize());
+  for (size_t i = 0; width > 0 && i < ids.size(); ++i) {
+    send[0].push_back(double(ids[i]));  // exact: ids are far below 2^53
+    send[0].insert(send[0].end(), rows.begin() + long(i * width), rows.begin() + long((i + 1) * width));
+  }
+  const auto received = exchangeRecords(rawComm(comm), send);
+  std::vector<std::vector<double>> columns;
+  if (comm.getRank() != 0) return columns;
+  columns.assign(width, std::vector<double>(size_t(count), 0.0));
+  for (size_t r = 0; r + width < received.size(); r += width + 1) {
+    const int id = int(received[r]);
+    for (size_t k = 0; k < width; ++k) columns[k][size_t(id)] = received[r + 1 + k];
+  }
+  return columns;
+}
 
 }  // namespace
 
-ExodusWriter::ExodusWriter(Teuchos::RCP<const Teuchos::Comm<int>> comm, const std::string& path, const Model& model,
-                           bool dynamics, std::vector<std::string> globalNames)
-    : comm_(std::move(comm)), path_(path), model_(model), dynamics_(dynamics), globalNames_(std::move(globalNames)) {
-  const Mesh& mesh = model_.mesh();
+ExodusWriter::ExodusWriter(Teuchos::RCP<const Teuchos::Comm<int>> comm, const std::string& path, const Mesh& mesh,
+                           ExodusVariables variables)
+    : comm_(std::move(comm)), path_(path), mesh_(mesh), variables_(std::move(variables)) {
   const int dim = mesh.dim();
-  const bool contact = model_.hasContact();
-  numNodal_ = dim * (dynamics_ ? 3 : 1) + (contact ? 3 : 0);
   std::string error;
   if (comm_->getRank() == 0) {
     // Each call below returns < 0 on failure; the first failure is the message.
@@ -117,24 +122,15 @@ ExodusWriter::ExodusWriter(Teuchos::RCP<const Teuchos::Comm<int>> comm, const st
       }
       ok = ok && putNames(EX_SIDE_SET, sideSets, "side set names");
       // Variable names.
-      const char* axes[] = {"x", "y", "z"};
-      std::vector<std::string> nodal;
-      for (const char* v : {"displ", "vel", "acc"}) {
-        if (std::string(v) != "displ" && !dynamics_) continue;
-        for (int c = 0; c < dim; ++c) nodal.push_back(std::string(v) + "_" + axes[c]);
-      }
-      if (contact) nodal.insert(nodal.end(), {"contact_gap", "contact_pressure", "contact_multiplier"});
-      const std::vector<std::string> element = {"stress_xx", "stress_yy", "stress_zz", "stress_xy",
-                                                "stress_yz", "stress_xz", "von_mises", "strain_energy_density"};
       auto putVariables = [&](ex_entity_type type, const std::vector<std::string>& names, const char* what) {
         if (names.empty()) return true;
         NameList list(names);
         return check(ex_put_variable_param(exoid_, type, int(names.size())), what) &&
                check(ex_put_variable_names(exoid_, type, int(names.size()), list.pointers.data()), what);
       };
-      ok = ok && putVariables(EX_NODAL, nodal, "nodal variables") &&
-           putVariables(EX_ELEM_BLOCK, element, "element variables") &&
-           putVariables(EX_GLOBAL, globalNames_, "global variables");
+      ok = ok && putVariables(EX_NODAL, variables_.nodal, "nodal variables") &&
+           putVariables(EX_ELEM_BLOCK, variables_.element, "element variables") &&
+           putVariables(EX_GLOBAL, variables_.global, "global variables");
       ok = ok && check(ex_update(exoid_), "flush");
     }
   }
@@ -151,7 +147,9 @@ ExodusWriter::~ExodusWriter() {
 }
 
 std::pair<int, std::string> ExodusWriter::copySteps(const std::string& source, int count) {
-  const Mesh& mesh = model_.mesh();
+  const Mesh& mesh = mesh_;
+  const int numNodal = int(variables_.nodal.size()), numElement = int(variables_.element.size());
+  const int numGlobal = int(variables_.global.size());
   std::string error, shortfall;
   int copied = 0;
   if (comm_->getRank() == 0 && exoid_ >= 0) {
@@ -167,8 +165,8 @@ std::pair<int, std::string> ExodusWriter::copySteps(const std::string& source, i
         return ex_get_variable_param(id, type, &n) < 0 ? -1 : n;
       };
       const int available = int(ex_inquire_int(in, EX_INQ_TIME));
-      if (variables(in, EX_NODAL) != numNodal_ || variables(in, EX_ELEM_BLOCK) != kElementValues ||
-          variables(in, EX_GLOBAL) != int(globalNames_.size()) ||
+      if (variables(in, EX_NODAL) != numNodal || variables(in, EX_ELEM_BLOCK) != numElement ||
+          variables(in, EX_GLOBAL) != numGlobal ||
           int(ex_inquire_int(in, EX_INQ_NODES)) != mesh.numNodes() ||
           int(ex_inquire_int(in, EX_INQ_ELEM_BLK)) != mesh.numBodies()) {
         shortfall = "'" + source + "' has other variables or another mesh";
@@ -196,11 +194,11 @@ std::pair<int, std::string> ExodusWriter::copySteps(const std::string& source, i
           double time = 0.0;
           ok = ex_get_time(in, step, &time) >= 0 && ex_put_time(exoid_, step, &time) >= 0;
           if (!ok) error = "cannot copy the time of step " + std::to_string(step) + " from '" + source + "'";
-          for (int k = 0; ok && k < numNodal_; ++k) ok = copy(step, EX_NODAL, k + 1, 1, mesh.numNodes());
+          for (int k = 0; ok && k < numNodal; ++k) ok = copy(step, EX_NODAL, k + 1, 1, mesh.numNodes());
           for (int b = 0; ok && b < mesh.numBodies(); ++b)
-            for (int k = 0; ok && k < kElementValues; ++k)
+            for (int k = 0; ok && k < numElement; ++k)
               ok = copy(step, EX_ELEM_BLOCK, k + 1, b + 1, mesh.body(b).numElements);
-          if (ok && !globalNames_.empty()) ok = copy(step, EX_GLOBAL, 1, 0, int64_t(globalNames_.size()));
+          if (ok && numGlobal > 0) ok = copy(step, EX_GLOBAL, 1, 0, int64_t(numGlobal));
           if (ok) copied = step;
         }
         if (ok && ex_update(exoid_) < 0) error = "cannot flush the Exodus II results '" + path_ + "'";
@@ -227,43 +225,24 @@ void ExodusWriter::close() {
   if (!error.empty()) throw OutputError(error);
 }
 
-void ExodusWriter::writeStep(double time, const Vector& u, const Vector* velocity, const Vector* acceleration,
-                             const std::vector<double>& globals) {
-  const Mesh& mesh = model_.mesh();
-  const int dim = mesh.dim();
-  if (globals.size() != globalNames_.size())
-    throw std::invalid_argument("ExodusWriter::writeStep: " + std::to_string(globals.size()) + " global values for " +
-                                std::to_string(globalNames_.size()) + " names");
-  // The values of this rank's elements and of their nodes, sent to rank 0.
-  const auto& ovMap = *model_.overlapMap();
-  auto uov = model_.toOverlap(u);
-  Teuchos::RCP<Vector> vov = velocity ? model_.toOverlap(*velocity) : Teuchos::null;
-  Teuchos::RCP<Vector> aov = acceleration ? model_.toOverlap(*acceleration) : Teuchos::null;
-  Teuchos::ArrayRCP<const double> vd, ad;
-  if (vov) vd = vov->getData();
-  if (aov) ad = aov->getData();
-  std::vector<std::vector<NodeRecord>> nodeSend(comm_->getSize());
-  std::vector<std::vector<ElementRecord>> elementSend(comm_->getSize());
-  std::vector<char> seen(mesh.numNodes(), 0);
-  forEachLocalElementOutput(model_, *uov, [&](const ElementOutput& o) {
-    for (int i = 0; i < o.numNodes; ++i) {
-      const int n = o.nodes[i];
-      if (seen[n]) continue;
-      seen[n] = 1;
-      NodeRecord r{n, {0, 0, 0, 0, 0, 0, 0, 0, 0}};
-      for (int c = 0; c < dim; ++c) {
-        r.v[c] = o.ue(i, c);
-        const auto l = ovMap.getLocalElement(model_.dof(n, c));
-        if (vov) r.v[3 + c] = vd[l];
-        if (aov) r.v[6 + c] = ad[l];
-      }
-      nodeSend[0].push_back(r);
-    }
-    const double* s = o.post.cauchy;  // xx, yy, zz, yz, xz, xy
-    elementSend[0].push_back({o.element, {s[0], s[1], s[2], s[5], s[3], s[4], o.post.vonMises(), o.post.energyDensity}});
-  });
-  const auto nodes = exchangeRecords(rawComm(*comm_), nodeSend);
-  const auto elements = exchangeRecords(rawComm(*comm_), elementSend);
+void ExodusWriter::writeStep(double time, const ExodusStepValues& values) {
+  const Mesh& mesh = mesh_;
+  const size_t numNodal = variables_.nodal.size(), numElement = variables_.element.size();
+  std::string bad;
+  if (values.nodal.size() != values.nodes.size() * numNodal ||
+      values.element.size() != values.elements.size() * numElement)
+    bad = "rows of another width than the variables";
+  if (comm_->getRank() == 0 && values.global.size() != variables_.global.size())
+    bad = std::to_string(values.global.size()) + " global values for " + std::to_string(variables_.global.size()) +
+          " names";
+  for (int n : values.nodes)
+    if (n < 0 || n >= mesh.numNodes()) bad = "node " + std::to_string(n) + " is not in the mesh";
+  for (int e : values.elements)
+    if (e < 0 || e >= mesh.numElements()) bad = "element " + std::to_string(e) + " is not in the mesh";
+  bad = firstErrorOnAnyRank(rawComm(*comm_), bad);
+  if (!bad.empty()) throw std::invalid_argument("ExodusWriter::writeStep: " + bad);
+  const auto nodal = gatherColumns(*comm_, values.nodes, values.nodal, numNodal, mesh.numNodes());
+  const auto element = gatherColumns(*comm_, values.elements, values.element, numElement, mesh.numElements());
   std::string error;
   if (comm_->getRank() == 0 && exoid_ >= 0) {
     auto check = [&](int status, const char* what) {
@@ -274,40 +253,20 @@ void ExodusWriter::writeStep(double time, const Vector& u, const Vector* velocit
     };
     const int step = steps_ + 1;
     bool ok = check(ex_put_time(exoid_, step, &time), "time");
-    // Nodal variables, in the order of the names.
-    std::vector<std::vector<double>> nodal(numNodal_, std::vector<double>(mesh.numNodes(), 0.0));
-    for (const NodeRecord& r : nodes)
-      for (int c = 0; c < dim; ++c) {
-        nodal[c][r.node] = r.v[c];
-        if (dynamics_) {
-          nodal[dim + c][r.node] = r.v[3 + c];
-          nodal[2 * dim + c][r.node] = r.v[6 + c];
-        }
-      }
-    if (model_.hasContact()) {
-      const int g = dim * (dynamics_ ? 3 : 1);
-      for (const ContactSlot& s : model_.contactSlots()) {
-        nodal[g][s.slaveNode] = s.paired() ? s.gap : 0.0;
-        nodal[g + 1][s.slaveNode] = s.pressure();
-        nodal[g + 2][s.slaveNode] = s.active ? s.state.multiplier : 0.0;
-      }
-    }
-    for (int k = 0; ok && k < numNodal_; ++k)
-      ok = check(ex_put_var(exoid_, step, EX_NODAL, k + 1, 1, mesh.numNodes(), nodal[k].data()), "nodal variable");
-    // Element variables per block.
-    std::vector<std::array<double, kElementValues>> values(mesh.numElements());
-    for (const ElementRecord& r : elements) std::copy(r.v, r.v + kElementValues, values[r.element].begin());
+    for (size_t k = 0; ok && k < numNodal; ++k)
+      ok = check(ex_put_var(exoid_, step, EX_NODAL, int(k) + 1, 1, mesh.numNodes(), nodal[k].data()),
+                 "nodal variable");
+    // Element variables per block (the bodies are contiguous element ranges).
     for (int b = 0; ok && b < mesh.numBodies(); ++b) {
       const Body& body = mesh.body(b);
-      std::vector<double> column(body.numElements);
-      for (int k = 0; ok && k < kElementValues; ++k) {
-        for (int i = 0; i < body.numElements; ++i) column[i] = values[body.firstElement + i][k];
-        ok = check(ex_put_var(exoid_, step, EX_ELEM_BLOCK, k + 1, b + 1, body.numElements, column.data()),
+      for (size_t k = 0; ok && k < numElement; ++k)
+        ok = check(ex_put_var(exoid_, step, EX_ELEM_BLOCK, int(k) + 1, b + 1, body.numElements,
+                              element[k].data() + body.firstElement),
                    "element variable");
-      }
     }
-    if (ok && !globals.empty())
-      ok = check(ex_put_var(exoid_, step, EX_GLOBAL, 1, 0, int64_t(globals.size()), globals.data()), "global variables");
+    if (ok && !values.global.empty())
+      ok = check(ex_put_var(exoid_, step, EX_GLOBAL, 1, 0, int64_t(values.global.size()), values.global.data()),
+                 "global variables");
     ok = ok && check(ex_update(exoid_), "flush");
   }
   error = firstErrorOnAnyRank(rawComm(*comm_), error);

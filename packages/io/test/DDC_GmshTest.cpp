@@ -26,7 +26,7 @@ namespace {
 
 using ddc::test::inputErrorOf;
 
-const std::string kData = std::string(DDC_SOURCE_DIR) + "/packages/core/test/data";
+const std::string kData = std::string(DDC_SOURCE_DIR) + "/packages/io/test/data";
 
 std::string slurp(const std::string& file) {
   std::ifstream in(file);

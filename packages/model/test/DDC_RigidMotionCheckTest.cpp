@@ -1,4 +1,4 @@
-// The rigid-motion check (packages/analysis/src/DDC_RigidMotionCheck.hpp):
+// The rigid-motion check (packages/model/src/DDC_RigidMotionCheck.hpp):
 // which rigid motions of the bodies prescribed displacements and contact
 // rows leave free, and how they are named; the two parts of a contact row
 // may come from two ranks and are summed before they restrain anything.

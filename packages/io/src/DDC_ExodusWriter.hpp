@@ -3,13 +3,13 @@
 // holds the mesh - one element block per body (id = body index + 1, named
 // after the body), every node set and side set of the mesh (ids from 1 in
 // name order, named "<body>/<set>") - and one time step per converged step:
-//  - nodal variables displ_x, displ_y (, displ_z); in dynamics vel_* and
-//    acc_*; with contact contact_gap, contact_pressure, contact_multiplier
-//    (0 away from slave nodes);
-//  - element variables stress_xx, stress_yy, stress_zz, stress_xy,
-//    stress_yz, stress_xz (Cauchy), von_mises, strain_energy_density;
-//  - the global variables the caller names (load factor or time, energies,
-//    contact force).
+//  - the nodal, element and global variables the caller names
+//    (ExodusVariables; what an analysis writes is in doc/user-guide.md,
+//    "The output directory": displacements, in dynamics velocities and
+//    accelerations, contact gap, pressure and multiplier, stresses, energy
+//    densities, and the history's global values).
+// The writer knows a mesh, not a model: the caller hands it each rank's
+// values (ExodusStepValues), as VtkWriter takes pieces.
 // Exodus node i + 1 is mesh node i, element e + 1 mesh element e (the bodies
 // are contiguous element ranges in body order). Element node order and side
 // numbering follow Exodus II (Schoof & Yarberry, "EXODUS II: A Finite
@@ -18,7 +18,7 @@
 // (DDC_ExodusCells.hpp).
 //
 // Rank 0 writes the file with the Exodus II library; the other ranks send it
-// their elements' values and the displacements of their elements' nodes.
+// the values of their nodes and elements.
 #pragma once
 
 #include <Teuchos_Comm.hpp>
@@ -28,31 +28,50 @@
 #include <vector>
 
 #include "DDC_ExodusCells.hpp"
-#include "DDC_Model.hpp"
+#include "DDC_Mesh.hpp"
 
 namespace ddc {
+
+/// The variables of an Exodus II results file, by name.
+struct ExodusVariables {
+  std::vector<std::string> nodal;    ///< one value per mesh node and step
+  std::vector<std::string> element;  ///< one value per mesh element and step
+  std::vector<std::string> global;   ///< one value per step
+};
+
+/// One rank's values of one time step (ExodusWriter::writeStep()). A node
+/// or element may come from several ranks (the same values); nodes and
+/// elements no rank gives are written as 0.
+struct ExodusStepValues {
+  std::vector<int> nodes;        ///< mesh node ids
+  std::vector<double> nodal;     ///< nodes.size() rows of ExodusVariables::nodal.size() values
+  std::vector<int> elements;     ///< mesh element ids
+  std::vector<double> element;   ///< elements.size() rows of ExodusVariables::element.size() values
+  std::vector<double> global;    ///< ExodusVariables::global.size() values (rank 0's are written)
+};
 
 /// Writes the Exodus II results of one run (see the top of this file).
 class ExodusWriter {
  public:
-  /// Create `path` with the mesh of `model` and the variable names
-  /// (collective). `dynamics`: also velocities and accelerations;
-  /// `globalNames`: the names of the global variables writeStep() takes.
+  /// Create `path` with `mesh` (the same on every rank) and the variable
+  /// names (collective).
   /// \throws OutputError (on every rank) naming the file and the Exodus II
   ///         library's reason when it cannot be created or written.
-  ExodusWriter(Teuchos::RCP<const Teuchos::Comm<int>> comm, const std::string& path, const Model& model,
-               bool dynamics, std::vector<std::string> globalNames);
+  ExodusWriter(Teuchos::RCP<const Teuchos::Comm<int>> comm, const std::string& path, const Mesh& mesh,
+               ExodusVariables variables);
   ~ExodusWriter();
   ExodusWriter(const ExodusWriter&) = delete;
   ExodusWriter& operator=(const ExodusWriter&) = delete;
 
   /// Append one time step (collective): the time value (load factor, or
-  /// time in dynamics), the displacements `u` (model's owned map), in
-  /// dynamics the velocities and accelerations, and the global values (as
-  /// many as globalNames). The file is flushed after the step.
-  /// \throws OutputError (every rank) when the step cannot be written.
-  void writeStep(double time, const Vector& u, const Vector* velocity, const Vector* acceleration,
-                 const std::vector<double>& globals);
+  /// time in dynamics) and this rank's values. The file is flushed after
+  /// the step.
+  /// \throws std::invalid_argument (every rank) when the values do not fit
+  ///         the variables; OutputError (every rank) when the step cannot
+  ///         be written.
+  void writeStep(double time, const ExodusStepValues& values);
+  /// The variables named at construction.
+  const ExodusVariables& variables() const { return variables_; }
   /// Continue the results of an earlier run of the same model (a restart,
   /// collective): copy its first `count` time steps (time values and every
   /// variable) from the Exodus II file `source`, which must not be path().
@@ -73,12 +92,10 @@ class ExodusWriter {
  private:
   Teuchos::RCP<const Teuchos::Comm<int>> comm_;
   std::string path_;
-  const Model& model_;
-  bool dynamics_;
-  std::vector<std::string> globalNames_;
+  const Mesh& mesh_;
+  ExodusVariables variables_;
   int exoid_ = -1;  ///< rank 0: the open file (-1 elsewhere or once closed)
   int steps_ = 0;
-  int numNodal_ = 0;  ///< nodal variables
 };
 
 }  // namespace ddc
