@@ -1,12 +1,14 @@
 // A host code embedding DDContact: it assembles the parameters in memory (no
-// XML file), registers its own element type next to the built-ins, runs the
-// analysis and checks the result against the built-in element.
+// XML file), registers its own element type next to the built-ins, watches
+// the steps with its own observer, runs the analysis and checks the result
+// against the built-in element.
 #include <DDC_Analysis.hpp>
 #include <DDC_Error.hpp>
 #include <Tpetra_Core.hpp>
 #include <atomic>
 #include <cmath>
 #include <iostream>
+#include <vector>
 
 namespace {
 
@@ -30,6 +32,18 @@ class CountingQuad4 : public ddc::Element {
 
  private:
   std::shared_ptr<ddc::Element> inner_;
+};
+
+/// A host's step observer (doc/embedding.md, "Observing the steps"): told
+/// of every accepted step, e.g. to feed the host's own monitoring.
+class EnergyMonitor : public ddc::StepObserver {
+ public:
+  void accepted(const ddc::StepLoop&, const ddc::StepRecord& step, bool last) override {
+    energies.push_back(step.strainEnergy);
+    finalSeen = finalSeen || last;
+  }
+  std::vector<double> energies;
+  bool finalSeen = false;
 };
 
 Teuchos::ParameterList deck(const std::string& elementType) {
@@ -66,6 +80,8 @@ int main(int argc, char** argv) {
 
     auto hostDeck = deck("Host Quad4");
     ddc::Analysis host(comm, hostDeck, factory);
+    auto monitor = std::make_shared<EnergyMonitor>();
+    host.addObserver(monitor);
     host.run("");
     auto builtinDeck = deck("Quad4");
     ddc::Analysis builtin(comm, builtinDeck);
@@ -75,6 +91,11 @@ int main(int argc, char** argv) {
     // Same element underneath, same partition: identical up to round-off.
     const double tol = 1e-12;
     if (hostCalls == 0) ++failures, std::cerr << "host element was never evaluated\n";
+    // The observer saw every step of the history, the last one flagged.
+    if (monitor->energies.size() != host.history().size() || !monitor->finalSeen ||
+        monitor->energies.back() != eh)
+      ++failures, std::cerr << "the observer saw " << monitor->energies.size() << " of "
+                            << host.history().size() << " steps\n";
     if (!(eh > 0) || std::abs(eh - eb) > tol * eb) ++failures, std::cerr << "energies differ: " << eh << " vs " << eb << "\n";
     try {
       auto bad = deck("No Such Element");

@@ -1,12 +1,14 @@
 // The analysis: builds a model from a validated Teuchos::ParameterList and
-// runs load stepping (or, with Dynamics/Integrator = Newmark, time steps of
-// implicit dynamics) with full Newton and automatic bisection.
+// runs its steps — load stepping, or with Dynamics/Integrator set the time
+// steps of implicit dynamics — in the step loop of the steps package
+// (DDC_StepLoop.hpp), with the observers that write its output.
 //
 // Embedding lifecycle (Tribol style), for host codes:
 //   1. Analysis a(comm, params);                 // validate + build (collective)
 //      or Analysis a(comm, params, factory);     // with host element types
-//   2. a.run("out/dir");                         // or a.run("") for no files
-//   3. a.history(), a.model(), a.displacement()  // results
+//   2. a.addObserver(myObserver);                // optional: see every step
+//   3. a.run("out/dir");                         // or a.run("") for no files
+//   4. a.history(), a.model(), a.displacement()  // results
 // Nothing here reads files other than meshes named in the parameters.
 #pragma once
 
@@ -23,59 +25,17 @@
 #include "DDC_Memory.hpp"
 #include "DDC_MemoryEstimate.hpp"
 #include "DDC_Model.hpp"
+#include "DDC_ModelSetUp.hpp"
 #include "DDC_OutputDirectory.hpp"
 #include "DDC_Restart.hpp"
 #include "DDC_SolutionStrategy.hpp"
 #include "DDC_StepController.hpp"
-#include "DDC_TimeIntegrator.hpp"
+#include "DDC_StepLoop.hpp"
+#include "DDC_StepObserver.hpp"
+#include "DDC_StepRecord.hpp"
+#include "DDC_StepsSetUp.hpp"
 
 namespace ddc {
-
-/// One converged (sub)step.
-struct StepRecord {
-  int step = 0;              ///< nominal step number (1-based); sub-steps repeat it
-  double loadFactor = 0.0;    ///< load factor λ at the end of the (sub)step (dynamics: the time t)
-  double strainEnergy = 0.0;  ///< total strain energy U (per unit thickness in 2-D)
-  /// Linear solves in this (sub)step, including those of the attempts Step
-  /// Control repeated or reduced before accepting it (not those of attempts
-  /// Newton failed on).
-  int newtonIterations = 0;
-  int dualIterations = 0;    ///< Belos iterations of FETI-DP summed over the (sub)step (as newtonIterations)
-  int bisections = 0;        ///< bisection depth used to reach this load factor
-  double wallSeconds = 0.0;  ///< since the start of run()
-  std::vector<double> residualHistory;  ///< ||r|| per Newton iteration
-  double externalWork = 0.0;  ///< work of reactions and tractions, trapezoidal in λ, since λ = 0
-  int activeContacts = 0;  ///< active contact slots at the end of the (sub)step
-  double contactForce[3] = {0.0, 0.0, 0.0};  ///< resultant on the slave bodies (Σ −λ n); z = 0 in 2-D
-  long contactExchanges = 0;  ///< contact-geometry exchanges in this (sub)step (Model::exchanges())
-  long contactBytes = 0;      ///< bytes those exchanges moved between ranks
-  std::string failure;        ///< why the last attempt failed (empty when converged)
-  double kineticEnergy = 0.0;  ///< dynamics: ½ vᵀ M v at the end of the (sub)step (0 quasi-static)
-  double stepSize = 0.0;       ///< the step's size (StepProposal::size)
-  /// Attempts of this step the step control's error test sent back to be
-  /// tried smaller before it was accepted (Newton failures are counted in
-  /// `bisections`).
-  int rejections = 0;
-  /// Repeats of this step with the geometry of its end (Step Control/Geometry
-  /// Corrections) before it was accepted.
-  int corrections = 0;
-  /// Decomposed contact: the frozen-geometry error indicator of the step,
-  /// |Σ λ (g − g^p)| / (U + kinetic energy) (frozenGeometryEnergy(); 0
-  /// without active contact or without energy).
-  double geometryError = 0.0;
-};
-
-/// Where the time of a run went (seconds, max over ranks after run()).
-struct RunTiming {
-  double assembly = 0.0;     ///< element evaluation and global/subdomain assembly
-  double linearSetup = 0.0;  ///< factorisations / preconditioner set-up (incl. FETI-DP coarse problem)
-  double linearSolve = 0.0;  ///< triangular solves / Krylov iterations
-  int linearSolves = 0;        ///< number of linear solves (Newton iterations)
-  double peakMemoryMiB = 0.0;  ///< peak resident memory, max over ranks
-  /// FETI-DP breakdown (this rank): local, coarse, Dirichlet factorisation;
-  /// local solves, coarse solves, preconditioner applications.
-  std::array<double, 6> feti{{0, 0, 0, 0, 0, 0}};
-};
 
 /// A whole analysis (depth (a) of doc/embedding.md): mesh, partition,
 /// boundary conditions, contact, the solution strategy and the Newton load
@@ -128,6 +88,12 @@ class Analysis {
   /// (StepRecord::geometryError) in judge().
   void setStepController(std::unique_ptr<StepController> controller) { hostController_ = std::move(controller); }
 
+  /// Tell `observer` of the steps of every following run() (after the
+  /// analysis' own observers: history, progress, Exodus II, VTK,
+  /// checkpoints, stop requests): a host's own monitoring
+  /// (doc/embedding.md, "Observing the steps"). Shared, so it outlives the run.
+  void addObserver(std::shared_ptr<StepObserver> observer) { hostObservers_.push_back(std::move(observer)); }
+
   /// Continue the next run() from the checkpoint of an earlier run of this
   /// model (findRestartSource(); doc/user-guide.md, "Checkpoints and
   /// restart") instead of from the unloaded state: its displacements,
@@ -145,64 +111,28 @@ class Analysis {
   const Model& model() const { return *model_; }
   /// The displacements of the last converged step on model().ownedMap()
   /// (contact multipliers appended; model().dof(node, component) indexes it).
-  const Vector& displacement() const { return *u_; }
+  const Vector& displacement() const { return loop_ ? *loop_->state().u : *unloaded_; }
   /// Dynamics: the velocities of the last converged step (owned map, like
   /// displacement()); nullptr in a quasi-static analysis.
-  const Vector* velocity() const { return integrator_ ? &integrator_->velocity() : nullptr; }
+  const Vector* velocity() const { return dynamics_ ? &dynamics_->integrator().velocity() : nullptr; }
   /// One record per converged (sub)step, in order (the rows of history.csv).
-  const std::vector<StepRecord>& history() const { return history_; }
+  const std::vector<StepRecord>& history() const;
   /// Where the time went (after run(): maxima over ranks).
-  const RunTiming& timing() const { return timing_; }
+  const RunTiming& timing() const;
   /// The memory estimate made before the model was built (doc/user-guide.md, "Memory").
   const MemoryEstimate& memoryEstimate() const { return memoryEstimate_; }
   /// The validated parameters with every default filled in.
   const Teuchos::ParameterList& parameters() const { return params_; }
 
  private:
-  /// What the steps carry forward besides the displacements u_ and the
-  /// step controller's state: the external-work integral and its last
-  /// point, the output counter and the contact state of the last converged
-  /// step (for contact_nodes.csv).
-  struct RunState {
-    Teuchos::RCP<Vector> fint;          ///< internal force at the step just converged
-    /// The force at the prescribed DOFs at the step just converged (f_int,
-    /// plus M a + C v in dynamics) and at the one before (trapezoidal work).
-    Teuchos::RCP<Vector> reaction, reactionPrev;
-    Teuchos::RCP<Vector> uPrev;         ///< displacements of the step before
-    double externalWork = 0.0;      ///< StepRecord::externalWork so far
-    int outputCount = 0;            ///< converged (sub)steps (Output/VTK Interval)
-    std::vector<ContactSlot> convergedSlots;
-  };
+  /// The model from the validated parameters (the constructor's work).
+  void buildModel(Teuchos::ParameterList& params, const std::string& baseDirectory);
+  /// The step loop of one run, with its observers writing into `dir` (null: no files).
   void runSteps(OutputDirectory* dir);
-  /// The checkpoint of the state after the last accepted step (collective):
-  /// `controllerState` is the step controller's saveState() then,
-  /// `vtkSteps` the VTK series written so far.
-  void writeCheckpoint(const std::string& path, const RunState& st, const std::vector<double>& controllerState,
-                       const std::vector<std::pair<int, double>>& vtkSteps) const;
-  /// Restore what writeCheckpoint() saved from restart_ (collective);
-  /// returns the VTK series to continue.
-  std::vector<std::pair<int, double>> restoreCheckpoint(RunState& st, StepController& steps);
-  std::unique_ptr<RestartSource> restart_;  ///< setRestart()
-  /// Step Control, resolved (setUpStepControl()): tolerance 0 = off.
-  struct StepControlSettings {
-    double tolerance = 0.0;
-    double first = 0.0, minSize = 0.0, maxSize = 0.0;  ///< step sizes (load factor or time)
-    int corrections = 0;  ///< Geometry Corrections
-  };
-  /// Check the "Step Control" list against the run (decomposed contact, the
-  /// sizes) and resolve its defaults.
-  void setUpStepControl(const Teuchos::ParameterList& params);
-  StepControlSettings stepControl_;
-  std::unique_ptr<StepController> hostController_;  ///< setStepController()
-  /// Dynamics: check the masses and the time step, build the integrator and
-  /// the initial velocities from the validated "Dynamics" list.
-  void setUpDynamics(Teuchos::ParameterList& dynamics);
-  /// contact_nodes.csv (Output/Contact Nodes): one row per slot, written by
-  /// rank 0 from the replicated slots; errors agreed on every rank.
-  void writeContactNodes(const std::string& path, const std::vector<ContactSlot>& slots) const;
-  bool solveIncrement(double lambda0, double lambda1, StepRecord& rec);
-  double externalWorkIncrement(const Vector& fint0, const Vector& u0, double lambda0, const Vector& fint1,
-                               const Vector& u1, double lambda1) const;
+  /// The analysis' own observers of a run into `dir` (null: no files), in
+  /// the order they are told.
+  struct RunObservers;
+  std::unique_ptr<RunObservers> makeObservers(OutputDirectory* dir);
   void progress(const std::string& line) const;
 
   Teuchos::RCP<const Teuchos::Comm<int>> comm_;
@@ -210,30 +140,19 @@ class Analysis {
   ElementFactory factory_;
   std::shared_ptr<Model> model_;
   std::unique_ptr<SolutionStrategy> strategy_;  ///< Monolithic or FETI-DP
-  Teuchos::RCP<Vector> u_;
-  std::vector<StepRecord> history_;
-  RunTiming timing_;
+  std::unique_ptr<Dynamics> dynamics_;          ///< null: quasi-static
+  StepControlSettings stepControl_;
   MemoryEstimate memoryEstimate_;
   /// The bodies whose Poisson's ratio makes them nearly incompressible ("" if none).
   std::string nearlyIncompressible_;
-  /// Why Newton did not converge: the criterion not met, and whether the
-  /// residual stagnated (for the failure message).
-  std::string unmetCriterion(const std::vector<double>& residuals, double rtol, double atol, double energy,
-                             double etol, double e0, double increment) const;
   bool progressEnabled_ = true;
   bool dynamic_ = false;  ///< Dynamics/Integrator is not None
-  std::unique_ptr<NewmarkIntegrator> integrator_;
-  Teuchos::RCP<Vector> initialVelocity_, acceleration_, velocity_;
-  Inertia inertia_;  ///< the strategy's inertia term (acceleration_ and c, updated per iterate)
+  NewtonSettings newton_;
+  Teuchos::RCP<Vector> unloaded_;                   ///< displacement() before a run
+  std::unique_ptr<StepController> hostController_;  ///< setStepController()
+  std::unique_ptr<RestartSource> restart_;          ///< setRestart()
+  std::vector<std::shared_ptr<StepObserver>> hostObservers_;  ///< addObserver()
+  std::unique_ptr<StepLoop> loop_;                  ///< the last run's
 };
-
-/// Build the mesh described by "Mesh" (validated in place). Exposed for tools
-/// and tests. Cell types follow each body's element type in `factory`.
-/// \param budget if given, the memory a rank may use for the replicated mesh
-///        (Mesh::setMemoryBudget(): generators refuse a body that does not fit)
-/// \param budgetHint what the user can do about it, for that message
-std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const ElementFactory& factory,
-                                const std::string& baseDirectory, const MemoryLimit* budget = nullptr,
-                                const std::string& budgetHint = "");
 
 }  // namespace ddc

@@ -236,7 +236,9 @@ void addRollers(PL& deck) {
 double reaction(const ddc::Analysis& a, const std::string& set, int c) {
   const ddc::Model& m = a.model();
   auto fint = m.createVector();
-  m.assemble(a.displacement(), a.history().back().loadFactor, fint.get(), nullptr, nullptr);
+  ddc::AssemblyRequest request;
+  request.fint = fint.get();
+  m.assemble(a.displacement(), a.history().back().loadFactor, request);
   const auto& map = *fint->getMap();
   auto f = fint->getData();
   double local = 0.0;

@@ -124,7 +124,9 @@ struct FreeModes {
     const int n = static_cast<int>(m.ownedMap()->getGlobalNumElements());
     auto Kg = m.createMatrix();
     auto zero = m.createVector();
-    m.assemble(*zero, 0.0, nullptr, nullptr, Kg.get());
+    ddc::AssemblyRequest request;
+    request.tangent = Kg.get();
+    m.assemble(*zero, 0.0, request);
     std::vector<char> x(n, 0);
     for (int node = 0; node < m.mesh().numNodes(); ++node) x[m.dof(node, 0)] = 1;
     for (int g = 0; g < n; ++g)

@@ -241,7 +241,11 @@ FirstSolve firstSolve(PL deck, const PL& feti, bool direct = true, bool meshFree
   auto dp = model.createVector();
   model.prescribedIncrement(0.0, 1.0, *dp);
   auto r = model.createVector();
-  model.assemble(*u0, 1.0, nullptr, r.get(), nullptr, dp.get(), &sink);
+  ddc::AssemblyRequest request;
+  request.residual = r.get();
+  request.prescribedStep = dp.get();
+  request.subdomains = &sink;
+  model.assemble(*u0, 1.0, request);
   r->scale(-1.0);
   PL fp(feti);
   ddc::FetiDpSolver solver(worldComm(), fp, "Solver/FETI-DP");
@@ -257,7 +261,11 @@ FirstSolve firstSolve(PL deck, const PL& feti, bool direct = true, bool meshFree
   if (direct) {
     auto K = model.createMatrix();
     auto rd = model.createVector();
-    model.assemble(*u0, 1.0, nullptr, rd.get(), K.get(), dp.get());
+    ddc::AssemblyRequest direct;
+    direct.residual = rd.get();
+    direct.tangent = K.get();
+    direct.prescribedStep = dp.get();
+    model.assemble(*u0, 1.0, direct);
     rd->scale(-1.0);
     // The same right-hand side both ways (the sink path must not change r).
     EXPECT_LE(relErr(*rd, *r), ddc::test::kRoundoff) << "residual assembled with the subdomain sink differs";

@@ -65,6 +65,28 @@ struct Inertia {
   bool damped() const { return velocity && (massDamping != 0.0 || stiffnessDamping != 0.0); }
 };
 
+/// What one Model::assemble() computes besides the strain energy: every
+/// member is optional (null: not wanted).
+struct AssemblyRequest {
+  /// ∂(U + Π_c)/∂u at all DOFs, unmodified (the reactions live at the
+  /// prescribed DOFs).
+  Vector* fint = nullptr;
+  /// r = fint − λ f_ext − f_body (Model::setBodyForce()) on free DOFs, 0 on
+  /// prescribed DOFs.
+  Vector* residual = nullptr;
+  /// The tangent, rows and columns of prescribed DOFs replaced by the identity.
+  CrsMatrix* tangent = nullptr;
+  /// If given: K · prescribedStep is added to the residual (the consistent
+  /// predictor of a prescribed increment in the first Newton iteration).
+  const Vector* prescribedStep = nullptr;
+  /// If given: the element tangents (free DOFs only) are also summed into
+  /// the subdomain stiffness matrices (zeroed first), for FETI-DP.
+  SubdomainSink* subdomains = nullptr;
+  /// Dynamics: the residual also gets M a and every tangent c M; a tangent
+  /// with c > 0 is then nonsingular, and the rigid-motion check is skipped.
+  const Inertia* inertia = nullptr;
+};
+
 /// Results of one assembly.
 struct AssemblyResult {
   double strainEnergy = 0.0;  ///< Σ U_e over the continuum elements (global)
@@ -125,21 +147,11 @@ class Model {
   void applyPrescribed(double lambda, Vector& u) const;
   void prescribedIncrement(double lambda0, double lambda, Vector& du) const;
 
-  /// Assemble at the state u (owned layout, multipliers included):
-  ///  - fint: ∂(U + Π_c)/∂u, all DOFs, unmodified (reactions live there);
-  ///  - residual r = fint − λ f_ext − f_body (setBodyForce()) on free DOFs, 0 on prescribed DOFs, plus
-  ///    K·prescribedStep if given (consistent predictor of a prescribed
-  ///    increment in the first iteration);
-  ///  - K: tangent with rows/columns of prescribed DOFs replaced by the identity.
+  /// Assemble at the state u (owned layout, multipliers included) what
+  /// `request` asks for (AssemblyRequest); λ scales the external loads.
+  /// The strain energy is always computed.
   /// \throws InadmissibleDeformation on every rank if det F <= 0 anywhere.
-  /// With `subdomains`, element tangents (free DOFs only) are also summed
-  /// into the subdomain stiffness matrices (zeroed first).
-  /// With `inertia` (dynamics) the residual also gets M a and every tangent
-  /// c M; a tangent with c > 0 is then nonsingular, and the rigid-motion
-  /// check is skipped.
-  AssemblyResult assemble(const Vector& u, double lambda, Vector* fint, Vector* residual, CrsMatrix* K,
-                          const Vector* prescribedStep = nullptr, SubdomainSink* subdomains = nullptr,
-                          const Inertia* inertia = nullptr) const;
+  AssemblyResult assemble(const Vector& u, double lambda, const AssemblyRequest& request) const;
 
   // ---- inertia (dynamic analyses) ----------------------------------------------
   /// The form of the element mass matrices (default: consistent). Collective
@@ -261,6 +273,9 @@ class Model {
   long bytesExchanged() const { return contact_ ? contact_->bytesExchanged() : 0; }
 
  private:
+  /// One assemble() call's buffers and passes (DDC_ModelAssembly.cpp).
+  class Assembly;
+  friend class Assembly;
   void computeNodeOwners();
   void buildContact(ContactComponent::SurfaceElementSource surfaceElements);
   void buildDofNumbering();

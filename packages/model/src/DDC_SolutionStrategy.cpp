@@ -60,7 +60,12 @@ class MonolithicStrategy : public SolutionStrategy {
       topologyVersion_ = model_->topologyVersion();
       symbolicDone_ = false;
     }
-    return model_->assemble(u, lambda, nullptr, &r, K_.get(), prescribedStep, nullptr, inertia_);
+    AssemblyRequest request;
+    request.residual = &r;
+    request.tangent = K_.get();
+    request.prescribedStep = prescribedStep;
+    request.inertia = inertia_;
+    return model_->assemble(u, lambda, request);
   }
 
   double linearTolerance() const override { return solver_->relativeTolerance(); }
@@ -174,7 +179,12 @@ class FetiDpStrategy : public SolutionStrategy {
   }
 
   AssemblyResult assemble(const Vector& u, double lambda, Vector& r, const Vector* prescribedStep) override {
-    return model_->assemble(u, lambda, nullptr, &r, nullptr, prescribedStep, &sink_, inertia_);
+    AssemblyRequest request;
+    request.residual = &r;
+    request.prescribedStep = prescribedStep;
+    request.subdomains = &sink_;
+    request.inertia = inertia_;
+    return model_->assemble(u, lambda, request);
   }
 
   double linearTolerance() const override { return feti_->convergenceTolerance(); }

@@ -115,8 +115,17 @@ TEST_P(Inertia, AssemblyAddsMassTimesAccelerationAndTheMassToTheTangent) {
   inertia.acceleration = a.get();
   inertia.tangentFactor = factor;
   inertia.residualFactor = weight;
-  m->assemble(*u, 0.0, f0.get(), r0.get(), K0.get());
-  m->assemble(*u, 0.0, f1.get(), r1.get(), K1.get(), nullptr, nullptr, &inertia);
+  ddc::AssemblyRequest plain;
+  plain.fint = f0.get();
+  plain.residual = r0.get();
+  plain.tangent = K0.get();
+  m->assemble(*u, 0.0, plain);
+  ddc::AssemblyRequest withInertia;
+  withInertia.fint = f1.get();
+  withInertia.residual = r1.get();
+  withInertia.tangent = K1.get();
+  withInertia.inertia = &inertia;
+  m->assemble(*u, 0.0, withInertia);
   // fint unchanged; the residual grows by w M a, whose components sum to w m c.
   f1->update(-1.0, *f0, 1.0);
   EXPECT_EQ(f1->normInf(), 0.0) << "fint holds the internal force only";

@@ -1,5 +1,7 @@
 #include "DDC_StepController.hpp"
 
+#include <sstream>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -197,6 +199,16 @@ bool AdaptiveSteps::reject(const StepProposal& p) {
   corrections_ = 0;
   size_ = 0.5 * p.size;
   return true;
+}
+
+std::string BisectingSteps::limits(const std::string& stepping) const {
+  return stepping + "/Max Bisections = " + std::to_string(maxBisections_);
+}
+
+std::string AdaptiveSteps::limits(const std::string& stepping) const {
+  std::ostringstream os;
+  os << stepping << "/Max Bisections = " << maxHalvings_ << ", Step Control/Minimum Step Size = " << min_;
+  return os.str();
 }
 
 }  // namespace ddc

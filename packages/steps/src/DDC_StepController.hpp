@@ -81,6 +81,14 @@ class StepController {
   /// saved one would have proposed; otherwise they start afresh from the
   /// saved current value. Returns false if `state` is not a saved state.
   virtual bool restoreState(const std::vector<double>& /*state*/, int /*acceptedSteps*/) { return false; }
+  /// The limits that made reject() give up, for the failure message, with
+  /// `stepping` the parameter list the steps come from (e.g. "Load
+  /// Stepping/Max Bisections = 6"); "" to say nothing (the default).
+  virtual std::string limits(const std::string& /*stepping*/) const { return ""; }
+  /// The last accepted step was accepted at the smallest size the
+  /// controller allows although its error indicator exceeded the tolerance
+  /// (the loop warns). The default: never.
+  virtual bool atMinimum() const { return false; }
 };
 
 /// Nominal steps of equal size up to a final value, each cut in halves on
@@ -104,6 +112,8 @@ class BisectingSteps final : public StepController {
   bool endsNominalStep(const StepProposal& p) const override;
   /// Cuts allowed per nominal step.
   int maxBisections() const { return maxBisections_; }
+  /// "<stepping>/Max Bisections = n".
+  std::string limits(const std::string& stepping) const override;
   std::vector<double> saveState() const override;
   bool restoreState(const std::vector<double>& state, int acceptedSteps) override;
 
@@ -178,7 +188,9 @@ class AdaptiveSteps final : public StepController {
   StepVerdict judge(const StepProposal& p, double error) override;
   /// The last accepted step was accepted at the minimum size with its error
   /// above the tolerance.
-  bool atMinimum() const { return atMinimum_; }
+  bool atMinimum() const override { return atMinimum_; }
+  /// "<stepping>/Max Bisections = n, Step Control/Minimum Step Size = h".
+  std::string limits(const std::string& stepping) const override;
   /// Repeats of the step being worked on (StepVerdict::Repeat) so far.
   int corrections() const { return corrections_; }
   /// The bounds of the step size.

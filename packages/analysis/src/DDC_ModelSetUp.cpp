@@ -1,0 +1,284 @@
+#include "DDC_ModelSetUp.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iomanip>
+#include <set>
+#include <sstream>
+
+#include "DDC_AnalysisParameters.hpp"
+#include "DDC_Error.hpp"
+#include "DDC_ExodusMesh.hpp"
+#include "DDC_Gmsh.hpp"
+#include "DDC_InputDeck.hpp"
+#include "DDC_MeshGenerators.hpp"
+#include "DDC_Parameters.hpp"
+
+namespace ddc {
+
+using PL = Teuchos::ParameterList;
+
+namespace {
+/// Poisson's ratio from which a body is reported nearly incompressible
+/// (lambda/mu >= 49): displacement elements lock noticeably.
+constexpr double kNearlyIncompressible = 0.49;
+/// The range of a body's extent and coordinates buildMesh() accepts.
+constexpr double kMinBodyExtent = 1e-100;
+constexpr double kMaxCoordinate = 1e100;
+}  // namespace
+
+std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const ElementFactory& factory,
+                                const std::string& baseDirectory, const MemoryLimit* budget,
+                                const std::string& budgetHint) {
+  PL validMesh("Mesh");
+  validMesh.sublist("Bodies");
+  validateLevel(meshParams, validMesh, "Mesh");
+  DDC_INPUT_REQUIRE(meshParams.isSublist("Bodies") && meshParams.sublist("Bodies").numParams() > 0,
+                    "sublist 'Mesh/Bodies' is required and must describe at least one body");
+  PL& bodies = meshParams.sublist("Bodies");
+  const auto validBody = bodyValidParameters(factory);
+  auto mesh = std::make_shared<Mesh>();
+  if (budget && std::isfinite(budget->bytes)) mesh->setMemoryBudget(budget->bytes, budget->source, budgetHint);
+  for (auto it = bodies.begin(); it != bodies.end(); ++it) {
+    const std::string name = bodies.name(it);
+    const std::string path = "Mesh/Bodies/" + name;
+    Activity activity("building the mesh of body '" + name + "' (" + std::to_string(mesh->numNodes()) +
+                      " nodes before it)");
+    DDC_INPUT_REQUIRE(bodies.isSublist(name), "'" << path << "' must be a sublist describing a body");
+    PL& body = bodies.sublist(name);
+    validateLevel(body, *validBody, path);
+    const std::string gen = body.get<std::string>("Generator");
+    for (const auto& g : kMeshGenerators)
+      DDC_INPUT_REQUIRE(g == gen || !body.isSublist(g), "sublist '" << path << "/" << g
+                                                                    << "' does not apply: Generator is '"
+                                                                    << gen << "'");
+    DDC_INPUT_REQUIRE(body.isSublist("Element"), "sublist '" << path << "/Element' is required (Type, Material)");
+    PL& elem = body.sublist("Element");
+    DDC_INPUT_REQUIRE(elem.isParameter("Type"), "parameter '" << path << "/Element/Type' is required");
+    const auto& entry = factory.entry(elem.get<std::string>("Type"), path + "/Element");
+    DDC_INPUT_REQUIRE(!entry.contact, "'" << path << "/Element/Type' = '" << elem.get<std::string>("Type")
+                                          << "' is a contact element (the contact component makes those for "
+                                             "Contact/Pairs); a body needs one of "
+                                          << quotedNames(factory.bodyNames(), "(none registered)"));
+    // The mesh cell type of the element: the one of its dimension and node count.
+    const auto& cells = elementCellTypes();
+    const auto cellIt = std::find_if(cells.begin(), cells.end(), [&](CellType c) {
+      return cellDimension(c) == entry.dim && numCellNodes(c) == entry.numNodes;
+    });
+    DDC_INPUT_REQUIRE(cellIt != cells.end(), "element type '" << elem.get<std::string>("Type") << "' of '" << path
+                                                               << "' is " << entry.dim << "-D with " << entry.numNodes
+                                                               << " nodes, which no mesh cell type has (bodies need "
+                                                                  "Quad4, Quad9, Hex8, Hex20, Hex27, Tet4 or Tet10 "
+                                                                  "cells)");
+    const CellType cell = *cellIt;
+    PL& gp = body.sublist(gen);
+    if (gen == "Rectangle")
+      generateRectangle(*mesh, name, cell, gp, path + "/Rectangle");
+    else if (gen == "Annular Sector")
+      generateAnnularSector(*mesh, name, cell, gp, path + "/Annular Sector");
+    else if (gen == "Box")
+      generateBox(*mesh, name, cell, gp, path + "/Box");
+    else if (gen == "Cylindrical Shell Sector")
+      generateCylindricalShellSector(*mesh, name, cell, gp, path + "/Cylindrical Shell Sector");
+    else if (gen == "Sphere Octant")
+      generateSphereOctant(*mesh, name, cell, gp, path + "/Sphere Octant");
+    else if (gen == "Exodus")
+      readExodusBody(*mesh, name, cell, gp, path + "/Exodus", baseDirectory);
+    else
+      readGmshBody(*mesh, name, cell, gp, path + "/Gmsh", baseDirectory);
+    // Lengths far from 1 under- or overflow in the element arithmetic
+    // (Jacobians are cubes of lengths in 3-D, stiffnesses divide by them):
+    // a body's extent must lie in [1e-100, 1e100].
+    const Body& b = mesh->body(mesh->numBodies() - 1);
+    double lo[3] = {1e308, 1e308, 1e308}, hi[3] = {-1e308, -1e308, -1e308};
+    for (int n = b.firstNode; n < b.firstNode + b.numNodes; ++n)
+      for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], mesh->coord(n)[c]), hi[c] = std::max(hi[c], mesh->coord(n)[c]);
+    double extent = 1e308, far = 0.0;  // the smallest extent over the axes
+    for (int c = 0; c < mesh->dim(); ++c) {
+      extent = std::min(extent, hi[c] - lo[c]);
+      far = std::max({far, std::abs(lo[c]), std::abs(hi[c])});
+    }
+    DDC_INPUT_REQUIRE(b.numNodes == 0 || (extent >= kMinBodyExtent && far <= kMaxCoordinate),
+                      "'" << path << "/" << gen << "': body '" << name << "' spans " << extent
+                          << " along its thinnest axis, with coordinates up to " << far
+                          << " in magnitude; its extent must lie in ["
+                          << kMinBodyExtent << ", " << kMaxCoordinate << "] and its coordinates within "
+                          << kMaxCoordinate << " (lengths this far from 1 under- or overflow in the element "
+                             "arithmetic): choose other length units");
+  }
+  mesh->check();
+  return mesh;
+}
+
+namespace {
+
+int automaticSubdomainCount(const Mesh& mesh, const PL& partition, const std::string& strategy, int ranks) {
+  if (strategy != "FETI-DP" || partition.get<std::string>("Method") != "METIS") return ranks;
+  // Measured on block_3d at 421k DOFs (1650 DOFs per subdomain against 840
+  // and 3300) and the 2-D elastic block at 822k (doc/performance.md): local
+  // factorisations grow faster than linearly in the subdomain size, the
+  // coarse problem with the number of subdomains.
+  int size = partition.get<int>("Subdomain Size");
+  if (size == 0) size = mesh.dim() == 3 ? 1650 : 3200;
+  const double dofs = double(mesh.numNodes()) * mesh.dim();
+  const double count = std::min(std::round(dofs / size), double(std::max(mesh.numElements(), 1)));
+  return std::max(ranks, int(count));
+}
+
+}  // namespace
+
+std::vector<std::shared_ptr<const Element>> makeBodyElements(const Mesh& mesh, PL& meshParams,
+                                                             const ElementFactory& factory) {
+  std::vector<std::shared_ptr<const Element>> elements;
+  for (int b = 0; b < mesh.numBodies(); ++b) {
+    const std::string& name = mesh.body(b).name;
+    elements.push_back(factory.create(meshParams.sublist("Bodies").sublist(name).sublist("Element"),
+                                      "Mesh/Bodies/" + name + "/Element"));
+  }
+  return elements;
+}
+
+std::string nearlyIncompressibleBodies(const Mesh& mesh, const PL& meshParams) {
+  std::string text;
+  for (int b = 0; b < mesh.numBodies(); ++b) {
+    const std::string& name = mesh.body(b).name;
+    const PL& el = meshParams.sublist("Bodies").sublist(name).sublist("Element");
+    if (!el.isSublist("Material") || !el.sublist("Material").isType<double>("Poisson's Ratio")) continue;
+    const double nu = el.sublist("Material").get<double>("Poisson's Ratio");
+    if (nu < kNearlyIncompressible) continue;
+    std::ostringstream os;
+    os.precision(12);
+    os << (text.empty() ? "" : "; ") << "body '" << name << "' is nearly incompressible ('Mesh/Bodies/" << name
+       << "/Element/Material/Poisson's Ratio' = " << nu << ", lambda/mu = " << std::setprecision(3)
+       << 2.0 * nu / (1.0 - 2.0 * nu)
+       << "): the elements are displacement-only, with no mixed (u-p) formulation, so they lock: results too "
+          "stiff and Newton slow to converge or stagnating; use a Poisson's ratio below "
+       << kNearlyIncompressible;
+    text += os.str();
+  }
+  return text;
+}
+
+void requireAdmissibleElements(const Mesh& mesh, const std::vector<std::shared_ptr<const Element>>& elements) {
+  const int d = mesh.dim();
+  for (int e = 0; e < mesh.numElements(); ++e) {
+    const int nn = mesh.elementNumNodes(e);
+    Eigen::MatrixXd X(nn, d);
+    for (int i = 0; i < nn; ++i)
+      for (int c = 0; c < d; ++c) X(i, c) = mesh.coord(mesh.elementNodes(e)[i])[c];
+    const double detJ = elements[mesh.elementBody(e)]->minReferenceJacobian(X);
+    DDC_INPUT_REQUIRE(detJ > 0.0, "mesh: element " << e << " of body '" << mesh.body(mesh.elementBody(e)).name
+                                                  << "' is inverted or degenerate (min det J = " << detJ << "); "
+                                                  << (d == 2 ? "its nodes must run counter-clockwise"
+                                                             : "its nodes must follow the Gmsh order with a "
+                                                               "positive orientation")
+                                                  << ", first node at (" << mesh.coordText(mesh.elementNodes(e)[0])
+                                                  << ")");
+  }
+}
+
+namespace {
+
+/// Two distinct nodes hold a 2-D body's rotation; a 3-D body needs three
+/// not on one line (two leave the rotation about their line free).
+bool enoughSupportNodes(const Mesh& mesh, const std::set<int>& nodes) {
+  if (mesh.dim() == 2) return nodes.size() >= 2;
+  const Eigen::Vector3d a(mesh.coord(*nodes.begin()).data());
+  double far = 0.0, area = 0.0;
+  Eigen::Vector3d b = a;
+  for (int n : nodes) {
+    const Eigen::Vector3d x(mesh.coord(n).data());
+    if ((x - a).norm() > far) far = (x - a).norm(), b = x;
+  }
+  for (int n : nodes) area = std::max(area, (b - a).cross(Eigen::Vector3d(mesh.coord(n).data()) - a).norm());
+  return nodes.size() >= 3 && area > 1e-12 * far * far;  // relative to the set's extent: not collinear
+}
+
+}  // namespace
+
+void requireSupportedBodies(const Mesh& mesh, const BoundaryConditions& bcs, const ContactOptions& contact,
+                            bool feti, bool dynamic) {
+  // In dynamics the mass holds every body (K + c M is nonsingular): a free
+  // body is legal there.
+  if (dynamic) return;
+  // A pair between two surfaces of one body (self-contact) cannot hold it:
+  // its forces are internal to the body.
+  std::vector<char> inContact(mesh.numBodies(), 0);
+  for (const auto& pr : contact.pairs) {
+    const int slaveBody = mesh.bodyIndex(pr.slaveSet.substr(0, pr.slaveSet.find('/')));
+    const int masterBody = mesh.bodyIndex(pr.masterSet.substr(0, pr.masterSet.find('/')));
+    if (slaveBody != masterBody) inContact[slaveBody] = inContact[masterBody] = 1;
+  }
+  const int dim = mesh.dim();
+  std::vector<std::set<int>> fixedNodes(mesh.numBodies());
+  std::vector<std::array<bool, 3>> fixedDir(mesh.numBodies(), {false, false, false});
+  for (const auto& d : bcs.displacements)
+    for (int n : mesh.nodeSet(d.setName)) {
+      int b = 0;
+      while (!(n >= mesh.body(b).firstNode && n < mesh.body(b).firstNode + mesh.body(b).numNodes)) ++b;
+      fixedNodes[b].insert(n);
+      for (int c = 0; c < dim; ++c) fixedDir[b][c] = fixedDir[b][c] || d.fix[c];
+    }
+  for (int b = 0; b < mesh.numBodies(); ++b) {
+    const bool supported = !fixedNodes[b].empty() && enoughSupportNodes(mesh, fixedNodes[b]) && fixedDir[b][0] &&
+                           fixedDir[b][1] && (dim == 2 || fixedDir[b][2]);
+    // FETI-DP: contact rows are dual constraints; they cannot remove the
+    // rigid modes of K~ (the coarse problem would be singular).
+    DDC_INPUT_REQUIRE(supported || !inContact[b] || !feti,
+                      "body '" << mesh.body(b).name
+                               << "' is held only by contact: with Solver/Strategy = FETI-DP every body must be "
+                                  "supported by its own prescribed displacements (Boundary Conditions: "
+                               << (dim == 2 ? "x and y, at least two nodes" : "x, y and z, at least three nodes not on one line")
+                               << "), because the contact rows are dual constraints and cannot "
+                                  "fix the rigid-body modes of the subdomain problems; use Solver/Strategy = "
+                                  "Monolithic, or prescribe displacements on the body");
+    DDC_INPUT_REQUIRE(inContact[b] || supported,
+                      "body '" << mesh.body(b).name
+                               << "' is not supported: its prescribed displacements (Boundary Conditions) must "
+                               << (dim == 2 ? "act in both x and y and on at least two nodes"
+                                            : "act in x, y and z and on at least three nodes not on one line")
+                               << " to remove its rigid-body motion, and no contact pair joins it to another "
+                                  "body");
+  }
+}
+
+Partition partitionModel(const Mesh& mesh, const PL& part, const std::string& strategy, int ranks,
+                         const std::string& baseDirectory) {
+  int nsub = part.get<int>("Number of Subdomains");
+  if (nsub == 0) nsub = automaticSubdomainCount(mesh, part, strategy, ranks);
+  Partition partition;
+  const std::string method = part.get<std::string>("Method");
+  auto requireCount = [&](int count) {
+    const int given = part.get<int>("Number of Subdomains");
+    DDC_INPUT_REQUIRE(given == 0 || given == count, "'Partition/Number of Subdomains' = "
+                                                        << given << " contradicts Method = " << method << ", which gives "
+                                                        << count << " subdomains (use 0 or " << count << ")");
+  };
+  if (method == "Box Grid") {
+    partition = partitionBoxGrid(mesh, part.get<int>("Box Grid X"), part.get<int>("Box Grid Y"),
+                                 part.get<int>("Box Grid Z"));
+    requireCount(partition.numSubdomains);
+  } else if (method == "Element Map File") {
+    std::string file = part.get<std::string>("Element Map File");
+    DDC_INPUT_REQUIRE(!file.empty(), "parameter 'Partition/Element Map File' is required with Method = Element Map File");
+    file = resolveDeckFile(file, baseDirectory);
+    partition = partitionFromFile(mesh, file);
+    requireCount(partition.numSubdomains);
+  } else if (method == "By Body") {
+    partition = partitionByBody(mesh);
+    requireCount(partition.numSubdomains);
+  } else {
+    Activity activity("partitioning " + std::to_string(mesh.numElements()) + " elements into " +
+                      std::to_string(nsub) + " subdomains (METIS)");
+    partition = partitionMetis(mesh, nsub);
+  }
+  DDC_INPUT_REQUIRE(partition.numSubdomains >= ranks,
+                    "'Partition/Number of Subdomains' (" << partition.numSubdomains
+                                                         << ") must be at least the number of MPI ranks (" << ranks
+                                                         << ")");
+  return partition;
+}
+
+}  // namespace ddc

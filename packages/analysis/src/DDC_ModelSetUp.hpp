@@ -1,0 +1,64 @@
+// From the validated parameters to a Model: the mesh of every body, the
+// element evaluators, the checks a model must pass before anything is
+// solved (inverted elements, bodies nothing supports), and the partition.
+// Each is a function of its own, in the order the Analysis calls them.
+#pragma once
+
+#include <Teuchos_Comm.hpp>
+#include <Teuchos_ParameterList.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "DDC_BoundaryConditions.hpp"
+#include "DDC_ContactParameters.hpp"
+#include "DDC_Element.hpp"
+#include "DDC_ElementFactory.hpp"
+#include "DDC_Memory.hpp"
+#include "DDC_Mesh.hpp"
+#include "DDC_Partition.hpp"
+
+namespace ddc {
+
+/// Build the mesh described by "Mesh" (validated in place). Exposed for tools
+/// and tests. Cell types follow each body's element type in `factory`.
+/// \param budget if given, the memory a rank may use for the replicated mesh
+///        (Mesh::setMemoryBudget(): generators refuse a body that does not fit)
+/// \param budgetHint what the user can do about it, for that message
+std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const ElementFactory& factory,
+                                const std::string& baseDirectory, const MemoryLimit* budget = nullptr,
+                                const std::string& budgetHint = "");
+
+/// One element evaluator per body (index = body index), from
+/// Mesh/Bodies/<body>/Element.
+std::vector<std::shared_ptr<const Element>> makeBodyElements(const Mesh& mesh, Teuchos::ParameterList& meshParams,
+                                                             const ElementFactory& factory);
+
+/// The bodies whose Poisson's ratio makes them nearly incompressible, as a
+/// warning for the user ("" if none): the elements are displacement-only
+/// (no mixed u-p formulation), so they lock.
+std::string nearlyIncompressibleBodies(const Mesh& mesh, const Teuchos::ParameterList& meshParams);
+
+/// Refuse inverted or degenerate elements (every rank holds the mesh, so
+/// every rank reaches the same verdict).
+/// \throws InputError naming the element, its body and its first node
+void requireAdmissibleElements(const Mesh& mesh, const std::vector<std::shared_ptr<const Element>>& elements);
+
+/// Refuse a quasi-static model with a body that its prescribed
+/// displacements do not hold and no contact pair joins to another body, and
+/// under FETI-DP a body held only by contact (the contact rows are dual and
+/// cannot remove the rigid modes of the subdomain problems). In dynamics
+/// the mass holds every body.
+/// \throws InputError naming the body and what it needs
+void requireSupportedBodies(const Mesh& mesh, const BoundaryConditions& bcs, const ContactOptions& contact,
+                            bool feti, bool dynamic);
+
+/// The partition of "Partition" (validated): METIS, By Body, Box Grid or an
+/// element map file (resolved against `baseDirectory`), with the automatic
+/// subdomain count for `strategy` on `ranks` ranks.
+/// \throws InputError for a count that contradicts the method or is below
+///         the number of ranks, and the partitioners' errors
+Partition partitionModel(const Mesh& mesh, const Teuchos::ParameterList& partition, const std::string& strategy,
+                         int ranks, const std::string& baseDirectory);
+
+}  // namespace ddc

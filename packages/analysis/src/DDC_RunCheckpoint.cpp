@@ -1,0 +1,208 @@
+#include "DDC_RunCheckpoint.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_XMLParameterListHelpers.hpp>
+
+#include <csignal>
+#include <sstream>
+
+#include "DDC_Error.hpp"
+#include "DDC_OutputObservers.hpp"
+#include "DDC_StopRequest.hpp"
+
+namespace ddc {
+
+namespace {
+
+/// The checkpoint's record of the run: its layout version, the ranks that
+/// wrote it, the output counter and the external work. Layout 2: the
+/// history record's fields are those the "history fields" section names.
+constexpr double kCheckpointLayout = 2.0;
+
+/// The same entries as `v` (on model.ownedMap()) on a map of the
+/// partition-free DOF ids (Model::partitionFreeDof()), in the same local
+/// order: a checkpoint's vectors read back on any number of ranks.
+Teuchos::RCP<Vector> partitionFreeVector(const Model& model, const Vector& v) {
+  const Map& owned = *model.ownedMap();
+  std::vector<GO> ids(owned.getNodeNumElements());
+  for (size_t i = 0; i < ids.size(); ++i) ids[i] = model.partitionFreeDof(owned.getGlobalElement(LO(i)));
+  const Teuchos::ArrayView<const GO> view(ids.data(), ids.size());
+  auto map = Teuchos::rcp(new Map(owned.getGlobalNumElements(), view, 0, owned.getComm()));
+  auto out = Teuchos::rcp(new Vector(map));
+  auto src = v.getData();
+  auto dst = out->getDataNonConst();
+  for (size_t i = 0; i < ids.size(); ++i) dst[i] = src[i];
+  return out;
+}
+
+/// The names of checkpointFieldNames() joined by ','.
+std::string historyFieldList() {
+  std::string list;
+  for (const auto& name : checkpointFieldNames()) list += (list.empty() ? "" : ",") + name;
+  return list;
+}
+
+/// "SIGTERM", "SIGINT", "SIGUSR1", or "signal N".
+std::string signalName(int signal) {
+  if (signal == SIGTERM) return "SIGTERM";
+  if (signal == SIGINT) return "SIGINT";
+  if (signal == SIGUSR1) return "SIGUSR1";
+  return "signal " + std::to_string(signal);
+}
+
+}  // namespace
+
+void writeRunCheckpoint(const std::string& path, const StepLoop& loop, const Teuchos::ParameterList& params,
+                        const std::vector<std::pair<int, double>>& vtkSteps) {
+  const Model& model = loop.model();
+  const RunState& st = loop.state();
+  CheckpointWriter w(model.comm());
+  std::ostringstream xml;
+  Teuchos::writeParameterListToXmlOStream(params, xml);
+  w.putBytes("parameters", xml.str());
+  w.putDoubles("run", {kCheckpointLayout, double(model.comm()->getSize()), double(st.history.size()), st.externalWork});
+  w.putDoubles("controller", st.controllerState);
+  w.putBytes("history fields", historyFieldList());
+  w.putDoubles("history", packStepRecords(st.history));
+  std::vector<double> vtk;
+  for (const auto& [step, time] : vtkSteps) vtk.insert(vtk.end(), {double(step), time});
+  w.putDoubles("vtk steps", vtk);
+  auto put = [&](const std::string& name, const Vector& v) { w.putVector(name, *partitionFreeVector(model, v)); };
+  put("displacement", *st.u);
+  put("internal force", *st.fint);
+  put("reaction", *st.reaction);
+  if (const Dynamics* d = loop.dynamics()) {
+    put("velocity", d->integrator().velocity());
+    put("acceleration", d->integrator().accelerationNow());
+  }
+  if (model.hasContact()) {
+    w.putDoubles("contact slots", packSlots(model.contactSlots()));
+    w.putDoubles("converged contact slots", packSlots(st.convergedSlots));
+    const auto paired = model.contact()->pairedRecord();
+    w.putBytes("paired contact pairs", std::string(paired.begin(), paired.end()));
+  }
+  w.write(path);
+}
+
+namespace {
+
+/// The contact state of a checkpoint into `model`.
+void restoreContact(Model& model, RunState& st, const CheckpointReader& c) {
+  const std::string& file = c.path();
+  auto slots = unpackSlots(c.doubles("contact slots"));
+  const auto& now = model.contactSlots();
+  bool same = slots.size() == now.size();
+  for (size_t k = 0; same && k < slots.size(); ++k)
+    same = slots[k].pair == now[k].pair && slots[k].slaveNode == now[k].slaveNode;
+  DDC_INPUT_REQUIRE(same, "checkpoint '" << file << "': its contact slave nodes are not this model's");
+  model.restoreContactState(slots);
+  st.convergedSlots = unpackSlots(c.doubles("converged contact slots"));
+  const std::string& paired = c.bytes("paired contact pairs");
+  DDC_INPUT_REQUIRE(paired.size() == model.contact()->pairedRecord().size(),
+                    "checkpoint '" << file << "': its contact pairs are not this model's");
+  model.addPairedRecord(std::vector<char>(paired.begin(), paired.end()));
+}
+
+}  // namespace
+
+std::vector<std::pair<int, double>> restoreRunCheckpoint(StepLoop& loop, Model& model, const CheckpointReader& c) {
+  const std::string& file = c.path();
+  RunState& st = loop.state();
+  const auto run = c.doubles("run");
+  DDC_INPUT_REQUIRE(run.size() == 4 && run[0] == kCheckpointLayout && c.has("history fields") &&
+                        c.bytes("history fields") == historyFieldList(),
+                    "checkpoint '" << file << "': written by another version of DDContact (sections 'run', "
+                                      "'history fields')");
+  st.externalWork = run[3];
+  st.history = unpackStepRecords(c.doubles("history"), file);
+  DDC_INPUT_REQUIRE(!st.history.empty(), "checkpoint '" << file << "' holds no converged step");
+  StepController& steps = loop.controller();
+  DDC_INPUT_REQUIRE(steps.restoreState(c.doubles("controller"), int(st.history.size())),
+                    "checkpoint '" << file
+                                   << "': its step controller cannot be restored (a host's own controller "
+                                      "(Analysis::setStepController()) saves none)");
+  st.controllerState = steps.saveState();
+  st.wallOffset = st.history.back().wallSeconds;
+  // Read on this model's partition-free ids, kept in the owned map's order.
+  auto get = [&](const std::string& name, Vector& v) {
+    auto tmp = partitionFreeVector(model, v);
+    c.vector(name, *tmp);
+    auto src = tmp->getData();
+    auto dst = v.getDataNonConst();
+    for (size_t i = 0; i < v.getLocalLength(); ++i) dst[i] = src[i];
+  };
+  get("displacement", *st.u);
+  get("internal force", *st.fint);
+  get("reaction", *st.reaction);
+  if (Dynamics* d = loop.dynamics()) {
+    DDC_INPUT_REQUIRE(c.has("velocity") && c.has("acceleration"),
+                      "checkpoint '" << file << "' is of a quasi-static run; this one is dynamic");
+    auto v = model.createVector(), a = model.createVector();
+    get("velocity", *v);
+    get("acceleration", *a);
+    d->integrator().restoreState(*st.u, *v, *a);
+  }
+  if (model.hasContact()) restoreContact(model, st, c);
+  loop.markRestarted();
+  const auto vtk = c.doubles("vtk steps");
+  std::vector<std::pair<int, double>> series;
+  for (size_t i = 0; i + 1 < vtk.size(); i += 2) series.emplace_back(int(vtk[i]), vtk[i + 1]);
+  return series;
+}
+
+// ---- the observers ---------------------------------------------------------------
+
+CheckpointObserver::CheckpointObserver(std::string path, std::string finalPath, int interval,
+                                       const Teuchos::ParameterList& params, const VtkObserver* vtk)
+    : path_(std::move(path)), finalPath_(std::move(finalPath)), interval_(interval), params_(params), vtk_(vtk) {}
+
+void CheckpointObserver::write(const StepLoop& loop) {
+  writeRunCheckpoint(path_, loop, params_, vtk_ ? vtk_->steps() : std::vector<std::pair<int, double>>());
+  rows_ = loop.history().size();
+}
+
+void CheckpointObserver::writeIfStale(const StepLoop& loop) {
+  if (rows_ != loop.history().size()) write(loop);
+}
+
+void CheckpointObserver::accepted(const StepLoop& loop, const StepRecord&, bool last) {
+  if (loop.history().size() % size_t(interval_) == 0 || last) write(loop);
+}
+
+std::string CheckpointObserver::failed(const StepLoop& loop, const std::string&) {
+  // The state is the last converged step's (the loop restored it).
+  const auto& history = loop.history();
+  if (history.empty()) return "";
+  std::ostringstream os;
+  try {
+    writeIfStale(loop);
+    os << "; the checkpoint of step " << history.back().step << " (" << loop.settings().factorName << " "
+       << history.back().loadFactor << ") is '" << path_ << "': continue with --restart '" << finalPath_
+       << "' (changing the steps or the solver settings)";
+  } catch (const OutputError& w) {
+    // The failure is the news; that its checkpoint is missing comes second.
+    os << "; the checkpoint of the last converged step could not be written: " << w.what();
+  }
+  return os.str();
+}
+
+void StopObserver::accepted(const StepLoop& loop, const StepRecord& record, bool last) {
+  // A stop requested by a signal on any rank (requestStop()): after this
+  // step, on every rank.
+  int stop = stopRequested(), stopAll = 0;
+  Teuchos::reduceAll(*loop.model().comm(), Teuchos::REDUCE_MAX, stop, Teuchos::outArg(stopAll));
+  if (!stopAll || last) return;
+  std::ostringstream os;
+  os << "stopped by " << signalName(stopAll) << " after step " << record.step << " (" << loop.settings().factorName
+     << " " << record.loadFactor << ")";
+  if (checkpoint_) {
+    checkpoint_->writeIfStale(loop);
+    os << "; its checkpoint is '" << checkpoint_->path() << "': continue with --restart '" << checkpoint_->finalPath()
+       << "'";
+  } else {
+    os << "; no checkpoint (" << noCheckpoint_ << ")";
+  }
+  throw RunInterrupted(os.str(), stopAll);
+}
+
+}  // namespace ddc

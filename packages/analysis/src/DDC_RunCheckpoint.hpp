@@ -1,0 +1,75 @@
+// A run's checkpoint (doc/user-guide.md, "Checkpoints and restart"): what
+// it holds (the validated parameters, the step loop's state with the step
+// controller's, the integrator's vectors, the contact slots, the VTK series),
+// how a restart puts it back, and the observers that write it — every
+// Output/Checkpoint Interval steps, after the last one, when a step fails for
+// good, and when a stop is requested (SIGTERM, SIGINT, SIGUSR1).
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "DDC_Checkpoint.hpp"
+#include "DDC_StepLoop.hpp"
+
+namespace ddc {
+
+class VtkObserver;
+
+/// Write the checkpoint of the state after `loop`'s last accepted step to
+/// `path` (collective): `params` the run's validated parameters, `vtkSteps`
+/// the VTK series written so far.
+void writeRunCheckpoint(const std::string& path, const StepLoop& loop, const Teuchos::ParameterList& params,
+                        const std::vector<std::pair<int, double>>& vtkSteps);
+
+/// Put the state a checkpoint holds back into `loop` (and its model's
+/// contact state, its controller, its integrator), before loop.run(); marks
+/// the loop restarted. Returns the VTK series to continue. Collective.
+/// \throws InputError when the checkpoint does not fit this model or
+///         version, naming the file
+std::vector<std::pair<int, double>> restoreRunCheckpoint(StepLoop& loop, Model& model, const CheckpointReader& c);
+
+/// Writes the checkpoint (see the top of this file).
+class CheckpointObserver final : public StepObserver {
+ public:
+  /// \param path the checkpoint in the staging directory
+  /// \param finalPath the output directory a restart names
+  /// \param vtk the VTK series (null: none)
+  CheckpointObserver(std::string path, std::string finalPath, int interval, const Teuchos::ParameterList& params,
+                     const VtkObserver* vtk);
+  void accepted(const StepLoop& loop, const StepRecord& record, bool last) override;
+  /// Writes the checkpoint of the last accepted step unless it is on disk,
+  /// and says where it is (or why it is missing).
+  std::string failed(const StepLoop& loop, const std::string& error) override;
+  /// Write the checkpoint of the last accepted step unless it is on disk.
+  void writeIfStale(const StepLoop& loop);
+  const std::string& path() const { return path_; }
+  const std::string& finalPath() const { return finalPath_; }
+
+ private:
+  void write(const StepLoop& loop);
+  std::string path_, finalPath_;
+  int interval_;
+  const Teuchos::ParameterList& params_;
+  const VtkObserver* vtk_;
+  size_t rows_ = 0;  ///< history rows of the checkpoint last written
+};
+
+/// Stops the run after a step when a stop was requested on any rank
+/// (requestStop(), DDC_StopRequest.hpp): its checkpoint is written and
+/// RunInterrupted thrown on every rank.
+class StopObserver final : public StepObserver {
+ public:
+  /// \param checkpoint the checkpoint writer (null: the run writes none)
+  /// \param noCheckpoint why there is none, for the message
+  StopObserver(CheckpointObserver* checkpoint, std::string noCheckpoint)
+      : checkpoint_(checkpoint), noCheckpoint_(std::move(noCheckpoint)) {}
+  void accepted(const StepLoop& loop, const StepRecord& record, bool last) override;
+
+ private:
+  CheckpointObserver* checkpoint_;
+  std::string noCheckpoint_;
+};
+
+}  // namespace ddc
