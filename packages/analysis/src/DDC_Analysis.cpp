@@ -22,7 +22,6 @@
 #include "DDC_ContactParameters.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_Substructuring.hpp"
-#include "DDC_NodeToSegment.hpp"
 #include "DDC_ExodusMesh.hpp"
 #include "DDC_Gmsh.hpp"
 #include "DDC_HistoryWriter.hpp"
@@ -464,7 +463,6 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
                    ElementFactory factory, const std::string& baseDirectory)
     : comm_(std::move(comm)), factory_(std::move(factory)) {
   // Contact elements live in the contact package; make sure they are known.
-  if (!factory_.has("Node-To-Segment")) registerContactElements(factory_);
   if (!factory_.has(surfaceContactElementName(SurfaceContactRole::Conventional, CellType::Quad4)))
     registerSurfaceContactElements(factory_);
   const auto valid = getValidParameters(factory_);

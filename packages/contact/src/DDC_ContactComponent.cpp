@@ -13,7 +13,6 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "DDC_ContactSearch.hpp"  // the facing rule (facingVerdict)
 #include "DDC_Error.hpp"
 #include "DDC_MpiRecords.hpp"
 #include "DDC_ShapeFunctions.hpp"

@@ -53,7 +53,7 @@
 #include <string>
 #include <vector>
 
-#include "DDC_ContactElement.hpp"
+#include "DDC_ContactState.hpp"
 #include "DDC_DecomposedNodeToSurface.hpp"
 #include "DDC_FacetSearch.hpp"
 #include "DDC_ReferenceCell.hpp"
