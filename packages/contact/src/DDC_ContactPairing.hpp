@@ -25,8 +25,10 @@
 #include <Tpetra_Import.hpp>
 #include <array>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "DDC_ContactData.hpp"
