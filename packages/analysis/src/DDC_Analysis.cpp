@@ -10,7 +10,6 @@
 #include "DDC_FaultSeam.hpp"
 #include "DDC_InputDeck.hpp"
 #include "DDC_Memory.hpp"
-#include "DDC_NodeToSegment.hpp"
 #include "DDC_OutputObservers.hpp"
 #include "DDC_Parameters.hpp"
 #include "DDC_RunCheckpoint.hpp"
@@ -24,7 +23,6 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
                    ElementFactory factory, const std::string& baseDirectory)
     : comm_(std::move(comm)), factory_(std::move(factory)) {
   // Contact elements live in the contact package; make sure they are known.
-  if (!factory_.has("Node-To-Segment")) registerContactElements(factory_);
   if (!factory_.has(surfaceContactElementName(SurfaceContactRole::Conventional, CellType::Quad4)))
     registerSurfaceContactElements(factory_);
   const auto valid = getValidParameters(factory_);

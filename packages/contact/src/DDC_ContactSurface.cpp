@@ -7,7 +7,6 @@
 #include <array>
 #include <sstream>
 
-#include "DDC_ContactSearch.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_Mesh.hpp"
 #include "DDC_ShapeFunctions.hpp"
@@ -47,6 +46,28 @@ double depthBehindCentre(const Mesh& mesh, CellType type, const std::vector<int>
   double depth = 0.0;
   for (int i = 0; i < mesh.elementNumNodes(e); ++i)
     depth = std::max(depth, -n.dot(position(mesh, mesh.elementNodes(e)[i]) - xc));
+  return depth;
+}
+
+/// Line2 facets: max_a −n·(X_a − X_1) with n = (t_y, −t_x)/|t|, t = X_2 −
+/// X_1 (header), in the arithmetic of the closed-form straight-segment search
+/// (packages/contact/test), whose depths these equal bit for bit.
+std::vector<double> line2Depths(const Mesh& mesh, const std::vector<Segment>& sides, const std::string& sideSet) {
+  std::vector<double> depth(sides.size(), 0.0);
+  for (std::size_t k = 0; k < sides.size(); ++k) {
+    const auto& a = mesh.coord(sides[k].nodes[0]);
+    const auto& b = mesh.coord(sides[k].nodes[1]);
+    const Eigen::Vector2d t(b[0] - a[0], b[1] - a[1]);
+    const Eigen::Vector2d n = Eigen::Vector2d(t.y(), -t.x()).normalized();
+    const int e = sides[k].element;
+    for (int i = 0; i < mesh.elementNumNodes(e); ++i) {
+      const auto& x = mesh.coord(mesh.elementNodes(e)[i]);
+      depth[k] = std::max(depth[k], -n.dot(Eigen::Vector2d(x[0] - a[0], x[1] - a[1])));
+    }
+    DDC_INPUT_REQUIRE(depth[k] > 0.0, "side set '" << sideSet << "': element " << e
+                                                   << " has no extent behind its side " << sides[k].localSide
+                                                   << " (degenerate element)");
+  }
   return depth;
 }
 
@@ -91,8 +112,7 @@ ContactSurfaceFacets contactSurfaceFromSideSet(const Mesh& mesh, const std::stri
     out.elements.push_back(s.element);
   }
   if (out.type == CellType::Line2) {
-    // The 2-D straight-segment search's own depths, bit for bit.
-    out.depths = masterElementDepths(mesh, sideSet);
+    out.depths = line2Depths(mesh, sides, sideSet);
     return out;
   }
   for (std::size_t k = 0; k < sides.size(); ++k) {

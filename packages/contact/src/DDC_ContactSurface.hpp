@@ -12,9 +12,9 @@
 //                 orientation.
 //   depth         how far the element's nodes reach behind the facet along
 //                 its inward normal, in the reference configuration:
-//                   Line2   masterElementDepths() (DDC_ContactSearch.hpp),
-//                           max_a −n·(X_a − X_1), bit-identical to the 2-D
-//                           straight-segment search;
+//                   Line2   max_a −n·(X_a − X_1), n = (t_y, −t_x)/|t|,
+//                           t = X_2 − X_1: bit-identical to the closed-form
+//                           2-D straight-segment search (a test reference);
 //                   others  max_a −n·(X_a − X_c), X_c = x(ξ_c) the facet's
 //                           centre point (ξ_c the mean of the reference
 //                           facet's corners: 0 on a line, (0, 0) on a
@@ -55,7 +55,7 @@ CellType contactFacetType(int dim, int numNodes, const std::string& sideSet);
 /// elements and depths (see the top of this file). An empty side set gives no
 /// facets.
 /// \throws InputError if the side set does not exist (listing the known ones,
-///         as masterSegmentsFromSideSet()), its facets are not all of one
+///         as Mesh::sideSet()), its facets are not all of one
 ///         facet type of the mesh's dimension, or an element has no extent
 ///         behind its facet (degenerate element).
 ContactSurfaceFacets contactSurfaceFromSideSet(const Mesh& mesh, const std::string& sideSet);

@@ -2,9 +2,10 @@
 // facet of any type (paper Figure 1: a slave node and an 8-node facet): the
 // slave and master counterparts with the projection ξ^p and normal n^p frozen
 // at the last converged configuration (paper eq. 1), meeting only on the
-// contact multiplier λ (doc/contact.md). The 2-D, 2-node case is
-// DDC_DecomposedNodeToSegment.hpp; this is its generalisation to curved
-// segments (Line3) and to 3-D facets (Tri3, Tri6, Quad4, Quad8, Quad9):
+// contact multiplier λ (doc/contact.md), on straight and curved segments
+// (Line2, Line3) and on 3-D facets (Tri3, Tri6, Quad4, Quad8, Quad9); on
+// Line2 the tests check it against the closed-form decomposed
+// node-to-segment counterparts (packages/contact/test):
 //
 //   g_N = n^p·( x_s − Σ_i N_i(ξ^p) x_i ) = g_s + g_m,
 //   slave  active:  Π = λ n^p·x_s               inactive: ½ λ²
@@ -21,7 +22,7 @@
 #include <Eigen/Dense>
 #include <array>
 
-#include "DDC_ContactElement.hpp"
+#include "DDC_ContactState.hpp"
 #include "DDC_ReferenceCell.hpp"
 
 namespace ddc {

@@ -7,9 +7,14 @@
 #include <stdexcept>
 #include <string>
 
-#include "DDC_ContactSearch.hpp"
-
 namespace ddc {
+
+ContactRejection facingVerdict(const Eigen::Vector3d& slaveNormal, const Eigen::Vector3d& masterNormal, double gap,
+                               double penetrationLimit) {
+  if (!(slaveNormal.dot(masterNormal) < 0.0)) return ContactRejection::NotFacing;
+  if (gap < 0.0 && !(-gap < penetrationLimit)) return ContactRejection::TooDeep;
+  return ContactRejection::None;
+}
 
 namespace {
 

@@ -2,8 +2,8 @@
 // (3-D faces Tri3/Tri6/Quad4/Quad8/Quad9, or 2-D segments Line2/Line3): which
 // facet each slave node pairs with, the closest point, the normal and the gap
 // (doc/contact.md, "Curved facets and 3-D"). The contact component pairs
-// every facet type with it; the 2-D straight-segment search of
-// DDC_ContactSearch.hpp is its closed-form special case, kept as a reference.
+// every facet type with it (its closed-form special case, the 2-D
+// straight-segment search, is a test reference in packages/contact/test).
 //
 // Nearest point of one facet (`nearestPoint()`), the rule at facet edges and
 // corners:
@@ -57,6 +57,32 @@ struct FacetCandidate {
   double distance = 0.0;    ///< |x_s − point|
   FacetPointKind kind = FacetPointKind::Interior;
 };
+
+/// Which part of the facing rule rejected the nearest master facet.
+enum class ContactRejection {
+  None,       ///< accepted (or no facet within the radius)
+  NotFacing,  ///< n_s·n_m >= 0: the slave surface does not face the facet
+  TooDeep     ///< behind the facet by kFacingDepthFraction of its element's depth or more
+};
+
+/// Fraction of the master element's depth a slave may lie behind the master
+/// facet and still be paired with it (doc/contact.md "Which slave nodes
+/// pair"): deeper, it is nearer the far side of that element than the
+/// facet, which a contact increment cannot produce on a mesh that resolves
+/// the motion, but a node of the other side of a thin body (or a node that
+/// started inside the master body) always is.
+constexpr double kFacingDepthFraction = 0.5;
+
+/// The facing rule (doc/contact.md "Which slave nodes pair") for a slave
+/// node with outward normal `slaveNormal` (the normalised sum of the unit
+/// outward normals of its slave facets) at gap `gap` from a master facet
+/// with outward normal `masterNormal`: the facet is accepted only if (a)
+/// n_s·n_m < 0 and (b) a slave behind it (g < 0) lies less than
+/// `penetrationLimit` (kFacingDepthFraction × the depth of the facet's
+/// element) behind it. One function for every consumer that pairs or keeps
+/// a pairing (z = 0 in 2-D).
+ContactRejection facingVerdict(const Eigen::Vector3d& slaveNormal, const Eigen::Vector3d& masterNormal, double gap,
+                               double penetrationLimit);
 
 /// The nearest point of facet `nodes` (positions numCellNodes x dim) to xs.
 FacetCandidate nearestPoint(CellType facet, const Eigen::MatrixXd& nodes, const Eigen::VectorXd& xs);

@@ -8,7 +8,6 @@
 #include <stdexcept>
 #include <vector>
 
-#include "DDC_ContactSearch.hpp"
 #include "DDC_ShapeFunctions.hpp"
 
 namespace ddc {

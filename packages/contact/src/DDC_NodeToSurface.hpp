@@ -10,14 +10,16 @@
 //   a_α           = ∂x/∂ξ_α (tangents)
 //   n             3-D: a_1 × a_2 / |a_1 × a_2|, outward for an outward facet;
 //                 2-D: (a_y, −a_x) / |a|, the master body on the left of the
-//                 direction of travel (as DDC_NodeToSegment.hpp)
+//                 direction of travel
 //   ξ̄             closest-point projection: (x_s − x(ξ̄))·a_α(ξ̄) = 0, by a
 //                 local Newton iteration on ξ (projectOntoFacet())
 //   g_N           = n(ξ̄)·(x_s − x(ξ̄)), > 0 separated, < 0 penetration
 //
 // Potential (Fang & Izzuddin 2022, eq. 2): active Π_c = λ g_N, released
-// Π_c = ½ λ². Residual = ∂Π_c/∂(u, λ) (the sign convention of
-// DDC_NodeToSegment.hpp: λ < 0 in compression).
+// Π_c = ½ λ². Residual = ∂Π_c/∂(u, λ), the "internal force" convention of
+// the continuum elements (f_int = ∂U/∂u): the residual on the slave is λ n and
+// the force it feels −λ n; λ < 0 in compression (Fang & Izzuddin), so a
+// compressive contact pushes the slave along +n, away from the master body.
 //
 // Linearisation. At the closest point, δg_N = G·δu with G = [n; −N_i(ξ̄) n]
 // (the tangential terms vanish because x_s − x(ξ̄) is normal to the facet, and
@@ -34,10 +36,17 @@
 #include <Eigen/Dense>
 #include <array>
 
-#include "DDC_ContactElement.hpp"
+#include "DDC_ContactState.hpp"
 #include "DDC_ReferenceCell.hpp"
 
 namespace ddc {
+
+/// How far (in reference coordinates) outside a facet a projection still
+/// counts as inside: round-off of positions computed by different solvers or
+/// rank counts is ~1e-16 relative, and a slave node on the end node of a
+/// master surface (a patch whose slave and master surfaces end together)
+/// stays inside whatever that round-off.
+constexpr double kEndTolerance = 1e-10;
 
 /// Result of projectOntoFacet().
 struct FacetProjection {
@@ -70,9 +79,9 @@ bool facetPointAndNormal(CellType facet, const Eigen::MatrixXd& x, const std::ar
                          Eigen::Vector3d& point, Eigen::Vector3d& normal);
 
 /// Conventional node-to-surface element on a facet type. Nodes [slave, facet
-/// nodes...]; DOFs [u_s, u_1, ..., u_m, λ] (node-major, dim per node). Not a
-/// ContactElement (whose DOF layout is 2-D): the contact component uses it
-/// directly.
+/// nodes...]; DOFs [u_s, u_1, ..., u_m, λ] (node-major, dim per node). The
+/// contact component uses it directly (DDC_SurfaceContactElement.hpp wraps it
+/// as an Element for the factory).
 class NodeToSurfaceElement {
  public:
   /// \throws std::invalid_argument for a cell type that is not a facet.

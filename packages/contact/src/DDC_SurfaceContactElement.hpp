@@ -2,25 +2,25 @@
 // evaluates them for every pair (2-D segments and 3-D faces): the
 // conventional node-to-surface element (DDC_NodeToSurface.hpp) and the two
 // counterparts of the decomposed element (DDC_DecomposedNodeToSurface.hpp).
-// Like the 2-D node-to-segment elements they register in the element factory
-// (registerSurfaceContactElements()), one entry per facet type, so the
-// factory's node count and dimension describe them exactly:
+// They register in the element factory (registerSurfaceContactElements()),
+// one entry per facet type, so the factory's node count and dimension
+// describe them exactly:
 //
 //   "Node-To-Surface <Facet>"       nodes [slave, facet nodes...]
 //   "Decomposed NTS Slave <Facet>"  nodes [slave]
 //   "Decomposed NTS Master <Facet>" nodes [facet nodes...]
 //
 // with <Facet> one of Line2, Line3, Tri3, Tri6, Quad4, Quad8, Quad9 (on Line2
-// the generic form of the closed-form node-to-segment element of
-// DDC_NodeToSegment.hpp). DOFs: dim per node, node-major, the multiplier λ
-// last.
+// the generic form of the closed-form node-to-segment elements, a test
+// reference in packages/contact/test). DOFs: dim per node, node-major, the
+// multiplier λ last.
 #pragma once
 
 #include <Eigen/Dense>
 #include <memory>
 #include <string>
 
-#include "DDC_ContactElement.hpp"
+#include "DDC_ContactState.hpp"
 #include "DDC_DecomposedNodeToSurface.hpp"
 #include "DDC_NodeToSurface.hpp"
 

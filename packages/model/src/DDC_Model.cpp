@@ -13,7 +13,6 @@
 #include <stdexcept>
 
 #include "DDC_BodyLocator.hpp"
-#include "DDC_ContactSearch.hpp"
 #include "DDC_ContactSurface.hpp"
 #include "DDC_ContinuumElement.hpp"
 #include "DDC_Error.hpp"

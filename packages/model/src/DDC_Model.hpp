@@ -15,9 +15,7 @@
 
 #include "DDC_BoundaryConditions.hpp"
 #include "DDC_ContactComponent.hpp"
-#include "DDC_ContactElement.hpp"
 #include "DDC_ContactParameters.hpp"
-#include "DDC_ContactSearch.hpp"
 #include "DDC_DirectSolver.hpp"
 #include "DDC_Element.hpp"
 #include "DDC_FetiDpSolver.hpp"

@@ -1,4 +1,5 @@
-// Contact search and tracking; the rules are documented in the header.
+// Contact search and tracking on straight segments, the test reference of
+// the facet search; the rules are documented in the header.
 #include "DDC_ContactSearch.hpp"
 
 #include <algorithm>
@@ -162,13 +163,6 @@ ContactRejection facingVerdict(const Eigen::Vector2d& slaveNormal, const Eigen::
   // z = 0 adds exact zeros to the dot product: the same verdict.
   return facingVerdict(Eigen::Vector3d(slaveNormal.x(), slaveNormal.y(), 0.0),
                        Eigen::Vector3d(masterNormal.x(), masterNormal.y(), 0.0), gap, penetrationLimit);
-}
-
-ContactRejection facingVerdict(const Eigen::Vector3d& slaveNormal, const Eigen::Vector3d& masterNormal, double gap,
-                               double penetrationLimit) {
-  if (!(slaveNormal.dot(masterNormal) < 0.0)) return ContactRejection::NotFacing;
-  if (gap < 0.0 && !(-gap < penetrationLimit)) return ContactRejection::TooDeep;
-  return ContactRejection::None;
 }
 
 ContactSearch::Eval ContactSearch::evaluate(int k, const Eigen::Vector2d& xs) {

@@ -1,10 +1,11 @@
 // Contact search and tracking for node-to-segment contact in 2-D: which
 // master segment each slave node is paired with, its closest-point projection
 // ξ, outward normal n and normal gap g_N (doc/contact.md). Straight 2-node
-// master segments (sides of Quad4 bodies) only. The contact component pairs
-// every facet type, Line2 included, with the facet search of
-// DDC_FacetSearch.hpp; this closed-form search is its 2-D reference, and the
-// facing rule below (facingVerdict()) serves both.
+// master segments (sides of Quad4 bodies) only. A test reference, not part
+// of the library: the contact component pairs every facet type, Line2
+// included, with the facet search of DDC_FacetSearch.hpp; this closed-form
+// search is its 2-D special case, and both apply the facing rule of
+// DDC_FacetSearch.hpp (facingVerdict()).
 //
 // Geometry rules (one place, used by the global search and the tracking alike,
 // so both give bitwise the same numbers for the same pairing):
@@ -60,6 +61,8 @@
 #include <string>
 #include <vector>
 
+#include "DDC_FacetSearch.hpp"  // the facing rule; kEndTolerance (DDC_NodeToSurface.hpp)
+
 namespace ddc {
 
 class Mesh;
@@ -95,37 +98,12 @@ class MasterSurface {
   std::vector<int> nodes_;
 };
 
-/// Which part of the facing rule rejected the nearest master segment.
-enum class ContactRejection {
-  None,       ///< accepted (or no segment within the radius)
-  NotFacing,  ///< n_s·n_m >= 0: the slave surface does not face the segment
-  TooDeep     ///< behind the segment by kFacingDepthFraction of its element's depth or more
-};
-
-/// Fraction of the master element's depth a slave may lie behind the master
-/// segment and still be paired with it (doc/contact.md "Which slave nodes
-/// pair"): deeper, it is nearer the far side of that element than the
-/// segment, which a contact increment cannot produce on a mesh that resolves
-/// the motion, but a node of the other side of a thin body (or a node that
-/// started inside the master body) always is.
-constexpr double kFacingDepthFraction = 0.5;
-
-/// How far (in the segment parameter ξ) past a segment end a slave still
-/// projects inside (header, "Closest projection"): round-off of positions
-/// computed by different solvers or rank counts is ~1e-16 relative.
-constexpr double kEndTolerance = 1e-10;
-
-/// The facing rule's verdict for a slave node with outward normal
-/// `slaveNormal` at gap `gap` from a master segment with outward normal
-/// `masterNormal`, allowed to lie `penetrationLimit` behind it (the rule at
-/// the top of this file; used by ContactSearch and by every consumer that
-/// keeps a pairing the search did not make, so the rule is one function).
+/// The facing rule's verdict (facingVerdict() of DDC_FacetSearch.hpp, z = 0)
+/// for a slave node with outward normal `slaveNormal` at gap `gap` from a
+/// master segment with outward normal `masterNormal`, allowed to lie
+/// `penetrationLimit` behind it (the rule at the top of this file).
 ContactRejection facingVerdict(const Eigen::Vector2d& slaveNormal, const Eigen::Vector2d& masterNormal, double gap,
                                double penetrationLimit);
-/// The same rule for facets in 3-D (and curved segments in 2-D, z = 0).
-ContactRejection facingVerdict(const Eigen::Vector3d& slaveNormal, const Eigen::Vector3d& masterNormal, double gap,
-                               double penetrationLimit);
-
 /// What the facing rule needs besides the master surface: the slave surface
 /// (for nodal normals) and the depth of each master segment's element.
 struct FacingRule {
