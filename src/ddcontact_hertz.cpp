@@ -209,9 +209,16 @@ int impact(const std::string& dir, const Teuchos::ParameterList& deck, const std
   return 0;
 }
 
-int run(int argc, char** argv) {
+/// The command line (kUsage).
+struct Options {
   std::string dir, sphere = "Sphere", block = "Block", profile;
   double tolerance = -1.0;
+  bool help = false;  ///< --help: print kUsage, nothing else
+};
+
+/// The options; stops at --help. \throws BadInput for a bad command line.
+Options parseArguments(int argc, char** argv) {
+  Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -219,50 +226,50 @@ int run(int argc, char** argv) {
       return argv[++i];
     };
     if (a == "-h" || a == "--help") {
-      std::cout << kUsage;
-      return 0;
+      o.help = true;
+      return o;
     } else if (a == "--sphere") {
-      sphere = value();
+      o.sphere = value();
     } else if (a == "--block") {
-      block = value();
+      o.block = value();
     } else if (a == "--profile") {
-      profile = value();
+      o.profile = value();
     } else if (a == "--tolerance") {
       const std::string t = value();
       char* end = nullptr;
-      tolerance = std::strtod(t.c_str(), &end);
-      if (t.empty() || *end != '\0' || !(tolerance > 0)) throw BadInput("--tolerance needs a number > 0, got '" + t + "'");
+      o.tolerance = std::strtod(t.c_str(), &end);
+      if (t.empty() || *end != '\0' || !(o.tolerance > 0))
+        throw BadInput("--tolerance needs a number > 0, got '" + t + "'");
     } else if (!a.empty() && a[0] == '-') {
       throw BadInput("unknown option '" + a + "'");
-    } else if (dir.empty()) {
-      dir = a;
+    } else if (o.dir.empty()) {
+      o.dir = a;
     } else {
-      throw BadInput("more than one output directory ('" + dir + "', '" + a + "')");
+      throw BadInput("more than one output directory ('" + o.dir + "', '" + a + "')");
     }
   }
-  if (dir.empty()) throw BadInput("no output directory given");
+  if (o.dir.empty()) throw BadInput("no output directory given");
+  return o;
+}
 
-  const std::string xml = dir + "/parameters.xml";
-  if (!std::ifstream(xml)) throw BadInput("cannot read '" + xml + "'");
-  Teuchos::RCP<Teuchos::ParameterList> deck;
-  try {
-    deck = Teuchos::getParametersFromXmlFile(xml);
-  } catch (const std::exception& e) {
-    throw BadInput(xml + ": " + e.what());
-  }
-  const auto& bodies = deck->sublist("Mesh").sublist("Bodies");
-  if (!bodies.isSublist(sphere)) throw BadInput(xml + ": no body '" + sphere + "' (use --sphere)");
-  const auto& sb = bodies.sublist(sphere);
-  if (!sb.isParameter("Generator") || sb.get<std::string>("Generator") != "Sphere Octant")
-    throw BadInput(xml + ": 'Mesh/Bodies/" + sphere + "/Generator' must be 'Sphere Octant'");
-  const auto& oct = sb.sublist("Sphere Octant");
-  const double R = oct.get<double>("Radius"), cx = oct.get<double>("Center X"), cy = oct.get<double>("Center Y");
-  if (deck->isSublist("Dynamics") && deck->sublist("Dynamics").isParameter("Integrator") &&
-      deck->sublist("Dynamics").get<std::string>("Integrator") != "None")
-    return impact(dir, *deck, xml, sphere, block, R, tolerance);
-  const Material m1 = materialOf(*deck, sphere, xml), m2 = materialOf(*deck, block, xml);
+/// The contact radius from a least-squares fit of p^2 = A + B r^2 over the
+/// active nodes: sqrt(-A / B), NaN where the fit has no such root.
+double fittedContactRadius(const std::vector<Row>& rows) {
+  double s1 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (const Row& r : rows)
+    if (r.active) {
+      const double x = r.r * r.r, y = r.pressure * r.pressure;
+      s1 += 1, sx += x, sy += y, sxx += x * x, sxy += x * y;
+    }
+  const double det = s1 * sxx - sx * sx;
+  const double B = det > 0 ? (s1 * sxy - sx * sy) / det : 0.0, A = det > 0 ? (sy - B * sx) / s1 : 0.0;
+  return (A > 0 && B < 0) ? std::sqrt(-A / B) : std::nan("");
+}
 
-  const auto rows = readContactNodes(dir + "/contact_nodes.csv", cx, cy);
+/// Hertz's static solution against the contact nodes of a static run
+/// (see the top of this file); the sphere's radius R and axis (cx, cy).
+int staticContact(const Options& o, const Material& m1, const Material& m2, double R, double cx, double cy) {
+  const auto rows = readContactNodes(o.dir + "/contact_nodes.csv", cx, cy);
   double force = 0.0, p0 = -1.0, rActive = 0.0;
   int active = 0;
   for (const Row& r : rows)
@@ -272,20 +279,11 @@ int run(int argc, char** argv) {
       rActive = std::max(rActive, r.r);
       if (r.r <= kOnAxis * R) p0 = r.pressure;
     }
-  if (p0 < 0) throw BadInput(dir + "/contact_nodes.csv: no active slave node on the sphere's axis");
+  if (p0 < 0) throw BadInput(o.dir + "/contact_nodes.csv: no active slave node on the sphere's axis");
   double rInactive = std::numeric_limits<double>::infinity();
   for (const Row& r : rows)
     if (!r.active && r.r > rActive) rInactive = std::min(rInactive, r.r);
-  // Least squares of p^2 = A + B r^2 over the active nodes.
-  double s1 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (const Row& r : rows)
-    if (r.active) {
-      const double x = r.r * r.r, y = r.pressure * r.pressure;
-      s1 += 1, sx += x, sy += y, sxx += x * x, sxy += x * y;
-    }
-  const double det = s1 * sxx - sx * sx;
-  const double B = det > 0 ? (s1 * sxy - sx * sy) / det : 0.0, A = det > 0 ? (sy - B * sx) / s1 : 0.0;
-  const double aFit = (A > 0 && B < 0) ? std::sqrt(-A / B) : std::nan("");
+  const double aFit = fittedContactRadius(rows);
 
   force *= kQuarterModel;
   const double Estar = 1.0 / ((1.0 - m1.nu * m1.nu) / m1.E + (1.0 - m2.nu * m2.nu) / m2.E);
@@ -294,26 +292,54 @@ int run(int argc, char** argv) {
   const double errA = (aFit - a) / a, errP = (p0 - p0Hertz) / p0Hertz;
 
   std::printf("Hertz contact: sphere '%s' R = %g (E = %g, nu = %g) on '%s' (E = %g, nu = %g): E* = %.6g\n",
-              sphere.c_str(), R, m1.E, m1.nu, block.c_str(), m2.E, m2.nu, Estar);
+              o.sphere.c_str(), R, m1.E, m1.nu, o.block.c_str(), m2.E, m2.nu, Estar);
   std::printf("contact force F = %.6g (4 x the quarter model), %d active slave nodes, a/R = %.4f\n", force, active, a / R);
   std::printf("%-22s %12s %12s %10s\n", "quantity", "ddcontact", "Hertz", "rel. error");
   std::printf("%-22s %12.6g %12.6g %+10.4f\n", "contact radius a (fit)", aFit, a, errA);
   std::printf("%-22s %12.6g %12.6g %+10.4f\n", "peak pressure p0", p0, p0Hertz, errP);
   std::printf("active nodes reach r = %.6g; the next inactive node is at r = %.6g\n", rActive, rInactive);
 
-  if (!profile.empty()) {
-    std::ofstream out(profile);
+  if (!o.profile.empty()) {
+    std::ofstream out(o.profile);
     out << "r,p_fe,p_hertz\n";
     out.precision(10);
     for (const Row& r : rows) out << r.r << ',' << r.pressure << ',' << (r.r < a ? p0Hertz * std::sqrt(1 - r.r * r.r / (a * a)) : 0.0) << '\n';
-    if (!out.flush()) throw BadInput("cannot write '" + profile + "'");
+    if (!out.flush()) throw BadInput("cannot write '" + o.profile + "'");
   }
-  if (tolerance > 0) {
-    const bool ok = std::abs(errA) <= tolerance && std::abs(errP) <= tolerance;
-    std::printf("check: |errors| <= %g: %s\n", tolerance, ok ? "passed" : "FAILED");
+  if (o.tolerance > 0) {
+    const bool ok = std::abs(errA) <= o.tolerance && std::abs(errP) <= o.tolerance;
+    std::printf("check: |errors| <= %g: %s\n", o.tolerance, ok ? "passed" : "FAILED");
     return ok ? 0 : 1;
   }
   return 0;
+}
+
+int run(int argc, char** argv) {
+  const Options o = parseArguments(argc, argv);
+  if (o.help) {
+    std::cout << kUsage;
+    return 0;
+  }
+  const std::string xml = o.dir + "/parameters.xml";
+  if (!std::ifstream(xml)) throw BadInput("cannot read '" + xml + "'");
+  Teuchos::RCP<Teuchos::ParameterList> deck;
+  try {
+    deck = Teuchos::getParametersFromXmlFile(xml);
+  } catch (const std::exception& e) {
+    throw BadInput(xml + ": " + e.what());
+  }
+  const auto& bodies = deck->sublist("Mesh").sublist("Bodies");
+  if (!bodies.isSublist(o.sphere)) throw BadInput(xml + ": no body '" + o.sphere + "' (use --sphere)");
+  const auto& sb = bodies.sublist(o.sphere);
+  if (!sb.isParameter("Generator") || sb.get<std::string>("Generator") != "Sphere Octant")
+    throw BadInput(xml + ": 'Mesh/Bodies/" + o.sphere + "/Generator' must be 'Sphere Octant'");
+  const auto& oct = sb.sublist("Sphere Octant");
+  const double R = oct.get<double>("Radius"), cx = oct.get<double>("Center X"), cy = oct.get<double>("Center Y");
+  if (deck->isSublist("Dynamics") && deck->sublist("Dynamics").isParameter("Integrator") &&
+      deck->sublist("Dynamics").get<std::string>("Integrator") != "None")
+    return impact(o.dir, *deck, xml, o.sphere, o.block, R, o.tolerance);
+  const Material m1 = materialOf(*deck, o.sphere, xml), m2 = materialOf(*deck, o.block, xml);
+  return staticContact(o, m1, m2, R, cx, cy);
 }
 
 }  // namespace

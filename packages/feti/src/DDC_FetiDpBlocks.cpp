@@ -96,6 +96,103 @@ void diagonalOf(const CrsMatrix& A, LO n, std::vector<double>& d) {
   }
 }
 
+/// The values of K_rr (unless schur), K_rPi, K_Pir, K_PiPi, the diagonals
+/// of the Subdomain and the 1-norm of K_rr (for the condition estimate),
+/// from K (K^T = T^T K^s T first, with edge/face constraints).
+/// \throws std::logic_error if the pattern of K changed.
+void refreshValues(Subdomain& s, LocalProblem& lp) {
+  if (s.cob.active()) s.cob.update(*s.Kuser);
+  const auto& rowMap = *s.K->getRowMap();
+  const auto& colMap = *s.K->getColMap();
+  if (!lp.schur) {
+    lp.Krr->resumeFill();
+    lp.Krr->setAllToScalar(0.0);
+  }
+  lp.KrP.clear(), lp.KPr.clear();
+  lp.KPP.assign(lp.schur ? 0 : size_t(s.np) * s.np, 0.0);
+  s.diag.assign(s.n, 0.0);
+  std::vector<double> colSum(s.nr, 0.0);
+  const LocalCsr k(*s.K);
+  std::vector<GO> rc;
+  std::vector<double> rv;
+  bool patternOk = true;
+  for (LO lr = 0; lr < s.n; ++lr) {
+    const LO row = static_cast<LO>(rowMap.getGlobalElement(lr));
+    rc.clear(), rv.clear();
+    const LO rr = s.rIdx[row], pr = s.pIdx[row];
+    for (size_t e = k.ptr[lr]; e < k.ptr[lr + 1]; ++e) {
+      const LO col = static_cast<LO>(colMap.getGlobalElement(k.col[e]));
+      const double v = k.val[e];
+      if (col == row) s.diag[row] += v;
+      const LO rc2 = s.rIdx[col], pc = s.pIdx[col];
+      if (rr != kNone && rc2 != kNone) {
+        if (!lp.schur) rc.push_back(rc2), rv.push_back(v);
+        colSum[rc2] += std::abs(v);
+      } else if (lp.schur) {
+        continue;  // the primal blocks stay inside the solver's Schur complement
+      } else if (rr != kNone) {
+        lp.KrP.push_back(Triplet{rr, pc, v});
+      } else if (rc2 != kNone) {
+        lp.KPr.push_back(Triplet{pr, rc2, v});
+      } else {
+        lp.KPP[size_t(pr) + size_t(pc) * s.np] += v;
+      }
+    }
+    if (rr != kNone && !lp.schur)
+      patternOk = patternOk && lp.Krr->sumIntoGlobalValues(rr, LO(rc.size()), rv.data(), rc.data()) == LO(rc.size());
+  }
+  if (!lp.schur) lp.Krr->fillComplete(lp.rMap, lp.rMap);
+  if (!patternOk)
+    throw std::logic_error("the sparsity pattern of K changed since setTopology(); call setTopology() again");
+  lp.krrNorm1 = colSum.empty() ? 0.0 : *std::max_element(colSum.begin(), colSum.end());
+  if (s.cob.active())
+    diagonalOf(*s.Kuser, s.n, s.diagUser);
+  else
+    s.diagUser = s.diag;
+}
+
+/// A condition estimate ||K_rr||_1 ||K_rr^{-1} z||_1 / ||z||_1 (one step of
+/// inverse iteration) with a pseudo-random column z, from the factorised
+/// local solver: a singular K_rr that the factorisation did not flag (tiny
+/// instead of zero pivots, as LDL^T of a floating subdomain gives) shows up
+/// as an estimate near 1/eps. Without the Schur capability the same
+/// multi-RHS solve gives the np columns of Phi = K_rr^{-1} K_rPi into
+/// lp.Phi. (With it, solve() solves the interior problem K_rr alone.)
+double conditionEstimateAndPhi(const Subdomain& s, LocalProblem& lp) {
+  const size_t nPhi = lp.schur ? 0 : size_t(s.np);
+  MultiVector R(lp.rMap, nPhi + 1), X(lp.rMap, nPhi + 1);
+  for (const Triplet& t : lp.KrP) R.sumIntoLocalValue(t.i, size_t(t.j), t.v);
+  // Row of remainder index r in R / X.
+  auto at = [&](LO r) { return lp.schur ? s.rDof[r] : r; };
+  {
+    std::mt19937 gen(12345u + static_cast<unsigned>(s.id));
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    auto z = R.getDataNonConst(nPhi);
+    for (LO r = 0; r < s.nr; ++r) z[at(r)] = u(gen);
+  }
+  lp.solver->solve(R, X);
+  for (size_t p = 0; p < nPhi; ++p) {
+    auto x = X.getData(p);
+    std::copy(x.begin(), x.end(), lp.Phi.begin() + p * s.nr);
+  }
+  double zn = 0.0, yn = 0.0;
+  {
+    auto z = R.getData(nPhi);
+    auto y = X.getData(nPhi);
+    for (LO r = 0; r < s.nr; ++r) zn += std::abs(z[at(r)]), yn += std::abs(y[at(r)]);
+  }
+  return lp.krrNorm1 * yn / zn;
+}
+
+/// Whether the estimate, Phi and (schur) S_PiPi^s are all finite.
+bool allFinite(double est, const LocalProblem& lp) {
+  bool finite = std::isfinite(est);
+  for (double v : lp.Phi) finite = finite && std::isfinite(v);
+  if (lp.schur)
+    for (double v : lp.S) finite = finite && std::isfinite(v);
+  return finite;
+}
+
 }  // namespace
 
 /// Refresh the values (K^T = T^T K^s T first, with edge/face constraints),
@@ -111,57 +208,8 @@ std::string DualOperator::factor(const Context& ctx, Subdomain& s, size_t ls, bo
       "(give it more primal DOFs: >= 2 distinct primal nodes in 2-D, edge or face averages by 'Primal "
       "Constraints', or Dirichlet data; a host code without the analysis' corner rule chooses its vertices "
       "with findPrimalVertices())";
-  // Values: K_rr (unless schur), K_rPi, K_Pir, K_PiPi, the diagonal and
-  // the 1-norm of K_rr (for the condition estimate).
   try {
-    if (s.cob.active()) s.cob.update(*s.Kuser);
-    const auto& rowMap = *s.K->getRowMap();
-    const auto& colMap = *s.K->getColMap();
-    if (!lp.schur) {
-      lp.Krr->resumeFill();
-      lp.Krr->setAllToScalar(0.0);
-    }
-    lp.KrP.clear(), lp.KPr.clear();
-    lp.KPP.assign(lp.schur ? 0 : size_t(s.np) * s.np, 0.0);
-    s.diag.assign(s.n, 0.0);
-    std::vector<double> colSum(s.nr, 0.0);
-    const LocalCsr k(*s.K);
-    std::vector<GO> rc;
-    std::vector<double> rv;
-    bool patternOk = true;
-    for (LO lr = 0; lr < s.n; ++lr) {
-      const LO row = static_cast<LO>(rowMap.getGlobalElement(lr));
-      rc.clear(), rv.clear();
-      const LO rr = s.rIdx[row], pr = s.pIdx[row];
-      for (size_t e = k.ptr[lr]; e < k.ptr[lr + 1]; ++e) {
-        const LO col = static_cast<LO>(colMap.getGlobalElement(k.col[e]));
-        const double v = k.val[e];
-        if (col == row) s.diag[row] += v;
-        const LO rc2 = s.rIdx[col], pc = s.pIdx[col];
-        if (rr != kNone && rc2 != kNone) {
-          if (!lp.schur) rc.push_back(rc2), rv.push_back(v);
-          colSum[rc2] += std::abs(v);
-        } else if (lp.schur) {
-          continue;  // the primal blocks stay inside the solver's Schur complement
-        } else if (rr != kNone) {
-          lp.KrP.push_back(Triplet{rr, pc, v});
-        } else if (rc2 != kNone) {
-          lp.KPr.push_back(Triplet{pr, rc2, v});
-        } else {
-          lp.KPP[size_t(pr) + size_t(pc) * s.np] += v;
-        }
-      }
-      if (rr != kNone && !lp.schur)
-        patternOk = patternOk && lp.Krr->sumIntoGlobalValues(rr, LO(rc.size()), rv.data(), rc.data()) == LO(rc.size());
-    }
-    if (!lp.schur) lp.Krr->fillComplete(lp.rMap, lp.rMap);
-    if (!patternOk)
-      throw std::logic_error("the sparsity pattern of K changed since setTopology(); call setTopology() again");
-    lp.krrNorm1 = colSum.empty() ? 0.0 : *std::max_element(colSum.begin(), colSum.end());
-    if (s.cob.active())
-      diagonalOf(*s.Kuser, s.n, s.diagUser);
-    else
-      s.diagUser = s.diag;
+    refreshValues(s, lp);
   } catch (const std::exception& e) {
     return who + ": " + e.what();
   }
@@ -175,41 +223,8 @@ std::string DualOperator::factor(const Context& ctx, Subdomain& s, size_t ls, bo
     } catch (const SolverError& e) {
       return who + fix + " [" + e.what() + "]";
     }
-    // A condition estimate ||K_rr||_1 ||K_rr^{-1} z||_1 / ||z||_1 (one step
-    // of inverse iteration) with a pseudo-random column z: a singular K_rr
-    // that the factorisation did not flag (tiny instead of zero pivots, as
-    // LDL^T of a floating subdomain gives) shows up as an estimate near
-    // 1/eps. Without the Schur capability the same multi-RHS solve gives the
-    // np columns of Phi = K_rr^{-1} K_rPi. (With it, solve() solves the
-    // interior problem K_rr alone.)
-    const size_t nPhi = lp.schur ? 0 : size_t(s.np);
-    MultiVector R(lp.rMap, nPhi + 1), X(lp.rMap, nPhi + 1);
-    for (const Triplet& t : lp.KrP) R.sumIntoLocalValue(t.i, size_t(t.j), t.v);
-    // Row of remainder index r in R / X.
-    auto at = [&](LO r) { return lp.schur ? s.rDof[r] : r; };
-    {
-      std::mt19937 gen(12345u + static_cast<unsigned>(s.id));
-      std::uniform_real_distribution<double> u(-1.0, 1.0);
-      auto z = R.getDataNonConst(nPhi);
-      for (LO r = 0; r < s.nr; ++r) z[at(r)] = u(gen);
-    }
-    lp.solver->solve(R, X);
-    for (size_t p = 0; p < nPhi; ++p) {
-      auto x = X.getData(p);
-      std::copy(x.begin(), x.end(), lp.Phi.begin() + p * s.nr);
-    }
-    double zn = 0.0, yn = 0.0;
-    {
-      auto z = R.getData(nPhi);
-      auto y = X.getData(nPhi);
-      for (LO r = 0; r < s.nr; ++r) zn += std::abs(z[at(r)]), yn += std::abs(y[at(r)]);
-    }
-    const double est = lp.krrNorm1 * yn / zn;
-    bool finite = std::isfinite(est);
-    for (double v : lp.Phi) finite = finite && std::isfinite(v);
-    if (lp.schur)
-      for (double v : lp.S) finite = finite && std::isfinite(v);
-    if (!finite || (singularityThreshold > 0.0 && est > singularityThreshold)) {
+    const double est = conditionEstimateAndPhi(s, lp);
+    if (!allFinite(est, lp) || (singularityThreshold > 0.0 && est > singularityThreshold)) {
       std::ostringstream os;
       os << who << fix << " [condition estimate of K_rr " << std::scientific << est << " > '"
          << ctx.param("Local Singularity Threshold") << "' = " << singularityThreshold << "]";

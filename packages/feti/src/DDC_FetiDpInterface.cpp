@@ -60,25 +60,17 @@ int connectedParts(const CrsMatrix& K, std::vector<int>& part) {
   return count;
 }
 
-}  // namespace
-
-void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<const Map> owned) {
-  haveTopology = analysed = factored = false;
-  subs.clear();
-  {
-    const auto scaling = jump.scaling;
-    jump = JumpOperator();
-    jump.scaling = scaling;
-  }
-  if (owned.is_null()) throw std::invalid_argument("FetiDpSolver::setTopology: null owned DOF map");
-  ctx.ownedMap = owned;
-
-  // 1. Per-subdomain sanity (local checks, raised collectively).
+/// Step 1 of setTopology(): the caller's subdomains into `subs` (their
+/// component, coordinate and dimension data aside, for the edge/face
+/// constraints), checked one by one; returns the first error or "".
+std::string takeSubdomains(std::vector<FetiSubdomain>& local, std::vector<Subdomain>& subs,
+                           std::vector<std::vector<int>>& components, std::vector<std::vector<double>>& coords,
+                           std::vector<int>& dims) {
   std::ostringstream err;
   subs.resize(local.size());
-  std::vector<std::vector<int>> components(local.size());
-  std::vector<std::vector<double>> coords(local.size());
-  std::vector<int> dims(local.size());
+  components.resize(local.size());
+  coords.resize(local.size());
+  dims.resize(local.size());
   for (size_t ls = 0; ls < local.size() && err.str().empty(); ++ls) {
     FetiSubdomain& in = local[ls];
     Subdomain& s = subs[ls];
@@ -115,151 +107,190 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
       if (dup != sorted.end()) err << "subdomain " << s.id << ": DOF " << *dup << " appears twice";
     }
   }
-  raiseCollectively<std::invalid_argument>(ctx.mpi, err.str().empty() ? "" : "FetiDpSolver::setTopology: " + err.str());
+  return err.str();
+}
 
-  // Subdomain ids unique across ranks.
-  {
-    int nLocal = static_cast<int>(subs.size());
-    std::vector<int> counts(ctx.size), displs(ctx.size, 0);
-    MPI_Allgather(&nLocal, 1, MPI_INT, counts.data(), 1, MPI_INT, ctx.mpi);
-    for (int r = 1; r < ctx.size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
-    std::vector<int> ids(subs.size()), all(displs[ctx.size - 1] + counts[ctx.size - 1] + 1);
-    for (size_t i = 0; i < subs.size(); ++i) ids[i] = subs[i].id;
-    MPI_Allgatherv(ids.empty() ? all.data() : ids.data(), nLocal, MPI_INT, all.data(), counts.data(),
-                   displs.data(), MPI_INT, ctx.mpi);
-    all.pop_back();
-    std::sort(all.begin(), all.end());
-    auto dup = std::adjacent_find(all.begin(), all.end());
-    if (dup != all.end())
-      throw std::invalid_argument("FetiDpSolver::setTopology: subdomain id " + std::to_string(*dup) +
-                                  " is used twice");
-    for (Subdomain& s : subs) s.index = int(std::lower_bound(all.begin(), all.end(), s.id) - all.begin());
-    // The sides of extra rows: the connected parts of each subdomain,
-    // numbered across all subdomains in the order of their index.
-    std::vector<int> parts(all.size(), 0);
-    for (Subdomain& s : subs) parts[size_t(s.index)] = connectedParts(*s.K, s.part);
-    MPI_Allreduce(MPI_IN_PLACE, parts.data(), int(parts.size()), MPI_INT, MPI_SUM, ctx.mpi);
-    std::vector<int> base(parts.size() + 1, 0);
-    for (size_t k = 0; k < parts.size(); ++k) base[k + 1] = base[k] + parts[k];
-    for (Subdomain& s : subs) s.partBase = base[size_t(s.index)];
-    jump.sideSpan = std::max<GO>(1, GO(base.back()));
+/// Subdomain ids unique across ranks; Subdomain::index, and the sides of
+/// extra rows: the connected parts of each subdomain, numbered across all
+/// subdomains in the order of their index (Subdomain::part, partBase;
+/// returns the number of sides, at least 1). Collective.
+GO numberSubdomainsAndSides(const Context& ctx, std::vector<Subdomain>& subs) {
+  int nLocal = static_cast<int>(subs.size());
+  std::vector<int> counts(ctx.size), displs(ctx.size, 0);
+  MPI_Allgather(&nLocal, 1, MPI_INT, counts.data(), 1, MPI_INT, ctx.mpi);
+  for (int r = 1; r < ctx.size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+  std::vector<int> ids(subs.size()), all(displs[ctx.size - 1] + counts[ctx.size - 1] + 1);
+  for (size_t i = 0; i < subs.size(); ++i) ids[i] = subs[i].id;
+  MPI_Allgatherv(ids.empty() ? all.data() : ids.data(), nLocal, MPI_INT, all.data(), counts.data(), displs.data(),
+                 MPI_INT, ctx.mpi);
+  all.pop_back();
+  std::sort(all.begin(), all.end());
+  auto dup = std::adjacent_find(all.begin(), all.end());
+  if (dup != all.end())
+    throw std::invalid_argument("FetiDpSolver::setTopology: subdomain id " + std::to_string(*dup) + " is used twice");
+  for (Subdomain& s : subs) s.index = int(std::lower_bound(all.begin(), all.end(), s.id) - all.begin());
+  std::vector<int> parts(all.size(), 0);
+  for (Subdomain& s : subs) parts[size_t(s.index)] = connectedParts(*s.K, s.part);
+  MPI_Allreduce(MPI_IN_PLACE, parts.data(), int(parts.size()), MPI_INT, MPI_SUM, ctx.mpi);
+  std::vector<int> base(parts.size() + 1, 0);
+  for (size_t k = 0; k < parts.size(); ++k) base[k + 1] = base[k] + parts[k];
+  for (Subdomain& s : subs) s.partBase = base[size_t(s.index)];
+  return std::max<GO>(1, GO(base.back()));
+}
+
+/// Step 2: the overlapped DOF map of this rank's subdomains, its Import /
+/// Export to the owned map and Subdomain::ovLid; every DOF must be in the
+/// owned map. Collective.
+void buildDofMaps(Context& ctx, std::vector<Subdomain>& subs) {
+  std::vector<GO> gids;
+  for (const Subdomain& s : subs) gids.insert(gids.end(), s.dofs.begin(), s.dofs.end());
+  std::sort(gids.begin(), gids.end());
+  gids.erase(std::unique(gids.begin(), gids.end()), gids.end());
+  ctx.dofOvMap = makeMap(gids, ctx.ownedMap->getIndexBase(), ctx.comm);
+  std::vector<int> pids;
+  std::vector<LO> lids;
+  owners(*ctx.ownedMap, gids, pids, lids);
+  std::string msg;
+  for (size_t k = 0; k < gids.size(); ++k)
+    if (pids[k] < 0) {
+      msg = "FetiDpSolver::setTopology: DOF " + std::to_string(gids[k]) + " of a subdomain on rank " +
+            std::to_string(ctx.rank) + " is not in the owned DOF map";
+      break;
+    }
+  raiseCollectively<std::invalid_argument>(ctx.mpi, msg);
+  ctx.dofImport = rcp(new Import(ctx.ownedMap, ctx.dofOvMap));
+  ctx.dofExport = rcp(new Export(ctx.dofOvMap, ctx.ownedMap));
+  for (Subdomain& s : subs) {
+    s.ovLid.resize(s.n);
+    for (LO k = 0; k < s.n; ++k) s.ovLid[k] = ctx.dofOvMap->getLocalElement(s.dofs[k]);
   }
+}
+
+/// Step 3: the multiplicity of each DOF (Context::ownedMult; returned per
+/// LID of dofOvMap), counted at the owner, which also checks that a DOF is
+/// primal in all subdomains sharing it or in none. Collective.
+std::vector<int> countMultiplicity(Context& ctx, const std::vector<Subdomain>& subs) {
+  std::vector<int> ovMult(ctx.dofOvMap->getNodeNumElements());
+  Vector cOv(ctx.dofOvMap), pOv(ctx.dofOvMap), cOwned(ctx.ownedMap), pOwned(ctx.ownedMap);
+  {
+    auto c = cOv.getDataNonConst();
+    auto p = pOv.getDataNonConst();
+    for (const Subdomain& s : subs)
+      for (LO k = 0; k < s.n; ++k) {
+        c[s.ovLid[k]] += 1.0;
+        if (s.primal[k]) p[s.ovLid[k]] += 1.0;
+      }
+  }
+  cOwned.doExport(cOv, *ctx.dofExport, Tpetra::ADD);
+  pOwned.doExport(pOv, *ctx.dofExport, Tpetra::ADD);
+  std::string msg;
+  {
+    auto c = cOwned.getData();
+    auto p = pOwned.getData();
+    ctx.ownedMult.assign(c.size(), 0);
+    for (LO l = 0; l < LO(c.size()); ++l) {
+      ctx.ownedMult[l] = static_cast<int>(std::lround(c[l]));
+      const long np = std::lround(p[l]);
+      if (np != 0 && np != ctx.ownedMult[l] && msg.empty())
+        msg = "FetiDpSolver::setTopology: DOF " + std::to_string(ctx.ownedMap->getGlobalElement(l)) +
+              " is primal in " + std::to_string(np) + " of the " + std::to_string(ctx.ownedMult[l]) +
+              " subdomains sharing it; a DOF must be primal in all of them or in none";
+    }
+  }
+  raiseCollectively<std::invalid_argument>(ctx.mpi, msg);
+  cOv.doImport(cOwned, *ctx.dofImport, Tpetra::INSERT);
+  auto c = cOv.getData();
+  for (size_t l = 0; l < ovMult.size(); ++l) ovMult[l] = static_cast<int>(std::lround(c[l]));
+  return ovMult;
+}
+
+/// A DOF is constrainable in every subdomain having it if it is in one:
+/// the change of basis must choose the same representatives everywhere.
+/// Collective.
+void shareConstrainable(const Context& ctx, std::vector<Subdomain>& subs) {
+  Vector fOv(ctx.dofOvMap), fOwned(ctx.ownedMap);
+  {
+    auto f = fOv.getDataNonConst();
+    for (const Subdomain& s : subs)
+      for (LO k = 0; k < s.n; ++k)
+        if (s.constrainable[k]) f[s.ovLid[k]] = 1.0;
+  }
+  fOwned.doExport(fOv, *ctx.dofExport, Tpetra::ADD);
+  fOv.doImport(fOwned, *ctx.dofImport, Tpetra::INSERT);
+  auto f = fOv.getData();
+  for (Subdomain& s : subs)
+    for (LO k = 0; k < s.n; ++k) s.constrainable[k] = f[s.ovLid[k]] > 0.0 ? 1 : 0;
+}
+
+/// Step 4: the splits of one subdomain: remainder / primal, and for the
+/// Dirichlet preconditioner the remainder into dual interface (Delta:
+/// shared, non-primal) and interior (I) DOFs.
+void splitDofs(Subdomain& s, const std::vector<int>& ovMult) {
+  s.rIdx.assign(s.n, kNone);
+  s.pIdx.assign(s.n, kNone);
+  s.invMult.assign(s.n, 1.0);
+  s.rDof.clear();
+  s.pDof.clear();
+  for (LO k = 0; k < s.n; ++k) {
+    s.invMult[k] = 1.0 / ovMult[s.ovLid[k]];
+    if (s.primal[k]) {
+      s.pIdx[k] = LO(s.pDof.size());
+      s.pDof.push_back(k);
+    } else {
+      s.rIdx[k] = LO(s.rDof.size());
+      s.rDof.push_back(k);
+    }
+  }
+  s.nr = LO(s.rDof.size());
+  s.np = LO(s.pDof.size());
+  s.dIdx.assign(s.nr, kNone);
+  s.iIdx.assign(s.nr, kNone);
+  s.iR.clear();
+  s.nd = 0;
+  for (LO r = 0; r < s.nr; ++r) {
+    // Dual: shared with another subdomain, or touched by extra rows (so
+    // that the Dirichlet preconditioner sees those rows too).
+    if (ovMult[s.ovLid[s.rDof[r]]] >= 2 || s.constrainable[s.rDof[r]]) {
+      s.dIdx[r] = s.nd++;
+    } else {
+      s.iIdx[r] = LO(s.iR.size());
+      s.iR.push_back(r);
+    }
+  }
+  s.ni = LO(s.iR.size());
+}
+
+}  // namespace
+
+void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<const Map> owned) {
+  haveTopology = analysed = factored = false;
+  subs.clear();
+  {
+    const auto scaling = jump.scaling;
+    jump = JumpOperator();
+    jump.scaling = scaling;
+  }
+  if (owned.is_null()) throw std::invalid_argument("FetiDpSolver::setTopology: null owned DOF map");
+  ctx.ownedMap = owned;
+
+  // 1. Per-subdomain sanity (local checks, raised collectively), ids.
+  std::vector<std::vector<int>> components;
+  std::vector<std::vector<double>> coords;
+  std::vector<int> dims;
+  const std::string err = takeSubdomains(local, subs, components, coords, dims);
+  raiseCollectively<std::invalid_argument>(ctx.mpi, err.empty() ? "" : "FetiDpSolver::setTopology: " + err);
+  jump.sideSpan = numberSubdomainsAndSides(ctx, subs);
 
   // 2. Overlapped DOF map of this rank's subdomains; all DOFs in the owned map.
-  {
-    std::vector<GO> gids;
-    for (const Subdomain& s : subs) gids.insert(gids.end(), s.dofs.begin(), s.dofs.end());
-    std::sort(gids.begin(), gids.end());
-    gids.erase(std::unique(gids.begin(), gids.end()), gids.end());
-    ctx.dofOvMap = makeMap(gids, ctx.ownedMap->getIndexBase(), ctx.comm);
-    std::vector<int> pids;
-    std::vector<LO> lids;
-    owners(*ctx.ownedMap, gids, pids, lids);
-    std::string msg;
-    for (size_t k = 0; k < gids.size(); ++k)
-      if (pids[k] < 0) {
-        msg = "FetiDpSolver::setTopology: DOF " + std::to_string(gids[k]) + " of a subdomain on rank " +
-              std::to_string(ctx.rank) + " is not in the owned DOF map";
-        break;
-      }
-    raiseCollectively<std::invalid_argument>(ctx.mpi, msg);
-    ctx.dofImport = rcp(new Import(ctx.ownedMap, ctx.dofOvMap));
-    ctx.dofExport = rcp(new Export(ctx.dofOvMap, ctx.ownedMap));
-    for (Subdomain& s : subs) {
-      s.ovLid.resize(s.n);
-      for (LO k = 0; k < s.n; ++k) s.ovLid[k] = ctx.dofOvMap->getLocalElement(s.dofs[k]);
-    }
-  }
+  buildDofMaps(ctx, subs);
 
   // 3. Multiplicity and primal consistency: counts summed at the owner.
-  std::vector<int> ovMult(ctx.dofOvMap->getNodeNumElements());
-  {
-    Vector cOv(ctx.dofOvMap), pOv(ctx.dofOvMap), cOwned(ctx.ownedMap), pOwned(ctx.ownedMap);
-    {
-      auto c = cOv.getDataNonConst();
-      auto p = pOv.getDataNonConst();
-      for (const Subdomain& s : subs)
-        for (LO k = 0; k < s.n; ++k) {
-          c[s.ovLid[k]] += 1.0;
-          if (s.primal[k]) p[s.ovLid[k]] += 1.0;
-        }
-    }
-    cOwned.doExport(cOv, *ctx.dofExport, Tpetra::ADD);
-    pOwned.doExport(pOv, *ctx.dofExport, Tpetra::ADD);
-    std::string msg;
-    {
-      auto c = cOwned.getData();
-      auto p = pOwned.getData();
-      ctx.ownedMult.assign(c.size(), 0);
-      for (LO l = 0; l < LO(c.size()); ++l) {
-        ctx.ownedMult[l] = static_cast<int>(std::lround(c[l]));
-        const long np = std::lround(p[l]);
-        if (np != 0 && np != ctx.ownedMult[l] && msg.empty())
-          msg = "FetiDpSolver::setTopology: DOF " + std::to_string(ctx.ownedMap->getGlobalElement(l)) +
-                " is primal in " + std::to_string(np) + " of the " + std::to_string(ctx.ownedMult[l]) +
-                " subdomains sharing it; a DOF must be primal in all of them or in none";
-      }
-    }
-    raiseCollectively<std::invalid_argument>(ctx.mpi, msg);
-    cOv.doImport(cOwned, *ctx.dofImport, Tpetra::INSERT);
-    auto c = cOv.getData();
-    for (size_t l = 0; l < ovMult.size(); ++l) ovMult[l] = static_cast<int>(std::lround(c[l]));
-  }
-  {
-    // A DOF is constrainable in every subdomain having it if it is in one:
-    // the change of basis must choose the same representatives everywhere.
-    Vector fOv(ctx.dofOvMap), fOwned(ctx.ownedMap);
-    {
-      auto f = fOv.getDataNonConst();
-      for (const Subdomain& s : subs)
-        for (LO k = 0; k < s.n; ++k)
-          if (s.constrainable[k]) f[s.ovLid[k]] = 1.0;
-    }
-    fOwned.doExport(fOv, *ctx.dofExport, Tpetra::ADD);
-    fOv.doImport(fOwned, *ctx.dofImport, Tpetra::INSERT);
-    auto f = fOv.getData();
-    for (Subdomain& s : subs)
-      for (LO k = 0; k < s.n; ++k) s.constrainable[k] = f[s.ovLid[k]] > 0.0 ? 1 : 0;
-  }
+  const std::vector<int> ovMult = countMultiplicity(ctx, subs);
+  shareConstrainable(ctx, subs);
   addEdgeFaceConstraints(components, coords, dims);
 
-  // 4. Per-subdomain splits: remainder / primal, and for the Dirichlet
-  //    preconditioner the remainder into dual interface (Delta: shared,
-  //    non-primal) and interior (I) DOFs.
-  for (Subdomain& s : subs) {
-    s.rIdx.assign(s.n, kNone);
-    s.pIdx.assign(s.n, kNone);
-    s.invMult.assign(s.n, 1.0);
-    s.rDof.clear();
-    s.pDof.clear();
-    for (LO k = 0; k < s.n; ++k) {
-      s.invMult[k] = 1.0 / ovMult[s.ovLid[k]];
-      if (s.primal[k]) {
-        s.pIdx[k] = LO(s.pDof.size());
-        s.pDof.push_back(k);
-      } else {
-        s.rIdx[k] = LO(s.rDof.size());
-        s.rDof.push_back(k);
-      }
-    }
-    s.nr = LO(s.rDof.size());
-    s.np = LO(s.pDof.size());
-    s.dIdx.assign(s.nr, kNone);
-    s.iIdx.assign(s.nr, kNone);
-    s.iR.clear();
-    s.nd = 0;
-    for (LO r = 0; r < s.nr; ++r) {
-      // Dual: shared with another subdomain, or touched by extra rows (so
-      // that the Dirichlet preconditioner sees those rows too).
-      if (ovMult[s.ovLid[s.rDof[r]]] >= 2 || s.constrainable[s.rDof[r]]) {
-        s.dIdx[r] = s.nd++;
-      } else {
-        s.iIdx[r] = LO(s.iR.size());
-        s.iR.push_back(r);
-      }
-    }
-    s.ni = LO(s.iR.size());
-  }
+  // 4. Per-subdomain splits.
+  for (Subdomain& s : subs) splitDofs(s, ovMult);
 
   jump.buildCompatibility(ctx, subs);
   coarse.build(ctx, subs, factory, coarseSolverParams);

@@ -305,152 +305,131 @@ void FetiDpSolver::setSolveTolerance(double tol) {
   impl_->solveTol = tol;
 }
 
-FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
-  Impl& m = *impl_;
-  if (!m.factored) throw std::logic_error("FetiDpSolver::solve() called without a successful numeric()");
-  const double t0 = MPI_Wtime();
-  m.dual.tLocalSolve = m.coarse.tSolve = m.prec.tApply = m.prec.tDirichletSolve = 0.0;
-  m.dual.nApply = m.prec.nApply = 0;
-  Info info = m.setup;
-  if (!m.jump.weightsCurrent) m.jump.computeWeights(m.ctx, m.subs);
+namespace {
 
+using Impl = FetiDpSolver::Impl;
+
+/// b and u are on the owned DOF map, and b is zero on DOFs of no subdomain
+/// (collective).
+void checkSolveVectors(const Impl& m, const Vector& b, const Vector& u) {
   const bool sameMaps = b.getMap()->isSameAs(*m.ctx.ownedMap) && u.getMap()->isSameAs(*m.ctx.ownedMap);
   if (!sameMaps) throw std::invalid_argument("FetiDpSolver::solve: b and u must be on the owned DOF map");
-  {
-    auto bv = b.getData();
-    std::string msg;
-    for (LO l = 0; l < LO(bv.size()); ++l)
-      if (m.ctx.ownedMult[l] == 0 && bv[l] != 0.0) {
-        std::ostringstream os;
-        os << "FetiDpSolver::solve: b = " << bv[l] << " on DOF " << m.ctx.ownedMap->getGlobalElement(l)
-           << ", which belongs to no subdomain";
-        msg = os.str();
-        break;
-      }
-    raiseCollectively<std::invalid_argument>(m.ctx.mpi, msg);
-  }
-
-  // f~: interior DOFs as is, dual copies b_j / m_j, primal DOFs assembled
-  // directly into the coarse right-hand side.
-  // With edge/face constraints, f^s = T^T (b_j / m_j): the constraint DOFs get their
-  // share in f_Pi^s, summed over the subdomains by the coarse assembly.
-  m.dofOvWork->doImport(b, *m.ctx.dofImport, Tpetra::INSERT);
-  std::vector<std::vector<double>> frBase(m.subs.size()), fpBase(m.subs.size());
-  {
-    auto bo = m.dofOvWork->getData();
-    std::vector<double> f;
-    for (size_t ls = 0; ls < m.subs.size(); ++ls) {
-      const Subdomain& s = m.subs[ls];
-      LocalProblem& lp = m.dual.local[ls];
-      std::fill(lp.fp.begin(), lp.fp.end(), 0.0);
-      if (s.cob.active()) {
-        f.resize(s.n);
-        for (LO k = 0; k < s.n; ++k) f[k] = bo[s.ovLid[k]] * s.invMult[k];
-        s.cob.forceToNew(f);
-        for (LO r = 0; r < s.nr; ++r) lp.fr[r] = f[s.rDof[r]];
-        for (LO p = 0; p < s.np; ++p)
-          if (s.cob.holdsConstraint(s.pDof[p])) lp.fp[p] = f[s.pDof[p]];
-      } else {
-        for (LO r = 0; r < s.nr; ++r) lp.fr[r] = bo[s.ovLid[s.rDof[r]]] * s.invMult[s.rDof[r]];
-      }
-      frBase[ls] = lp.fr;
-      fpBase[ls] = lp.fp;
-    }
-  }
-  Vector fPi(m.coarse.map);
-  {
-    auto bv = b.getData();
-    auto f = fPi.getDataNonConst();
-    for (size_t k = 0; k < m.coarse.ownedLid.size(); ++k)
-      f[k] = m.coarse.isEdgeFace[k] ? 0.0 : bv[m.coarse.ownedLid[k]];
-  }
-
-  // d = B K~^{-1} f~ (the compatibility constraints have zero right-hand side)
-  auto d = rcp(new MultiVector(m.jump.lmMap, 1));
-  auto lambda = rcp(new MultiVector(m.jump.lmMap, 1));
-  m.dual.applyKtildeInv(m.subs, m.coarse, &fPi);
-  m.dual.gatherB(m.jump, *d->getVectorNonConst(0));
-  // d = P (B K~^{-1} f~ - c)
-  d->getVectorNonConst(0)->update(-1.0, *m.jump.rhs, 1.0);
-  m.jump.applyMask(*d->getVectorNonConst(0));
-
-  double dNorm = 0.0;
-  {
-    Teuchos::Array<double> n(1);
-    d->norm2(n());
-    dNorm = n[0];
-  }
-  const double tb0 = MPI_Wtime();
-  if (m.jump.lmMap->getGlobalNumElements() > 0 && dNorm > 0.0) {
-    Belos::SolverFactory<Scalar, MultiVector, Operator> factory;
-    auto bp = Teuchos::parameterList();
-    bp->set("Convergence Tolerance", m.solveTol);
-    bp->set("Maximum Iterations", m.belosMaxIt);
-    bp->set("Verbosity", m.belosVerbosity);
-    bp->set("Output Frequency", m.belosOutputFrequency);
-    bp->setParameters(m.belosExtra);
-    Belos::ReturnType ret = Belos::Unconverged;
-    std::string failure, type = m.belosType;
-    auto run = [&] {
-      lambda->putScalar(0.0);
-      info.conditionEstimate = -1.0;  // from CG only, and from the last run
-      auto solver = factory.create(type, bp);
-      auto problem = rcp(new Belos::LinearProblem<Scalar, MultiVector, Operator>(m.fOp, lambda, d));
-      if (!m.mOp.is_null()) problem->setLeftPrec(m.mOp);
-      problem->setProblem();
-      solver->setProblem(problem);
-      failure.clear();
-      try {
-        ret = solver->solve();
-      } catch (const std::exception& e) {
-        failure = e.what();
-      }
-      info.iterations += solver->getNumIters();
-      if (auto cg = Teuchos::rcp_dynamic_cast<Belos::PseudoBlockCGSolMgr<Scalar, MultiVector, Operator>>(solver))
-        info.conditionEstimate = cg->getConditionEstimate();
-      try {
-        info.relativeResidual = solver->achievedTol();
-      } catch (const std::exception&) {
-        info.relativeResidual = -1.0;
-      }
-    };
-    run();
-    // CG needs F positive definite; an indefinite tangent (past a limit
-    // point) makes it break down on p.F.p <= 0. GMRES does not need it.
-    if (type == "CG" && m.belosGmresOnBreakdown && failure.find("non-positive value for p^H*A*p") != std::string::npos) {
-      type = "GMRES";
-      info.gmresAfterBreakdown = true;
-      run();
-    }
-    if (!failure.empty() || ret != Belos::Converged) {
+  auto bv = b.getData();
+  std::string msg;
+  for (LO l = 0; l < LO(bv.size()); ++l)
+    if (m.ctx.ownedMult[l] == 0 && bv[l] != 0.0) {
       std::ostringstream os;
-      os << "FETI-DP: Belos " << type << " did not converge on F lambda = d (" << m.jump.lmMap->getGlobalNumElements()
-         << " Lagrange multipliers): " << info.iterations << " iterations, achieved relative residual "
-         << std::scientific << info.relativeResidual << ", tolerance " << m.solveTol;
-      if (!failure.empty()) os << "; Belos reported: " << failure;
-      os << ". Raise '" << m.param("Belos/Maximum Iterations") << "' (" << m.belosMaxIt << "), loosen '"
-         << m.param("Belos/Convergence Tolerance") << "', or change '" << m.param("Preconditioner") << "' / '"
-         << m.param("Belos/Solver Type") << "'";
-      throw SolverError(os.str());
+      os << "FetiDpSolver::solve: b = " << bv[l] << " on DOF " << m.ctx.ownedMap->getGlobalElement(l)
+         << ", which belongs to no subdomain";
+      msg = os.str();
+      break;
     }
-  }
-  const double tb1 = MPI_Wtime();
+  raiseCollectively<std::invalid_argument>(m.ctx.mpi, msg);
+}
 
-  m.jump.applyMask(*lambda->getVectorNonConst(0));  // restrained rows: exactly zero
-  m.jump.lastLambda->assign(*lambda->getVector(0));
-
-  // u = K~^{-1} (f~ - B^T lambda)
+/// f~ of each subdomain into DualOperator::local[].fr, fp (and a copy into
+/// frBase, fpBase): interior DOFs as is, dual copies b_j / m_j; the primal
+/// DOFs are assembled directly into the coarse right-hand side
+/// (primalForces()). With edge/face constraints, f^s = T^T (b_j / m_j): the
+/// constraint DOFs get their share in f_Pi^s, summed over the subdomains by
+/// the coarse assembly.
+void subdomainForces(Impl& m, const Vector& b, std::vector<std::vector<double>>& frBase,
+                     std::vector<std::vector<double>>& fpBase) {
+  m.dofOvWork->doImport(b, *m.ctx.dofImport, Tpetra::INSERT);
+  frBase.assign(m.subs.size(), {});
+  fpBase.assign(m.subs.size(), {});
+  auto bo = m.dofOvWork->getData();
+  std::vector<double> f;
   for (size_t ls = 0; ls < m.subs.size(); ++ls) {
-    m.dual.local[ls].fr = frBase[ls];
-    m.dual.local[ls].fp = fpBase[ls];
+    const Subdomain& s = m.subs[ls];
+    LocalProblem& lp = m.dual.local[ls];
+    std::fill(lp.fp.begin(), lp.fp.end(), 0.0);
+    if (s.cob.active()) {
+      f.resize(s.n);
+      for (LO k = 0; k < s.n; ++k) f[k] = bo[s.ovLid[k]] * s.invMult[k];
+      s.cob.forceToNew(f);
+      for (LO r = 0; r < s.nr; ++r) lp.fr[r] = f[s.rDof[r]];
+      for (LO p = 0; p < s.np; ++p)
+        if (s.cob.holdsConstraint(s.pDof[p])) lp.fp[p] = f[s.pDof[p]];
+    } else {
+      for (LO r = 0; r < s.nr; ++r) lp.fr[r] = bo[s.ovLid[s.rDof[r]]] * s.invMult[s.rDof[r]];
+    }
+    frBase[ls] = lp.fr;
+    fpBase[ls] = lp.fp;
   }
-  m.dual.scatterBt(m.jump, *lambda->getVector(0), -1.0);
-  m.dual.applyKtildeInv(m.subs, m.coarse, &fPi);
+}
 
-  // Assemble u: copies of dual DOFs averaged (weights 1/m_j), vertex DOFs
-  // from the coarse solution. With edge/face constraints, u^s = T û^s
-  // first; the DOFs that held constraint values are then averaged like dual
-  // DOFs.
+/// The coarse right-hand side of the primal vertex DOFs: b at their owners
+/// (zero at edge/face constraint values).
+void primalForces(const Impl& m, const Vector& b, Vector& fPi) {
+  auto bv = b.getData();
+  auto f = fPi.getDataNonConst();
+  for (size_t k = 0; k < m.coarse.ownedLid.size(); ++k) f[k] = m.coarse.isEdgeFace[k] ? 0.0 : bv[m.coarse.ownedLid[k]];
+}
+
+/// lambda from F lambda = d by Belos (CG, then GMRES if CG breaks down on an
+/// indefinite F and that is allowed); adds the iterations, residual and
+/// condition estimate to `info`. \throws SolverError if it does not converge.
+void solveDualProblem(Impl& m, const RCP<MultiVector>& d, const RCP<MultiVector>& lambda, FetiDpSolver::Info& info) {
+  Belos::SolverFactory<Scalar, MultiVector, Operator> factory;
+  auto bp = Teuchos::parameterList();
+  bp->set("Convergence Tolerance", m.solveTol);
+  bp->set("Maximum Iterations", m.belosMaxIt);
+  bp->set("Verbosity", m.belosVerbosity);
+  bp->set("Output Frequency", m.belosOutputFrequency);
+  bp->setParameters(m.belosExtra);
+  Belos::ReturnType ret = Belos::Unconverged;
+  std::string failure, type = m.belosType;
+  auto run = [&] {
+    lambda->putScalar(0.0);
+    info.conditionEstimate = -1.0;  // from CG only, and from the last run
+    auto solver = factory.create(type, bp);
+    auto problem = rcp(new Belos::LinearProblem<Scalar, MultiVector, Operator>(m.fOp, lambda, d));
+    if (!m.mOp.is_null()) problem->setLeftPrec(m.mOp);
+    problem->setProblem();
+    solver->setProblem(problem);
+    failure.clear();
+    try {
+      ret = solver->solve();
+    } catch (const std::exception& e) {
+      failure = e.what();
+    }
+    info.iterations += solver->getNumIters();
+    if (auto cg = Teuchos::rcp_dynamic_cast<Belos::PseudoBlockCGSolMgr<Scalar, MultiVector, Operator>>(solver))
+      info.conditionEstimate = cg->getConditionEstimate();
+    try {
+      info.relativeResidual = solver->achievedTol();
+    } catch (const std::exception&) {
+      info.relativeResidual = -1.0;
+    }
+  };
+  run();
+  // CG needs F positive definite; an indefinite tangent (past a limit
+  // point) makes it break down on p.F.p <= 0. GMRES does not need it.
+  if (type == "CG" && m.belosGmresOnBreakdown && failure.find("non-positive value for p^H*A*p") != std::string::npos) {
+    type = "GMRES";
+    info.gmresAfterBreakdown = true;
+    run();
+  }
+  if (!failure.empty() || ret != Belos::Converged) {
+    std::ostringstream os;
+    os << "FETI-DP: Belos " << type << " did not converge on F lambda = d (" << m.jump.lmMap->getGlobalNumElements()
+       << " Lagrange multipliers): " << info.iterations << " iterations, achieved relative residual "
+       << std::scientific << info.relativeResidual << ", tolerance " << m.solveTol;
+    if (!failure.empty()) os << "; Belos reported: " << failure;
+    os << ". Raise '" << m.param("Belos/Maximum Iterations") << "' (" << m.belosMaxIt << "), loosen '"
+       << m.param("Belos/Convergence Tolerance") << "', or change '" << m.param("Preconditioner") << "' / '"
+       << m.param("Belos/Solver Type") << "'";
+    throw SolverError(os.str());
+  }
+}
+
+/// Assemble u from the subdomain solutions (DualOperator::local[].xr, up)
+/// and the coarse solution: copies of dual DOFs averaged (weights 1/m_j),
+/// vertex DOFs from the coarse solution. With edge/face constraints, u^s =
+/// T û^s first; the DOFs that held constraint values are then averaged like
+/// dual DOFs.
+void assembleDisplacement(Impl& m, Vector& u) {
   m.dofOvWork->putScalar(0.0);
   {
     auto uo = m.dofOvWork->getDataNonConst();
@@ -478,6 +457,55 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
     for (size_t k = 0; k < m.coarse.ownedLid.size(); ++k)
       if (!m.coarse.isEdgeFace[k]) uv[m.coarse.ownedLid[k]] = c[k];
   }
+}
+
+}  // namespace
+
+FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
+  Impl& m = *impl_;
+  if (!m.factored) throw std::logic_error("FetiDpSolver::solve() called without a successful numeric()");
+  const double t0 = MPI_Wtime();
+  m.dual.tLocalSolve = m.coarse.tSolve = m.prec.tApply = m.prec.tDirichletSolve = 0.0;
+  m.dual.nApply = m.prec.nApply = 0;
+  Info info = m.setup;
+  if (!m.jump.weightsCurrent) m.jump.computeWeights(m.ctx, m.subs);
+  checkSolveVectors(m, b, u);
+
+  std::vector<std::vector<double>> frBase, fpBase;
+  subdomainForces(m, b, frBase, fpBase);
+  Vector fPi(m.coarse.map);
+  primalForces(m, b, fPi);
+
+  // d = B K~^{-1} f~ (the compatibility constraints have zero right-hand side)
+  auto d = rcp(new MultiVector(m.jump.lmMap, 1));
+  auto lambda = rcp(new MultiVector(m.jump.lmMap, 1));
+  m.dual.applyKtildeInv(m.subs, m.coarse, &fPi);
+  m.dual.gatherB(m.jump, *d->getVectorNonConst(0));
+  // d = P (B K~^{-1} f~ - c)
+  d->getVectorNonConst(0)->update(-1.0, *m.jump.rhs, 1.0);
+  m.jump.applyMask(*d->getVectorNonConst(0));
+
+  double dNorm = 0.0;
+  {
+    Teuchos::Array<double> n(1);
+    d->norm2(n());
+    dNorm = n[0];
+  }
+  const double tb0 = MPI_Wtime();
+  if (m.jump.lmMap->getGlobalNumElements() > 0 && dNorm > 0.0) solveDualProblem(m, d, lambda, info);
+  const double tb1 = MPI_Wtime();
+
+  m.jump.applyMask(*lambda->getVectorNonConst(0));  // restrained rows: exactly zero
+  m.jump.lastLambda->assign(*lambda->getVector(0));
+
+  // u = K~^{-1} (f~ - B^T lambda)
+  for (size_t ls = 0; ls < m.subs.size(); ++ls) {
+    m.dual.local[ls].fr = frBase[ls];
+    m.dual.local[ls].fp = fpBase[ls];
+  }
+  m.dual.scatterBt(m.jump, *lambda->getVector(0), -1.0);
+  m.dual.applyKtildeInv(m.subs, m.coarse, &fPi);
+  assembleDisplacement(m, u);
 
   const double t1 = MPI_Wtime();
   double loc[5] = {t1 - t0, tb1 - tb0, m.dual.tLocalSolve, m.coarse.tSolve, m.prec.tApply};

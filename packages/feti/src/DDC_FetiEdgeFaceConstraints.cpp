@@ -96,9 +96,10 @@ std::vector<std::vector<std::vector<int>>> dofSharingSets(MPI_Comm comm, const M
   return sets;
 }
 
-std::vector<std::vector<PrimalGroup>> findEdgeFaceConstraints(MPI_Comm comm, const Map& ownedMap,
-                                                              const std::vector<EdgeFaceInput>& subs, int dim,
-                                                              PrimalConstraints choice, bool rotations) {
+namespace {
+
+/// Why the input of findEdgeFaceConstraints() is inconsistent, or "".
+std::string edgeFaceInputError(const std::vector<EdgeFaceInput>& subs, int dim, bool rotations) {
   std::string msg;
   if (dim != 2 && dim != 3) msg = "findEdgeFaceConstraints: spatial dimension " + std::to_string(dim) + ", expected 2 or 3";
   for (const auto& s : subs) {
@@ -122,7 +123,96 @@ std::vector<std::vector<PrimalGroup>> findEdgeFaceConstraints(MPI_Comm comm, con
         break;
       }
   }
-  raiseCollectively<std::invalid_argument>(comm, msg);
+  return msg;
+}
+
+/// The DOFs of one subdomain grouped by sharing set (`sets`: per DOF, the
+/// subdomains sharing it; sorted here), keeping the sets that are edges,
+/// and with `faces` faces.
+std::map<std::vector<int>, std::vector<LO>> groupBySharingSet(const EdgeFaceInput& s,
+                                                              std::vector<std::vector<int>>& sets, int dim,
+                                                              bool faces) {
+  std::map<std::vector<int>, std::vector<LO>> groups;
+  for (LO k = 0; k < LO(s.dofs.size()); ++k) {
+    auto& set = sets[k];
+    if (set.size() < 2) continue;
+    std::sort(set.begin(), set.end());
+    // 2-D: a set of two is an edge; a non-primal node of three or more
+    // (a cross point the caller left dual) is no edge. 3-D: two = face,
+    // three or more = edge.
+    const bool isEdge = dim == 2 ? set.size() == 2 : set.size() >= 3;
+    const bool isFace = dim == 3 && set.size() == 2;
+    if (isEdge || (isFace && faces)) groups[set].push_back(k);
+  }
+  return groups;
+}
+
+/// Rigid rotations w x (x - x_c) restricted to the group, made orthogonal
+/// to the rows so far (modified Gram-Schmidt); one that (nearly) vanishes
+/// there is dropped.
+void addRotationRows(const EdgeFaceInput& s, int dim, PrimalGroup& g) {
+  const size_t m = g.dofs.size();
+  std::vector<double> xc(dim, 0.0);
+  for (size_t i = 0; i < m; ++i)
+    for (int d = 0; d < dim; ++d) xc[d] += s.coordinates[size_t(g.dofs[i]) * dim + d] / double(m);
+  const int nRot = dim == 2 ? 1 : 3;
+  for (int r = 0; r < nRot; ++r) {
+    std::vector<double> row(m, 0.0);
+    for (size_t i = 0; i < m; ++i) {
+      const double* x = &s.coordinates[size_t(g.dofs[i]) * dim];
+      const int c = s.component[g.dofs[i]];
+      // 2-D (and rotation about z): (-(y - y_c), x - x_c, 0); about x:
+      // (0, -(z - z_c), y - y_c); about y: (z - z_c, 0, -(x - x_c)).
+      const int axis = dim == 2 ? 2 : r;
+      const int a = (axis + 1) % 3, b = (axis + 2) % 3;  // the plane of the rotation
+      if (c == a) row[i] = -(x[b] - xc[b]);
+      if (c == b) row[i] = x[a] - xc[a];
+    }
+    double n0 = 0.0;
+    for (double v : row) n0 += v * v;
+    n0 = std::sqrt(n0);
+    if (n0 == 0.0) continue;
+    for (size_t q = 0; q < g.rows.size(); ++q) {
+      double dot = 0.0, nn = 0.0;
+      for (size_t i = 0; i < m; ++i) dot += row[i] * g.rows[q][i], nn += g.rows[q][i] * g.rows[q][i];
+      for (size_t i = 0; i < m; ++i) row[i] -= dot / nn * g.rows[q][i];
+    }
+    double n1 = 0.0;
+    for (double v : row) n1 += v * v;
+    n1 = std::sqrt(n1);
+    if (n1 <= 1e-8 * n0) continue;  // vanishes on this edge / face
+    for (double& v : row) v /= n1;
+    g.rows.push_back(std::move(row));
+  }
+}
+
+/// The group of DOFs `dofs` of subdomain `s` (sorted by GID) with its rows:
+/// the average of each component present, and with `rotations` the rigid
+/// rotations.
+PrimalGroup makeGroup(const EdgeFaceInput& s, std::vector<LO> dofs, int dim, bool rotations) {
+  PrimalGroup g;
+  g.dofs = std::move(dofs);
+  std::sort(g.dofs.begin(), g.dofs.end(), [&](LO a, LO b) { return s.dofs[a] < s.dofs[b]; });
+  const size_t m = g.dofs.size();
+  // Translations: the average of each component present.
+  for (int c = 0; c < dim; ++c) {
+    std::vector<double> row(m, 0.0);
+    double count = 0.0;
+    for (size_t i = 0; i < m; ++i) count += s.component[g.dofs[i]] == c ? 1.0 : 0.0;
+    if (count == 0.0) continue;
+    for (size_t i = 0; i < m; ++i) row[i] = s.component[g.dofs[i]] == c ? 1.0 / count : 0.0;
+    g.rows.push_back(std::move(row));
+  }
+  if (rotations) addRotationRows(s, dim, g);
+  return g;
+}
+
+}  // namespace
+
+std::vector<std::vector<PrimalGroup>> findEdgeFaceConstraints(MPI_Comm comm, const Map& ownedMap,
+                                                              const std::vector<EdgeFaceInput>& subs, int dim,
+                                                              PrimalConstraints choice, bool rotations) {
+  raiseCollectively<std::invalid_argument>(comm, edgeFaceInputError(subs, dim, rotations));
 
   std::vector<std::vector<PrimalGroup>> out(subs.size());
   if (choice == PrimalConstraints::Vertices) return out;
@@ -135,71 +225,8 @@ std::vector<std::vector<PrimalGroup>> findEdgeFaceConstraints(MPI_Comm comm, con
   const bool faces = choice == PrimalConstraints::VerticesEdgesAndFaces;
   for (size_t ls = 0; ls < subs.size(); ++ls) {
     const auto& s = subs[ls];
-    std::map<std::vector<int>, std::vector<LO>> groups;
-    for (LO k = 0; k < LO(s.dofs.size()); ++k) {
-      auto& set = sets[ls][k];
-      if (set.size() < 2) continue;
-      std::sort(set.begin(), set.end());
-      // 2-D: a set of two is an edge; a non-primal node of three or more
-      // (a cross point the caller left dual) is no edge. 3-D: two = face,
-      // three or more = edge.
-      const bool isEdge = dim == 2 ? set.size() == 2 : set.size() >= 3;
-      const bool isFace = dim == 3 && set.size() == 2;
-      if (isEdge || (isFace && faces)) groups[set].push_back(k);
-    }
-    for (auto& kv : groups) {
-      PrimalGroup g;
-      g.dofs = std::move(kv.second);
-      std::sort(g.dofs.begin(), g.dofs.end(), [&](LO a, LO b) { return s.dofs[a] < s.dofs[b]; });
-      const size_t m = g.dofs.size();
-      // Translations: the average of each component present.
-      for (int c = 0; c < dim; ++c) {
-        std::vector<double> row(m, 0.0);
-        double count = 0.0;
-        for (size_t i = 0; i < m; ++i) count += s.component[g.dofs[i]] == c ? 1.0 : 0.0;
-        if (count == 0.0) continue;
-        for (size_t i = 0; i < m; ++i) row[i] = s.component[g.dofs[i]] == c ? 1.0 / count : 0.0;
-        g.rows.push_back(std::move(row));
-      }
-      if (rotations) {
-        // Rigid rotations w x (x - x_c) restricted to the group, made
-        // orthogonal to the rows so far (modified Gram-Schmidt); one that
-        // (nearly) vanishes there is dropped.
-        std::vector<double> xc(dim, 0.0);
-        for (size_t i = 0; i < m; ++i)
-          for (int d = 0; d < dim; ++d) xc[d] += s.coordinates[size_t(g.dofs[i]) * dim + d] / double(m);
-        const int nRot = dim == 2 ? 1 : 3;
-        for (int r = 0; r < nRot; ++r) {
-          std::vector<double> row(m, 0.0);
-          for (size_t i = 0; i < m; ++i) {
-            const double* x = &s.coordinates[size_t(g.dofs[i]) * dim];
-            const int c = s.component[g.dofs[i]];
-            // 2-D (and rotation about z): (-(y - y_c), x - x_c, 0); about x:
-            // (0, -(z - z_c), y - y_c); about y: (z - z_c, 0, -(x - x_c)).
-            const int axis = dim == 2 ? 2 : r;
-            const int a = (axis + 1) % 3, b = (axis + 2) % 3;  // the plane of the rotation
-            if (c == a) row[i] = -(x[b] - xc[b]);
-            if (c == b) row[i] = x[a] - xc[a];
-          }
-          double n0 = 0.0;
-          for (double v : row) n0 += v * v;
-          n0 = std::sqrt(n0);
-          if (n0 == 0.0) continue;
-          for (size_t q = 0; q < g.rows.size(); ++q) {
-            double dot = 0.0, nn = 0.0;
-            for (size_t i = 0; i < m; ++i) dot += row[i] * g.rows[q][i], nn += g.rows[q][i] * g.rows[q][i];
-            for (size_t i = 0; i < m; ++i) row[i] -= dot / nn * g.rows[q][i];
-          }
-          double n1 = 0.0;
-          for (double v : row) n1 += v * v;
-          n1 = std::sqrt(n1);
-          if (n1 <= 1e-8 * n0) continue;  // vanishes on this edge / face
-          for (double& v : row) v /= n1;
-          g.rows.push_back(std::move(row));
-        }
-      }
-      out[ls].push_back(std::move(g));
-    }
+    for (auto& kv : groupBySharingSet(s, sets[ls], dim, faces))
+      out[ls].push_back(makeGroup(s, std::move(kv.second), dim, rotations));
     std::sort(out[ls].begin(), out[ls].end(), [&](const PrimalGroup& a, const PrimalGroup& b) {
       return s.dofs[a.dofs[0]] < s.dofs[b.dofs[0]];
     });

@@ -89,6 +89,219 @@ Teuchos::RCP<const Teuchos::ParameterList> ExodusMeshReader::getValidParameters(
   return valid;
 }
 
+namespace {
+
+/// The element blocks of the file, in file order.
+struct ExodusBlocks {
+  std::vector<int> ids;
+  std::vector<std::string> names;
+  std::vector<int> size, nodesPerElement;  ///< read by readSizes()
+  std::vector<std::string> type;           ///< upper case
+
+  /// "'name' (id 1), ..." or "none", for messages.
+  std::string list() const {
+    std::ostringstream os;
+    for (size_t b = 0; b < ids.size(); ++b)
+      os << (b ? ", " : "") << "'" << (names[b].empty() ? std::to_string(ids[b]) : names[b]) << "' (id " << ids[b]
+         << ")";
+    return ids.empty() ? std::string("none") : os.str();
+  }
+  void readSizes(const ExodusFile& ex) {
+    size.resize(ids.size()), nodesPerElement.resize(ids.size()), type.resize(ids.size());
+    for (size_t b = 0; b < ids.size(); ++b) {
+      char etype[MAX_STR_LENGTH + 1] = {0};
+      int n = 0, npe = 0, nedge = 0, nface = 0, nattr = 0;
+      ex.check(ex_get_block(ex.id(), EX_ELEM_BLOCK, ids[b], etype, &n, &npe, &nedge, &nface, &nattr),
+               "element block " + std::to_string(ids[b]));
+      size[b] = n, nodesPerElement[b] = npe, type[b] = upper(etype);
+    }
+  }
+};
+
+/// One body read from an open file by readExodusBody(), in the steps of
+/// read(); every check fails with ExodusFile::fail().
+class ExodusBodyReader {
+ public:
+  ExodusBodyReader(const ExodusFile& ex, Mesh& mesh, const std::string& bodyName, CellType type,
+                   const std::string& path)
+      : ex_(ex), mesh_(mesh), bodyName_(bodyName), type_(type), path_(path), bodyDim_(cellDimension(type)),
+        nen_(numCellNodes(type)), ref_(referenceCell(type)) {}
+
+  int read(const std::string& wantedBlock) {
+    readSizes();
+    chooseBlock(wantedBlock);
+    checkBlock();
+    readNodesAndElements();
+    readNodeSets();
+    readSideSets();
+    return body_;
+  }
+
+ private:
+  /// The file's sizes; its dimension must be the body's (or 3 for a 2-D body).
+  void readSizes() {
+    char title[MAX_LINE_LENGTH + 1] = {0};
+    int numBlocks = 0, numNodeSets = 0, numSideSets = 0;
+    ex_.check(ex_get_init(ex_.id(), title, &dim_, &numNodes_, &numElems_, &numBlocks, &numNodeSets, &numSideSets),
+              "its sizes");
+    if (dim_ != bodyDim_ && !(bodyDim_ == 2 && dim_ == 3))
+      ex_.fail("it is " + std::to_string(dim_) + "-D, but the element type " + cellTypeName(type_) + " of body '" +
+               bodyName_ + "' is " + std::to_string(bodyDim_) + "-D");
+  }
+
+  /// The block that is the body: by name or id, or the file's only block.
+  void chooseBlock(const std::string& wanted) {
+    blocks_.ids = ex_.ids(EX_ELEM_BLOCK, "the element block ids");
+    blocks_.names = ex_.names(EX_ELEM_BLOCK, int(blocks_.ids.size()), "the element block names");
+    if (wanted.empty()) {
+      if (blocks_.ids.size() != 1)
+        ex_.fail("it has " + std::to_string(blocks_.ids.size()) + " element blocks (" + blocks_.list() +
+                 "); set '" + joinPath(path_, "Element Block") + "' to the one that is body '" + bodyName_ + "'");
+      block_ = 0;
+    } else {
+      for (size_t b = 0; b < blocks_.ids.size() && block_ < 0; ++b)
+        if (blocks_.names[b] == wanted || std::to_string(blocks_.ids[b]) == wanted) block_ = int(b);
+      if (block_ < 0)
+        ex_.fail("no element block '" + wanted + "' ('" + joinPath(path_, "Element Block") +
+                 "'); its blocks are " + blocks_.list());
+    }
+    blockLabel_ = "element block '" +
+                  (blocks_.names[block_].empty() ? std::to_string(blocks_.ids[block_]) : blocks_.names[block_]) + "'";
+  }
+
+  /// The block's elements are of the body's type, and there are some.
+  /// Elements are numbered across the blocks in block order: firstElem_.
+  void checkBlock() {
+    blocks_.readSizes(ex_);
+    for (int b = 0; b < block_; ++b) firstElem_ += blocks_.size[b];
+    const auto accepted = exodusElementTypeNames(type_);
+    if (std::find(accepted.begin(), accepted.end(), blocks_.type[block_]) == accepted.end() ||
+        blocks_.nodesPerElement[block_] != nen_) {
+      std::ostringstream os;
+      os << blockLabel_ << " has elements of type '" << blocks_.type[block_] << "' with "
+         << blocks_.nodesPerElement[block_] << " nodes; the element type " << cellTypeName(type_) << " of body '"
+         << bodyName_ << "' needs " << nen_ << "-node elements of type";
+      for (size_t i = 0; i < accepted.size(); ++i) os << (i ? " or '" : " '") << accepted[i] << "'";
+      ex_.fail(os.str());
+    }
+    if (blocks_.size[block_] == 0) ex_.fail(blockLabel_ + " has no elements");
+  }
+
+  /// The body, its nodes (those of the block, in file order) and elements.
+  void readNodesAndElements() {
+    const int numBlockElems = blocks_.size[block_];
+    std::vector<int> conn(size_t(numBlockElems) * nen_);
+    ex_.check(ex_get_conn(ex_.id(), EX_ELEM_BLOCK, blocks_.ids[block_], conn.data(), nullptr, nullptr),
+              "the connectivity of " + blockLabel_);
+    std::vector<double> x(numNodes_), y(numNodes_), z(numNodes_, 0.0);
+    ex_.check(ex_get_coord(ex_.id(), x.data(), y.data(), dim_ == 3 ? z.data() : nullptr), "the coordinates");
+    local_.assign(numNodes_, -1);
+    for (int n : conn) {
+      if (n < 1 || n > numNodes_)
+        ex_.fail(blockLabel_ + " names node " + std::to_string(n) + "; the file has nodes 1 to " +
+                 std::to_string(numNodes_));
+      local_[n - 1] = 0;
+    }
+    mesh_.requireRoom(double(std::count(local_.begin(), local_.end(), 0)), numBlockElems, nen_, path_);
+    body_ = mesh_.beginBody(bodyName_, type_);
+    for (int n = 0; n < numNodes_; ++n) {
+      if (local_[n] < 0) continue;
+      if (bodyDim_ == 2 && std::abs(z[n]) > 1e-10 * std::max({1.0, std::abs(x[n]), std::abs(y[n])}))
+        ex_.fail("node " + std::to_string(n + 1) + " of " + blockLabel_ + " has z = " + std::to_string(z[n]) +
+                 ", and body '" + bodyName_ + "' is 2-D (planar meshes in z = 0 only)");
+      local_[n] = mesh_.addNode(x[n], y[n], bodyDim_ == 3 ? z[n] : 0.0);
+    }
+    addElements(conn);
+    bodyFirstElement_ = mesh_.body(body_).firstElement;
+  }
+
+  /// The block's elements in DDContact's node order, each valid.
+  void addElements(const std::vector<int>& conn) {
+    const auto& order = exodusNodeOrder(type_);
+    for (int e = 0; e < blocks_.size[block_]; ++e) {
+      int nodes[27];
+      for (int i = 0; i < nen_; ++i) nodes[order[i]] = local_[conn[size_t(e) * nen_ + i] - 1];
+      std::array<std::array<double, 3>, 8> corners;
+      for (int i = 0; i < ref_.numCorners; ++i) corners[i] = mesh_.coord(nodes[i]);
+      const CornerJacobian j = cornerJacobian(type_, corners.data());
+      if (j.verdict != CornerJacobian::Verdict::Valid)
+        ex_.fail("element " + std::to_string(firstElem_ + e + 1) + " (element " + std::to_string(e + 1) + " of " +
+                 blockLabel_ + ") is " + describeCornerJacobian(type_, j));
+      mesh_.addElement(nodes);
+    }
+  }
+
+  /// The node sets, restricted to the body's nodes (empty ones dropped).
+  void readNodeSets() {
+    const std::vector<int> nsIds = ex_.ids(EX_NODE_SET, "the node set ids");
+    const std::vector<std::string> nsNames = ex_.names(EX_NODE_SET, int(nsIds.size()), "the node set names");
+    for (size_t s = 0; s < nsIds.size(); ++s) {
+      const std::string name = nsNames[s].empty() ? "nodeset_" + std::to_string(nsIds[s]) : nsNames[s];
+      int n = 0, ndf = 0;
+      ex_.check(ex_get_set_param(ex_.id(), EX_NODE_SET, nsIds[s], &n, &ndf), "node set '" + name + "'");
+      std::vector<int> entries(n);
+      if (n)
+        ex_.check(ex_get_set(ex_.id(), EX_NODE_SET, nsIds[s], entries.data(), nullptr), "node set '" + name + "'");
+      std::vector<int> nodes;
+      for (int v : entries) {
+        if (v < 1 || v > numNodes_)
+          ex_.fail("node set '" + name + "' names node " + std::to_string(v) + "; the file has nodes 1 to " +
+                   std::to_string(numNodes_));
+        if (local_[v - 1] >= 0) nodes.push_back(local_[v - 1]);
+      }
+      if (!nodes.empty()) mesh_.addNodeSet(body_, name, std::move(nodes));
+    }
+  }
+
+  /// The side sets, restricted to the body's elements (empty ones dropped).
+  void readSideSets() {
+    const std::vector<int> ssIds = ex_.ids(EX_SIDE_SET, "the side set ids");
+    const std::vector<std::string> ssNames = ex_.names(EX_SIDE_SET, int(ssIds.size()), "the side set names");
+    for (size_t s = 0; s < ssIds.size(); ++s) {
+      const std::string name = ssNames[s].empty() ? "sideset_" + std::to_string(ssIds[s]) : ssNames[s];
+      int n = 0, ndf = 0;
+      ex_.check(ex_get_set_param(ex_.id(), EX_SIDE_SET, ssIds[s], &n, &ndf), "side set '" + name + "'");
+      std::vector<int> elems(n), sides(n);
+      if (n)
+        ex_.check(ex_get_set(ex_.id(), EX_SIDE_SET, ssIds[s], elems.data(), sides.data()), "side set '" + name + "'");
+      std::vector<Segment> segments;
+      for (int k = 0; k < n; ++k) {
+        if (elems[k] < 1 || elems[k] > numElems_)
+          ex_.fail("side set '" + name + "' names element " + std::to_string(elems[k]) +
+                   "; the file has elements 1 to " + std::to_string(numElems_));
+        const int e = elems[k] - 1 - firstElem_;
+        if (e < 0 || e >= blocks_.size[block_]) continue;  // a side of another block
+        const int f = exodusFacetOfSide(type_, sides[k]);
+        if (f < 0)
+          ex_.fail("side set '" + name + "' names side " + std::to_string(sides[k]) + " of element " +
+                   std::to_string(elems[k]) + ", and a " + blocks_.type[block_] + " element has sides 1 to " +
+                   std::to_string(ref_.facets.size()));
+        segments.push_back(mesh_.makeSegment(bodyFirstElement_ + e, f));
+      }
+      if (!segments.empty()) mesh_.addSideSet(body_, name, std::move(segments));
+    }
+  }
+
+  const ExodusFile& ex_;
+  Mesh& mesh_;
+  const std::string& bodyName_;
+  const CellType type_;
+  const std::string& path_;
+  const int bodyDim_;
+  const int nen_;
+  const ReferenceCell& ref_;
+  int dim_ = 0, numNodes_ = 0, numElems_ = 0;  ///< of the file
+  ExodusBlocks blocks_;
+  int block_ = -1;     ///< index into blocks_
+  std::string blockLabel_;
+  int firstElem_ = 0;  ///< 0-based file element number of the block's first element
+  std::vector<int> local_;  ///< file node (0-based) -> node of the mesh, -1: not in the body
+  int body_ = -1;
+  int bodyFirstElement_ = 0;
+};
+
+}  // namespace
+
 int readExodusBody(Mesh& mesh, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
                    const std::string& path, const std::string& baseDirectory) {
   validateLevel(params, *ExodusMeshReader::getValidParameters(), path);
@@ -97,147 +310,7 @@ int readExodusBody(Mesh& mesh, const std::string& bodyName, CellType type, Teuch
                                                  << bodyName << "'");
   const std::string resolved = resolveDeckFile(file, baseDirectory);
   const ExodusFile ex(resolved, "'" + joinPath(path, "File") + "' (body '" + bodyName + "')");
-  const int exo = ex.id();
-
-  // ---- the file's size and the block --------------------------------------
-  char title[MAX_LINE_LENGTH + 1] = {0};
-  int dim = 0, numNodes = 0, numElems = 0, numBlocks = 0, numNodeSets = 0, numSideSets = 0;
-  ex.check(ex_get_init(exo, title, &dim, &numNodes, &numElems, &numBlocks, &numNodeSets, &numSideSets), "its sizes");
-  const int bodyDim = cellDimension(type);
-  if (dim != bodyDim && !(bodyDim == 2 && dim == 3))
-    ex.fail("it is " + std::to_string(dim) + "-D, but the element type " + cellTypeName(type) + " of body '" +
-            bodyName + "' is " + std::to_string(bodyDim) + "-D");
-  const std::vector<int> blockIds = ex.ids(EX_ELEM_BLOCK, "the element block ids");
-  const std::vector<std::string> blockNames = ex.names(EX_ELEM_BLOCK, int(blockIds.size()), "the element block names");
-  auto listBlocks = [&] {
-    std::ostringstream os;
-    for (size_t b = 0; b < blockIds.size(); ++b)
-      os << (b ? ", " : "") << "'" << (blockNames[b].empty() ? std::to_string(blockIds[b]) : blockNames[b]) << "' (id "
-         << blockIds[b] << ")";
-    return blockIds.empty() ? std::string("none") : os.str();
-  };
-  const std::string wanted = params.get<std::string>("Element Block");
-  int block = -1;  // index into blockIds
-  if (wanted.empty()) {
-    if (blockIds.size() != 1)
-      ex.fail("it has " + std::to_string(blockIds.size()) + " element blocks (" + listBlocks() + "); set '" +
-              joinPath(path, "Element Block") + "' to the one that is body '" + bodyName + "'");
-    block = 0;
-  } else {
-    for (size_t b = 0; b < blockIds.size() && block < 0; ++b)
-      if (blockNames[b] == wanted || std::to_string(blockIds[b]) == wanted) block = int(b);
-    if (block < 0)
-      ex.fail("no element block '" + wanted + "' ('" + joinPath(path, "Element Block") + "'); its blocks are " +
-              listBlocks());
-  }
-  const std::string blockLabel =
-      "element block '" + (blockNames[block].empty() ? std::to_string(blockIds[block]) : blockNames[block]) + "'";
-  // Elements are numbered across the blocks in block order: the first
-  // element of each block.
-  std::vector<int> blockSize(blockIds.size()), blockNodes(blockIds.size());
-  std::vector<std::string> blockType(blockIds.size());
-  for (size_t b = 0; b < blockIds.size(); ++b) {
-    char etype[MAX_STR_LENGTH + 1] = {0};
-    int n = 0, npe = 0, nedge = 0, nface = 0, nattr = 0;
-    ex.check(ex_get_block(exo, EX_ELEM_BLOCK, blockIds[b], etype, &n, &npe, &nedge, &nface, &nattr),
-             "element block " + std::to_string(blockIds[b]));
-    blockSize[b] = n, blockNodes[b] = npe, blockType[b] = upper(etype);
-  }
-  int firstElem = 0;  // 0-based file element number of the block's first element
-  for (int b = 0; b < block; ++b) firstElem += blockSize[b];
-  const auto accepted = exodusElementTypeNames(type);
-  const int nen = numCellNodes(type);
-  if (std::find(accepted.begin(), accepted.end(), blockType[block]) == accepted.end() || blockNodes[block] != nen) {
-    std::ostringstream os;
-    os << blockLabel << " has elements of type '" << blockType[block] << "' with " << blockNodes[block]
-       << " nodes; the element type " << cellTypeName(type) << " of body '" << bodyName << "' needs " << nen
-       << "-node elements of type";
-    for (size_t i = 0; i < accepted.size(); ++i) os << (i ? " or '" : " '") << accepted[i] << "'";
-    ex.fail(os.str());
-  }
-  if (blockSize[block] == 0) ex.fail(blockLabel + " has no elements");
-
-  // ---- nodes and elements ---------------------------------------------------
-  std::vector<int> conn(size_t(blockSize[block]) * nen);
-  ex.check(ex_get_conn(exo, EX_ELEM_BLOCK, blockIds[block], conn.data(), nullptr, nullptr),
-           "the connectivity of " + blockLabel);
-  std::vector<double> x(numNodes), y(numNodes), z(numNodes, 0.0);
-  ex.check(ex_get_coord(exo, x.data(), y.data(), dim == 3 ? z.data() : nullptr), "the coordinates");
-  std::vector<int> local(numNodes, -1);  // file node (0-based) -> node of the body (0-based within it)
-  for (int n : conn) {
-    if (n < 1 || n > numNodes)
-      ex.fail(blockLabel + " names node " + std::to_string(n) + "; the file has nodes 1 to " + std::to_string(numNodes));
-    local[n - 1] = 0;
-  }
-  mesh.requireRoom(double(std::count(local.begin(), local.end(), 0)), blockSize[block], nen, path);
-  const int b = mesh.beginBody(bodyName, type);
-  for (int n = 0; n < numNodes; ++n) {
-    if (local[n] < 0) continue;
-    if (bodyDim == 2 && std::abs(z[n]) > 1e-10 * std::max({1.0, std::abs(x[n]), std::abs(y[n])}))
-      ex.fail("node " + std::to_string(n + 1) + " of " + blockLabel + " has z = " + std::to_string(z[n]) +
-              ", and body '" + bodyName + "' is 2-D (planar meshes in z = 0 only)");
-    local[n] = mesh.addNode(x[n], y[n], bodyDim == 3 ? z[n] : 0.0);
-  }
-  const auto& order = exodusNodeOrder(type);
-  const ReferenceCell& ref = referenceCell(type);
-  for (int e = 0; e < blockSize[block]; ++e) {
-    int nodes[27];
-    for (int i = 0; i < nen; ++i) nodes[order[i]] = local[conn[size_t(e) * nen + i] - 1];
-    std::array<std::array<double, 3>, 8> corners;
-    for (int i = 0; i < ref.numCorners; ++i) corners[i] = mesh.coord(nodes[i]);
-    const CornerJacobian j = cornerJacobian(type, corners.data());
-    if (j.verdict != CornerJacobian::Verdict::Valid)
-      ex.fail("element " + std::to_string(firstElem + e + 1) + " (element " + std::to_string(e + 1) + " of " +
-              blockLabel + ") is " + describeCornerJacobian(type, j));
-    mesh.addElement(nodes);
-  }
-  const int bodyFirstElement = mesh.body(b).firstElement;
-
-  // ---- node sets ----------------------------------------------------------
-  const std::vector<int> nsIds = ex.ids(EX_NODE_SET, "the node set ids");
-  const std::vector<std::string> nsNames = ex.names(EX_NODE_SET, int(nsIds.size()), "the node set names");
-  for (size_t s = 0; s < nsIds.size(); ++s) {
-    const std::string name = nsNames[s].empty() ? "nodeset_" + std::to_string(nsIds[s]) : nsNames[s];
-    int n = 0, ndf = 0;
-    ex.check(ex_get_set_param(exo, EX_NODE_SET, nsIds[s], &n, &ndf), "node set '" + name + "'");
-    std::vector<int> entries(n);
-    if (n) ex.check(ex_get_set(exo, EX_NODE_SET, nsIds[s], entries.data(), nullptr), "node set '" + name + "'");
-    std::vector<int> nodes;
-    for (int v : entries) {
-      if (v < 1 || v > numNodes)
-        ex.fail("node set '" + name + "' names node " + std::to_string(v) + "; the file has nodes 1 to " +
-                std::to_string(numNodes));
-      if (local[v - 1] >= 0) nodes.push_back(local[v - 1]);
-    }
-    if (!nodes.empty()) mesh.addNodeSet(b, name, std::move(nodes));
-  }
-
-  // ---- side sets ----------------------------------------------------------
-  const std::vector<int> ssIds = ex.ids(EX_SIDE_SET, "the side set ids");
-  const std::vector<std::string> ssNames = ex.names(EX_SIDE_SET, int(ssIds.size()), "the side set names");
-  for (size_t s = 0; s < ssIds.size(); ++s) {
-    const std::string name = ssNames[s].empty() ? "sideset_" + std::to_string(ssIds[s]) : ssNames[s];
-    int n = 0, ndf = 0;
-    ex.check(ex_get_set_param(exo, EX_SIDE_SET, ssIds[s], &n, &ndf), "side set '" + name + "'");
-    std::vector<int> elems(n), sides(n);
-    if (n) ex.check(ex_get_set(exo, EX_SIDE_SET, ssIds[s], elems.data(), sides.data()), "side set '" + name + "'");
-    std::vector<Segment> segments;
-    for (int k = 0; k < n; ++k) {
-      if (elems[k] < 1 || elems[k] > numElems)
-        ex.fail("side set '" + name + "' names element " + std::to_string(elems[k]) + "; the file has elements 1 to " +
-                std::to_string(numElems));
-      const int e = elems[k] - 1 - firstElem;
-      if (e < 0 || e >= blockSize[block]) continue;  // a side of another block
-      const int f = exodusFacetOfSide(type, sides[k]);
-      if (f < 0)
-        ex.fail("side set '" + name + "' names side " + std::to_string(sides[k]) + " of element " +
-                std::to_string(elems[k]) + ", and a " + blockType[block] + " element has sides 1 to " +
-                std::to_string(ref.facets.size()));
-      segments.push_back(mesh.makeSegment(bodyFirstElement + e, f));
-    }
-    if (!segments.empty()) mesh.addSideSet(b, name, std::move(segments));
-  }
-  return b;
+  return ExodusBodyReader(ex, mesh, bodyName, type, path).read(params.get<std::string>("Element Block"));
 }
 
 }  // namespace ddc

@@ -474,82 +474,133 @@ int readGmshBody(Mesh& mesh, const std::string& bodyName, CellType type, Teuchos
   }
 }
 
-int readGmshFile(Mesh& mesh, const std::string& bodyName, CellType type, const std::string& fileName,
-                 const std::string& physicalGroup) {
-  const MshData d = parseMsh(fileName);
-  auto fail = [&](const std::string& msg) -> void { DDC_THROW(InputError, "Gmsh file '" << fileName << "': " << msg); };
-  auto failAt = [&](int line, const std::string& msg) -> void {
-    DDC_THROW(InputError, "Gmsh file '" << fileName << "', line " << line << ": " << msg);
-  };
-  const ReferenceCell& ref = referenceCell(type);
-  const int dim = ref.dim;
-  const bool solid = dim == 3;
-  const bool quad9 = type == CellType::Quad9;
-  const int wantElement = gmshTypeOf(type);
-  const CellType facetType = ref.facets[0].type;
-  const int wantFacet = gmshTypeOf(facetType);
-  const int nen = ref.numNodes;
-  const std::string groupWord = std::string("physical ") + kEntityWord[dim];          // selects the body
-  const std::string facetGroupWord = std::string("physical ") + kEntityWord[dim - 1];  // side sets
-  const std::string facetWord = solid ? "face element " : "line element ";
-  const std::string dimWord = std::to_string(dim) + "-D";
+namespace {
 
-  // ---- 1. the physical surface (2-D) / volume (3-D) selecting the body's elements
-  int selectedTag = -1;
-  if (!physicalGroup.empty()) {
+/// One body read from the parsed file by readGmshFile(), in the steps of
+/// read(). Every check fails with an InputError naming the file (and the
+/// line where the check has one); nothing touches the mesh before commit(),
+/// so an error leaves it intact.
+class GmshBodyReader {
+ public:
+  GmshBodyReader(const MshData& d, const std::string& fileName, const std::string& bodyName, CellType type,
+                 const std::string& physicalGroup)
+      : d_(d),
+        fileName_(fileName),
+        bodyName_(bodyName),
+        physicalGroup_(physicalGroup),
+        type_(type),
+        ref_(referenceCell(type)),
+        dim_(ref_.dim),
+        solid_(dim_ == 3),
+        quad9_(type == CellType::Quad9),
+        wantElement_(gmshTypeOf(type)),
+        facetType_(ref_.facets[0].type),
+        wantFacet_(gmshTypeOf(facetType_)),
+        nen_(ref_.numNodes),
+        groupWord_(std::string("physical ") + kEntityWord[dim_]),
+        facetGroupWord_(std::string("physical ") + kEntityWord[dim_ - 1]),
+        facetWord_(solid_ ? "face element " : "line element "),
+        dimWord_(std::to_string(dim_) + "-D") {}
+
+  /// Reads the body into `mesh`; returns its index.
+  int read(Mesh& mesh) {
+    selectBodyGroup();
+    collectBodyBlocks();
+    numberNodes();
+    buildConnectivity();
+    indexFacets();
+    readSideSets();
+    readNodeSets();
+    return commit(mesh);
+  }
+
+ private:
+  using ElementFacet = std::pair<int, int>;  // (element, local facet)
+
+  [[noreturn]] void fail(const std::string& msg) const {
+    DDC_THROW(InputError, "Gmsh file '" << fileName_ << "': " << msg);
+  }
+  [[noreturn]] void failAt(int line, const std::string& msg) const {
+    DDC_THROW(InputError, "Gmsh file '" << fileName_ << "', line " << line << ": " << msg);
+  }
+  /// A bad element `l` of a side set block: 3-D messages name its line.
+  [[noreturn]] void failSideSet(const ElementBlock& b, size_t l, const std::string& msg) const {
+    if (solid_) failAt(b.lines[l], msg);
+    fail(msg);
+  }
+
+  /// 1. The tag of the physical surface (2-D) / volume (3-D) selecting the
+  /// body's elements; -1 without a selection.
+  void selectBodyGroup() {
+    if (physicalGroup_.empty()) return;
     std::set<std::string> groups;
-    for (const auto& kv : d.physicalNames)
-      if (kv.first.first == dim) {
+    for (const auto& kv : d_.physicalNames)
+      if (kv.first.first == dim_) {
         groups.insert(kv.second);
-        if (kv.second == physicalGroup) selectedTag = kv.first.second;
+        if (kv.second == physicalGroup_) selectedTag_ = kv.first.second;
       }
-    if (selectedTag < 0) {
+    if (selectedTag_ < 0) {
       std::string hint;
-      for (const auto& kv : d.physicalNames)
-        if (kv.second == physicalGroup && kv.first.first != dim)
-          hint = " ('" + physicalGroup + "' is a physical " + kEntityWord[kv.first.first] + ")";
-      fail("no " + groupWord + " named '" + physicalGroup + "'; " + groupWord + "s are " + quotedNames(groups) + hint);
+      for (const auto& kv : d_.physicalNames)
+        if (kv.second == physicalGroup_ && kv.first.first != dim_)
+          hint = " ('" + physicalGroup_ + "' is a physical " + kEntityWord[kv.first.first] + ")";
+      fail("no " + groupWord_ + " named '" + physicalGroup_ + "'; " + groupWord_ + "s are " + quotedNames(groups) +
+           hint);
     }
-    if (!d.hasEntities) fail("a $Entities section is needed to select " + groupWord + " '" + physicalGroup + "'");
+    if (!d_.hasEntities) fail("a $Entities section is needed to select " + groupWord_ + " '" + physicalGroup_ + "'");
   }
-  auto selected = [&](const ElementBlock& b) {
-    if (b.dim != dim) return false;
-    if (selectedTag < 0) return true;
-    const auto& ph = physicalsOf(d, dim, b.entity);
-    return std::find(ph.begin(), ph.end(), selectedTag) != ph.end();
-  };
 
-  // ---- 2. the body's elements, type-checked
-  std::vector<const ElementBlock*> bodyBlocks;
-  for (const auto& b : d.blocks) {
-    if (b.dim == 3 && !solid)
-      failAt(b.line, "3-D elements (type " + std::to_string(b.type) + ", volume " + std::to_string(b.entity) +
-                         ") are not supported in body '" + bodyName + "' of 2-D element type " +
-                         cellTypeName(type) + "; a 3-D mesh needs a 3-D element type (Hex8, Hex20, Hex27, Tet4, "
-                         "Tet10)");
-    if (selected(b)) bodyBlocks.push_back(&b);
+  bool selected(const ElementBlock& b) const {
+    if (b.dim != dim_) return false;
+    if (selectedTag_ < 0) return true;
+    const auto& ph = physicalsOf(d_, dim_, b.entity);
+    return std::find(ph.begin(), ph.end(), selectedTag_) != ph.end();
   }
-  if (solid)
-    for (const auto* b : bodyBlocks)
-      if (b->type != bodyBlocks.front()->type)
-        failAt(b->line, "mixed element types in one body: volume " + std::to_string(bodyBlocks.front()->entity) +
-                            " (line " + std::to_string(bodyBlocks.front()->line) + ") has " +
-                            gmshTypeText(bodyBlocks.front()->type) + ", volume " + std::to_string(b->entity) +
-                            " has " + gmshTypeText(b->type) + "; body '" + bodyName +
-                            "' has one element type: give each element type its own physical volume and body");
-  for (const auto* bp : bodyBlocks) {
-    const ElementBlock& b = *bp;
-    if (b.type == wantElement) {
+
+  /// 2. The blocks of the body's elements, type-checked.
+  void collectBodyBlocks() {
+    for (const auto& b : d_.blocks) {
+      if (b.dim == 3 && !solid_)
+        failAt(b.line, "3-D elements (type " + std::to_string(b.type) + ", volume " + std::to_string(b.entity) +
+                           ") are not supported in body '" + bodyName_ + "' of 2-D element type " +
+                           cellTypeName(type_) + "; a 3-D mesh needs a 3-D element type (Hex8, Hex20, Hex27, Tet4, "
+                           "Tet10)");
+      if (selected(b)) bodyBlocks_.push_back(&b);
+    }
+    if (solid_)
+      for (const auto* b : bodyBlocks_)
+        if (b->type != bodyBlocks_.front()->type)
+          failAt(b->line, "mixed element types in one body: volume " + std::to_string(bodyBlocks_.front()->entity) +
+                              " (line " + std::to_string(bodyBlocks_.front()->line) + ") has " +
+                              gmshTypeText(bodyBlocks_.front()->type) + ", volume " + std::to_string(b->entity) +
+                              " has " + gmshTypeText(b->type) + "; body '" + bodyName_ +
+                              "' has one element type: give each element type its own physical volume and body");
+    for (const auto* b : bodyBlocks_) checkElementType(*b);
+    for (const auto* b : bodyBlocks_) numElems_ += b->tags.size();
+    if (numElems_ == 0) {
+      if (!physicalGroup_.empty()) fail(groupWord_ + " '" + physicalGroup_ + "' has no " + dimWord_ + " elements");
+      if (solid_)
+        fail("no 3-D elements found (expected " + gmshTypeText(wantElement_) + "). Note: once physical groups "
+             "exist, Gmsh saves only their elements: define a Physical Volume for the body or set Mesh.SaveAll=1");
+      fail("no 2-D elements found (expected quadrangles). Note: once physical groups exist, Gmsh saves only "
+           "their elements: define a Physical Surface for the body or set Mesh.SaveAll=1");
+    }
+  }
+
+  /// A block of the body has the body's element type with every node count
+  /// right, or the read fails saying what was expected.
+  void checkElementType(const ElementBlock& b) const {
+    if (b.type == wantElement_) {
       if (!b.countError.empty()) failAt(b.countErrorLine, b.countError);
-      continue;
+      return;
     }
     std::ostringstream os;
-    if (solid) {
+    if (solid_) {
       os << "volume " << b.entity << " has " << gmshTypeText(b.type);
       const GmshType* t = gmshType(b.type);
       if (gmshNumNodes(b.type) > 0 && t->dim == 3)
-        os << " but body '" << bodyName << "' has element type " << cellTypeName(type) << "; expected "
-           << gmshTypeText(wantElement) << " (" << gmshOptionsFor(type) << ")";
+        os << " but body '" << bodyName_ << "' has element type " << cellTypeName(type_) << "; expected "
+           << gmshTypeText(wantElement_) << " (" << gmshOptionsFor(type_) << ")";
       else
         os << ", which DDContact does not support; a 3-D body reads " << supportedVolumeTypes();
       failAt(b.line, os.str());
@@ -561,248 +612,322 @@ int readGmshFile(Mesh& mesh, const std::string& bodyName, CellType type, const s
       os << " (8-node quadrangles): not supported; use complete 9-node quadrangles "
             "(Mesh.SecondOrderIncomplete=0) with element type Quad9";
     else if (b.type == 3 || b.type == 10)
-      os << " (" << (b.type == 3 ? "4" : "9") << "-node quadrangles) but body '" << bodyName
-         << "' has element type " << cellTypeName(type) << "; expected "
-         << (quad9 ? "9-node quadrangles (type 10; Mesh.ElementOrder=2, Mesh.SecondOrderIncomplete=0)"
-                   : "4-node quadrangles (type 3; Mesh.ElementOrder=1)");
+      os << " (" << (b.type == 3 ? "4" : "9") << "-node quadrangles) but body '" << bodyName_
+         << "' has element type " << cellTypeName(type_) << "; expected "
+         << (quad9_ ? "9-node quadrangles (type 10; Mesh.ElementOrder=2, Mesh.SecondOrderIncomplete=0)"
+                    : "4-node quadrangles (type 3; Mesh.ElementOrder=1)");
     else
-      os << ": not supported; expected " << (quad9 ? "9" : "4") << "-node quadrangles (type " << wantElement << ")";
+      os << ": not supported; expected " << (quad9_ ? "9" : "4") << "-node quadrangles (type " << wantElement_
+         << ")";
     fail(os.str());
   }
-  size_t numElems = 0;
-  for (const auto* b : bodyBlocks) numElems += b->tags.size();
-  if (numElems == 0) {
-    if (!physicalGroup.empty()) fail(groupWord + " '" + physicalGroup + "' has no " + dimWord + " elements");
-    if (solid)
-      fail("no 3-D elements found (expected " + gmshTypeText(wantElement) + "). Note: once physical groups "
-           "exist, Gmsh saves only their elements: define a Physical Volume for the body or set Mesh.SaveAll=1");
-    fail("no 2-D elements found (expected quadrangles). Note: once physical groups exist, Gmsh saves only "
-         "their elements: define a Physical Surface for the body or set Mesh.SaveAll=1");
-  }
 
-  // ---- 3. compact node numbering: used nodes in increasing tag order
-  std::vector<long long> used;
-  for (const auto* b : bodyBlocks) used.insert(used.end(), b->nodes.begin(), b->nodes.end());
-  std::sort(used.begin(), used.end());
-  used.erase(std::unique(used.begin(), used.end()), used.end());
-  std::unordered_map<long long, int> local;
-  local.reserve(used.size());
-  std::vector<std::array<double, 3>> xyz(used.size());
-  for (size_t k = 0; k < used.size(); ++k) {
-    auto it = d.nodes.find(used[k]);
-    if (it == d.nodes.end()) fail("an element references node tag " + std::to_string(used[k]) + ", which is not in $Nodes");
-    const auto& p = it->second;
-    const double scale = std::max({1.0, std::abs(p[0]), std::abs(p[1])});
-    if (!solid && std::abs(p[2]) > 1e-10 * scale) {
-      std::ostringstream os;
-      os << "node " << used[k] << " has z = " << p[2]
-         << "; only planar meshes in the plane z = 0 are supported";
-      fail(os.str());
-    }
-    local[used[k]] = static_cast<int>(k);
-    xyz[k] = {p[0], p[1], solid ? p[2] : 0.0};
-  }
-
-  // ---- 4. connectivity (local node indices): 2-D counter-clockwise, 3-D valid
-  std::vector<int> conn;
-  std::vector<int> elemEntity;
-  conn.reserve(numElems * nen);
-  for (const auto* b : bodyBlocks) {
-    for (size_t e = 0; e < b->tags.size(); ++e) {
-      int n[27];
-      for (int i = 0; i < nen; ++i) n[i] = local.at(b->nodes[e * nen + i]);
-      if (solid) {
-        // Gmsh writes positively oriented volume elements; anything else was
-        // edited or written by another tool, and is not guessed at.
-        std::array<std::array<double, 3>, 8> corners;
-        for (int i = 0; i < ref.numCorners; ++i) corners[i] = xyz[n[i]];
-        const CornerJacobian j = cornerJacobian(type, corners.data());
-        if (j.verdict != CornerJacobian::Verdict::Valid)
-          failAt(b->lines[e], "element " + std::to_string(b->tags[e]) + " (volume " + std::to_string(b->entity) +
-                                  ") of body '" + bodyName + "' is " + describeCornerJacobian(type, j));
-      } else {
-        const double a2 = twiceArea(xyz, type, n);
-        double h2 = 0.0;  // squared longest corner-to-corner distance, for scale
-        for (int i = 0; i < 4; ++i)
-          for (int j = i + 1; j < 4; ++j)
-            h2 = std::max(h2, std::pow(xyz[n[i]][0] - xyz[n[j]][0], 2) + std::pow(xyz[n[i]][1] - xyz[n[j]][1], 2));
-        if (!(std::abs(a2) > 1e-12 * h2))
-          fail("element " + std::to_string(b->tags[e]) + " has zero area (degenerate quadrangle)");
-        if (a2 < 0) {
-          // Clockwise (surface normal -z): reverse to 0 3 2 1; the mid-side
-          // nodes follow their sides: (0-3)=7, (3-2)=6, (2-1)=5, (1-0)=4.
-          static const int perm4[4] = {0, 3, 2, 1};
-          static const int perm9[9] = {0, 3, 2, 1, 7, 6, 5, 4, 8};
-          int m[9];
-          for (int i = 0; i < nen; ++i) m[i] = n[quad9 ? perm9[i] : perm4[i]];
-          std::copy(m, m + nen, n);
-        }
-      }
-      conn.insert(conn.end(), n, n + nen);
-      elemEntity.push_back(b->entity);
-    }
-  }
-  const int ne = static_cast<int>(elemEntity.size());
-
-  // ---- 5. element facets: sorted corners -> (element, local facet)
-  const int facetCorners = referenceCell(facetType).numCorners;
-  std::map<std::vector<int>, std::vector<std::pair<int, int>>> facets;
-  for (int e = 0; e < ne; ++e) {
-    const int* n = &conn[static_cast<size_t>(e) * nen];
-    for (int f = 0; f < static_cast<int>(ref.facets.size()); ++f) {
-      std::vector<int> key(facetCorners);
-      for (int i = 0; i < facetCorners; ++i) key[i] = n[ref.facets[f].nodes[i]];
-      std::sort(key.begin(), key.end());
-      facets[key].push_back({e, f});
-    }
-  }
-
-  // ---- 6. physical curves (2-D) / surfaces (3-D) -> side sets (element, local facet)
-  std::map<std::string, std::vector<std::pair<int, int>>> facetSets;
-  std::map<std::string, std::set<std::pair<int, int>>> seen;
-  for (const auto& b : d.blocks) {
-    if (b.dim != dim - 1) continue;
-    const auto& phys = physicalsOf(d, dim - 1, b.entity);
-    if (phys.empty()) continue;
-    const std::string firstName = physicalName(d, dim - 1, phys[0]);
-    if (b.type != wantFacet) {
-      std::ostringstream os;
-      os << facetGroupWord << " '" << firstName << "' (" << kEntityWord[dim - 1] << " " << b.entity
-         << ") has elements of type " << b.type;
-      if (!solid) {
-        os << "; body '" << bodyName << "' (" << cellTypeName(type) << ") expects "
-           << (quad9 ? "3-node lines (type 8)" : "2-node lines (type 1)");
+  /// 3. Compact node numbering: the used nodes in increasing tag order.
+  void numberNodes() {
+    std::vector<long long> used;
+    for (const auto* b : bodyBlocks_) used.insert(used.end(), b->nodes.begin(), b->nodes.end());
+    std::sort(used.begin(), used.end());
+    used.erase(std::unique(used.begin(), used.end()), used.end());
+    local_.reserve(used.size());
+    xyz_.resize(used.size());
+    for (size_t k = 0; k < used.size(); ++k) {
+      auto it = d_.nodes.find(used[k]);
+      if (it == d_.nodes.end())
+        fail("an element references node tag " + std::to_string(used[k]) + ", which is not in $Nodes");
+      const auto& p = it->second;
+      const double scale = std::max({1.0, std::abs(p[0]), std::abs(p[1])});
+      if (!solid_ && std::abs(p[2]) > 1e-10 * scale) {
+        std::ostringstream os;
+        os << "node " << used[k] << " has z = " << p[2] << "; only planar meshes in the plane z = 0 are supported";
         fail(os.str());
       }
-      const GmshType* t = gmshType(b.type);
-      if (t && t->dim != 2)
-        os << " (" << t->name << ", " << t->dim << "-D): a side set of a 3-D body is made of 2-D faces";
-      else
-        os << " (" << (t ? t->name : "unknown to DDContact") << ") but the faces of body '" << bodyName << "' ("
-           << cellTypeName(type) << ") are " << cellTypeName(facetType);
-      os << "; expected " << gmshTypeText(wantFacet);
-      failAt(b.line, os.str());
+      local_[used[k]] = static_cast<int>(k);
+      xyz_[k] = {p[0], p[1], solid_ ? p[2] : 0.0};
     }
-    if (!b.countError.empty()) failAt(b.countErrorLine, b.countError);
+  }
+
+  /// 4. Connectivity (local node indices): 2-D counter-clockwise, 3-D valid.
+  void buildConnectivity() {
+    conn_.reserve(numElems_ * nen_);
+    for (const auto* b : bodyBlocks_) {
+      for (size_t e = 0; e < b->tags.size(); ++e) {
+        int n[27];
+        for (int i = 0; i < nen_; ++i) n[i] = local_.at(b->nodes[e * nen_ + i]);
+        if (solid_)
+          checkVolumeElement(*b, e, n);
+        else
+          orientQuadrangle(*b, e, n);
+        conn_.insert(conn_.end(), n, n + nen_);
+        elemEntity_.push_back(b->entity);
+      }
+    }
+    ne_ = static_cast<int>(elemEntity_.size());
+  }
+
+  /// Gmsh writes positively oriented volume elements; anything else was
+  /// edited or written by another tool, and is not guessed at.
+  void checkVolumeElement(const ElementBlock& b, size_t e, const int* n) const {
+    std::array<std::array<double, 3>, 8> corners;
+    for (int i = 0; i < ref_.numCorners; ++i) corners[i] = xyz_[n[i]];
+    const CornerJacobian j = cornerJacobian(type_, corners.data());
+    if (j.verdict != CornerJacobian::Verdict::Valid)
+      failAt(b.lines[e], "element " + std::to_string(b.tags[e]) + " (volume " + std::to_string(b.entity) +
+                             ") of body '" + bodyName_ + "' is " + describeCornerJacobian(type_, j));
+  }
+
+  /// A quadrangle with non-zero area, counter-clockwise (reordered if not).
+  void orientQuadrangle(const ElementBlock& b, size_t e, int* n) const {
+    const double a2 = twiceArea(xyz_, type_, n);
+    double h2 = 0.0;  // squared longest corner-to-corner distance, for scale
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        h2 = std::max(h2, std::pow(xyz_[n[i]][0] - xyz_[n[j]][0], 2) + std::pow(xyz_[n[i]][1] - xyz_[n[j]][1], 2));
+    if (!(std::abs(a2) > 1e-12 * h2))
+      fail("element " + std::to_string(b.tags[e]) + " has zero area (degenerate quadrangle)");
+    if (a2 < 0) {
+      // Clockwise (surface normal -z): reverse to 0 3 2 1; the mid-side
+      // nodes follow their sides: (0-3)=7, (3-2)=6, (2-1)=5, (1-0)=4.
+      static const int perm4[4] = {0, 3, 2, 1};
+      static const int perm9[9] = {0, 3, 2, 1, 7, 6, 5, 4, 8};
+      int m[9];
+      for (int i = 0; i < nen_; ++i) m[i] = n[quad9_ ? perm9[i] : perm4[i]];
+      std::copy(m, m + nen_, n);
+    }
+  }
+
+  /// 5. Element facets: sorted corners -> (element, local facet).
+  void indexFacets() {
+    facetCorners_ = referenceCell(facetType_).numCorners;
+    for (int e = 0; e < ne_; ++e) {
+      const int* n = &conn_[static_cast<size_t>(e) * nen_];
+      for (int f = 0; f < static_cast<int>(ref_.facets.size()); ++f) {
+        std::vector<int> key(facetCorners_);
+        for (int i = 0; i < facetCorners_; ++i) key[i] = n[ref_.facets[f].nodes[i]];
+        std::sort(key.begin(), key.end());
+        facets_[key].push_back({e, f});
+      }
+    }
+  }
+
+  /// 6. Physical curves (2-D) / surfaces (3-D) -> side sets (element, local facet).
+  void readSideSets() {
+    std::map<std::string, std::set<ElementFacet>> seen;
+    for (const auto& b : d_.blocks) {
+      if (b.dim != dim_ - 1) continue;
+      const auto& phys = physicalsOf(d_, dim_ - 1, b.entity);
+      if (phys.empty()) continue;
+      const std::string firstName = physicalName(d_, dim_ - 1, phys[0]);
+      if (b.type != wantFacet_) failSideSetType(b, firstName);
+      if (!b.countError.empty()) failAt(b.countErrorLine, b.countError);
+      readSideSetBlock(b, phys, firstName, seen);
+    }
+  }
+
+  /// A block of a side set whose elements are not the body's facets.
+  [[noreturn]] void failSideSetType(const ElementBlock& b, const std::string& firstName) const {
+    std::ostringstream os;
+    os << facetGroupWord_ << " '" << firstName << "' (" << kEntityWord[dim_ - 1] << " " << b.entity
+       << ") has elements of type " << b.type;
+    if (!solid_) {
+      os << "; body '" << bodyName_ << "' (" << cellTypeName(type_) << ") expects "
+         << (quad9_ ? "3-node lines (type 8)" : "2-node lines (type 1)");
+      fail(os.str());
+    }
+    const GmshType* t = gmshType(b.type);
+    if (t && t->dim != 2)
+      os << " (" << t->name << ", " << t->dim << "-D): a side set of a 3-D body is made of 2-D faces";
+    else
+      os << " (" << (t ? t->name : "unknown to DDContact") << ") but the faces of body '" << bodyName_ << "' ("
+         << cellTypeName(type_) << ") are " << cellTypeName(facetType_);
+    os << "; expected " << gmshTypeText(wantFacet_);
+    failAt(b.line, os.str());
+  }
+
+  /// The facets of one side set block into the side sets of its physical
+  /// groups (`seen`: what each set has, so that it lists a facet once).
+  void readSideSetBlock(const ElementBlock& b, const std::vector<int>& phys, const std::string& firstName,
+                        std::map<std::string, std::set<ElementFacet>>& seen) {
     const int nf = b.numNodes;
     for (size_t l = 0; l < b.tags.size(); ++l) {
       std::vector<int> n(nf);
       bool inBody = true;
       for (int i = 0; i < nf; ++i) {
-        auto it = local.find(b.nodes[l * nf + i]);
-        inBody = inBody && it != local.end();
+        auto it = local_.find(b.nodes[l * nf + i]);
+        inBody = inBody && it != local_.end();
         n[i] = inBody ? it->second : -1;
       }
-      const std::string what = facetWord + std::to_string(b.tags[l]) + " of " + facetGroupWord + " '" + firstName + "'";
-      auto failHere = [&](const std::string& msg) { solid ? failAt(b.lines[l], msg) : fail(msg); };
+      const std::string what =
+          facetWord_ + std::to_string(b.tags[l]) + " of " + facetGroupWord_ + " '" + firstName + "'";
       if (!inBody) {
-        if (selectedTag >= 0) continue;  // a facet of another body
-        failHere(what + " has a node that belongs to no " + dimWord + " element");
+        if (selectedTag_ >= 0) continue;  // a facet of another body
+        failSideSet(b, l, what + " has a node that belongs to no " + dimWord_ + " element");
       }
-      std::vector<int> key(n.begin(), n.begin() + facetCorners);
-      std::sort(key.begin(), key.end());
-      auto it = facets.find(key);
-      if (it == facets.end())
-        failHere(what + (solid ? " is not on the boundary of any element (its corners are not the corners of an "
-                                 "element face)"
-                               : " is not on the boundary of any element (its end nodes are not the corners of an "
-                                 "element side)"));
-      if (it->second.size() != 1)
-        failHere(what + (solid ? " lies inside the body (on a face shared by two elements)"
-                               : " lies inside the body (on a side shared by two elements)") +
-                 "; side sets must lie on the boundary");
-      const auto es = it->second[0];
-      // Higher-order nodes: the same as the element facet's (as a set: the
-      // facet's orientation comes from the element, not from the file).
-      const auto& fn = ref.facets[es.second].nodes;
-      std::vector<int> mine(n.begin() + facetCorners, n.end()), theirs;
-      for (size_t i = facetCorners; i < fn.size(); ++i)
-        theirs.push_back(conn[static_cast<size_t>(es.first) * nen + fn[i]]);
-      std::sort(mine.begin(), mine.end());
-      std::sort(theirs.begin(), theirs.end());
-      if (mine != theirs)
-        failHere(solid ? "the mid-edge / centre nodes of " + what + " are not those of the element face it lies on"
-                       : "the middle node of " + what + " is not the mid-side node of the element side it lies on");
+      const ElementFacet es = boundaryFacetOf(b, l, n, what);
       for (int pt : phys) {
-        const std::string name = physicalName(d, dim - 1, pt);
-        if (seen[name].insert(es).second) facetSets[name].push_back(es);
+        const std::string name = physicalName(d_, dim_ - 1, pt);
+        if (seen[name].insert(es).second) facetSets_[name].push_back(es);
       }
     }
   }
 
-  // ---- 7. physical points, curves (3-D) and surfaces / volumes -> node sets
-  std::map<std::string, std::vector<int>> nodeSets;
-  std::map<int, std::vector<long long>> pointNodes = d.pointNodes;
-  for (const auto& b : d.blocks)
-    if (b.dim == 0 && b.type == 15) pointNodes[b.entity].insert(pointNodes[b.entity].end(), b.nodes.begin(), b.nodes.end());
-  for (const auto& kv : pointNodes) {
-    const auto& phys = physicalsOf(d, 0, kv.first);
-    for (long long tag : kv.second) {
-      auto it = local.find(tag);
-      for (int pt : phys) {
-        const std::string name = physicalName(d, 0, pt);
-        if (it == local.end()) {
-          if (selectedTag >= 0) continue;
-          fail("physical point '" + name + "' (node " + std::to_string(tag) + ") belongs to no " + dimWord + " element");
+  /// The element facet that side set element `l` (local nodes `n`) is: on
+  /// the boundary, with the same higher-order nodes.
+  ElementFacet boundaryFacetOf(const ElementBlock& b, size_t l, const std::vector<int>& n,
+                               const std::string& what) const {
+    std::vector<int> key(n.begin(), n.begin() + facetCorners_);
+    std::sort(key.begin(), key.end());
+    auto it = facets_.find(key);
+    if (it == facets_.end())
+      failSideSet(b, l,
+                  what + (solid_ ? " is not on the boundary of any element (its corners are not the corners of an "
+                                   "element face)"
+                                 : " is not on the boundary of any element (its end nodes are not the corners of an "
+                                   "element side)"));
+    if (it->second.size() != 1)
+      failSideSet(b, l,
+                  what + (solid_ ? " lies inside the body (on a face shared by two elements)"
+                                 : " lies inside the body (on a side shared by two elements)") +
+                      "; side sets must lie on the boundary");
+    const auto es = it->second[0];
+    // Higher-order nodes: the same as the element facet's (as a set: the
+    // facet's orientation comes from the element, not from the file).
+    const auto& fn = ref_.facets[es.second].nodes;
+    std::vector<int> mine(n.begin() + facetCorners_, n.end()), theirs;
+    for (size_t i = facetCorners_; i < fn.size(); ++i)
+      theirs.push_back(conn_[static_cast<size_t>(es.first) * nen_ + fn[i]]);
+    std::sort(mine.begin(), mine.end());
+    std::sort(theirs.begin(), theirs.end());
+    if (mine != theirs)
+      failSideSet(b, l,
+                  solid_ ? "the mid-edge / centre nodes of " + what + " are not those of the element face it lies on"
+                         : "the middle node of " + what + " is not the mid-side node of the element side it lies on");
+    return es;
+  }
+
+  /// 7. Physical points, curves (3-D) and surfaces / volumes -> node sets.
+  void readNodeSets() {
+    readPointNodeSets();
+    if (solid_) readCurveNodeSets();
+    for (int e = 0; e < ne_; ++e)
+      for (int pt : physicalsOf(d_, dim_, elemEntity_[e])) {
+        auto& s = nodeSets_[physicalName(d_, dim_, pt)];
+        s.insert(s.end(), &conn_[static_cast<size_t>(e) * nen_], &conn_[static_cast<size_t>(e) * nen_] + nen_);
+      }
+  }
+
+  void readPointNodeSets() {
+    std::map<int, std::vector<long long>> pointNodes = d_.pointNodes;
+    for (const auto& b : d_.blocks)
+      if (b.dim == 0 && b.type == 15)
+        pointNodes[b.entity].insert(pointNodes[b.entity].end(), b.nodes.begin(), b.nodes.end());
+    for (const auto& kv : pointNodes) {
+      const auto& phys = physicalsOf(d_, 0, kv.first);
+      for (long long tag : kv.second) {
+        auto it = local_.find(tag);
+        for (int pt : phys) {
+          const std::string name = physicalName(d_, 0, pt);
+          if (it == local_.end()) {
+            if (selectedTag_ >= 0) continue;
+            fail("physical point '" + name + "' (node " + std::to_string(tag) + ") belongs to no " + dimWord_ +
+                 " element");
+          }
+          nodeSets_[name].push_back(it->second);
         }
-        nodeSets[name].push_back(it->second);
       }
     }
   }
-  if (solid) {
-    // Physical curves of a 3-D body: edges, e.g. for a line support.
-    for (const auto& b : d.blocks) {
+
+  /// Physical curves of a 3-D body: edges, e.g. for a line support.
+  void readCurveNodeSets() {
+    for (const auto& b : d_.blocks) {
       if (b.dim != 1) continue;
-      const auto& phys = physicalsOf(d, 1, b.entity);
+      const auto& phys = physicalsOf(d_, 1, b.entity);
       if (phys.empty()) continue;
-      const std::string firstName = physicalName(d, 1, phys[0]);
+      const std::string firstName = physicalName(d_, 1, phys[0]);
       if (b.type != 1 && b.type != 8)
         failAt(b.line, "physical curve '" + firstName + "' (curve " + std::to_string(b.entity) + ") has " +
                            gmshTypeText(b.type) + "; expected 2-node lines (type 1) or 3-node lines (type 8)");
       for (size_t l = 0; l < b.tags.size(); ++l) {
         std::vector<int> n;
         for (int i = 0; i < b.numNodes; ++i) {
-          auto it = local.find(b.nodes[l * b.numNodes + i]);
-          if (it != local.end()) n.push_back(it->second);
+          auto it = local_.find(b.nodes[l * b.numNodes + i]);
+          if (it != local_.end()) n.push_back(it->second);
         }
         if (static_cast<int>(n.size()) != b.numNodes) {
-          if (selectedTag >= 0) continue;  // a line of another body
+          if (selectedTag_ >= 0) continue;  // a line of another body
           failAt(b.lines[l], "line element " + std::to_string(b.tags[l]) + " of physical curve '" + firstName +
                                  "' has a node that belongs to no 3-D element");
         }
         for (int pt : phys) {
-          auto& s = nodeSets[physicalName(d, 1, pt)];
+          auto& s = nodeSets_[physicalName(d_, 1, pt)];
           s.insert(s.end(), n.begin(), n.end());
         }
       }
     }
   }
-  for (int e = 0; e < ne; ++e)
-    for (int pt : physicalsOf(d, dim, elemEntity[e])) {
-      auto& s = nodeSets[physicalName(d, dim, pt)];
-      s.insert(s.end(), &conn[static_cast<size_t>(e) * nen], &conn[static_cast<size_t>(e) * nen] + nen);
-    }
 
-  // ---- 8. commit (nothing above touched the mesh, so errors leave it intact)
-  const int body = mesh.beginBody(bodyName, type);
-  const int firstNode = mesh.numNodes();
-  const int firstElement = mesh.numElements();
-  for (const auto& p : xyz) mesh.addNode(p[0], p[1], p[2]);
-  for (int e = 0; e < ne; ++e) {
-    int n[27];
-    for (int i = 0; i < nen; ++i) n[i] = firstNode + conn[static_cast<size_t>(e) * nen + i];
-    mesh.addElement(n);
+  /// 8. Commit: the body, its nodes, elements and sets into the mesh.
+  int commit(Mesh& mesh) {
+    const int body = mesh.beginBody(bodyName_, type_);
+    const int firstNode = mesh.numNodes();
+    const int firstElement = mesh.numElements();
+    for (const auto& p : xyz_) mesh.addNode(p[0], p[1], p[2]);
+    for (int e = 0; e < ne_; ++e) {
+      int n[27];
+      for (int i = 0; i < nen_; ++i) n[i] = firstNode + conn_[static_cast<size_t>(e) * nen_ + i];
+      mesh.addElement(n);
+    }
+    for (const auto& kv : facetSets_) {
+      std::vector<Segment> segs;
+      for (const auto& es : kv.second) segs.push_back(mesh.makeSegment(firstElement + es.first, es.second));
+      mesh.addSideSet(body, kv.first, std::move(segs));
+    }
+    for (auto& kv : nodeSets_) {
+      for (int& n : kv.second) n += firstNode;
+      mesh.addNodeSet(body, kv.first, std::move(kv.second));
+    }
+    return body;
   }
-  for (const auto& kv : facetSets) {
-    std::vector<Segment> segs;
-    for (const auto& es : kv.second) segs.push_back(mesh.makeSegment(firstElement + es.first, es.second));
-    mesh.addSideSet(body, kv.first, std::move(segs));
-  }
-  for (auto& kv : nodeSets) {
-    for (int& n : kv.second) n += firstNode;
-    mesh.addNodeSet(body, kv.first, std::move(kv.second));
-  }
-  return body;
+
+  // the input and what follows from the body's element type
+  const MshData& d_;
+  const std::string& fileName_;
+  const std::string& bodyName_;
+  const std::string& physicalGroup_;
+  const CellType type_;
+  const ReferenceCell& ref_;
+  const int dim_;
+  const bool solid_;
+  const bool quad9_;
+  const int wantElement_;
+  const CellType facetType_;
+  const int wantFacet_;
+  const int nen_;
+  const std::string groupWord_;       ///< selects the body
+  const std::string facetGroupWord_;  ///< side sets
+  const std::string facetWord_;
+  const std::string dimWord_;
+  // what the steps find, in their order
+  int selectedTag_ = -1;
+  std::vector<const ElementBlock*> bodyBlocks_;
+  size_t numElems_ = 0;
+  std::unordered_map<long long, int> local_;  ///< node tag -> local node index
+  std::vector<std::array<double, 3>> xyz_;
+  std::vector<int> conn_;
+  std::vector<int> elemEntity_;
+  int ne_ = 0;
+  int facetCorners_ = 0;
+  std::map<std::vector<int>, std::vector<ElementFacet>> facets_;
+  std::map<std::string, std::vector<ElementFacet>> facetSets_;
+  std::map<std::string, std::vector<int>> nodeSets_;
+};
+
+}  // namespace
+
+int readGmshFile(Mesh& mesh, const std::string& bodyName, CellType type, const std::string& fileName,
+                 const std::string& physicalGroup) {
+  const MshData d = parseMsh(fileName);
+  return GmshBodyReader(d, fileName, bodyName, type, physicalGroup).read(mesh);
 }
 
 }  // namespace ddc

@@ -272,6 +272,111 @@ std::string readSmallFile(int fd) {
   return s;
 }
 
+/// What a step of acquireLock() tells the loop of attempts.
+enum class LockStep { Done, Retry, Failed };
+
+/// Opens the lock file `lock`, creating it if absent: never through a
+/// symbolic link (it would lock, write and finally unlink a file elsewhere);
+/// `created` tells whether this run made the file (O_EXCL). Done with `fd`
+/// open on a regular file; Retry when the file vanished between the two
+/// opens; Failed with `failure` set.
+LockStep openLockFile(const fs::path& lock, const fs::path& final, int& fd, bool& created, Failure& failure) {
+  created = true;
+  fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (fd < 0 && errno == EEXIST) {
+    created = false;
+    fd = ::open(lock.c_str(), O_RDWR | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0 && errno == ENOENT) return LockStep::Retry;  // unlinked by its holder in between
+  }
+  if (fd < 0) {
+    const int err = errno;
+    if (err == ELOOP) {
+      failure = {Failure::Input, "'" + lock.string() + "' is a symbolic link; DDContact needs that name for the "
+                                 "lock of output directory '" + final.string() +
+                                 "' and does not follow links there: remove the link or choose another --output-dir"};
+      return LockStep::Failed;
+    }
+    if (err != EISDIR) {
+      failure = {Failure::Output, "cannot create the lock file '" + lock.string() + "' of output directory '" +
+                                      final.string() + "': " + std::strerror(err)};
+      return LockStep::Failed;
+    }
+  }
+  struct stat st {};
+  if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    if (fd >= 0) ::close(fd);
+    failure = {Failure::Input, "'" + lock.string() + "' exists and is not a regular file; DDContact needs that "
+                               "name for the lock of output directory '" + final.string() +
+                               "': move it away or choose another --output-dir"};
+    return LockStep::Failed;
+  }
+  return LockStep::Done;
+}
+
+/// The failure when another process holds the lock on `fd`: who it is, from
+/// what it writes right after locking (closes `fd`).
+Failure heldByAnother(int fd, const fs::path& lock, const fs::path& final) {
+  std::string holder = readSmallFile(fd);
+  for (int i = 0; i < 50 && holder.find("started: ") == std::string::npos; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    holder = readSmallFile(fd);
+  }
+  ::close(fd);
+  if (holder.rfind(kLockMagic, 0) != 0 && !holder.empty())
+    return {Failure::Input, "'" + lock.string() + "' exists and is locked, but was not written by ddcontact; "
+                            "DDContact needs that name for the lock of output directory '" + final.string() +
+                            "': choose another --output-dir"};
+  std::string who;
+  std::istringstream is(holder);
+  std::string line;
+  std::getline(is, line);
+  while (std::getline(is, line)) who += (who.empty() ? "" : ", ") + line;
+  return {Failure::Input, "output directory '" + final.string() + "' is in use by another ddcontact run (" +
+                              (who.empty() ? std::string("details not yet written") : who) + "; lock file '" +
+                              lock.string() + "'): wait until it finishes, or choose another --output-dir"};
+}
+
+/// Takes the advisory write lock on `fd` without waiting; false (with `fd`
+/// closed and `failure` set) if that fails, e.g. because another run holds it.
+bool lockWithoutWaiting(int fd, const fs::path& lock, const fs::path& final, Failure& failure) {
+  struct flock fl {};
+  fl.l_type = F_WRLCK;
+  fl.l_whence = SEEK_SET;
+#ifdef F_OFD_SETLK
+  int rc = ::fcntl(fd, F_OFD_SETLK, &fl);
+  if (rc != 0 && errno == EINVAL) rc = ::fcntl(fd, F_SETLK, &fl);
+#else
+  int rc = ::fcntl(fd, F_SETLK, &fl);
+#endif
+  if (rc == 0) return true;
+  const int err = errno;
+  if (err != EAGAIN && err != EACCES) {
+    ::close(fd);
+    failure = {Failure::Output, "cannot lock '" + lock.string() + "': " + std::strerror(err)};
+    return false;
+  }
+  failure = heldByAnother(fd, lock, final);
+  return false;
+}
+
+/// Writes who holds the lock into the locked file `fd`; false (with `fd`
+/// closed and `failure` set) if that fails.
+bool writeLockHolder(int fd, const fs::path& lock, const RunDescription& run, const std::string& started,
+                     Failure& failure) {
+  std::ostringstream info;
+  info << kLockMagic << "\npid: " << ::getpid() << "\nhost: " << hostName() << "\ninput: "
+       << oneLine(run.input.empty() ? std::string("(parameter list in memory)") : run.input)
+       << "\nstarted: " << started << "\n";
+  const std::string text = info.str();
+  if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, text.data(), text.size(), 0) != static_cast<ssize_t>(text.size())) {
+    const int err = errno;
+    ::close(fd);
+    failure = {Failure::Output, "cannot write the lock file '" + lock.string() + "': " + std::strerror(err)};
+    return false;
+  }
+  return true;
+}
+
 /// Takes the advisory lock on `lock` (rank 0). Returns the descriptor, or
 /// -1 with `failure` set.
 int acquireLock(const fs::path& lock, const fs::path& final, const RunDescription& run, const std::string& started,
@@ -281,76 +386,12 @@ int acquireLock(const fs::path& lock, const fs::path& final, const RunDescriptio
   // wait this many times 50 ms for its creator to write it before refusing.
   int emptyWaits = 20;
   for (int attempt = 0; attempt < 10; ++attempt) {
-    // Never through a symbolic link (it would lock, write and finally
-    // unlink a file elsewhere); O_EXCL tells whether this run made the file.
+    int fd = -1;
     bool created = true;
-    int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
-    if (fd < 0 && errno == EEXIST) {
-      created = false;
-      fd = ::open(lock.c_str(), O_RDWR | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
-      if (fd < 0 && errno == ENOENT) continue;  // unlinked by its holder in between
-    }
-    if (fd < 0) {
-      const int err = errno;
-      if (err == ELOOP) {
-        failure = {Failure::Input, "'" + lock.string() + "' is a symbolic link; DDContact needs that name for the "
-                                   "lock of output directory '" + final.string() +
-                                   "' and does not follow links there: remove the link or choose another --output-dir"};
-        return -1;
-      }
-      if (err != EISDIR) {
-        failure = {Failure::Output, "cannot create the lock file '" + lock.string() + "' of output directory '" +
-                                        final.string() + "': " + std::strerror(err)};
-        return -1;
-      }
-    }
-    struct stat st {};
-    if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-      if (fd >= 0) ::close(fd);
-      failure = {Failure::Input, "'" + lock.string() + "' exists and is not a regular file; DDContact needs that "
-                                 "name for the lock of output directory '" + final.string() +
-                                 "': move it away or choose another --output-dir"};
-      return -1;
-    }
-    struct flock fl {};
-    fl.l_type = F_WRLCK;
-    fl.l_whence = SEEK_SET;
-#ifdef F_OFD_SETLK
-    int rc = ::fcntl(fd, F_OFD_SETLK, &fl);
-    if (rc != 0 && errno == EINVAL) rc = ::fcntl(fd, F_SETLK, &fl);
-#else
-    int rc = ::fcntl(fd, F_SETLK, &fl);
-#endif
-    if (rc != 0) {
-      const int err = errno;
-      if (err != EAGAIN && err != EACCES) {
-        ::close(fd);
-        failure = {Failure::Output, "cannot lock '" + lock.string() + "': " + std::strerror(err)};
-        return -1;
-      }
-      // Another process holds it; it writes who it is right after locking.
-      std::string holder = readSmallFile(fd);
-      for (int i = 0; i < 50 && holder.find("started: ") == std::string::npos; ++i) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-        holder = readSmallFile(fd);
-      }
-      ::close(fd);
-      if (holder.rfind(kLockMagic, 0) != 0 && !holder.empty()) {
-        failure = {Failure::Input, "'" + lock.string() + "' exists and is locked, but was not written by ddcontact; "
-                                   "DDContact needs that name for the lock of output directory '" + final.string() +
-                                   "': choose another --output-dir"};
-        return -1;
-      }
-      std::string who;
-      std::istringstream is(holder);
-      std::string line;
-      std::getline(is, line);
-      while (std::getline(is, line)) who += (who.empty() ? "" : ", ") + line;
-      failure = {Failure::Input, "output directory '" + final.string() + "' is in use by another ddcontact run (" +
-                                     (who.empty() ? std::string("details not yet written") : who) + "; lock file '" +
-                                     lock.string() + "'): wait until it finishes, or choose another --output-dir"};
-      return -1;
-    }
+    const LockStep opened = openLockFile(lock, final, fd, created, failure);
+    if (opened == LockStep::Retry) continue;
+    if (opened == LockStep::Failed) return -1;
+    if (!lockWithoutWaiting(fd, lock, final, failure)) return -1;
     // The path may have been unlinked by the previous holder between our
     // open() and the lock: then we hold a lock nobody else sees. Retry.
     struct stat a {}, b {};
@@ -380,17 +421,7 @@ int acquireLock(const fs::path& lock, const fs::path& final, const RunDescriptio
                                  "': move the file away or choose another --output-dir"};
       return -1;
     }
-    std::ostringstream info;
-    info << kLockMagic << "\npid: " << ::getpid() << "\nhost: " << hostName() << "\ninput: "
-         << oneLine(run.input.empty() ? std::string("(parameter list in memory)") : run.input)
-         << "\nstarted: " << started << "\n";
-    const std::string text = info.str();
-    if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, text.data(), text.size(), 0) != static_cast<ssize_t>(text.size())) {
-      const int err = errno;
-      ::close(fd);
-      failure = {Failure::Output, "cannot write the lock file '" + lock.string() + "': " + std::strerror(err)};
-      return -1;
-    }
+    if (!writeLockHolder(fd, lock, run, started, failure)) return -1;
     return fd;
   }
   failure = {Failure::Output, "cannot lock '" + lock.string() + "': it keeps being replaced by other runs"};

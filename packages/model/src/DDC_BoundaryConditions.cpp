@@ -120,6 +120,137 @@ Teuchos::RCP<const Teuchos::ParameterList> BoundaryConditions::getValidParameter
   return pl;
 }
 
+namespace {
+
+/// One condition's sublist `p` at `where`, validated, with the checks the
+/// two types share: which parameters are set (differ from their defaults)
+/// and may be.
+struct ConditionList {
+  Teuchos::ParameterList& p;
+  const Teuchos::ParameterList& valid;
+  const std::string& where;
+  const std::string& type;
+  const int dim;
+
+  bool isSet(const std::string& key) const {
+    return p.isParameter(key) && p.get<double>(key) != valid.get<double>(key);
+  }
+  void forbid(const std::string& key) const {
+    DDC_INPUT_REQUIRE(!isSet(key), "parameter '" << where << "/" << key << "' does not apply to Type = " << type);
+  }
+  /// Z parameters need a 3-D model; a 2-D model also rotates about z only.
+  void forbid2d(const std::string& key) const {
+    DDC_INPUT_REQUIRE(dim == 3 || !isSet(key), "parameter '" << where << "/" << key << "' is set but the model is "
+                                                             << dim << "-D; Z applies to 3-D models only");
+  }
+};
+
+/// The rotation and the checks between components, values and gradients
+/// of a displacement condition whose other fields are read.
+void readRotation(const ConditionList& c, const std::string& comps, DisplacementCondition& d) {
+  Teuchos::ParameterList& p = c.p;
+  const std::string& where = c.where;
+  const int dim = c.dim;
+  d.angleRadians = p.get<double>("Rotation Angle") * M_PI / 180.0;
+  const double ax[3] = {p.get<double>("Rotation Axis X"), p.get<double>("Rotation Axis Y"),
+                        p.get<double>("Rotation Axis Z")};
+  const double axisLength = std::sqrt(ax[0] * ax[0] + ax[1] * ax[1] + ax[2] * ax[2]);
+  DDC_INPUT_REQUIRE(axisLength > 0.0 && std::isfinite(axisLength),
+                    "'" << where << "': the rotation axis (Rotation Axis X/Y/Z) must have a finite length > 0");
+  for (int k = 0; k < 3; ++k) d.axis[k] = dim == 2 ? (k == 2 ? 1.0 : 0.0) : ax[k] / axisLength;
+  for (int k = 0; k < dim; ++k) {
+    const std::string a = kAxes[k];
+    DDC_INPUT_REQUIRE(d.fix[k] || (d.gradient[k][0] == 0.0 && d.gradient[k][1] == 0.0 && d.gradient[k][2] == 0.0),
+                      "'" << where << "': Gradient " << a << "X/" << a << "Y" << (dim == 3 ? "/" + a + "Z" : "")
+                          << " set but Components = " << comps << " does not prescribe " << a);
+    DDC_INPUT_REQUIRE(d.fix[k] || d.value[k] == 0.0,
+                      "'" << where << "/Value " << a << "' is set but Components = " << comps
+                          << " does not prescribe " << a);
+  }
+  bool all = true;
+  for (int k = 0; k < dim; ++k) all = all && d.fix[k];
+  DDC_INPUT_REQUIRE(d.angleRadians == 0.0 || all,
+                    "'" << where << "': a Rotation Angle needs every component prescribed (Components = All)");
+}
+
+/// Type = Displacement: on a node set of the mesh.
+DisplacementCondition readDisplacement(const ConditionList& c, const std::string& name, const std::string& set,
+                                       const Mesh& mesh) {
+  Teuchos::ParameterList& p = c.p;
+  const std::string& where = c.where;
+  const int dim = c.dim;
+  for (const char* a : kAxes) c.forbid(std::string("Traction ") + a);
+  try {
+    mesh.nodeSet(set);
+  } catch (const InputError& e) {
+    throw InputError("boundary condition '" + where + "': " + e.what());
+  }
+  DisplacementCondition d;
+  d.name = name;
+  d.setName = set;
+  const std::string comps = p.get<std::string>("Components");
+  DDC_INPUT_REQUIRE(dim == 3 || comps.find('Z') == std::string::npos,
+                    "parameter '" << where << "/Components' = " << comps << " prescribes Z but the model is "
+                                  << dim << "-D; Z applies to 3-D models only");
+  for (const char* key : {"Value Z", "Gradient XZ", "Gradient YZ", "Gradient ZX", "Gradient ZY", "Gradient ZZ",
+                          "Center Z", "Rotation Axis X", "Rotation Axis Y"})
+    c.forbid2d(key);
+  DDC_INPUT_REQUIRE(dim == 3 || p.get<double>("Rotation Axis Z") > 0.0,
+                    "parameter '" << where << "/Rotation Axis Z' must be > 0 in a 2-D model (rotation about z)");
+  for (int k = 0; k < 3; ++k) {
+    d.fix[k] = k < dim && (comps == "All" || comps.find(kAxes[k][0]) != std::string::npos);
+    d.value[k] = p.get<double>(std::string("Value ") + kAxes[k]);
+    d.center[k] = p.get<double>(std::string("Center ") + kAxes[k]);
+    for (int l = 0; l < 3; ++l) d.gradient[k][l] = p.get<double>(std::string("Gradient ") + kAxes[k] + kAxes[l]);
+  }
+  if (!p.get<std::string>("Load Curve").empty())
+    d.curve = parseLoadCurve(p.get<std::string>("Load Curve"), where + "/Load Curve");
+  readRotation(c, comps, d);
+  return d;
+}
+
+/// Type = Traction: on a side set of the mesh.
+TractionCondition readTraction(const ConditionList& c, const std::string& name, const std::string& set,
+                               const Mesh& mesh) {
+  Teuchos::ParameterList& p = c.p;
+  const std::string& where = c.where;
+  const int dim = c.dim;
+  for (const char* a : kAxes) {
+    c.forbid(std::string("Value ") + a);
+    c.forbid(std::string("Center ") + a);
+    for (const char* b : kAxes) c.forbid(std::string("Gradient ") + a + b);
+  }
+  for (const char* key : {"Rotation Angle", "Rotation Axis X", "Rotation Axis Y", "Rotation Axis Z"}) c.forbid(key);
+  DDC_INPUT_REQUIRE(p.get<std::string>("Load Curve").empty(),
+                    "parameter '" << where << "/Load Curve' does not apply to Type = Traction (tractions "
+                                  << "grow with the load factor)");
+  // "XY" was the default in 2-D before "All"; decks that spell it out keep working.
+  const std::string comps = p.isParameter("Components") ? p.get<std::string>("Components") : "All";
+  DDC_INPUT_REQUIRE(comps == "All" || (dim == 2 && comps == "XY"),
+                    "parameter '" << where << "/Components' does not apply to Type = Traction");
+  c.forbid2d("Traction Z");
+  // A node set of points or edges (a Gmsh physical point or curve of a
+  // 3-D body) has nothing to integrate a traction over.
+  DDC_INPUT_REQUIRE(mesh.hasSideSet(set) || !mesh.hasNodeSet(set),
+                    "boundary condition '" << where << "': 'Set' = '" << set << "' is a set of nodes, not of "
+                                           << (dim == 2 ? "element sides" : "element faces")
+                                           << "; a traction acts on a side set (a generator's named "
+                                              "face, a Gmsh physical surface of a 3-D body or physical "
+                                              "curve of a 2-D body)");
+  try {
+    mesh.sideSet(set);
+  } catch (const InputError& e) {
+    throw InputError("boundary condition '" + where + "': " + e.what());
+  }
+  TractionCondition t;
+  t.name = name;
+  t.setName = set;
+  for (int k = 0; k < 3; ++k) t.traction[k] = p.get<double>(std::string("Traction ") + kAxes[k]);
+  return t;
+}
+
+}  // namespace
+
 BoundaryConditions BoundaryConditions::fromParameters(Teuchos::ParameterList& list, const Mesh& mesh,
                                                       const std::string& path) {
   BoundaryConditions bcs;
@@ -133,101 +264,11 @@ BoundaryConditions BoundaryConditions::fromParameters(Teuchos::ParameterList& li
     const std::string type = p.get<std::string>("Type");
     const std::string set = p.get<std::string>("Set");
     DDC_INPUT_REQUIRE(!set.empty(), "parameter '" << where << "/Set' is required (a set name 'Body/set')");
-    const bool isDisp = type == "Displacement";
-    auto isSet = [&](const std::string& key) {
-      return p.isParameter(key) && p.get<double>(key) != valid->get<double>(key);
-    };
-    auto forbid = [&](const std::string& key) {
-      DDC_INPUT_REQUIRE(!isSet(key), "parameter '" << where << "/" << key << "' does not apply to Type = " << type);
-    };
-    // Z parameters need a 3-D model; a 2-D model also rotates about z only.
-    const int dim = mesh.dim();
-    auto forbid2d = [&](const std::string& key) {
-      DDC_INPUT_REQUIRE(dim == 3 || !isSet(key), "parameter '" << where << "/" << key << "' is set but the model is "
-                                                               << dim << "-D; Z applies to 3-D models only");
-    };
-    if (isDisp) {
-      for (const char* a : kAxes) forbid(std::string("Traction ") + a);
-      try {
-        mesh.nodeSet(set);
-      } catch (const InputError& e) {
-        throw InputError("boundary condition '" + where + "': " + e.what());
-      }
-      DisplacementCondition d;
-      d.name = name;
-      d.setName = set;
-      const std::string comps = p.get<std::string>("Components");
-      DDC_INPUT_REQUIRE(dim == 3 || comps.find('Z') == std::string::npos,
-                        "parameter '" << where << "/Components' = " << comps << " prescribes Z but the model is "
-                                      << dim << "-D; Z applies to 3-D models only");
-      for (const char* key : {"Value Z", "Gradient XZ", "Gradient YZ", "Gradient ZX", "Gradient ZY", "Gradient ZZ",
-                              "Center Z", "Rotation Axis X", "Rotation Axis Y"})
-        forbid2d(key);
-      DDC_INPUT_REQUIRE(dim == 3 || p.get<double>("Rotation Axis Z") > 0.0,
-                        "parameter '" << where << "/Rotation Axis Z' must be > 0 in a 2-D model (rotation about z)");
-      for (int c = 0; c < 3; ++c) {
-        d.fix[c] = c < dim && (comps == "All" || comps.find(kAxes[c][0]) != std::string::npos);
-        d.value[c] = p.get<double>(std::string("Value ") + kAxes[c]);
-        d.center[c] = p.get<double>(std::string("Center ") + kAxes[c]);
-        for (int k = 0; k < 3; ++k) d.gradient[c][k] = p.get<double>(std::string("Gradient ") + kAxes[c] + kAxes[k]);
-      }
-      if (!p.get<std::string>("Load Curve").empty())
-        d.curve = parseLoadCurve(p.get<std::string>("Load Curve"), where + "/Load Curve");
-      d.angleRadians = p.get<double>("Rotation Angle") * M_PI / 180.0;
-      const double ax[3] = {p.get<double>("Rotation Axis X"), p.get<double>("Rotation Axis Y"),
-                            p.get<double>("Rotation Axis Z")};
-      const double axisLength = std::sqrt(ax[0] * ax[0] + ax[1] * ax[1] + ax[2] * ax[2]);
-      DDC_INPUT_REQUIRE(axisLength > 0.0 && std::isfinite(axisLength),
-                        "'" << where << "': the rotation axis (Rotation Axis X/Y/Z) must have a finite length > 0");
-      for (int c = 0; c < 3; ++c) d.axis[c] = dim == 2 ? (c == 2 ? 1.0 : 0.0) : ax[c] / axisLength;
-      for (int c = 0; c < dim; ++c) {
-        const std::string a = kAxes[c];
-        DDC_INPUT_REQUIRE(d.fix[c] || (d.gradient[c][0] == 0.0 && d.gradient[c][1] == 0.0 && d.gradient[c][2] == 0.0),
-                          "'" << where << "': Gradient " << a << "X/" << a << "Y" << (dim == 3 ? "/" + a + "Z" : "")
-                              << " set but Components = " << comps << " does not prescribe " << a);
-        DDC_INPUT_REQUIRE(d.fix[c] || d.value[c] == 0.0,
-                          "'" << where << "/Value " << a << "' is set but Components = " << comps
-                              << " does not prescribe " << a);
-      }
-      bool all = true;
-      for (int c = 0; c < dim; ++c) all = all && d.fix[c];
-      DDC_INPUT_REQUIRE(d.angleRadians == 0.0 || all,
-                        "'" << where << "': a Rotation Angle needs every component prescribed (Components = All)");
-      bcs.displacements.push_back(d);
-    } else {
-      for (const char* a : kAxes) {
-        forbid(std::string("Value ") + a);
-        forbid(std::string("Center ") + a);
-        for (const char* b : kAxes) forbid(std::string("Gradient ") + a + b);
-      }
-      for (const char* key : {"Rotation Angle", "Rotation Axis X", "Rotation Axis Y", "Rotation Axis Z"}) forbid(key);
-      DDC_INPUT_REQUIRE(p.get<std::string>("Load Curve").empty(),
-                        "parameter '" << where << "/Load Curve' does not apply to Type = Traction (tractions "
-                                      << "grow with the load factor)");
-      // "XY" was the default in 2-D before "All"; decks that spell it out keep working.
-      const std::string comps = p.isParameter("Components") ? p.get<std::string>("Components") : "All";
-      DDC_INPUT_REQUIRE(comps == "All" || (dim == 2 && comps == "XY"),
-                        "parameter '" << where << "/Components' does not apply to Type = Traction");
-      forbid2d("Traction Z");
-      // A node set of points or edges (a Gmsh physical point or curve of a
-      // 3-D body) has nothing to integrate a traction over.
-      DDC_INPUT_REQUIRE(mesh.hasSideSet(set) || !mesh.hasNodeSet(set),
-                        "boundary condition '" << where << "': 'Set' = '" << set << "' is a set of nodes, not of "
-                                               << (dim == 2 ? "element sides" : "element faces")
-                                               << "; a traction acts on a side set (a generator's named "
-                                                  "face, a Gmsh physical surface of a 3-D body or physical "
-                                                  "curve of a 2-D body)");
-      try {
-        mesh.sideSet(set);
-      } catch (const InputError& e) {
-        throw InputError("boundary condition '" + where + "': " + e.what());
-      }
-      TractionCondition t;
-      t.name = name;
-      t.setName = set;
-      for (int c = 0; c < 3; ++c) t.traction[c] = p.get<double>(std::string("Traction ") + kAxes[c]);
-      bcs.tractions.push_back(t);
-    }
+    const ConditionList condition{p, *valid, where, type, mesh.dim()};
+    if (type == "Displacement")
+      bcs.displacements.push_back(readDisplacement(condition, name, set, mesh));
+    else
+      bcs.tractions.push_back(readTraction(condition, name, set, mesh));
   }
   return bcs;
 }
