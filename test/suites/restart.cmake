@@ -20,15 +20,18 @@
 set(DDC_HALF_RINGS ${PROJECT_SOURCE_DIR}/examples/two_half_rings.xml)
 set(DDC_RESTART_CONVENTIONAL --set "Contact/Formulation=Node-To-Segment" --set "Solver/Strategy=Monolithic")
 # ddc_add_restart_test(<name> <np> <case> <deck> [REFERENCE <variant>]
-#                      [PROCESSORS n] [LABELS l...] [ARGS ddcontact args...])
+#                      [PROCESSORS n] [LABELS l...] [ENVIRONMENT e...] [FIXTURES f...]
+#                      [ARGS ddcontact args...])
+# REFERENCE: the shared uninterrupted run restart_reference_<variant>
+# (or another run named by ENVIRONMENT REFERENCE_RUN=... and FIXTURES).
 function(ddc_add_restart_test name np case deck)
-  cmake_parse_arguments(X "" "REFERENCE;PROCESSORS" "LABELS;ARGS" ${ARGN})
+  cmake_parse_arguments(X "" "REFERENCE;PROCESSORS" "LABELS;ENVIRONMENT;FIXTURES;ARGS" ${ARGN})
   set(processors ${np})
   if(X_PROCESSORS)
     set(processors ${X_PROCESSORS})
   endif()
-  set(environment)
-  set(fixtures)
+  set(environment ${X_ENVIRONMENT})
+  set(fixtures ${X_FIXTURES})
   if(X_REFERENCE)
     set(environment REFERENCE_RUN=${DDC_RUNS}/restart_reference_${X_REFERENCE}/reference)
     set(fixtures restart_reference_${X_REFERENCE})
@@ -60,11 +63,13 @@ foreach(case sigterm newton-failure)
   ddc_add_restart_test(restart_${case}_monolithic_np2 2 ${case} ${DDC_HALF_RINGS} REFERENCE monolithic_np2
     ARGS ${DDC_RESTART_CONVENTIONAL} --set "Solver/Linear Solver/Type=Amesos2")
 endforeach()
-set(DDC_RESTART_LONG --set "Load Stepping/Number of Steps=200" --set "Output/VTK Interval=10")
-ddc_add_restart_reference(feti_200_steps_np2 2 ${DDC_RESTART_LONG})
+# Stopped from outside once the run is past step 20 of 100 (the step it
+# stops at is not known in advance): the uninterrupted run is
+# half_rings_decomposed_100 (suites/studies.cmake), the same deck and options.
 foreach(case kill usr1-to-mpirun)
-  ddc_add_restart_test(restart_${case}_feti_np2 2 ${case} ${DDC_HALF_RINGS} REFERENCE feti_200_steps_np2
-    ARGS ${DDC_RESTART_LONG})
+  ddc_add_restart_test(restart_${case}_feti_np2 2 ${case} ${DDC_HALF_RINGS}
+    ENVIRONMENT REFERENCE_RUN=${DDC_RUNS}/half_rings_decomposed_100 FIXTURES half_rings_decomposed_100
+    ARGS ${DDC_HALF_RINGS_100})
 endforeach()
 # Restarted on another rank count (history to 1e-10: the uninterrupted run
 # with Exodus output is the same computation).

@@ -13,8 +13,10 @@
 #     of Figure 4 (monolithic-100) and of both 2-D step-control studies
 #   contact_half_rings_20_np2 (suites/contact.cmake): Figure 4's monolithic-20
 #   half_rings_decomposed_100: the deck as shipped (decomposed element,
-#     FETI-DP, 4 METIS subdomains), 100 steps: the example's paper run and
-#     the step-control study's fixed-100
+#     FETI-DP, 4 METIS subdomains), 100 steps, VTK every 10 steps: the
+#     example's paper run, the step-control study's fixed-100 and the
+#     uninterrupted run of the restart cases kill and usr1-to-mpirun
+#     (suites/restart.cmake)
 #   example_two_half_rings_adaptive_np2 (suites/examples.cmake): the
 #     adaptive deck (tolerance 0.005): the step-control study's tol-0.005
 #   half_rings_3d_free_monolithic_100 / half_rings_3d_free_decomposed_100:
@@ -23,8 +25,8 @@
 #     decomposed-100 of the 3-D Figure 4, reference and fixed-100 of the 3-D
 #     step-control study
 ddc_add_run_test(half_rings_decomposed_100 RANKS 2 FIXTURE
-  ARGS ${PROJECT_SOURCE_DIR}/examples/two_half_rings.xml --set "Load Stepping/Number of Steps=100"
-    --set "Output/VTK=false" --output-dir ${DDC_RUNS}/half_rings_decomposed_100
+  ARGS ${PROJECT_SOURCE_DIR}/examples/two_half_rings.xml ${DDC_HALF_RINGS_100}
+    --output-dir ${DDC_RUNS}/half_rings_decomposed_100
   FILES ${DDC_RUNS}/half_rings_decomposed_100/history.csv LABELS study contact feti dd_contact
   REGEX "step +100/100 ")
 set(HALF_RINGS_3D_FREE_100 ${PROJECT_SOURCE_DIR}/examples/two_half_rings_3d_free.xml
