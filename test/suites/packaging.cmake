@@ -55,6 +55,7 @@ set_tests_properties(package_arrows PROPERTIES LABELS "unit;install" RUN_SERIAL 
 add_test(NAME install_and_consume COMMAND ${CMAKE_COMMAND}
   -DBUILD_DIR=${PROJECT_BINARY_DIR} -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/install_consume
   -DEXAMPLES_SUBDIR=${CMAKE_INSTALL_DATADIR}/ddcontact/examples/embedding
+  "-DLAUNCHER=${CMAKE_CXX_COMPILER_LAUNCHER}"
   -P ${CMAKE_CURRENT_SOURCE_DIR}/cmake/InstallAndConsume.cmake)
 set_tests_properties(install_and_consume PROPERTIES ENVIRONMENT "${DDC_TEST_ENVIRONMENT}" TIMEOUT ${DDC_TEST_TIMEOUT_LONG}
   LABELS "system;install" RUN_SERIAL TRUE)
