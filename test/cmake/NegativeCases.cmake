@@ -16,7 +16,9 @@
 #               build, a run, a special launcher, MPMD, the post-processing
 #               tools) and a representative case of each stage checked in
 #               process: one ctest per rank count, negative_<case> (one rank
-#               count) or negative_<case>_np<r>.
+#               count) or negative_<case>_np<r>, which also requires the
+#               application's prefix "ddcontact: error" (the message the
+#               in-process check sees is what follows it).
 # Every one is labelled `negative`.
 
 # ddc_negative_placeholders(<var>): `var` with the table's directory
@@ -76,7 +78,7 @@ function(ddc_declare_negative_case)
         set(name negative_${C_case}_np${np})
       endif()
       ddc_add_run_test(${name} FAIL PRESERVE RANKS ${np} LAUNCHER ${C_launcher} LABELS ${labels} ARGS ${args}
-        REGEX "${C_regex}")
+        ALSO "ddcontact: error" REGEX "${C_regex}")
       list(APPEND names ${name})
     endforeach()
   endif()

@@ -14,21 +14,25 @@
 # fixture R, so R runs first, once, and its readers are skipped if it fails.
 
 # ddc_add_run_test(<name> RANKS <np> ARGS ... [FAIL] [PRESERVE] [FIXTURE] [FILES f...]
-#                  [LABELS l...] [LAUNCHER cmd...] [REGEX r])
+#                  [LABELS l...] [LAUNCHER cmd...] [ALSO r] [REGEX r])
 # Every rank runs under tools/record_exit_status.sh: each rank's exit status
 # is checked (all 0, or with FAIL all non-zero).
 # PRESERVE: runs with --output-dir into a directory holding an earlier result
 # and checks that the run leaves it byte-identical.
 # FIXTURE: the run is the fixture <name> (other tests read its results).
+# ALSO: a second regex the output must match.
 # REGEX comes last: a regex with an unmatched '[' swallows the arguments after it.
 function(ddc_add_run_test name)
-  cmake_parse_arguments(R "FAIL;PRESERVE;FIXTURE" "RANKS;REGEX" "ARGS;FILES;LABELS;LAUNCHER" ${ARGN})
+  cmake_parse_arguments(R "FAIL;PRESERVE;FIXTURE" "RANKS;REGEX;ALSO" "ARGS;FILES;LABELS;LAUNCHER" ${ARGN})
   list(PREPEND R_LABELS system)
   if(NOT R_RANKS)
     set(R_RANKS 2)
   endif()
   set(args ${R_ARGS})
   set(extra)
+  if(R_ALSO)
+    list(APPEND extra "-DALSO=${R_ALSO}")
+  endif()
   if(R_PRESERVE)
     set(dir ${DDC_RUNS}/${name})
     list(APPEND args --output-dir ${dir})
@@ -143,7 +147,7 @@ function(ddc_add_mpmd_startup_test name side)
   endif()
   string(REPLACE ";" "|" cmd "${cmd}")
   add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} "-DCMD=${cmd}" -DEXPECT=failure "-DREGEX=${M_REGEX}"
-    -DABORT_EXPECTED=1 -P ${CMAKE_CURRENT_SOURCE_DIR}/cmake/RunCase.cmake)
+    "-DALSO=ddcontact: error" -DABORT_EXPECTED=1 -P ${CMAKE_CURRENT_SOURCE_DIR}/cmake/RunCase.cmake)
   set_tests_properties(${name} PROPERTIES ENVIRONMENT "${DDC_TEST_ENVIRONMENT}" PROCESSORS 2 TIMEOUT 60
     LABELS "${M_LABELS}")
 endfunction()
