@@ -30,6 +30,8 @@
 #   --check-floor F     passed to ddcontact-figure4 (check only points with U_ref > F max U_ref)
 #   --assert-phases     passed to ddcontact-figure4 (make the phase criterion (b) part of the check)
 #   --strict            exit 1 when the check of the paper's findings fails (default: report it, exit 0)
+#   --use-run LABEL=DIR take run LABEL's history from DIR/history.csv, an earlier run of the
+#                       same case (same deck, options and steps), instead of running it (repeatable)
 #   --skip-runs         reuse the histories already in OUT_DIR/runs (re-analyse and re-plot only)
 # Exit status: 0 done (check result printed), 1 a run, the tool or gnuplot failed (or the check
 # with --strict), 2 bad usage.
@@ -41,11 +43,12 @@ die() { echo "run_figure4.sh: $*" >&2; exit 2; }
 np=2 strategy=FETI-DP partition="By Body" subdomains="" check_floor="" strict=0 skip_runs=0 deck="" assert_phases=0
 ddc="" fig4=""
 extra=()
+use_runs=()
 pos=()
 while (($#)); do
   case "$1" in
     -h|--help) usage; exit 0 ;;
-    --np|--strategy|--partition|--subdomains|--set|--ddcontact|--figure4-tool|--check-floor|--deck)
+    --np|--strategy|--partition|--subdomains|--set|--ddcontact|--figure4-tool|--check-floor|--deck|--use-run)
       (($# >= 2)) || die "option $1 needs a value"
       case "$1" in
         --np) np=$2 ;;
@@ -53,6 +56,7 @@ while (($#)); do
         --partition) partition=$2 ;;
         --subdomains) subdomains=$2 ;;
         --set) extra+=(--set "$2") ;;
+        --use-run) [[ $2 == ?*=?* ]] || die "--use-run '$2': expected LABEL=DIR"; use_runs+=("$2") ;;
         --ddcontact) ddc=$2 ;;
         --figure4-tool) fig4=$2 ;;
         --check-floor) check_floor=$2 ;;

@@ -29,6 +29,8 @@
 #   --check             assert (exit 1) for every adaptive run: max error <= 1 %, peak strain energy
 #                       within 0.5 %, fewer contact exchanges than fixed-100
 #   --ddcontact EXE, --figure4-tool EXE   executables from elsewhere
+#   --use-run LABEL=DIR take run LABEL's history from DIR/history.csv, an earlier run of the
+#                       same case (same deck, options and steps), instead of running it (repeatable)
 #   --skip-runs         reuse the histories already in OUT_DIR/runs
 # Exit status: 0 done, 1 a run or the tool failed (or the check with --check), 2 bad usage.
 set -euo pipefail
@@ -39,17 +41,19 @@ die() { echo "run_step_control.sh: $*" >&2; exit 2; }
 np=2 partition="" subdomains="" check_floor=0.02 check=0 skip_runs=0 deck="" tolerances="0.02 0.01 0.005 0.002"
 ddc="" fig4=""
 extra=()
+use_runs=()
 pos=()
 while (($#)); do
   case "$1" in
     -h|--help) usage; exit 0 ;;
-    --np|--partition|--subdomains|--set|--ddcontact|--figure4-tool|--check-floor|--deck|--tolerances)
+    --np|--partition|--subdomains|--set|--ddcontact|--figure4-tool|--check-floor|--deck|--tolerances|--use-run)
       (($# >= 2)) || die "option $1 needs a value"
       case "$1" in
         --np) np=$2 ;;
         --partition) partition=$2 ;;
         --subdomains) subdomains=$2 ;;
         --set) extra+=(--set "$2") ;;
+        --use-run) [[ $2 == ?*=?* ]] || die "--use-run '$2': expected LABEL=DIR"; use_runs+=("$2") ;;
         --ddcontact) ddc=$2 ;;
         --figure4-tool) fig4=$2 ;;
         --check-floor) check_floor=$2 ;;

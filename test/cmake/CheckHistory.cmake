@@ -1,5 +1,5 @@
-# Checks values in a history.csv for ctest (test/CMakeLists.txt, section
-# "Across-partition contact").
+# Checks values in a history.csv for ctest (ddc_check_history,
+# test/cmake/TestShapes.cmake).
 #   -DHISTORY=<file>        the history.csv
 #   -DNROWS=<n>             the number of data rows it must have (optional)
 #   -DCHECKS=<c>|<c>|...    checks, each  ROWS:COLUMN:OP:VALUE[:VALUE2]

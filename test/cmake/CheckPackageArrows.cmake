@@ -1,4 +1,4 @@
-# Builds the package-arrow probes (test/CMakeLists.txt) one after the other:
+# Builds the package-arrow probes (test/suites/packaging.cmake) one after the other:
 # every ALLOWED probe must compile, every FORBIDDEN one must fail because its
 # header is not on the package's include path.
 #   cmake -DBUILD_DIR=<build tree> -DALLOWED=a|b -DFORBIDDEN=c:header|d:header -P CheckPackageArrows.cmake

@@ -2,6 +2,8 @@
 #   -DCMD=<|-list command>      the command (mpirun ... ddcontact deck args), '|'-separated
 #   -DEXPECT=success|failure    required exit status class
 #   -DREGEX=<regex>             must match stdout+stderr (optional)
+#   -DALSO=<regex>              must match too (optional; the negative cases:
+#                               the application's "ddcontact: error" prefix)
 #   -DPRESERVE=<dir>            before: put an earlier DDContact result into <dir>
 #                               (a copy of -DEARLIER=<dir>, a real result);
 #                               after: every file of it must be byte-identical
@@ -86,6 +88,9 @@ elseif(NOT rc EQUAL 0)
 endif()
 if(DEFINED REGEX AND NOT all MATCHES "${REGEX}")
   message(FATAL_ERROR "output does not match the expected message: ${REGEX}")
+endif()
+if(ALSO AND NOT all MATCHES "${ALSO}")
+  message(FATAL_ERROR "output does not match: ${ALSO}")
 endif()
 if(EXPECT STREQUAL "failure" AND all MATCHES "MPI_ABORT was invoked" AND NOT ABORT_EXPECTED)
   message(FATAL_ERROR "an input error must end every rank cleanly, not through MPI_Abort")

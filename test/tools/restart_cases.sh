@@ -46,6 +46,12 @@
 #   no-checkpoint   Output/Checkpoint Interval = 0: a stopped run says it
 #                   has no checkpoint, and --restart says so naming the
 #                   directory.
+#   reference       the uninterrupted run alone, into WORKDIR/reference: the
+#                   reference that several cases share (REFERENCE_RUN).
+# Environment: REFERENCE_RUN, the directory of the uninterrupted run of the
+# same deck, options and rank count (a case `reference`): the cases sigterm,
+# newton-failure, kill, usr1-to-mpirun and other-ranks compare with it
+# instead of running it again (extend continues its own reference).
 set -u
 case_name=$1 np=$2 app=$3 compare=$4 deck=$5 work=$6
 shift 6
@@ -72,8 +78,15 @@ expect_in() {
   grep -Eq -e "$2" "$1" || { fail "$3: no match for '$2'"; sed 's/^/    | /' "$1"; }
 }
 
-# The uninterrupted run.
+# The uninterrupted run: $ref, run here unless REFERENCE_RUN names it.
+ref=$work/reference
 reference() {
+  if [ -n "${REFERENCE_RUN:-}" ] && [ "$case_name" != extend ]; then
+    ref=$REFERENCE_RUN
+    [ -f "$ref/history.csv" ] || { fail "REFERENCE_RUN: no $ref/history.csv"; exit 1; }
+    echo "the uninterrupted run: $ref"
+    return
+  fi
   run "$work/reference.log" "$np" --output-dir "$work/reference" ||
     true
   every_rank_succeeded "$work/reference.log" || exit 1
@@ -82,12 +95,12 @@ reference() {
 # same_results DIR: DIR's results are the reference's (history field for
 # field but wall_seconds; the VTK series and the Exodus file byte for byte).
 same_results() {
-  "$compare" "$work/reference/history.csv" "$1/history.csv" exact || fail "history.csv of $1 differs"
-  if [ -d "$work/reference/vtk" ]; then
-    [ "$(hashes "$work/reference/vtk")" = "$(hashes "$1/vtk")" ] || fail "the VTK series of $1 differs"
+  "$compare" "$ref/history.csv" "$1/history.csv" exact || fail "history.csv of $1 differs"
+  if [ -d "$ref/vtk" ]; then
+    [ "$(hashes "$ref/vtk")" = "$(hashes "$1/vtk")" ] || fail "the VTK series of $1 differs"
   fi
-  if [ -f "$work/reference/results.e" ]; then
-    cmp -s "$work/reference/results.e" "$1/results.e" || fail "results.e of $1 differs"
+  if [ -f "$ref/results.e" ]; then
+    cmp -s "$ref/results.e" "$1/results.e" || fail "results.e of $1 differs"
   fi
   [ -f "$1/checkpoint.ddc" ] || fail "no checkpoint.ddc in the committed result $1"
 }
@@ -156,7 +169,7 @@ kill)
   every_rank_status "$work/stopped.log" 143
   expect_in "$work/stopped.log" "stopped by SIGTERM after step [0-9]+ " "the stop message"
   rows=$(($(wc -l <"$work/stopped.partial/history.csv") - 1))
-  total=$(($(wc -l <"$work/reference/history.csv") - 1))
+  total=$(($(wc -l <"$ref/history.csv") - 1))
   [ "$rows" -lt "$total" ] || fail "the run was not stopped before its end ($rows of $total rows)"
   echo "stopped after $rows of $total steps"
   restart_in_place "$work/restart.log"
@@ -182,7 +195,7 @@ other-ranks:*)
   np=$ranks every_rank_succeeded "$work/restart.log"
   expect_in "$work/restart.log" "restart: continuing after step 5 " "restart"
   # The physics (the dual iterations may differ by one with the rank count).
-  "$compare" "$work/reference/history.csv" "$work/continued/history.csv" 1e-10 load_factor strain_energy \
+  "$compare" "$ref/history.csv" "$work/continued/history.csv" 1e-10 load_factor strain_energy \
     newton_iterations active_contacts contact_force_x contact_force_y contact_exchanges external_work ||
     fail "history.csv differs above 1e-10"
   [ -f "$work/stopped.partial/checkpoint.ddc" ] || fail "the stopped run's checkpoint is gone"
@@ -253,6 +266,9 @@ extend)
   grep -q "never paired" "$work/extend.log" && fail "a pair that paired before the restart is reported as never paired"
   head -n 21 "$work/reference/history.csv" >"$work/first20.csv"
   "$compare" "$work/finished.csv" "$work/first20.csv" exact || fail "the finished run's rows changed"
+  ;;
+reference)
+  reference
   ;;
 no-checkpoint)
   DDCONTACT_FAULT_INJECTION=sigterm@5 run "$work/stopped.log" "$np" --output-dir "$work/stopped" \

@@ -4,7 +4,7 @@
 // formulations. The upper block is held by contact alone, which FETI-DP does
 // not allow (a floating subdomain problem); the plane-strain consistency with
 // 2-D and FETI-DP = Monolithic on the 3-D half-rings are ctests
-// (test/CMakeLists.txt).
+// (test/suites/contact.cmake).
 #include <gtest/gtest.h>
 
 #include <array>

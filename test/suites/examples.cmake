@@ -1,0 +1,84 @@
+# The shipped examples (examples/*.xml) double as smoke tests: each runs to
+# the end and writes its history and VTK series. Their results do not depend
+# on the number of ranks (summation order only: 1e-10; FETI-DP is iterative:
+# to its tolerance).
+# (The main example, examples/two_half_rings.sh, is in suites/studies.cmake.)
+foreach(ex arch elastic_block bar_vibration)
+  foreach(np 1 2)
+    ddc_add_run_test(example_${ex}_np${np} RANKS ${np} FIXTURE
+      ARGS ${PROJECT_SOURCE_DIR}/examples/${ex}.xml --output-dir ${DDC_RUNS}/example_${ex}_np${np}
+      FILES ${DDC_RUNS}/example_${ex}_np${np}/history.csv ${DDC_RUNS}/example_${ex}_np${np}/vtk/solution.pvd
+      LABELS example)
+  endforeach()
+  ddc_compare_histories(rank_independence_${ex} example_${ex}_np1 example_${ex}_np2 1e-10)
+endforeach()
+
+# 3-D: examples/block_3d.xml (Hex8, linear elastic) and
+# examples/half_ring_arch_3d.xml (Hex8, neo-Hookean, large deformation) on 1,
+# 2 and 3 ranks: the same history to 1e-10 (doc/verification.md "3-D analysis").
+foreach(ex block_3d half_ring_arch_3d)
+  foreach(np 1 2 3)
+    set(name example_${ex}_np${np})
+    ddc_add_run_test(${name} RANKS ${np} FIXTURE
+      ARGS ${PROJECT_SOURCE_DIR}/examples/${ex}.xml --output-dir ${DDC_RUNS}/${name}
+      FILES ${DDC_RUNS}/${name}/history.csv ${DDC_RUNS}/${name}/vtk/solution.pvd LABELS example)
+  endforeach()
+  foreach(np 2 3)
+    ddc_compare_histories(rank_independence_${ex}_np${np} example_${ex}_np1 example_${ex}_np${np} 1e-10)
+  endforeach()
+endforeach()
+
+# The bar impact (implicit dynamics with contact, the decomposed element
+# under FETI-DP): on 1, 2 and 3 ranks, each subdomain factorised once
+# (linear material, constant time step: the contact changes only constraint
+# rows), the same history on every rank count (FETI-DP is iterative: to
+# its tolerance, not to round-off, and the dual iterations may differ by
+# one; the y and z forces are round-off).
+foreach(np 1 2 3)
+  ddc_add_run_test(example_bar_impact_np${np} RANKS ${np} FIXTURE
+    ARGS ${PROJECT_SOURCE_DIR}/examples/bar_impact.xml --output-dir ${DDC_RUNS}/example_bar_impact_np${np}
+    FILES ${DDC_RUNS}/example_bar_impact_np${np}/history.csv ${DDC_RUNS}/example_bar_impact_np${np}/vtk/solution.pvd
+    LABELS example contact feti dynamics
+    REGEX "step +96/96 .*contacts 0.*each subdomain factorised 1 time")
+endforeach()
+foreach(np 2 3)
+  ddc_compare_histories(rank_independence_bar_impact_np${np} example_bar_impact_np1 example_bar_impact_np${np} 1e-8
+    COLUMNS strain_energy newton_iterations active_contacts contact_force_x contact_exchanges kinetic_energy
+      total_energy)
+endforeach()
+
+# The two half-rings with mass (the decomposed element, FETI-DP, 100 time
+# steps): contact starts and ends, one exchange per step.
+ddc_add_run_test(example_two_half_rings_dynamic RANKS 2
+  ARGS ${PROJECT_SOURCE_DIR}/examples/two_half_rings_dynamic.xml --set "Output/VTK=false"
+    --output-dir ${DDC_RUNS}/example_two_half_rings_dynamic
+  FILES ${DDC_RUNS}/example_two_half_rings_dynamic/history.csv LABELS example contact feti dynamics
+  REGEX "step +50/100 .*contacts [1-9].*step 100/100 .*contacts 0.*102 contact-geometry exchanges")
+# The same with Step Control: in dynamics a step above the tolerance is
+# repeated with its end's geometry at the same time step (no new
+# factorisation for that), and the run reaches the final time.
+ddc_add_run_test(example_two_half_rings_dynamic_step_control RANKS 2
+  ARGS ${PROJECT_SOURCE_DIR}/examples/two_half_rings_dynamic.xml --set "Output/VTK=false"
+    --set "Step Control/Error Tolerance=0.005" --output-dir ${DDC_RUNS}/example_two_half_rings_dynamic_step_control
+  FILES ${DDC_RUNS}/example_two_half_rings_dynamic_step_control/history.csv LABELS example contact feti dynamics
+  REGEX "repeating it with the projections and normals of its end.*step +[0-9]+  time 5 .*contacts 0")
+
+# Step control by the frozen-geometry error (doc/contact.md "Step control by
+# the frozen-geometry error", doc/figure4.md "Step control"):
+# examples/two_half_rings_adaptive.xml on 1, 2 and 3 ranks: the controller
+# decides the same on every rank count (the same steps, the same repeats and
+# reductions); FETI-DP is iterative, so the sizes, which the indicator sets,
+# agree to 1e-6, not to round-off. (The 2-rank run is also the tol-0.005 run
+# of the step-control study, suites/studies.cmake.)
+foreach(np 1 2 3)
+  ddc_add_run_test(example_two_half_rings_adaptive_np${np} RANKS ${np} FIXTURE
+    ARGS ${PROJECT_SOURCE_DIR}/examples/two_half_rings_adaptive.xml --set "Output/VTK=false"
+      --output-dir ${DDC_RUNS}/example_two_half_rings_adaptive_np${np}
+    FILES ${DDC_RUNS}/example_two_half_rings_adaptive_np${np}/history.csv LABELS example contact feti dd_contact
+    REGEX "step +20  load 1 .*size 0.05.*contacts 0")
+endforeach()
+foreach(np 2 3)
+  ddc_compare_histories(rank_independence_two_half_rings_adaptive_np${np} example_two_half_rings_adaptive_np1
+    example_two_half_rings_adaptive_np${np} 1e-6
+    COLUMNS step load_factor step_size rejected_steps geometry_corrections contact_exchanges strain_energy)
+endforeach()

@@ -1,0 +1,121 @@
+# Output (doc/user-guide.md, "The output directory"): never destroy what
+# DDContact did not write, writes that cannot half-happen, one run per
+# directory; Exodus II results read back by independent readers; Exodus II
+# meshes read in.
+
+# tools/output_directory_cases.sh (fault injection through
+# DDCONTACT_FAULT_INJECTION): a failing write / sync / close / create at each
+# file of a result; the process killed at each stage of a run and its commit
+# and the next run's recovery; two concurrent runs (twice the ranks at once);
+# foreign directories and files. Every case on 1 and 2 ranks, every rank's
+# exit status checked.
+foreach(case write-faults kill-stages concurrent foreign)
+  foreach(np 1 2)
+    set(processors ${np})
+    if(case STREQUAL "concurrent")
+      set(processors 2)
+    endif()
+    ddc_add_script_test(output_${case}_np${np} PROCESSORS ${processors} LABELS output negative
+      PROPERTIES FAIL_REGULAR_EXPRESSION "FAIL:"
+      COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/tools/output_directory_cases.sh
+        ${case} ${np} ${DDC_APP} ${DDC_INPUTS}/small_block.xml ${DDC_RUNS}/output_${case}_np${np})
+  endforeach()
+endforeach()
+# A result directory of another user, which this user cannot empty: refused
+# at start (it used to exit 0 leaving an undeletable D.old). Runs the second
+# run as 'nobody' (needs root and setpriv; skipped otherwise).
+foreach(np 1 2)
+  ddc_add_script_test(output_foreign_owner_np${np} PROCESSORS ${np} LABELS output negative
+    PROPERTIES FAIL_REGULAR_EXPRESSION "FAIL:" SKIP_RETURN_CODE 77
+    COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/tools/foreign_owner_case.sh
+      ${np} ${DDC_APP} ${DDC_INPUTS}/small_block.xml ${DDC_RUNS}/output_foreign_owner_np${np})
+endforeach()
+
+# Exodus II results (Output/Exodus) read back by independent readers, VTK's
+# vtkExodusIIReader and meshio (Debian python3-vtk9, python3-meshio: the
+# system Python has them): blocks, sets, variables, one time step per history
+# row, and every value equal to the VTK output's and history.csv's; the
+# element node order checked cell by cell, the side numbering against the
+# node sets. Contact in 2-D, the quadratic and tetrahedral cells in 3-D,
+# dynamics on 3 ranks.
+find_program(DDC_SYSTEM_PYTHON python3 PATHS /usr/bin NO_DEFAULT_PATH)
+if(NOT DDC_SYSTEM_PYTHON)
+  find_program(DDC_SYSTEM_PYTHON python3)
+endif()
+# ddc_add_exodus_test(<name> <ranks> <deck> [ddcontact args...]): the run
+# (a fixture: results.e and history.csv) and <name>_readers.
+function(ddc_add_exodus_test name ranks deck)
+  ddc_add_run_test(${name} RANKS ${ranks} FIXTURE
+    ARGS ${deck} --set "Output/Exodus=true" --set "Output/VTK Interval=1" --output-dir ${DDC_RUNS}/${name} ${ARGN}
+    FILES ${DDC_RUNS}/${name}/results.e LABELS output)
+  add_test(NAME ${name}_readers COMMAND ${DDC_SYSTEM_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/tools/check_exodus.py
+    ${DDC_RUNS}/${name})
+  set_tests_properties(${name}_readers PROPERTIES FIXTURES_REQUIRED ${name} LABELS "system;output")
+endfunction()
+ddc_add_exodus_test(exodus_half_rings 2 ${PROJECT_SOURCE_DIR}/examples/two_half_rings.xml
+  --set "Load Stepping/Number of Steps=10")
+ddc_add_exodus_test(exodus_arch_Quad9 2 ${PROJECT_SOURCE_DIR}/examples/arch.xml
+  --set "Mesh/Bodies/Arch/Element/Type=Quad9")
+foreach(cell Hex8 Hex20 Hex27 Tet4 Tet10)
+  ddc_add_exodus_test(exodus_block_${cell} 2 ${PROJECT_SOURCE_DIR}/examples/block_3d.xml
+    --set "Mesh/Bodies/Block/Element/Type=${cell}")
+endforeach()
+ddc_add_exodus_test(exodus_bar_impact 3 ${PROJECT_SOURCE_DIR}/examples/bar_impact.xml --set "Dynamics/Final Time=4")
+
+# Exodus II meshes in (Generator = Exodus, doc/user-guide.md "Writing an
+# input deck"): a file written by an independent writer
+# (tools/write_exodus_mesh.py: netCDF4, not the Exodus II library) from the
+# mesh of a run on generated bodies, every body read from it
+# (tools/exodus_deck.py), gives the same history as the generated mesh - the
+# two half-rings (2-D, contact, FETI-DP on 4 METIS subdomains: the run
+# exodus_half_rings above, 10 steps) and the Hertz sphere on its block (3-D,
+# 2 steps) - and malformed files fail naming the file and the entity (the
+# exodus_mesh_* cases of test/negative_cases.txt, which read the files made
+# here).
+set(EXO_MESH ${DDC_RUNS}/exodus_mesh)
+ddc_add_run_test(exodus_mesh_hertz_generated RANKS 2 FIXTURE
+  ARGS ${PROJECT_SOURCE_DIR}/examples/hertz_sphere.xml --set "Load Stepping/Number of Steps=2"
+    --set "Output/Exodus=true" --set "Output/VTK=false" --output-dir ${DDC_RUNS}/exodus_mesh_hertz_generated
+  FILES ${DDC_RUNS}/exodus_mesh_hertz_generated/results.e LABELS output)
+foreach(case half_rings hertz)
+  if(case STREQUAL half_rings)
+    set(deck ${PROJECT_SOURCE_DIR}/examples/two_half_rings.xml)
+    set(steps 10)
+    set(source exodus_half_rings)
+  else()
+    set(deck ${PROJECT_SOURCE_DIR}/examples/hertz_sphere.xml)
+    set(steps 2)
+    set(source exodus_mesh_hertz_generated)
+  endif()
+  add_test(NAME exodus_mesh_${case}_files COMMAND sh -c
+    "mkdir -p ${EXO_MESH} && ${DDC_SYSTEM_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/tools/write_exodus_mesh.py ${DDC_RUNS}/${source}/results.e ${EXO_MESH}/${case}.e && ${DDC_SYSTEM_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/tools/exodus_deck.py ${deck} ${EXO_MESH}/${case}.xml ${EXO_MESH}/${case}.e")
+  set_tests_properties(exodus_mesh_${case}_files PROPERTIES FIXTURES_REQUIRED ${source}
+    FIXTURES_SETUP exodus_mesh_${case}_files LABELS "system;output")
+  ddc_add_run_test(exodus_mesh_${case} RANKS 2 FIXTURE
+    ARGS ${EXO_MESH}/${case}.xml --set "Load Stepping/Number of Steps=${steps}" --set "Output/VTK=false"
+      --output-dir ${EXO_MESH}/${case}_read
+    FILES ${EXO_MESH}/${case}_read/history.csv LABELS output)
+  set_tests_properties(exodus_mesh_${case} PROPERTIES FIXTURES_REQUIRED exodus_mesh_${case}_files)
+  add_test(NAME exodus_mesh_${case}_same_results COMMAND compare_history
+    ${DDC_RUNS}/${source}/history.csv ${EXO_MESH}/${case}_read/history.csv 1e-12
+    step load_factor strain_energy newton_iterations active_contacts contact_force_x contact_force_y external_work)
+  set_tests_properties(exodus_mesh_${case}_same_results PROPERTIES
+    FIXTURES_REQUIRED "${source};exodus_mesh_${case}" LABELS "system;output")
+endforeach()
+# Malformed files, from the half-rings mesh.
+foreach(bad wedge inverted side_element side_number)
+  if(bad STREQUAL wedge)
+    set(opt --element-type WEDGE6)
+  elseif(bad STREQUAL inverted)
+    set(opt --invert-element 5)
+  elseif(bad STREQUAL side_element)
+    set(opt --side-set-element 99999)
+  else()
+    set(opt --side-number 7)
+  endif()
+  string(REPLACE ";" " " opt "${opt}")
+  add_test(NAME exodus_mesh_malformed_${bad}_file COMMAND sh -c
+    "mkdir -p ${EXO_MESH} && ${DDC_SYSTEM_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/tools/write_exodus_mesh.py ${DDC_RUNS}/exodus_half_rings/results.e ${EXO_MESH}/malformed_${bad}.e ${opt}")
+  set_tests_properties(exodus_mesh_malformed_${bad}_file PROPERTIES FIXTURES_REQUIRED exodus_half_rings
+    FIXTURES_SETUP exodus_mesh_malformed_${bad} LABELS "system;output")
+endforeach()

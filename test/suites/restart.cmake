@@ -1,0 +1,94 @@
+# Checkpoints and restart (doc/user-guide.md, "Checkpoints and restart").
+# tools/restart_cases.sh: a run stopped after step k (SIGTERM while step k+1
+# is solved, through the test seam and for real from outside; SIGUSR1 to
+# mpirun, which forwards it; a deliberate Newton failure) restarts with
+# --restart and ends with the uninterrupted run's history.csv, field for
+# field but wall_seconds, and the same VTK and Exodus II files byte for
+# byte. The two half-rings: the decomposed element under FETI-DP (METIS, 4
+# subdomains) and the conventional element under Monolithic, on 1 and 2
+# ranks. Monolithic on 2 ranks uses Amesos2 (KLU2 gathered to rank 0):
+# MUMPS on several ranks sums contributions in the order messages arrive,
+# so two uninterrupted runs already differ (measured: 4e-14 of the peak
+# external work; doc/user-guide.md, "Checkpoints and restart"). Restarted
+# on another rank count: 1e-10. Corrupted, truncated and foreign
+# checkpoints, changes a restart may not make, and no checkpoint: refused,
+# nothing changed (these are labelled negative too).
+#
+# The uninterrupted run of a deck, options and rank count is computed once,
+# restart_reference_<variant>, and the cases that stop that run compare with
+# it (REFERENCE_RUN).
+set(DDC_HALF_RINGS ${PROJECT_SOURCE_DIR}/examples/two_half_rings.xml)
+set(DDC_RESTART_CONVENTIONAL --set "Contact/Formulation=Node-To-Segment" --set "Solver/Strategy=Monolithic")
+# ddc_add_restart_test(<name> <np> <case> <deck> [REFERENCE <variant>]
+#                      [PROCESSORS n] [LABELS l...] [ENVIRONMENT e...] [FIXTURES f...]
+#                      [ARGS ddcontact args...])
+# REFERENCE: the shared uninterrupted run restart_reference_<variant>
+# (or another run named by ENVIRONMENT REFERENCE_RUN=... and FIXTURES).
+function(ddc_add_restart_test name np case deck)
+  cmake_parse_arguments(X "" "REFERENCE;PROCESSORS" "LABELS;ENVIRONMENT;FIXTURES;ARGS" ${ARGN})
+  set(processors ${np})
+  if(X_PROCESSORS)
+    set(processors ${X_PROCESSORS})
+  endif()
+  set(environment ${X_ENVIRONMENT})
+  set(fixtures ${X_FIXTURES})
+  if(X_REFERENCE)
+    set(environment REFERENCE_RUN=${DDC_RUNS}/restart_reference_${X_REFERENCE}/reference)
+    set(fixtures restart_reference_${X_REFERENCE})
+  endif()
+  ddc_add_script_test(${name} PROCESSORS ${processors} LABELS restart ${X_LABELS}
+    ENVIRONMENT ${environment} FIXTURES ${fixtures} PROPERTIES FAIL_REGULAR_EXPRESSION "FAIL:"
+    COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/tools/restart_cases.sh ${case} ${np} ${DDC_APP}
+      $<TARGET_FILE:compare_history> ${deck} ${DDC_RUNS}/${name} ${X_ARGS})
+endfunction()
+# ddc_add_restart_reference(<variant> <np> [ddcontact args...]): the shared
+# uninterrupted run of the half-rings.
+function(ddc_add_restart_reference variant np)
+  ddc_add_restart_test(restart_reference_${variant} ${np} reference ${DDC_HALF_RINGS} ARGS ${ARGN})
+  set_tests_properties(restart_reference_${variant} PROPERTIES FIXTURES_SETUP restart_reference_${variant})
+endfunction()
+
+foreach(np 1 2)
+  ddc_add_restart_reference(feti_np${np} ${np} --set "Output/Exodus=true")
+  foreach(case sigterm newton-failure)
+    ddc_add_restart_test(restart_${case}_feti_np${np} ${np} ${case} ${DDC_HALF_RINGS} REFERENCE feti_np${np}
+      ARGS --set "Output/Exodus=true")
+  endforeach()
+endforeach()
+ddc_add_restart_reference(monolithic_np1 1 ${DDC_RESTART_CONVENTIONAL})
+ddc_add_restart_reference(monolithic_np2 2 ${DDC_RESTART_CONVENTIONAL} --set "Solver/Linear Solver/Type=Amesos2")
+foreach(case sigterm newton-failure)
+  ddc_add_restart_test(restart_${case}_monolithic_np1 1 ${case} ${DDC_HALF_RINGS} REFERENCE monolithic_np1
+    ARGS ${DDC_RESTART_CONVENTIONAL})
+  ddc_add_restart_test(restart_${case}_monolithic_np2 2 ${case} ${DDC_HALF_RINGS} REFERENCE monolithic_np2
+    ARGS ${DDC_RESTART_CONVENTIONAL} --set "Solver/Linear Solver/Type=Amesos2")
+endforeach()
+# Stopped from outside once the run is past step 20 of 100 (the step it
+# stops at is not known in advance): the uninterrupted run is
+# half_rings_decomposed_100 (suites/studies.cmake), the same deck and options.
+foreach(case kill usr1-to-mpirun)
+  ddc_add_restart_test(restart_${case}_feti_np2 2 ${case} ${DDC_HALF_RINGS}
+    ENVIRONMENT REFERENCE_RUN=${DDC_RUNS}/half_rings_decomposed_100 FIXTURES half_rings_decomposed_100
+    ARGS ${DDC_HALF_RINGS_100})
+endforeach()
+# Restarted on another rank count (history to 1e-10: the uninterrupted run
+# with Exodus output is the same computation).
+ddc_add_restart_test(restart_other_ranks_feti_np2_to_1 2 other-ranks:1 ${DDC_HALF_RINGS} REFERENCE feti_np2)
+ddc_add_restart_test(restart_other_ranks_feti_np1_to_3 1 other-ranks:3 ${DDC_HALF_RINGS} REFERENCE feti_np1
+  PROCESSORS 2)
+ddc_add_restart_test(restart_other_ranks_monolithic_np2_to_1 2 other-ranks:1 ${DDC_HALF_RINGS}
+  ARGS ${DDC_RESTART_CONVENTIONAL})
+# Dynamics (velocities and accelerations in the checkpoint) and Step Control
+# (the adaptive controller's state).
+ddc_add_restart_test(restart_sigterm_dynamics_np2 2 sigterm ${PROJECT_SOURCE_DIR}/examples/bar_impact.xml)
+ddc_add_restart_test(restart_sigterm_step_control_np2 2 sigterm
+  ${PROJECT_SOURCE_DIR}/examples/two_half_rings_adaptive.xml)
+# A failed run whose checkpoint cannot be written reports both.
+ddc_add_restart_test(restart_unwritable_np2 2 unwritable ${DDC_HALF_RINGS} LABELS negative)
+# A finished run taken further (a larger final load factor).
+ddc_add_restart_test(restart_extend_np2 2 extend ${DDC_HALF_RINGS})
+foreach(np 1 2)
+  foreach(case corrupted deck-change no-checkpoint)
+    ddc_add_restart_test(restart_${case}_np${np} ${np} ${case} ${DDC_HALF_RINGS} LABELS negative)
+  endforeach()
+endforeach()
