@@ -49,7 +49,10 @@ string(REPLACE ";" "|" _arrow_forbidden "${_arrow_forbidden}")
 add_test(NAME package_arrows COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR}
   "-DALLOWED=${_arrow_allowed}" "-DFORBIDDEN=${_arrow_forbidden}"
   -P ${CMAKE_CURRENT_SOURCE_DIR}/cmake/CheckPackageArrows.cmake)
-set_tests_properties(package_arrows PROPERTIES LABELS "unit;install" RUN_SERIAL TRUE TIMEOUT ${DDC_TEST_TIMEOUT})
+# It builds in this build tree, as install_and_consume installs from it: the
+# two never run at the same time (the lock), other tests may run beside them.
+set_tests_properties(package_arrows PROPERTIES LABELS "unit;install" RESOURCE_LOCK build_tree
+  TIMEOUT ${DDC_TEST_TIMEOUT})
 
 # Host codes: install DDContact and consume it with find_package.
 add_test(NAME install_and_consume COMMAND ${CMAKE_COMMAND}
@@ -58,4 +61,4 @@ add_test(NAME install_and_consume COMMAND ${CMAKE_COMMAND}
   "-DLAUNCHER=${CMAKE_CXX_COMPILER_LAUNCHER}"
   -P ${CMAKE_CURRENT_SOURCE_DIR}/cmake/InstallAndConsume.cmake)
 set_tests_properties(install_and_consume PROPERTIES ENVIRONMENT "${DDC_TEST_ENVIRONMENT}" TIMEOUT ${DDC_TEST_TIMEOUT_LONG}
-  LABELS "system;install" RUN_SERIAL TRUE)
+  LABELS "system;install" RESOURCE_LOCK build_tree PROCESSORS 2)

@@ -1,10 +1,12 @@
 // The step loop as a run sees it: the history header, the Exodus II global
 // variables and the checkpoint's record fields of a run all come from the
 // one table of DDC_StepRecord.hpp; a host's observer (Analysis::
-// addObserver()) is told of every step, in order, and of a failure.
+// addObserver()) is told of every step, in order, and of a failure; a
+// checkpoint of another record layout is refused.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <Teuchos_XMLParameterListHelpers.hpp>
 #include <exodusII.h>
 
 #include <filesystem>
@@ -156,4 +158,34 @@ TEST(StepLoop, HostObserverSeesBisectionsAndTheFailure) {
   }
   EXPECT_THAT(recorder->events,
               ElementsAreArray({"started", "newton failed", "failed: Newton did not converge in step"}));
+}
+
+// A checkpoint whose step records are laid out otherwise (another version
+// of DDContact: no "history fields", or other ones) is refused by name
+// before anything is restored.
+TEST(StepLoop, CheckpointOfAnotherRecordLayoutIsRefused) {
+  for (const bool withFields : {false, true}) {
+    PL deck = outputDeck(false);
+    ddc::Analysis a(worldComm(), deck);
+    std::ostringstream xml;
+    Teuchos::writeParameterListToXmlOStream(a.parameters(), xml);
+    const std::string file = "step_loop_other_layout_np" + std::to_string(worldComm()->getSize()) + ".ddc";
+    {
+      ddc::CheckpointWriter w(worldComm());
+      w.putBytes("parameters", xml.str());
+      w.putDoubles("run", {withFields ? 2.0 : 1.0, double(worldComm()->getSize()), 1.0, 0.0});
+      if (withFields) w.putBytes("history fields", "step,load_factor");
+      w.putDoubles("history", {1.0, 0.5});
+      w.write(file);
+    }
+    ddc::RestartSource source;
+    source.checkpoint = std::make_shared<const ddc::CheckpointReader>(worldComm(), file);
+    a.setRestart(source);
+    try {
+      a.run("");
+      FAIL() << "a checkpoint of another record layout was restored";
+    } catch (const ddc::InputError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("checkpoint '" + file + "': written by another version of DDContact"));
+    }
+  }
 }
