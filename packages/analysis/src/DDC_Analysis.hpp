@@ -14,7 +14,6 @@
 
 #include <Teuchos_Comm.hpp>
 #include <Teuchos_ParameterList.hpp>
-#include <array>
 #include <memory>
 #include <string>
 #include <vector>

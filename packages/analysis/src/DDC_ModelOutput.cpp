@@ -4,6 +4,19 @@
 
 namespace ddc {
 
+namespace {
+
+/// The contact slot of each mesh node that is a slave node, -1 for the
+/// others (the slots are replicated); empty without contact.
+std::vector<int> slaveSlotOfNode(const Model& model) {
+  std::vector<int> slotOf(model.hasContact() ? model.mesh().numNodes() : 0, -1);
+  const auto& slots = model.contactSlots();
+  for (size_t k = 0; k < slots.size(); ++k) slotOf[size_t(slots[k].slaveNode)] = int(k);
+  return slotOf;
+}
+
+}  // namespace
+
 void forEachLocalElementOutput(const Model& model, const Vector& uOverlap,
                                const std::function<void(const ElementOutput&)>& f) {
   const Mesh& mesh = model.mesh();
@@ -44,12 +57,7 @@ void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int st
       extra.emplace_back(name, keep.back()->getData());
     }
   const auto& ovMap = *model.overlapMap();
-  // Contact gap and pressure per mesh node (slave nodes only; replicated).
-  std::vector<double> gap(mesh.numNodes(), 0.0), pressure(mesh.numNodes(), 0.0);
-  for (const auto& s : model.contactSlots()) {
-    gap[s.slaveNode] = s.paired() ? s.gap : 0.0;
-    pressure[s.slaveNode] = s.pressure();
-  }
+  const auto slotOf = slaveSlotOfNode(model);
   const bool contact = model.hasContact();
   std::map<int, VtkPiece> pieces;
   std::map<int, std::map<int, int>> pointIndex;  // subdomain -> (mesh node -> piece point)
@@ -81,8 +89,9 @@ void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int st
         auto& d = p.pointData[0].values;
         for (int c = 0; c < 3; ++c) d.push_back(c < dim ? o.ue(i, c) : 0.0);
         if (contact) {
-          p.pointData[1].values.push_back(gap[en[i]]);
-          p.pointData[2].values.push_back(pressure[en[i]]);
+          const ContactSlot* slot = slotOf[en[i]] >= 0 ? &model.contactSlots()[size_t(slotOf[en[i]])] : nullptr;
+          p.pointData[1].values.push_back(slot && slot->paired() ? slot->gap : 0.0);
+          p.pointData[2].values.push_back(slot ? slot->pressure() : 0.0);
         }
         const size_t first = contact ? 3 : 1;
         for (size_t k = 0; k < extra.size(); ++k)
@@ -135,10 +144,8 @@ void writeExodusStep(ExodusWriter& writer, const Model& model, double time, cons
       keep.push_back(model.toOverlap(*f));
       fields.push_back(keep.back()->getData());
     }
-  // The contact values of each slave node (the slots are replicated).
-  std::vector<int> slotOf(model.hasContact() ? mesh.numNodes() : 0, -1);
+  const auto slotOf = slaveSlotOfNode(model);
   const auto& slots = model.contactSlots();
-  for (size_t k = 0; k < slots.size(); ++k) slotOf[slots[k].slaveNode] = int(k);
   ExodusStepValues values;
   values.global = globals;
   std::vector<char> seen(mesh.numNodes(), 0);

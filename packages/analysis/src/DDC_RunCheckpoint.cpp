@@ -15,8 +15,8 @@ namespace ddc {
 namespace {
 
 /// The checkpoint's record of the run: its layout version, the ranks that
-/// wrote it, the output counter and the external work. Layout 2: the
-/// history record's fields are those the "history fields" section names.
+/// wrote it, the number of step records and the external work. Layout 2:
+/// the step records' fields are those the "history fields" section names.
 constexpr double kCheckpointLayout = 2.0;
 
 /// The same entries as `v` (on model.ownedMap()) on a map of the

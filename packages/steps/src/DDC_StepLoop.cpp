@@ -77,8 +77,8 @@ void StepLoop::note(const std::string& line) {
   for (StepObserver* o : observers_) o->note(*this, line);
 }
 
-void StepLoop::notes(const std::vector<std::string>& lines) {
-  for (const auto& line : lines) note(line);
+void StepLoop::contactWarnings() {
+  for (const auto& w : model_->takeContactWarnings()) note("warning: " + w);
 }
 
 void StepLoop::run() {
@@ -88,8 +88,7 @@ void StepLoop::run() {
   attempts_->exchanges0 = model_->exchanges();
   attempts_->bytes0 = model_->bytesExchanged();
   for (StepObserver* o : observers_) o->started(*this);
-  if (contact)
-    for (const auto& w : model_->takeContactWarnings()) note("warning: " + w);  // from the initial pairing
+  if (contact) contactWarnings();  // from the initial pairing
   try {
     while (!controller_->done()) {
       const StepProposal p = controller_->propose();
@@ -182,7 +181,7 @@ StepLoop::Measured StepLoop::measure(const StepProposal& p, StepRecord& rec) {
   m.contact = model_->contactSummary();
   m.convergedSlots = model_->contactSlots();
   model_->updatePairing(*trial_, true, decomposed);
-  for (const auto& w : model_->takeContactWarnings()) note("warning: " + w);
+  contactWarnings();
   if (decomposed) {
     // The frozen-geometry error indicator (doc/contact.md, "Step control
     // by the frozen-geometry error"), relative to the energy of the state.

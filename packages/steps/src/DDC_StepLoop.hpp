@@ -120,7 +120,8 @@ class StepLoop {
   struct Attempts;
   struct Measured;
   void note(const std::string& line);
-  void notes(const std::vector<std::string>& lines);
+  /// The contact component's warnings (a pairing update's), as notes.
+  void contactWarnings();
   /// Solve proposal `p`; true if Newton converged into trial_.
   bool attempt(const StepProposal& p, StepRecord& rec);
   /// Newton failed on `p`: back to its start, a smaller step or give up.
