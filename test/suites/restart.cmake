@@ -50,7 +50,7 @@ endfunction()
 
 foreach(np 1 2)
   ddc_add_restart_reference(feti_np${np} ${np} --set "Output/Exodus=true")
-  foreach(case sigterm newton-failure)
+  foreach(case sigterm newton-failure memory-stop)
     ddc_add_restart_test(restart_${case}_feti_np${np} ${np} ${case} ${DDC_HALF_RINGS} REFERENCE feti_np${np}
       ARGS --set "Output/Exodus=true")
   endforeach()

@@ -43,6 +43,12 @@
 #                   its directory to 1.1 (22 steps): its 20 rows stay as
 #                   they were, two follow, and no warning says a contact
 #                   pair never paired (it paired before the restart).
+#   memory-stop     under prlimit --as=4 GiB with Solver/Memory Stop Fraction
+#                   = 0.05: after step 1 a rank maps more than 5 % of its
+#                   address-space limit, and every rank exits 1 naming the
+#                   limit and the checkpoint (the stop before memory runs
+#                   out, doc/user-guide.md "Memory"); then as sigterm,
+#                   without the limit.
 #   no-checkpoint   Output/Checkpoint Interval = 0: a stopped run says it
 #                   has no checkpoint, and --restart says so naming the
 #                   directory.
@@ -64,12 +70,13 @@ failures=0
 . "$here/rank_status_lib.sh"
 
 # run LOG NP [ddcontact args...]: every rank's exit status in $work/status.
+# UNDER: a command mpirun is started under (e.g. prlimit --as=...).
 run() {
   local log=$1 ranks=$2
   shift 2
   rm -rf "$work/status"
   mkdir -p "$work/status"
-  mpirun --oversubscribe -np "$ranks" sh "$here/record_exit_status.sh" "$work/status" "$app" "$deck" "${extra[@]}" \
+  ${UNDER:-} mpirun --oversubscribe -np "$ranks" sh "$here/record_exit_status.sh" "$work/status" "$app" "$deck" "${extra[@]}" \
     "$@" >"$log" 2>&1
 }
 
@@ -143,6 +150,16 @@ newton-failure)
   every_rank_failed "$work/stopped.log"
   expect_in "$work/stopped.log" "Newton did not converge in step 8 .*the checkpoint of step 7 .* is '.*stopped.partial/checkpoint.ddc'" \
     "the failure message"
+  restart_in_place "$work/restart.log"
+  ;;
+memory-stop)
+  reference
+  UNDER="prlimit --as=4294967296" run "$work/stopped.log" "$np" --output-dir "$work/stopped" \
+    --set "Solver/Memory Stop Fraction=0.05"
+  every_rank_failed "$work/stopped.log"
+  expect_in "$work/stopped.log" "error: stopped after step 1 .* before memory runs out: rank [0-9]+ maps [0-9.]+ [MG]iB, above 5 % of its address-space limit 4.0 GiB .ulimit -v. .doc/user-guide.md, 'Memory'. 'Solver/Memory Stop Fraction'.. its checkpoint is '.*stopped.partial/checkpoint.ddc': continue with --restart '.*stopped' with fewer ranks per host" \
+    "the stop message"
+  [ "$(($(wc -l <"$work/stopped.partial/history.csv") - 1))" = 1 ] || fail "the stopped run's history has not 1 row"
   restart_in_place "$work/restart.log"
   ;;
 unwritable)

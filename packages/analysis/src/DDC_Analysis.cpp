@@ -64,6 +64,7 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
   const MemoryLimit memory = memoryCheck ? availableMemory(*comm_) : MemoryLimit();
   const std::string memoryHint =
       "refine less, run on more ranks or hosts, or set 'Solver/Memory Check' = false to run anyway";
+  memoryBudget_ = MemoryBudget();
   PL& meshParams = params.sublist("Mesh");
   auto mesh = buildMesh(meshParams, factory_, baseDirectory, &memory, memoryHint);
   auto elements = makeBodyElements(*mesh, meshParams, factory_);
@@ -77,14 +78,17 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
     contact.initialInContact = false;  // Previous Step: a time step changes the active set little
   const std::string strategy = params.sublist("Solver").get<std::string>("Strategy");
   requireSupportedBodies(*mesh, bcs, contact, strategy == "FETI-DP", dynamic_);
-  Partition partition = partitionModel(*mesh, params.sublist("Partition"), strategy, comm_->getSize(), baseDirectory);
-  memoryEstimate_ = estimateMemory(*mesh, partition, comm_->getSize(), params.sublist("Solver"));
-  DDC_INPUT_REQUIRE(!memoryCheck || memoryEstimate_.total() <= memory.bytes,
-                    "the run needs an estimated " << formatBytes(memoryEstimate_.total()) << " per rank ("
-                                                  << memoryEstimate_.describe()
-                                                  << "; doc/user-guide.md, 'Memory'), more than the "
-                                                  << formatBytes(memory.bytes) << " available (" << memory.source
-                                                  << "): " << memoryHint);
+  // A run too large even with evenly sized subdomains is refused before
+  // METIS runs (it takes seconds on large meshes, on every rank).
+  const int ranks = comm_->getSize();
+  const PL& solver = params.sublist("Solver");
+  if (memoryCheck) {
+    const Partition balanced = balancedPartition(*mesh, params.sublist("Partition"), strategy, ranks);
+    if (balanced.numSubdomains >= ranks) requireMemory(*mesh, balanced, solver, contact);
+  }
+  Partition partition = partitionModel(*mesh, params.sublist("Partition"), strategy, ranks, baseDirectory);
+  if (memoryCheck) requireMemory(*mesh, partition, solver, contact);
+  else memoryEstimate_ = estimateMemory(*mesh, partition, ranks, solver, contact);
   strategy_ = makeSolutionStrategy(comm_, params.sublist("Solver"), contact);
   // The contact elements by role and facet type, from the factory (host
   // codes may replace them there).
@@ -102,6 +106,22 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
                     " subdomains; estimated " + formatBytes(memoryEstimate_.total()) + " per rank)");
   model_ = std::make_shared<Model>(comm_, mesh, std::move(elements), std::move(partition), std::move(bcs),
                                    std::move(contact), surfaceElements);
+}
+
+void Analysis::requireMemory(const Mesh& mesh, const Partition& partition, const PL& solver,
+                             const ContactOptions& contact) {
+  // The estimate with its margin against what the ranks of each host share
+  // and what each process may map (doc/user-guide.md, "Memory").
+  memoryEstimate_ = estimateMemory(mesh, partition, comm_->getSize(), solver, contact);
+  memoryBudget_ = memoryBudget(*comm_, memoryEstimate_.perRank.at(comm_->getRank()), kMemoryEstimateMargin);
+  DDC_INPUT_REQUIRE(memoryBudget_.fits,
+                    "the run needs an estimated "
+                        << formatBytes(memoryEstimate_.total()) << " per rank (" << memoryEstimate_.describe()
+                        << "; doc/user-guide.md, 'Memory'), more than the " << formatBytes(memoryBudget_.available)
+                        << " available (" << memoryBudget_.source
+                        << "): run fewer ranks per host or on more hosts, refine less, or choose a lighter solver "
+                           "(FETI-DP, or Belos-MueLu instead of a direct solver); or set 'Solver/Memory Check' = "
+                           "false to run anyway");
 }
 
 void Analysis::progress(const std::string& line) const {
@@ -188,8 +208,12 @@ std::unique_ptr<Analysis::RunObservers> Analysis::makeObservers(OutputDirectory*
     if (model_->hasContact() && out.get<bool>("Contact Nodes"))
       obs->contactNodes = std::make_unique<ContactNodesObserver>(dir->path() + "/contact_nodes.csv");
   }
+  MemoryWatch watch;
+  watch.active = params_.sublist("Solver").get<bool>("Memory Check");
+  watch.budget = memoryBudget_;
+  watch.fraction = params_.sublist("Solver").get<double>("Memory Stop Fraction");
   obs->stop = std::make_unique<StopObserver>(obs->checkpoint.get(),
-                                             dir ? "Output/Checkpoint Interval = 0" : "no output directory");
+                                             dir ? "Output/Checkpoint Interval = 0" : "no output directory", watch);
   return obs;
 }
 

@@ -126,6 +126,11 @@ class Analysis {
  private:
   /// The model from the validated parameters (the constructor's work).
   void buildModel(Teuchos::ParameterList& params, const std::string& baseDirectory);
+  /// Estimates the run's memory with `partition` (memoryEstimate_) and
+  /// refuses the run when it does not fit with its margin
+  /// (ddc::memoryBudget(); sets memoryBudget_).
+  void requireMemory(const Mesh& mesh, const Partition& partition, const Teuchos::ParameterList& solver,
+                     const ContactOptions& contact);
   /// The step loop of one run, with its observers writing into `dir` (null: no files).
   void runSteps(OutputDirectory* dir);
   /// The analysis' own observers of a run into `dir` (null: no files), in
@@ -142,6 +147,8 @@ class Analysis {
   std::unique_ptr<Dynamics> dynamics_;          ///< null: quasi-static
   StepControlSettings stepControl_;
   MemoryEstimate memoryEstimate_;
+  /// What the memory check allowed (no limits when it is off).
+  MemoryBudget memoryBudget_;
   /// The bodies whose Poisson's ratio makes them nearly incompressible ("" if none).
   std::string nearlyIncompressible_;
   bool progressEnabled_ = true;

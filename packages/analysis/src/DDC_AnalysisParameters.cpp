@@ -197,9 +197,15 @@ Teuchos::RCP<PL> solverValidParameters() {
   auto pl = Teuchos::rcp(new PL("Solver"));
   pl->set("Memory Check", true,
           "Estimate the memory per rank from the mesh, the partition and the solver before building anything "
-          "(doc/user-guide.md, 'Memory') and refuse a run whose estimate exceeds what this host offers each "
-          "rank (MemAvailable, a control-group limit or ulimit -v, shared by the ranks on the host); false: "
-          "run anyway.");
+          "(doc/user-guide.md, 'Memory') and refuse a run whose estimate, with a margin of 25 % for what it may "
+          "miss, exceeds what the ranks of a host share (MemAvailable or a control-group limit) or what a "
+          "process may map (ulimit -v); false: run anyway (and no Memory Stop Fraction).");
+  pl->set("Memory Stop Fraction", 0.9,
+          "With Memory Check: stop at the end of a step, with a checkpoint and a message, once the ranks of "
+          "a host hold more than this fraction of what the check allowed them (what the host had available "
+          "at the start plus what they held then), or a rank maps more than this fraction of its ulimit -v "
+          "(doc/user-guide.md, 'Memory'); 1: only at the limit itself.",
+          between(0.0, 1.0, Interval::LeftOpen));
   pl->set("Strategy", "Monolithic",
           "Solution strategy. Monolithic: one global system (distributed Tpetra CrsMatrix, contact "
           "multipliers appended) solved by the Linear Solver below. FETI-DP: dual-primal domain "

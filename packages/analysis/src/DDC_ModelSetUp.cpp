@@ -281,4 +281,16 @@ Partition partitionModel(const Mesh& mesh, const PL& part, const std::string& st
   return partition;
 }
 
+Partition balancedPartition(const Mesh& mesh, const PL& part, const std::string& strategy, int ranks) {
+  Partition partition;
+  if (part.get<std::string>("Method") != "METIS") return partition;
+  int nsub = part.get<int>("Number of Subdomains");
+  if (nsub == 0) nsub = automaticSubdomainCount(mesh, part, strategy, ranks);
+  const long ne = mesh.numElements();
+  partition.numSubdomains = std::max(1, static_cast<int>(std::min<long>(nsub, std::max(ne, 1L))));
+  partition.elementSubdomain.resize(ne);
+  for (long e = 0; e < ne; ++e) partition.elementSubdomain[e] = static_cast<int>(e * partition.numSubdomains / ne);
+  return partition;
+}
+
 }  // namespace ddc

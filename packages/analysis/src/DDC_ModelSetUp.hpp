@@ -61,4 +61,11 @@ void requireSupportedBodies(const Mesh& mesh, const BoundaryConditions& bcs, con
 Partition partitionModel(const Mesh& mesh, const Teuchos::ParameterList& partition, const std::string& strategy,
                          int ranks, const std::string& baseDirectory);
 
+/// What partitionModel() will give with METIS, before METIS runs: its
+/// subdomain count with the elements spread evenly (for a memory estimate
+/// that refuses a run too large before the partitioning, which takes
+/// seconds on large meshes). Another method: a partition of 0 subdomains.
+Partition balancedPartition(const Mesh& mesh, const Teuchos::ParameterList& partition, const std::string& strategy,
+                            int ranks);
+
 }  // namespace ddc

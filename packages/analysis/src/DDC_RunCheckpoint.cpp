@@ -186,23 +186,31 @@ std::string CheckpointObserver::failed(const StepLoop& loop, const std::string&)
   return os.str();
 }
 
+std::string StopObserver::checkpointSentence(const StepLoop& loop, const std::string& continueHow) const {
+  if (!checkpoint_) return "; no checkpoint (" + noCheckpoint_ + ")";
+  checkpoint_->writeIfStale(loop);
+  return "; its checkpoint is '" + checkpoint_->path() + "': continue with --restart '" + checkpoint_->finalPath() +
+         "'" + continueHow;
+}
+
 void StopObserver::accepted(const StepLoop& loop, const StepRecord& record, bool last) {
   // A stop requested by a signal on any rank (requestStop()): after this
   // step, on every rank.
+  const auto& comm = *loop.model().comm();
   int stop = stopRequested(), stopAll = 0;
-  Teuchos::reduceAll(*loop.model().comm(), Teuchos::REDUCE_MAX, stop, Teuchos::outArg(stopAll));
-  if (!stopAll || last) return;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, stop, Teuchos::outArg(stopAll));
+  if (last) return;
   std::ostringstream os;
-  os << "stopped by " << signalName(stopAll) << " after step " << record.step << " (" << loop.settings().factorName
-     << " " << record.loadFactor << ")";
-  if (checkpoint_) {
-    checkpoint_->writeIfStale(loop);
-    os << "; its checkpoint is '" << checkpoint_->path() << "': continue with --restart '" << checkpoint_->finalPath()
-       << "'";
-  } else {
-    os << "; no checkpoint (" << noCheckpoint_ << ")";
-  }
-  throw RunInterrupted(os.str(), stopAll);
+  os << " after step " << record.step << " (" << loop.settings().factorName << " " << record.loadFactor << ")";
+  if (stopAll) throw RunInterrupted("stopped by " + signalName(stopAll) + os.str() + checkpointSentence(loop, ""), stopAll);
+  // Memory near what the check allowed: stop before the kernel kills a rank.
+  const std::string memory = watch_.active ? memoryAboveBudget(comm, watch_.budget, watch_.fraction) : "";
+  if (!memory.empty())
+    throw RunInterrupted("stopped" + os.str() + " before memory runs out: " + memory +
+                             " (doc/user-guide.md, 'Memory'; 'Solver/Memory Stop Fraction')" +
+                             checkpointSentence(loop, " with fewer ranks per host, on more hosts, or with a lighter "
+                                                      "solver (FETI-DP, or Belos-MueLu instead of a direct solver)"),
+                         0);
 }
 
 }  // namespace ddc

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "DDC_Checkpoint.hpp"
+#include "DDC_Memory.hpp"
 #include "DDC_StepLoop.hpp"
 
 namespace ddc {
@@ -56,20 +57,33 @@ class CheckpointObserver final : public StepObserver {
   size_t rows_ = 0;  ///< history rows of the checkpoint last written
 };
 
+/// What a running analysis watches its memory against: the limits the
+/// memory check allowed and the fraction of them it may reach
+/// (doc/user-guide.md, "Memory"). Inactive when the check is off.
+struct MemoryWatch {
+  bool active = false;
+  MemoryBudget budget;
+  double fraction = 0.9;  ///< Solver/Memory Stop Fraction
+};
+
 /// Stops the run after a step when a stop was requested on any rank
-/// (requestStop(), DDC_StopRequest.hpp): its checkpoint is written and
-/// RunInterrupted thrown on every rank.
+/// (requestStop(), DDC_StopRequest.hpp), or when its memory is above the
+/// watch's fraction on any host or rank: its checkpoint is written and
+/// RunInterrupted thrown on every rank (with the signal, or 0 for memory).
 class StopObserver final : public StepObserver {
  public:
   /// \param checkpoint the checkpoint writer (null: the run writes none)
   /// \param noCheckpoint why there is none, for the message
-  StopObserver(CheckpointObserver* checkpoint, std::string noCheckpoint)
-      : checkpoint_(checkpoint), noCheckpoint_(std::move(noCheckpoint)) {}
+  StopObserver(CheckpointObserver* checkpoint, std::string noCheckpoint, MemoryWatch watch = {})
+      : checkpoint_(checkpoint), noCheckpoint_(std::move(noCheckpoint)), watch_(std::move(watch)) {}
   void accepted(const StepLoop& loop, const StepRecord& record, bool last) override;
 
  private:
+  /// Writes the checkpoint if there is one; " ; its checkpoint is ..." or why there is none.
+  std::string checkpointSentence(const StepLoop& loop, const std::string& continueHow) const;
   CheckpointObserver* checkpoint_;
   std::string noCheckpoint_;
+  MemoryWatch watch_;
 };
 
 }  // namespace ddc

@@ -54,52 +54,163 @@ std::string cgroupDirectory() {
 
 thread_local std::string activity = "starting";
 
-}  // namespace
+/// The ranks sharing this host's memory: their communicator and count.
+struct HostRanks {
+  MPI_Comm comm = MPI_COMM_NULL;
+  int size = 1;
+  explicit HostRanks(const Teuchos::Comm<int>& world) {
+    MPI_Comm_split_type(rawComm(world), MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &comm);
+    MPI_Comm_size(comm, &size);
+  }
+  ~HostRanks() { MPI_Comm_free(&comm); }
+  HostRanks(const HostRanks&) = delete;
+  HostRanks& operator=(const HostRanks&) = delete;
+  std::string names() const {
+    return size == 1 ? "this rank" : "the " + std::to_string(size) + " ranks on this host";
+  }
+};
 
-MemoryLimit availableMemory(const Teuchos::Comm<int>& comm) {
-  // Ranks sharing this host (and its memory).
-  MPI_Comm host;
-  MPI_Comm_split_type(rawComm(comm), MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &host);
-  int sharing = 1;
-  MPI_Comm_size(host, &sharing);
-  MPI_Comm_free(&host);
-  MemoryLimit mine;
-  auto consider = [&](double bytes, const std::string& source) {
-    if (bytes >= 0.0 && bytes < mine.bytes) mine = {bytes, source};
-  };
-  const std::string ranks = sharing == 1 ? "this rank" : "the " + std::to_string(sharing) + " ranks on this host";
-  const double hostAvailable = procKiB("/proc/meminfo", "MemAvailable");
-  if (hostAvailable >= 0.0)
-    consider(hostAvailable / sharing, "MemAvailable " + formatBytes(hostAvailable) + " of this host shared by " + ranks);
+/// What the ranks of this host may still allocate together: the host's
+/// MemAvailable or the control group's room, whichever is smaller.
+MemoryLimit hostAvailable() {
+  MemoryLimit host;
+  const double available = procKiB("/proc/meminfo", "MemAvailable");
+  if (available >= 0.0) host = {available, "MemAvailable " + formatBytes(available) + " of this host"};
   const std::string cg = cgroupDirectory();
   if (!cg.empty()) {
     const double max = cgroupBytes(cg + "/memory.max"), current = cgroupBytes(cg + "/memory.current");
-    if (max >= 0.0 && current >= 0.0)
-      consider(std::max(0.0, max - current) / sharing,
-               "control-group limit " + formatBytes(max) + " (" + formatBytes(current) + " used) shared by " + ranks);
+    if (max >= 0.0 && current >= 0.0 && std::max(0.0, max - current) < host.bytes)
+      host = {std::max(0.0, max - current),
+              "control-group limit " + formatBytes(max) + " (" + formatBytes(current) + " used)"};
   }
+  return host;
+}
+
+/// What this process may still map (RLIMIT_AS less its mapped size), and the limit.
+MemoryLimit processAvailable(double* limit = nullptr) {
+  MemoryLimit process;
   struct rlimit rl {};
   if (::getrlimit(RLIMIT_AS, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY) {
-    const double mapped = procKiB("/proc/self/status", "VmSize");
-    consider(std::max(0.0, static_cast<double>(rl.rlim_cur) - std::max(0.0, mapped)),
-             "address-space limit " + formatBytes(static_cast<double>(rl.rlim_cur)) + " per process (ulimit -v), " +
-                 formatBytes(std::max(0.0, mapped)) + " already mapped");
+    const double mapped = std::max(0.0, procKiB("/proc/self/status", "VmSize"));
+    const double cap = static_cast<double>(rl.rlim_cur);
+    if (limit) *limit = cap;
+    process = {std::max(0.0, cap - mapped), "address-space limit " + formatBytes(cap) +
+                                                " per process (ulimit -v), " + formatBytes(mapped) + " already mapped"};
   }
-  // The smallest over the ranks, with its source from the rank that has it.
+  return process;
+}
+
+/// The rank with the smallest `key` (the lowest such rank on ties).
+int smallestRank(const Teuchos::Comm<int>& comm, double key) {
   struct {
-    double bytes;
+    double key;
     int rank;
-  } in{std::isfinite(mine.bytes) ? mine.bytes : 1e300, comm.getRank()}, out{};
+  } in{std::min(key, 1e300), comm.getRank()}, out{};
   MPI_Allreduce(&in, &out, 1, MPI_DOUBLE_INT, MPI_MINLOC, rawComm(comm));
-  std::string source = mine.source;
-  int length = static_cast<int>(source.size());
-  MPI_Bcast(&length, 1, MPI_INT, out.rank, rawComm(comm));
-  source.resize(length);
-  MPI_Bcast(&source[0], length, MPI_CHAR, out.rank, rawComm(comm));
-  MemoryLimit result;
-  if (out.bytes < 1e300) result = {out.bytes, source};
+  return out.rank;
+}
+
+/// `text` of rank `root`, on every rank.
+std::string broadcastText(const Teuchos::Comm<int>& comm, int root, std::string text) {
+  int length = static_cast<int>(text.size());
+  MPI_Bcast(&length, 1, MPI_INT, root, rawComm(comm));
+  text.resize(length);
+  MPI_Bcast(&text[0], length, MPI_CHAR, root, rawComm(comm));
+  return text;
+}
+
+std::string percent(double fraction) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%.0f %%", 100.0 * fraction);
+  return buf;
+}
+
+}  // namespace
+
+MemoryLimit availableMemory(const Teuchos::Comm<int>& comm) {
+  const HostRanks host(comm);
+  MemoryLimit mine;
+  const MemoryLimit shared = hostAvailable();
+  if (!shared.source.empty())
+    mine = {shared.bytes / host.size, shared.source + " shared by " + host.names()};
+  const MemoryLimit process = processAvailable();
+  if (!process.source.empty() && process.bytes < mine.bytes) mine = process;
+  // The smallest over the ranks, with its source from the rank that has it.
+  const int root = smallestRank(comm, mine.bytes);
+  MPI_Bcast(&mine.bytes, 1, MPI_DOUBLE, root, rawComm(comm));
+  mine.source = broadcastText(comm, root, mine.source);
+  return mine;
+}
+
+MemoryBudget judgeMemory(double estimate, double hostEstimate, double hostAvailable, int sharing,
+                         double processAvailable, double margin) {
+  auto ratio = [margin](double available, double need) {
+    return need > 0.0 ? available / (margin * need) : std::numeric_limits<double>::infinity();
+  };
+  const double host = ratio(hostAvailable, hostEstimate), process = ratio(processAvailable, estimate);
+  MemoryBudget b;
+  b.headroom = std::min(host, process);
+  if (std::isinf(b.headroom)) return b;
+  b.fits = b.headroom >= 1.0;
+  const std::string withMargin = ", less a margin of " + percent(margin - 1.0) + " for what the estimate may miss";
+  if (host <= process) {
+    b.available = hostAvailable / (margin * std::max(sharing, 1));
+    b.source = "host" + withMargin;
+  } else {
+    b.available = processAvailable / margin;
+    b.source = "process" + withMargin;
+  }
+  return b;
+}
+
+MemoryBudget memoryBudget(const Teuchos::Comm<int>& comm, double estimate, double margin) {
+  const HostRanks host(comm);
+  double hostEstimate = 0.0, hostResident = 0.0, resident = residentBytes();
+  MPI_Allreduce(&estimate, &hostEstimate, 1, MPI_DOUBLE, MPI_SUM, host.comm);
+  MPI_Allreduce(&resident, &hostResident, 1, MPI_DOUBLE, MPI_SUM, host.comm);
+  const MemoryLimit shared = hostAvailable();
+  double addressLimit = std::numeric_limits<double>::infinity();
+  const MemoryLimit process = processAvailable(&addressLimit);
+  MemoryBudget mine = judgeMemory(estimate, hostEstimate, shared.bytes, host.size, process.bytes, margin);
+  // Spell out the decisive limit.
+  if (mine.source.rfind("host", 0) == 0) {
+    std::string what = shared.source + " shared by " + host.names();
+    if (host.size > 1) what += ", which need an estimated " + formatBytes(hostEstimate) + " together";
+    mine.source = what + mine.source.substr(4);
+  } else if (mine.source.rfind("process", 0) == 0) {
+    mine.source = process.source + mine.source.substr(7);
+  }
+  mine.hostLimit = shared.bytes + hostResident;
+  mine.processLimit = addressLimit;
+  // Every rank decides as the one shortest of memory does.
+  const int root = smallestRank(comm, mine.headroom);
+  MemoryBudget result = mine;
+  result.source = broadcastText(comm, root, mine.source);
+  MPI_Bcast(&result.available, 1, MPI_DOUBLE, root, rawComm(comm));
+  MPI_Bcast(&result.headroom, 1, MPI_DOUBLE, root, rawComm(comm));
+  result.fits = result.headroom >= 1.0;
   return result;
 }
+
+std::string memoryAboveBudget(const Teuchos::Comm<int>& comm, const MemoryBudget& budget, double fraction) {
+  const HostRanks host(comm);
+  double resident = residentBytes(), hostResident = 0.0;
+  MPI_Allreduce(&resident, &hostResident, 1, MPI_DOUBLE, MPI_SUM, host.comm);
+  std::string why;
+  if (std::isfinite(budget.hostLimit) && hostResident > fraction * budget.hostLimit) {
+    why = (host.size == 1 ? std::string("this rank holds ") : host.names() + " hold ") + formatBytes(hostResident) +
+          ", above " + percent(fraction) + " of the " + formatBytes(budget.hostLimit) +
+          " the memory check allowed (what the host had available at the start plus what the ranks held then)";
+  } else if (std::isfinite(budget.processLimit)) {
+    const double mapped = std::max(0.0, procKiB("/proc/self/status", "VmSize"));
+    if (mapped > fraction * budget.processLimit)
+      why = "rank " + std::to_string(comm.getRank()) + " maps " + formatBytes(mapped) + ", above " + percent(fraction) +
+            " of its address-space limit " + formatBytes(budget.processLimit) + " (ulimit -v)";
+  }
+  return broadcastText(comm, smallestRank(comm, why.empty() ? 1e300 : comm.getRank()), why);
+}
+
+double residentBytes() { return std::max(0.0, procKiB("/proc/self/status", "VmRSS")); }
 
 std::string formatBytes(double bytes) {
   static const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};

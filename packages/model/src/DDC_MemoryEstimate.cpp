@@ -5,6 +5,7 @@
 #include <sstream>
 #include <vector>
 
+#include "DDC_ContactParameters.hpp"
 #include "DDC_Memory.hpp"
 #include "DDC_ReferenceCell.hpp"
 
@@ -13,16 +14,25 @@ namespace ddc {
 namespace {
 
 // Coefficients measured with examples/block_3d.xml (Hex8, Hex20) and
-// examples/elastic_block.xml (Quad4) on 2 ranks at 8k-527k DOFs, peak
-// resident memory less that of an empty run (~70 MiB); the estimate is
-// within -20 % to +70 % of those runs (the table in doc/user-guide.md,
-// "Memory", printed by test/benchmark/memory_estimate.sh).
+// examples/elastic_block.xml (Quad4) on 2 ranks at 8k-527k DOFs and with
+// block_3d on 1-16 ranks, peak resident memory less that of an empty run
+// (~70 MiB); the tables in doc/user-guide.md, "Memory", printed by
+// test/benchmark/memory_estimate.sh.
 
 /// Bytes per stored matrix entry: the owned matrix, its overlap copy used in
 /// assembly, their graphs (measured with Belos-MueLu: 21 B).
 constexpr double kMatrixBytesPerEntry = 21.0;
-/// Belos-MueLu / Belos-FROSch: matrix plus hierarchy / subdomain matrices.
-constexpr double kIterativeBytesPerEntry = 63.0;
+/// Belos-MueLu / Belos-FROSch: matrix plus hierarchy / subdomain matrices
+/// (measured 48 B on 1 rank to 70 B on 16 ranks with block_3d).
+constexpr double kIterativeBytesPerEntry = 56.0;
+/// METIS's dual graph and work arrays, built on every rank from the whole
+/// mesh, per element corner (measured 37 B: 37 MiB for 131,072 Hex8).
+constexpr double kPartitionBytesPerCorner = 37.0;
+/// Per facet of a contact surface, held on every rank: its node list, the
+/// slots of its slave nodes and their packed copies, search boxes and DOF
+/// records (counted from those arrays, not measured: below the noise of
+/// the runs of the table).
+constexpr double kContactBytesPerFacet = 500.0;
 /// Nested-dissection fill of a sparse factor (entries of L per entry of K):
 /// 3-D  kFill3D n^(1/3) (MUMPS measured 0.34-0.62 on the bricks),
 /// 2-D  kFill2D log2 n  (0.67-0.72).
@@ -53,6 +63,24 @@ double fill(double n, int dim) {
   return std::max(1.0, dim == 3 ? kFill3D * std::cbrt(n) : kFill2D * std::log2(n));
 }
 
+/// METIS's graph on every rank (none for one subdomain).
+double partitionBytes(const Mesh& mesh, const Partition& partition) {
+  if (partition.numSubdomains <= 1) return 0.0;
+  double corners = 0.0;
+  for (int b = 0; b < mesh.numBodies(); ++b)
+    corners += static_cast<double>(mesh.body(b).numElements) * referenceCell(mesh.body(b).cellType).numCorners;
+  return kPartitionBytesPerCorner * corners;
+}
+
+/// The contact surfaces on every rank.
+double contactBytes(const Mesh& mesh, const ContactOptions& contact) {
+  double facets = 0.0;
+  for (const auto& pair : contact.pairs)
+    for (const auto* set : {&pair.slaveSet, &pair.masterSet})
+      if (mesh.hasSideSet(*set)) facets += static_cast<double>(mesh.sideSet(*set).size());
+  return kContactBytesPerFacet * facets;
+}
+
 }  // namespace
 
 std::string MemoryEstimate::describe() const {
@@ -63,7 +91,7 @@ std::string MemoryEstimate::describe() const {
 }
 
 MemoryEstimate estimateMemory(const Mesh& mesh, const Partition& partition, int ranks,
-                              const Teuchos::ParameterList& solver) {
+                              const Teuchos::ParameterList& solver, const ContactOptions& contact) {
   MemoryEstimate est;
   const int dim = mesh.dim();
   ranks = std::max(ranks, 1);
@@ -77,7 +105,8 @@ MemoryEstimate estimateMemory(const Mesh& mesh, const Partition& partition, int 
     entries += n * dim * couplingsPerNode(body.cellType);
     maxNodesPerElement = std::max(maxNodesPerElement, numCellNodes(body.cellType));
   }
-  est.mesh = Mesh::replicatedBytes(mesh.numNodes(), mesh.numElements(), maxNodesPerElement);
+  est.mesh = Mesh::replicatedBytes(mesh.numNodes(), mesh.numElements(), maxNodesPerElement) +
+             partitionBytes(mesh, partition) + contactBytes(mesh, contact);
   const double rowEntries = dofs > 0 ? entries / dofs : 0.0;
   const std::string strategy = solver.get<std::string>("Strategy");
   char what[160];
@@ -95,7 +124,8 @@ MemoryEstimate estimateMemory(const Mesh& mesh, const Partition& partition, int 
       perRank[owner[s]] += 8.0 * kFetiFactorCopies * n * rowEntries * fill(n, dim);
       matrixPerRank[owner[s]] += kFetiBytesPerEntry * n * rowEntries;
     }
-    const int worst = static_cast<int>(std::max_element(perRank.begin(), perRank.end()) - perRank.begin());
+    for (int r = 0; r < ranks; ++r) est.perRank.push_back(est.mesh + perRank[r] + matrixPerRank[r]);
+    const int worst = static_cast<int>(std::max_element(est.perRank.begin(), est.perRank.end()) - est.perRank.begin());
     est.solver = perRank[worst];
     est.matrix = matrixPerRank[worst];
     std::snprintf(what, sizeof what, "FETI-DP subdomain factors and operators (%d subdomains of %.3g DOFs on average)",
@@ -113,11 +143,14 @@ MemoryEstimate estimateMemory(const Mesh& mesh, const Partition& partition, int 
       // much as a nested-dissection ordering).
       est.solver = 12.0 * entries + 2.0 * 8.0 * entries * fill(dofs, dim);
       std::snprintf(what, sizeof what, "KLU2 factors of %.3g DOFs on rank 0", dofs);
+      est.perRank.assign(ranks, est.mesh + est.matrix);
+      est.perRank[0] += est.solver;
     } else {
       est.solver = 8.0 * entries * fill(dofs, dim) / ranks;
       std::snprintf(what, sizeof what, "%s factors of %.3g DOFs", type.c_str(), dofs);
     }
   }
+  if (est.perRank.empty()) est.perRank.assign(ranks, est.total());
   est.solverWhat = what;
   return est;
 }
