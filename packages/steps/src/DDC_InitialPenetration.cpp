@@ -2,7 +2,6 @@
 
 #include <Teuchos_CommHelpers.hpp>
 
-#include <cmath>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -18,7 +17,10 @@ InitialPenetration initialPenetration(const Model& model) {
   int node = std::numeric_limits<int>::max(), pair = -1;
   for (const ContactSlot& s : model.contactSlots()) {
     if (!s.paired() || !(s.gap < -tol)) continue;
-    if (-s.gap > deepest || (-s.gap == deepest && s.slaveNode < node)) deepest = -s.gap, node = s.slaveNode, pair = s.pair;
+    if (-s.gap < deepest || (-s.gap == deepest && s.slaveNode >= node)) continue;
+    deepest = -s.gap;
+    node = s.slaveNode;
+    pair = s.pair;
   }
   // The deepest over the ranks; of equally deep nodes the lowest id.
   const auto& comm = *model.comm();
