@@ -16,6 +16,7 @@
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Tpetra_Core.hpp>
 #include <array>
+#include <cctype>
 #include <chrono>
 #include <cstring>
 #include <cstdlib>
@@ -338,6 +339,31 @@ int fail(const std::string& fullMessage, MPI_Comm comm, const char* label = "err
   return 1;
 }
 
+/// The message of a failed allocation `what` ("std::bad_alloc", or what
+/// Kokkos said): the activity (with its sizes) and this rank's peak.
+std::string outOfMemory(const std::string& what) {
+  return "out of memory (" + what + ") while " + ddc::currentActivity() + "; this rank's peak was " +
+         ddc::formatBytes(ddc::peakResidentBytes()) +
+         " (doc/user-guide.md, 'Memory': refine less, or run on more ranks or hosts; with 'Solver/Memory Check' "
+         "= false nothing was checked before)";
+}
+
+/// Kokkos' message from "Kokkos failed to allocate" on, its whitespace
+/// runs made single blanks and cut after the requested size.
+std::string kokkosAllocation(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    const bool blank = std::isspace(static_cast<unsigned char>(c));
+    if (blank && (out.empty() || out.back() == ' ')) continue;
+    out += blank ? ' ' : c;
+    if (out.size() > 400) break;
+  }
+  const auto failed = out.find(" failed, ");
+  if (failed != std::string::npos && failed > 30) out.resize(failed + 7);
+  while (!out.empty() && (out.back() == ' ' || out.back() == '.' || out.back() == ',')) out.pop_back();
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -365,12 +391,14 @@ int main(int argc, char** argv) {
   } catch (const ddc::OutputError& e) {
     msg = std::string("output: ") + e.what() + " (earlier results are untouched)";
   } catch (const std::bad_alloc&) {
-    msg = "out of memory (std::bad_alloc) while " + ddc::currentActivity() + "; this rank's peak was " +
-          ddc::formatBytes(ddc::peakResidentBytes()) +
-          " (doc/user-guide.md, 'Memory': refine less, or run on more ranks or hosts)";
+    msg = outOfMemory("std::bad_alloc");
   } catch (const std::exception& e) {
     msg = std::string("unexpected: ") + e.what();
   }
+  // Kokkos reports a failed allocation as a std::runtime_error (which a
+  // solver may wrap in its own failure): out of memory as well.
+  const auto kokkos = msg.find("Kokkos failed to allocate");
+  if (kokkos != std::string::npos) msg = outOfMemory(kokkosAllocation(msg.substr(kokkos)));
   // A stop exits with 128 + the signal, as a shell reports a process the
   // signal ended.
   if (stopSignal) status = fail(msg, MPI_COMM_WORLD, "") == 0 ? 0 : 128 + stopSignal;

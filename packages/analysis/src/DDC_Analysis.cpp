@@ -30,6 +30,7 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
   for (const char* s : {"Load Stepping", "Dynamics", "Step Control", "Newton", "Solver", "Partition", "Output"})
     validateLevel(params.sublist(s), valid->sublist(s), s);
   dynamic_ = params.sublist("Dynamics").get<std::string>("Integrator") != "None";
+  if (!dynamic_) requireDynamicsForDynamicConditions(params.sublist("Dynamics"));
   DDC_INPUT_REQUIRE(params.isSublist("Mesh"), "sublist 'Mesh' is required");
   newton_ = NewtonSettings::fromParameters(params.sublist("Newton"));
   progressEnabled_ = params.sublist("Output").get<bool>("Progress");

@@ -114,6 +114,15 @@ Teuchos::RCP<PL> stepControlValidParameters() {
 
 }  // namespace
 
+namespace {
+/// Bounds of the dynamic parameters, physical in any consistent units in
+/// use (doc/user-guide.md, "Dynamics"): beyond them a value is a typing
+/// error, and it would overflow the mass, inertia or energy arithmetic.
+constexpr double kMaxRayleighAlpha = 1e9;  ///< 1/time
+constexpr double kMaxSpeed = 3e11;         ///< the speed of light in mm/s
+constexpr double kMaxAcceleration = 1e11;  ///< 10^7 g in mm/s^2
+}  // namespace
+
 /// "Dynamics": the integrator, the time steps, the Newmark parameters, the
 /// mass matrix and the initial velocities (doc/user-guide.md, "Dynamics").
 Teuchos::RCP<const Teuchos::ParameterList> dynamicsValidParameters() {
@@ -147,8 +156,9 @@ Teuchos::RCP<const Teuchos::ParameterList> dynamicsValidParameters() {
             between(0.0, 1.0));
     pl->set("Rayleigh Alpha", 0.0,
             "Mass-proportional Rayleigh damping alpha_R (1/time): C = alpha_R M + beta_R K, the damping ratio "
-            "of a mode of angular frequency w being alpha_R / (2 w) + beta_R w / 2.",
-            atLeast(0.0));
+            "of a mode of angular frequency w being alpha_R / (2 w) + beta_R w / 2. At most 1e9 (per second: "
+            "critical damping of every mode below 5e8 rad/s, beyond any structural frequency).",
+            between(0.0, kMaxRayleighAlpha));
     pl->set("Rayleigh Beta", 0.0,
             "Stiffness-proportional Rayleigh damping beta_R (time), K the element tangents at the current "
             "state (see Rayleigh Alpha).",
@@ -168,8 +178,10 @@ Teuchos::RCP<const Teuchos::ParameterList> dynamicsValidParameters() {
     velocity.set("Set", std::string(""),
                  "A body's name (every node of it) or a qualified node set 'Body/set'.");
     for (const char* a : {"X", "Y", "Z"})
-      velocity.set(std::string("Velocity ") + a, 0.0, std::string("Initial velocity along ") + a + " (Z: 3-D only).",
-                   finiteNumber());
+      velocity.set(std::string("Velocity ") + a, 0.0,
+                   std::string("Initial velocity along ") + a +
+                       " (Z: 3-D only); magnitude at most 3e11, the speed of light in mm/s (in m/s 3e8).",
+                   finiteMagnitude(kMaxSpeed));
     Teuchos::ParameterList velocities("Initial Velocity");
     setSublist(velocities, "<Condition Name>", velocity, "One sublist per initial-velocity condition.");
     setSublist(*pl, "Initial Velocity", velocities,
@@ -179,7 +191,9 @@ Teuchos::RCP<const Teuchos::ParameterList> dynamicsValidParameters() {
     body.set("Set", std::string(""), "The body's name: the field acts on all of it.");
     for (const char* a : {"X", "Y", "Z"})
       body.set(std::string("Acceleration ") + a, 0.0,
-               std::string("Gravitational acceleration along ") + a + " (Z: 3-D only).", finiteNumber());
+               std::string("Gravitational acceleration along ") + a +
+                   " (Z: 3-D only); magnitude at most 1e11, 10^7 g in mm/s^2 (ten times an ultracentrifuge's).",
+               finiteMagnitude(kMaxAcceleration));
     Teuchos::ParameterList gravity("Gravity");
     setSublist(gravity, "<Condition Name>", body, "One sublist per body force.");
     setSublist(*pl, "Gravity", gravity,

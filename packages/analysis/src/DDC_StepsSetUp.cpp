@@ -97,12 +97,34 @@ void applyGravity(PL& dyn, Model& model) {
 
 }  // namespace
 
+void requireDynamicsForDynamicConditions(const PL& dyn) {
+  for (const char* group : {"Gravity", "Initial Velocity"}) {
+    if (!dyn.isSublist(group)) continue;
+    const PL& list = dyn.sublist(group);
+    for (auto it = list.begin(); it != list.end(); ++it)
+      DDC_THROW(InputError, "'Dynamics/" << group << "/" << list.name(it) << "' is given, but 'Dynamics/Integrator' = "
+                                         << dyn.get<std::string>("Integrator")
+                                         << " (a quasi-static analysis, without inertia) would ignore it: set "
+                                            "'Dynamics/Integrator' to Newmark, HHT-alpha or Generalized-alpha, "
+                                            "or remove 'Dynamics/"
+                                         << group << "/" << list.name(it) << "'");
+  }
+}
+
 StepControlSettings stepControlSettings(const PL& params, bool dynamic, bool decomposedContact) {
   const PL& sc = params.sublist("Step Control");
   StepControlSettings control;
   control.tolerance = sc.get<double>("Error Tolerance");
   control.corrections = sc.get<int>("Geometry Corrections");
   if (control.tolerance == 0.0) return control;
+  DDC_INPUT_REQUIRE(control.tolerance >= kMinErrorTolerance,
+                    "'Step Control/Error Tolerance' = "
+                        << control.tolerance << " is below " << kMinErrorTolerance
+                        << " (10^6 units of round-off): the frozen-geometry error indicator, a relative energy, "
+                           "sits at round-off (up to about 1e-12) once a step's geometry has converged, so a "
+                           "smaller tolerance could not be met reliably and which steps are accepted would depend "
+                           "on the rank count; set it to at least "
+                        << kMinErrorTolerance << " (doc/user-guide.md, \"Step control\")");
   DDC_INPUT_REQUIRE(decomposedContact,
                     "'Step Control/Error Tolerance' = "
                         << control.tolerance
@@ -115,7 +137,17 @@ StepControlSettings stepControlSettings(const PL& params, bool dynamic, bool dec
   const double finalValue = dynamic ? ls.get<double>("Final Time") : ls.get<double>("Final Load Factor");
   const char* firstName = dynamic ? "'Dynamics/Time Step'" : "'Load Stepping/Final Load Factor' / 'Number of Steps'";
   const double minSize = sc.get<double>("Minimum Step Size"), maxSize = sc.get<double>("Maximum Step Size");
-  control.minSize = minSize > 0.0 ? minSize : std::ldexp(first, -ls.get<int>("Max Bisections"));
+  // The default minimum: the first step halved Max Bisections times, but
+  // not below the resolution of the value (kStepResolution).
+  const double resolution = kStepResolution * finalValue;
+  control.minSize = minSize > 0.0 ? minSize : std::max(std::ldexp(first, -ls.get<int>("Max Bisections")), resolution);
+  DDC_INPUT_REQUIRE(minSize == 0.0 || minSize >= resolution,
+                    "'Step Control/Minimum Step Size' = "
+                        << minSize << " is below the resolution of the " << (dynamic ? "time" : "load factor")
+                        << " at its final value (" << kStepResolution << " x "
+                        << (dynamic ? "Dynamics/Final Time" : "Load Stepping/Final Load Factor") << " = "
+                        << resolution << "), where a smaller step no longer changes it; set it to at least "
+                        << resolution << " or to 0 (the first step halved Max Bisections times)");
   control.maxSize = maxSize > 0.0 ? maxSize : first;
   control.first = std::clamp(first, control.minSize, control.maxSize);
   DDC_INPUT_REQUIRE(control.minSize <= control.maxSize,
@@ -161,10 +193,15 @@ std::unique_ptr<Dynamics> makeDynamics(PL& dyn, Model& model, SolutionStrategy& 
     DDC_THROW(InputError, "'Dynamics/Integrator' = " << dyn.get<std::string>("Integrator") << " needs the mass of "
                           "every body, but body '" << name << "' has none: set 'Mesh/Bodies/" << name
                           << "/Element/Material/Density' > 0");
-  // A whole number of time steps.
+  // A whole number of time steps, fewer than a run can count.
   const double T = dyn.get<double>("Final Time"), h = dyn.get<double>("Time Step");
   const double steps = std::round(T / h);
-  DDC_INPUT_REQUIRE(steps >= 1 && std::abs(steps * h - T) <= 1e-9 * T && steps < 1e9,
+  DDC_INPUT_REQUIRE(!(T / h >= kMaxTimeSteps),
+                    "'Dynamics/Time Step' = " << h << " makes " << T / h << " steps of 'Dynamics/Final Time' = " << T
+                                              << ", more than the " << kMaxTimeSteps
+                                              << " time steps a run can take; set it to at least Final Time / "
+                                              << kMaxTimeSteps << " = " << T / kMaxTimeSteps);
+  DDC_INPUT_REQUIRE(steps >= 1 && std::abs(steps * h - T) <= 1e-9 * T,
                     "'Dynamics/Final Time' = " << T << " is not a whole number of 'Dynamics/Time Step' = " << h
                                                << " (" << T / h << " steps)");
   const std::string mass = dyn.get<std::string>("Mass Matrix");

@@ -22,6 +22,23 @@ struct StepControlSettings {
   int corrections = 0;  ///< Geometry Corrections
 };
 
+/// The smallest Step Control/Error Tolerance: 10^6 units of round-off
+/// (2.2e-10). The indicator is a ratio of energies summed over slave nodes
+/// and ranks; steps whose geometry repeats have converged leave it at
+/// round-off, measured 6e-14 to 9e-13 on the half-rings. Near that its
+/// round-off decides: steps could never meet the tolerance and the verdicts
+/// would depend on the rank count (the order of the sums).
+constexpr double kMinErrorTolerance = 1e6 * 2.220446049250313e-16;
+
+/// The most time steps a dynamic analysis may take (Final Time / Time
+/// Step): the steps are counted in an int.
+constexpr double kMaxTimeSteps = 1e9;
+
+/// A quasi-static run (Dynamics/Integrator = None) has no inertia: refuse
+/// the initial velocities and the gravity it would ignore.
+/// \throws InputError naming the condition
+void requireDynamicsForDynamicConditions(const Teuchos::ParameterList& dynamics);
+
 /// Check the "Step Control" list of `params` against the run (decomposed
 /// contact, the sizes) and resolve its defaults.
 /// \throws InputError naming the parameter

@@ -19,13 +19,18 @@
 //    closes again and the energy grows (why redistribution is the default);
 //  - a bar bouncing between two stiff clamped walls (three impacts, each
 //    starting inside a time step) keeps its energy within 1 %; with the
-//    surface mass kept it does not.
+//    surface mass kept it does not;
+//  - bars that start overlapped are warned of at the start (the depth, the
+//    deepest slave node, the pair) and after the first step (the energy it
+//    gained beyond the external work); bars that start touching are not.
 #include <gtest/gtest.h>
 
 #include <Teuchos_CommHelpers.hpp>
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -252,6 +257,52 @@ TEST(BouncingBar, KeepsItsEnergyOverThreeImpacts) {
   if (worldComm()->getRank() == 0)
     std::cout << "[bouncing bar] redistributed: " << impacts << " impacts, largest energy deviation " << drift
               << "; kept: " << keptImpacts << " contact intervals, " << keptDrift << "\n";
+}
+
+/// The notes (warnings) of a run.
+class Notes : public ddc::StepObserver {
+ public:
+  void note(const ddc::StepLoop&, const std::string& line) override { lines.push_back(line); }
+  std::vector<std::string> lines;
+  /// The note containing `text`, or "".
+  std::string with(const std::string& text) const {
+    for (const auto& l : lines)
+      if (l.find(text) != std::string::npos) return l;
+    return "";
+  }
+};
+
+TEST(BarImpact, AnInitialPenetrationIsWarnedOfWithTheEnergyItAdds) {
+  for (const Case& c : {kCases[0], kCases[1]}) {
+    for (const double overlap : {0.0, 0.01}) {
+      SCOPED_TRACE(std::string(c.name) + ", overlap " + std::to_string(overlap));
+      PL deck = barImpactDeck(c, 0.25, 0.5);
+      deck.sublist("Mesh").sublist("Bodies").sublist("Right").sublist("Box").set("Origin X", 10.0 - overlap);
+      ddc::Analysis a(worldComm(), deck);
+      auto notes = std::make_shared<Notes>();
+      a.addObserver(notes);
+      a.run("");
+      const std::string start = notes->with("the bodies start overlapped");
+      const std::string energy = notes->with("the initial penetration");
+      if (overlap == 0.0) {
+        EXPECT_EQ(start, "") << "bars that touch do not penetrate";
+        EXPECT_EQ(energy, "");
+        continue;
+      }
+      EXPECT_NE(start.find("lies 0.01 behind its master surface"), std::string::npos) << start;
+      EXPECT_NE(start.find("of contact pair 'Ends'"), std::string::npos) << start;
+      // The energy the first step gained beyond the external work (none
+      // here: nothing is prescribed), as the history shows it.
+      const auto& r = a.history().front();
+      const double initial = 2 * 0.5 * 10.0 * kSpeed * kSpeed;  // two bars of mass 10 at speed 0.1
+      const double gained = r.kineticEnergy + r.strainEnergy - initial - r.externalWork;
+      EXPECT_GT(gained, 0.0) << "pushing the bars apart adds energy";
+      std::ostringstream expected;
+      expected << "changed the total energy from " << initial << " to " << r.kineticEnergy + r.strainEnergy
+               << " with external work " << r.externalWork << ": " << gained << " beyond it";
+      EXPECT_NE(energy.find(expected.str()), std::string::npos) << energy << "\nexpected: " << expected.str();
+    }
+  }
 }
 
 }  // namespace

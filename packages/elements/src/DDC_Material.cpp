@@ -144,8 +144,10 @@ Teuchos::RCP<const Teuchos::ParameterList> Material::getValidParameters() {
             between(-1.0, 0.5, Interval::Open));
     pl->set("Density", 0.0,
             "Mass density rho per unit reference volume (2-D: per unit area, the thickness being 1), for the "
-            "element mass matrices; 0: no inertia. Quasi-static analyses do not read it.",
-            atLeast(0.0));
+            "element mass matrices; 0: no inertia. Quasi-static analyses do not read it. At most 1e8, over "
+            "4000 times the densest material's (osmium, 22 590 kg/m^3) in kg/m^3, the largest of the consistent "
+            "units in use (t/mm^3: 2.3e-8).",
+            between(0.0, 1e8));
     return Teuchos::RCP<const Teuchos::ParameterList>(pl);
   }();
   return valid;

@@ -13,11 +13,15 @@ namespace {
 /// A nominal step's end counts as reached within this fraction of the final
 /// value (the sub-step sizes are binary fractions of the nominal size, so
 /// only round-off separates their sum from the target).
-constexpr double kReached = 1e-14;
+constexpr double kReached = kStepResolution;
 /// A sub-step within this fraction of the remaining distance ends exactly
 /// on the nominal step's end (no sliver step).
 constexpr double kSnap = 1e-12;
 }  // namespace
+
+double stepResolution(double value, double finalValue) {
+  return kStepResolution * std::max(std::abs(value), std::abs(finalValue));
+}
 
 BisectingSteps::BisectingSteps(double finalValue, int numSteps, int maxBisections)
     : final_(finalValue), numSteps_(numSteps), maxBisections_(maxBisections) {
@@ -60,8 +64,12 @@ void BisectingSteps::accept(const StepProposal& p) {
 }
 
 bool BisectingSteps::reject(const StepProposal&) {
+  if (depth_ >= maxBisections_) return false;
+  if (0.5 * size_ < stepResolution(current_, final_)) {
+    atResolution_ = true;  // a smaller step no longer changes the value
+    return false;
+  }
   ++depth_;
-  if (depth_ > maxBisections_) return false;
   size_ *= 0.5;
   return true;
 }
@@ -146,9 +154,20 @@ StepVerdict AdaptiveSteps::judge(const StepProposal& p, double error) {
   const double ideal = error > 0.0 ? kSafety * std::sqrt(tolerance_ / error) : kMaxGrowth;
   atMinimum_ = false;
   if (error > tolerance_) {
-    if (corrections_ < maxCorrections_) {
+    // A repeat that did not reduce the indicator: further ones would not.
+    const bool stalled = corrections_ > 0 && !(error < lastError_);
+    if (corrections_ < maxCorrections_ && !stalled) {
       ++corrections_;  // propose() gives the same step again
+      lastError_ = error;
       return StepVerdict::Repeat;
+    }
+    if (stalled && corrections_ < maxCorrections_) {
+      std::ostringstream os;
+      os << "geometry correction " << corrections_ << " did not reduce the frozen-geometry error (" << lastError_
+         << " -> " << error << ", Step Control/Error Tolerance = " << tolerance_
+         << "), so the step is not repeated again (Step Control/Geometry Corrections = " << maxCorrections_
+         << " not used up)";
+      note_ = os.str();
     }
     if (p.size > min_ * (1 + kSnap)) {
       corrections_ = 0;
@@ -163,6 +182,12 @@ StepVerdict AdaptiveSteps::judge(const StepProposal& p, double error) {
   // stretched or split to meet the end.
   nextSize_ = std::clamp(size_ * factor, min_, max_);
   return StepVerdict::Accept;
+}
+
+std::string AdaptiveSteps::takeNote() {
+  std::string n;
+  n.swap(note_);
+  return n;
 }
 
 void AdaptiveSteps::accept(const StepProposal& p) {
@@ -202,7 +227,13 @@ bool AdaptiveSteps::reject(const StepProposal& p) {
 }
 
 std::string BisectingSteps::limits(const std::string& stepping) const {
-  return stepping + "/Max Bisections = " + std::to_string(maxBisections_);
+  const std::string max = stepping + "/Max Bisections = " + std::to_string(maxBisections_);
+  if (!atResolution_) return max;
+  std::ostringstream os;
+  const double scale = std::max(std::abs(current_), std::abs(final_));
+  os << max << " not used up: half of the step " << size_ << " is below the resolution of the value at " << scale
+     << " (" << kStepResolution << " x " << scale << "), where a smaller step no longer changes it";
+  return os.str();
 }
 
 std::string AdaptiveSteps::limits(const std::string& stepping) const {

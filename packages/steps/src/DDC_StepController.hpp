@@ -16,6 +16,19 @@
 
 namespace ddc {
 
+/// The resolution of the stepped value (load factor or time), as a
+/// fraction of the larger of its current and its final value: a nominal
+/// step's end counts as reached within it, and a step smaller than it no
+/// longer changes the value in a way the steps can tell apart (about 45
+/// units of round-off, 2^-52 each, of the value; doc/user-guide.md, "Step
+/// control"). Halving stops there, and the smallest step size is at least
+/// this much of the final value.
+constexpr double kStepResolution = 1e-14;
+
+/// The smallest step that still changes `value` within steps ending at
+/// `finalValue` (kStepResolution).
+double stepResolution(double value, double finalValue);
+
 /// One (sub)step the controller proposes: from `from` to `to` within
 /// nominal step `step` (1-based), at bisection depth `depth`.
 struct StepProposal {
@@ -89,12 +102,18 @@ class StepController {
   /// controller allows although its error indicator exceeded the tolerance
   /// (the loop warns). The default: never.
   virtual bool atMinimum() const { return false; }
+  /// A note on the last judge() or reject() the loop passes on (e.g. why
+  /// repeats stopped early), then forgets; "" for none (the default).
+  virtual std::string takeNote() { return ""; }
 };
 
 /// Nominal steps of equal size up to a final value, each cut in halves on
 /// Newton failure up to a maximum bisection depth per nominal step
 /// (Load Stepping/Number of Steps, Final Load Factor, Max Bisections). After
 /// a cut the sub-steps keep the halved size until the nominal step's end.
+/// Halving also stops where the halved step would fall below the
+/// resolution of the value (stepResolution()): a smaller step no longer
+/// changes it.
 class BisectingSteps final : public StepController {
  public:
   /// \param finalValue the value at the end of the last nominal step (> 0)
@@ -112,7 +131,8 @@ class BisectingSteps final : public StepController {
   bool endsNominalStep(const StepProposal& p) const override;
   /// Cuts allowed per nominal step.
   int maxBisections() const { return maxBisections_; }
-  /// "<stepping>/Max Bisections = n".
+  /// "<stepping>/Max Bisections = n", and the resolution if halving
+  /// stopped there.
   std::string limits(const std::string& stepping) const override;
   std::vector<double> saveState() const override;
   bool restoreState(const std::vector<double>& state, int acceptedSteps) override;
@@ -129,6 +149,7 @@ class BisectingSteps final : public StepController {
   int step_ = 1;       ///< the nominal step being worked on
   double size_ = 0.0;  ///< the sub-step size within it
   int depth_ = 0;      ///< cuts made in it so far
+  bool atResolution_ = false;  ///< reject() gave up at the resolution, not at Max Bisections
 };
 
 /// Steps controlled by an error indicator whose error grows as the square
@@ -147,7 +168,10 @@ class BisectingSteps final : public StepController {
 /// [minimum, maximum]; a step at the minimum size is accepted whatever its
 /// error (atMinimum()). Newton failure halves the step, up to a number of
 /// consecutive halvings and not below the minimum. Every accepted step is
-/// its own nominal step.
+/// its own nominal step. Repeats stop early, and the step is reduced, when
+/// a repeat does not reduce the indicator (it sits at round-off, or the
+/// geometry does not settle): more repeats would not either (takeNote()
+/// says so).
 class AdaptiveSteps final : public StepController {
  public:
   /// Next size as a multiple of the size the indicator asks for
@@ -189,6 +213,7 @@ class AdaptiveSteps final : public StepController {
   /// The last accepted step was accepted at the minimum size with its error
   /// above the tolerance.
   bool atMinimum() const override { return atMinimum_; }
+  std::string takeNote() override;
   /// "<stepping>/Max Bisections = n, Step Control/Minimum Step Size = h".
   std::string limits(const std::string& stepping) const override;
   /// Repeats of the step being worked on (StepVerdict::Repeat) so far.
@@ -208,7 +233,9 @@ class AdaptiveSteps final : public StepController {
   int accepted_ = 0;     ///< accepted steps
   int depth_ = 0;        ///< Newton-failure halvings since the last accepted step
   int corrections_ = 0;  ///< repeats of the current step
+  double lastError_ = 0.0;  ///< the indicator of the attempt the last repeat followed
   bool atMinimum_ = false;
+  std::string note_;  ///< takeNote()
 };
 
 }  // namespace ddc

@@ -89,6 +89,11 @@ void StepLoop::run() {
   attempts_->bytes0 = model_->bytesExchanged();
   for (StepObserver* o : observers_) o->started(*this);
   if (contact) contactWarnings();  // from the initial pairing
+  if (contact && dynamics_ && !restarted_) {
+    penetration_ = initialPenetration(*model_);
+    if (penetration_.depth > 0.0) note(initialPenetrationWarning(penetration_));
+    initialEnergy_ = model_->kineticEnergy(dynamics_->integrator().velocity());  // unstrained
+  }
   try {
     while (!controller_->done()) {
       const StepProposal p = controller_->propose();
@@ -100,6 +105,8 @@ void StepLoop::run() {
       }
       Measured m = measure(p, rec);
       const StepVerdict verdict = controller_->judge(p, rec.geometryError);
+      const std::string why = controller_->takeNote();
+      if (!why.empty()) note("warning: step " + std::to_string(p.step) + ": " + why);
       if (verdict != StepVerdict::Accept) {
         sentBack(p, rec, verdict);
         continue;
@@ -262,6 +269,8 @@ void StepLoop::accept(const StepProposal& p, StepRecord& rec, Measured& m) {
                   p.step, rec.geometryError, p.size);
     note(buf);
   }
+  if (penetration_.depth > 0.0 && state_.history.empty())
+    note(injectedEnergyWarning(penetration_, initialEnergy_, rec.kineticEnergy + rec.strainEnergy, rec.externalWork));
   rec.wallSeconds = now() - start_ + state_.wallOffset;
   state_.history.push_back(rec);
   const bool last = controller_->done();

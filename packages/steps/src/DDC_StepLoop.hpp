@@ -23,6 +23,7 @@
 
 #include "DDC_Dynamics.hpp"
 #include "DDC_Error.hpp"
+#include "DDC_InitialPenetration.hpp"
 #include "DDC_Newton.hpp"
 #include "DDC_RunTiming.hpp"
 #include "DDC_SolutionStrategy.hpp"
@@ -155,6 +156,10 @@ class StepLoop {
   std::unique_ptr<Attempts> attempts_;
   Teuchos::RCP<Vector> trial_;  ///< the attempt's displacements
   double start_ = 0.0;          ///< run()'s start (steady clock, seconds)
+  /// A dynamic run with contact that starts overlapped (warned after its
+  /// first step too), and the total energy at its start.
+  InitialPenetration penetration_;
+  double initialEnergy_ = 0.0;
 };
 
 }  // namespace ddc

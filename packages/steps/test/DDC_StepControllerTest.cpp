@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "DDC_StepController.hpp"
@@ -96,6 +98,31 @@ TEST(BisectingSteps, GivesUpAfterMaxBisections) {
   EXPECT_TRUE(gaveUp);
   EXPECT_TRUE(steps.empty());
   EXPECT_EQ(c.current(), 0.0);
+}
+
+TEST(BisectingSteps, StopsHalvingWhereAStepNoLongerChangesTheValue) {
+  // Max Bisections = INT_MAX and every attempt fails: halving ends where
+  // half the step would be below the resolution of the value, at the start
+  // (0 of 1) and in the middle (1 of 2, the run failing from there on).
+  for (const double finalValue : {1.0, 2.0}) {
+    ddc::BisectingSteps c(finalValue, int(finalValue), std::numeric_limits<int>::max());
+    if (finalValue == 2.0) c.accept(c.propose());  // to 1
+    const double from = c.current();
+    int attempts = 0;
+    ddc::StepProposal p = c.propose();
+    for (; attempts < 10000; ++attempts) {
+      if (!c.reject(p)) break;
+      p = c.propose();
+    }
+    const double resolution = ddc::stepResolution(from, finalValue);
+    EXPECT_LT(attempts, 100) << "halving went on below the resolution";
+    EXPECT_GE(p.size, resolution);
+    EXPECT_LT(0.5 * p.size, resolution);
+    EXPECT_GT(p.to, p.from) << "the last step tried still changes the value";
+    EXPECT_EQ(c.current(), from);
+    EXPECT_NE(c.limits("Dynamics").find("Dynamics/Max Bisections = 2147483647 not used up"), std::string::npos)
+        << c.limits("Dynamics");
+  }
 }
 
 TEST(BisectingSteps, OutOfRangeArgumentsAreRefused) {
@@ -201,6 +228,30 @@ TEST(AdaptiveSteps, AStepAboveTheToleranceIsRepeatedWithItsGeometryThenReduced) 
   EXPECT_LT(d.accepted[1].size, 0.1);
   // After a step accepted with repeats the size is kept, not shrunk.
   EXPECT_EQ(d.accepted[1].size, d.accepted[2].size);
+}
+
+TEST(AdaptiveSteps, RepeatsThatDoNotReduceTheErrorStopAndTheStepIsReduced) {
+  // Geometry Corrections = INT_MAX, an indicator that repeats do not reduce
+  // (it sits at round-off): one repeat, then the step is reduced, with a
+  // note; down to the minimum size, where it is accepted.
+  ddc::AdaptiveSteps c(1.0, 0.1, 0.05, 0.1, 1e-3, 4, std::numeric_limits<int>::max());
+  const ddc::StepProposal p = c.propose();
+  EXPECT_EQ(c.judge(p, 0.01), ddc::StepVerdict::Repeat);
+  EXPECT_EQ(c.takeNote(), "");
+  EXPECT_EQ(c.judge(c.propose(), 0.01), ddc::StepVerdict::Reduce);
+  const std::string note = c.takeNote();
+  EXPECT_NE(note.find("geometry correction 1 did not reduce the frozen-geometry error (0.01 -> 0.01"),
+            std::string::npos) << note;
+  EXPECT_NE(note.find("Step Control/Geometry Corrections = 2147483647 not used up"), std::string::npos) << note;
+  EXPECT_EQ(c.takeNote(), "") << "a note is passed on once";
+  const auto d = driveAdaptive(c, [](const ddc::StepProposal&, int) { return 0.01; }, 1000);
+  EXPECT_EQ(c.current(), 1.0) << "the run ends";
+  ASSERT_FALSE(d.accepted.empty());
+  EXPECT_EQ(d.accepted[0].size, 0.05);
+  // A repeat that reduces the error a little is still followed by another.
+  ddc::AdaptiveSteps r(1.0, 0.1, 0.05, 0.1, 1e-3, 4, std::numeric_limits<int>::max());
+  EXPECT_EQ(r.judge(r.propose(), 0.01), ddc::StepVerdict::Repeat);
+  EXPECT_EQ(r.judge(r.propose(), 0.009), ddc::StepVerdict::Repeat);
 }
 
 TEST(AdaptiveSteps, AtTheMinimumSizeAStepIsAcceptedWhateverItsError) {
