@@ -17,8 +17,8 @@ namespace ddc {
 struct ContactOptions;
 
 /// What the estimate may miss: the largest measured/estimated ratio of the
-/// runs in doc/user-guide.md, "Memory" (1.14, block_3d with Belos-MueLu on
-/// 16 ranks), rounded up. A run is refused when its estimate times this
+/// runs in doc/user-guide.md, "Memory" (1.20, block_3d Hex8 with MUMPS at
+/// 56k DOFs on 2 ranks), rounded up. A run is refused when its estimate times this
 /// exceeds what its host offers.
 constexpr double kMemoryEstimateMargin = 1.25;
 
