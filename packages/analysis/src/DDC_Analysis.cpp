@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "DDC_CoincidentNodes.hpp"
 #include "DDC_ContactParameters.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_FaultSeam.hpp"
@@ -76,6 +77,7 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
   if (dynamic_ && params.sublist("Contact").get<std::string>("Initial Contact State") == "Automatic")
     contact.initialInContact = false;  // Previous Step: a time step changes the active set little
   const std::string strategy = params.sublist("Solver").get<std::string>("Strategy");
+  requireJoinedCoincidentNodes(*mesh, contact);
   requireSupportedBodies(*mesh, bcs, contact, strategy == "FETI-DP", dynamic_);
   Partition partition = partitionModel(*mesh, params.sublist("Partition"), strategy, comm_->getSize(), baseDirectory);
   memoryEstimate_ = estimateMemory(*mesh, partition, comm_->getSize(), params.sublist("Solver"));
