@@ -246,9 +246,16 @@ class ContactComponent {
   /// out. `locate[p]` returns the element of pair p's master body containing
   /// a reference point (dim() coordinates), or −1 (e.g.
   /// BodyLocator::elementContaining; an empty function skips the pair).
+  /// A node on the master body's boundary counts as inside too if a point of
+  /// `inward(node)` is: points of the slave body next to the node (e.g.
+  /// halfway to the centroids of its elements there), so that a slave body
+  /// lying in the master body with its nodes on the master's far surface (a
+  /// body one element across) is found; an empty function: the nodes only
+  /// (doc/contact.md, "Which slave nodes pair").
   /// Replicated data: the same verdict on every rank.
   /// \throws InputError naming the pair, the node, the depth and why.
-  void checkInitialPenetration(const std::vector<std::function<int(const Eigen::VectorXd&)>>& locate) const;
+  void checkInitialPenetration(const std::vector<std::function<int(const Eigen::VectorXd&)>>& locate,
+                               const std::function<std::vector<Eigen::VectorXd>(int)>& inward = {}) const;
 
  private:
   std::unique_ptr<ContactTopology> topology_;
