@@ -78,7 +78,7 @@ class Mesh {
   void requireRoom(double nodes, double elements, int nodesPerElement, const std::string& path) const;
   ///@}
 
-  /// The coordinate limit (doc/user-guide.md, "Mesh input"): a coordinate
+  /// The coordinate limit (doc/user-guide.md, "Checks of a mesh file"): a coordinate
   /// must be finite and at most this in magnitude; lengths far from 1 under-
   /// or overflow in the element arithmetic (Jacobians are cubes of lengths in
   /// 3-D). The mesh readers check every node they read against it.

@@ -42,7 +42,7 @@ class ExodusFile {
   ExodusFile& operator=(const ExodusFile&) = delete;
   int id() const { return id_; }
   /// A classic netCDF file holds all the data its header declares
-  /// (doc/user-guide.md, "Exodus II meshes"): checked before the library
+  /// (doc/user-guide.md, "Checks of a mesh file"): checked before the library
   /// opens it, which would read zeros past the end of a file cut short and
   /// allocate what a corrupt header declares.
   void requireWholeClassicFile() const {
@@ -235,7 +235,7 @@ class ExodusBodyReader {
 
   /// The sizes the header declares fit the memory budget before anything of
   /// those sizes is allocated (Mesh::requireRoom(); doc/user-guide.md,
-  /// "Exodus II meshes"): all the file's coordinates are read, and a
+  /// "Checks of a mesh file"): all the file's coordinates are read, and a
   /// netCDF-4 (HDF5) file may declare more than it stores (compressed or
   /// unwritten chunks), so its size bounds nothing. (A classic file was
   /// checked against its size when it was opened.)
@@ -273,7 +273,7 @@ class ExodusBodyReader {
   }
 
   /// Node n (0-based) of the file has finite coordinates within
-  /// Mesh::kMaxCoordinate (doc/user-guide.md, "Exodus II meshes").
+  /// Mesh::kMaxCoordinate (doc/user-guide.md, "Checks of a mesh file").
   void requireAdmissibleCoordinates(int n, const std::array<double, 3>& x) const {
     for (int c = 0; c < dim_; ++c)
       if (!Mesh::admissibleCoordinate(x[c])) {

@@ -85,7 +85,7 @@ class MshLines {
     return v;
   }
   /// Coordinate `axis` of node `tag`: a number within the coordinate limit
-  /// Mesh::kMaxCoordinate (doc/user-guide.md, "Mesh input").
+  /// Mesh::kMaxCoordinate (doc/user-guide.md, "Checks of a mesh file").
   double toCoordinate(const std::string& s, char axis, long long tag) const {
     errno = 0;
     char* end = nullptr;
