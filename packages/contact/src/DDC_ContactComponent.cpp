@@ -116,7 +116,7 @@ std::array<long, 3> ContactComponent::searchCounters() const { return pairing_->
 
 void ContactComponent::checkInitialPenetration(
     const std::vector<std::function<int(const Eigen::VectorXd&)>>& locate,
-    const std::function<std::vector<Eigen::VectorXd>(int)>& inward) const {
+    const std::function<std::vector<Eigen::VectorXd>(int, int)>& inward) const {
   pairing_->checkInitialPenetration(locate, inward);
 }
 

@@ -28,12 +28,18 @@ namespace {
 
 /// doc/contact.md "Which slave nodes pair": for each slave node of the pairs,
 /// points of the slave body next to it, halfway from the node to the
-/// centroid of the corners of each of its elements.
-std::function<std::vector<Eigen::VectorXd>(int)> slaveBodyPoints(const Mesh& mesh, const ContactOptions& contact) {
+/// centroid of the corners of each of its elements; none for a pair of two
+/// surfaces of one body (self-contact: the slave body is the master body).
+std::function<std::vector<Eigen::VectorXd>(int, int)> slaveBodyPoints(const Mesh& mesh,
+                                                                      const ContactOptions& contact) {
   auto points = std::make_shared<std::map<int, std::vector<Eigen::VectorXd>>>();
   std::set<int> bodies;
+  std::vector<char> selfContact;
   for (const auto& def : contact.pairs) {
-    bodies.insert(mesh.bodyIndex(def.slaveSet.substr(0, def.slaveSet.find('/'))));
+    const int slave = mesh.bodyIndex(def.slaveSet.substr(0, def.slaveSet.find('/')));
+    selfContact.push_back(slave == mesh.bodyIndex(def.masterSet.substr(0, def.masterSet.find('/'))));
+    if (selfContact.back()) continue;
+    bodies.insert(slave);
     for (int n : mesh.nodeSet(def.slaveSet)) (*points)[n];
   }
   const int dim = mesh.dim();
@@ -51,9 +57,9 @@ std::function<std::vector<Eigen::VectorXd>(int)> slaveBodyPoints(const Mesh& mes
       }
     }
   }
-  return [points](int n) {
+  return [points, selfContact](int pair, int n) {
     const auto it = points->find(n);
-    return it == points->end() ? std::vector<Eigen::VectorXd>() : it->second;
+    return selfContact.at(pair) || it == points->end() ? std::vector<Eigen::VectorXd>() : it->second;
   };
 }
 
