@@ -119,3 +119,10 @@ foreach(bad wedge inverted side_element side_number)
   set_tests_properties(exodus_mesh_malformed_${bad}_file PROPERTIES FIXTURES_REQUIRED exodus_half_rings
     FIXTURES_SETUP exodus_mesh_malformed_${bad} LABELS "system;output")
 endforeach()
+
+# The meshes of the mesh input negative cases (test/negative_cases.txt, "Mesh
+# input and contact set-up"): a conforming two-block Exodus II mesh and its
+# broken variants, Gmsh files with bad coordinates (tools/write_mesh_input_cases.py).
+add_test(NAME mesh_input_files COMMAND ${DDC_SYSTEM_PYTHON}
+  ${CMAKE_CURRENT_SOURCE_DIR}/tools/write_mesh_input_cases.py ${DDC_RUNS}/mesh_input)
+set_tests_properties(mesh_input_files PROPERTIES FIXTURES_SETUP mesh_input_files LABELS "system;negative")

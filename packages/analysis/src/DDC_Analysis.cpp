@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "DDC_CoincidentNodes.hpp"
 #include "DDC_ContactParameters.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_FaultSeam.hpp"
@@ -78,6 +79,7 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
   if (dynamic_ && params.sublist("Contact").get<std::string>("Initial Contact State") == "Automatic")
     contact.initialInContact = false;  // Previous Step: a time step changes the active set little
   const std::string strategy = params.sublist("Solver").get<std::string>("Strategy");
+  requireJoinedCoincidentNodes(*mesh, contact);
   requireSupportedBodies(*mesh, bcs, contact, strategy == "FETI-DP", dynamic_);
   // A run too large even with evenly sized subdomains is refused before
   // METIS runs (it takes seconds on large meshes, on every rank).

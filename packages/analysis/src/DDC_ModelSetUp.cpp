@@ -26,7 +26,7 @@ namespace {
 constexpr double kNearlyIncompressible = 0.49;
 /// The range of a body's extent and coordinates buildMesh() accepts.
 constexpr double kMinBodyExtent = 1e-100;
-constexpr double kMaxCoordinate = 1e100;
+constexpr double kMaxCoordinate = Mesh::kMaxCoordinate;
 }  // namespace
 
 std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const ElementFactory& factory,

@@ -115,8 +115,9 @@ long ContactComponent::bytesExchanged() const { return pairing_->bytesExchanged(
 std::array<long, 3> ContactComponent::searchCounters() const { return pairing_->searchCounters(); }
 
 void ContactComponent::checkInitialPenetration(
-    const std::vector<std::function<int(const Eigen::VectorXd&)>>& locate) const {
-  pairing_->checkInitialPenetration(locate);
+    const std::vector<std::function<int(const Eigen::VectorXd&)>>& locate,
+    const std::function<std::vector<Eigen::VectorXd>(int, int)>& inward) const {
+  pairing_->checkInitialPenetration(locate, inward);
 }
 
 }  // namespace ddc

@@ -246,9 +246,18 @@ class ContactComponent {
   /// out. `locate[p]` returns the element of pair p's master body containing
   /// a reference point (dim() coordinates), or −1 (e.g.
   /// BodyLocator::elementContaining; an empty function skips the pair).
+  /// If no unpaired slave node of a pair is inside, a node on the master
+  /// body's boundary counts as inside if a point of `inward(p, node)` is:
+  /// points of the slave body next to the node (e.g. halfway to the
+  /// centroids of its elements there; none for a pair of two surfaces of one
+  /// body, whose slave body is the master body), so that a slave body
+  /// lying in the master body with its nodes on the master's far surface (a
+  /// body one element across) is found; an empty function: the nodes only
+  /// (doc/contact.md, "Which slave nodes pair").
   /// Replicated data: the same verdict on every rank.
   /// \throws InputError naming the pair, the node, the depth and why.
-  void checkInitialPenetration(const std::vector<std::function<int(const Eigen::VectorXd&)>>& locate) const;
+  void checkInitialPenetration(const std::vector<std::function<int(const Eigen::VectorXd&)>>& locate,
+                               const std::function<std::vector<Eigen::VectorXd>(int, int)>& inward = {}) const;
 
  private:
   std::unique_ptr<ContactTopology> topology_;

@@ -213,22 +213,36 @@ std::array<long, 3> ContactPairing::searchCounters() const {
 // ---- the initial penetration -------------------------------------------------------------
 
 void ContactPairing::checkInitialPenetration(
-    const std::vector<std::function<int(const Eigen::VectorXd&)>>& locate) const {
+    const std::vector<std::function<int(const Eigen::VectorXd&)>>& locate,
+    const std::function<std::vector<Eigen::VectorXd>(int, int)>& inward) const {
   // doc/contact.md "Which slave nodes pair": a slave node inside the master
   // body that the search does not pair keeps λ = 0 for ever, so the bodies
-  // would silently stay overlapped there. Reference configuration,
-  // replicated surfaces and slots: every rank reaches the same verdict.
+  // would silently stay overlapped there. A node on the master body's
+  // boundary is not inside, but if the slave body next to it is (points
+  // towards its elements' centroids), the bodies overlap there all the same:
+  // those nodes are reported where no node of the pair is inside.
+  // Reference configuration, replicated surfaces and slots: every rank
+  // reaches the same verdict.
   const int dim = topo_.dim();
   for (size_t p = 0; p < size_t(topo_.numPairs()) && p < locate.size(); ++p) {
     if (!locate[p]) continue;
     const Pair& pair = topo_.pair(int(p));
+    // The unpaired slave nodes inside; if there are none, those next to
+    // which the slave body is inside (`probe`).
     int first = -1, count = 0, element = -1;
-    for (int k : pair.slots) {
-      if (slots_[k].paired()) continue;
-      const int e = locate[p](Eigen::VectorXd(topo_.referencePosition(slots_[k].slaveNode).head(dim)));
-      if (e < 0) continue;
-      if (first < 0) first = k, element = e;
-      ++count;
+    for (const bool probe : {false, true}) {
+      if (first >= 0 || (probe && !inward)) break;
+      for (int k : pair.slots) {
+        if (slots_[k].paired()) continue;
+        int e = -1;
+        if (!probe) e = locate[p](Eigen::VectorXd(topo_.referencePosition(slots_[k].slaveNode).head(dim)));
+        else
+          for (const Eigen::VectorXd& x : inward(int(p), slots_[k].slaveNode))
+            if ((e = locate[p](x)) >= 0) break;
+        if (e < 0) continue;
+        if (first < 0) first = k, element = e;
+        ++count;
+      }
     }
     if (first < 0) continue;
     const int node = slots_[first].slaveNode;

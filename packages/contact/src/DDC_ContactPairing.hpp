@@ -57,7 +57,8 @@ class ContactPairing {
   std::vector<std::string> neverPairedPairs() const;
   std::vector<char> pairedRecord() const;
   void addPairedRecord(const std::vector<char>& record);
-  void checkInitialPenetration(const std::vector<std::function<int(const Eigen::VectorXd&)>>& locate) const;
+  void checkInitialPenetration(const std::vector<std::function<int(const Eigen::VectorXd&)>>& locate,
+                               const std::function<std::vector<Eigen::VectorXd>(int, int)>& inward) const;
   /// {tracking queries, tracking fallbacks, global queries}.
   std::array<long, 3> searchCounters() const;
   long exchanges() const { return exchanges_; }

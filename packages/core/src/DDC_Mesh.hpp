@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -76,6 +77,14 @@ class Mesh {
   ///         elements (and the generator's transient copies) would not fit.
   void requireRoom(double nodes, double elements, int nodesPerElement, const std::string& path) const;
   ///@}
+
+  /// The coordinate limit (doc/user-guide.md, "Checks of a mesh file"): a coordinate
+  /// must be finite and at most this in magnitude; lengths far from 1 under-
+  /// or overflow in the element arithmetic (Jacobians are cubes of lengths in
+  /// 3-D). The mesh readers check every node they read against it.
+  static constexpr double kMaxCoordinate = 1e100;
+  /// `v` is finite and |v| <= kMaxCoordinate.
+  static bool admissibleCoordinate(double v) { return std::abs(v) <= kMaxCoordinate; }
 
   /// Spatial dimension: 2 or 3, 0 before the first body.
   int dim() const { return dim_; }

@@ -6,11 +6,14 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <vector>
 
 #include "DDC_Error.hpp"
 #include "DDC_ExodusCells.hpp"
+#include "DDC_NetcdfClassicExtent.hpp"
 #include "DDC_Parameters.hpp"
 
 namespace ddc {
@@ -21,11 +24,16 @@ namespace {
 class ExodusFile {
  public:
   ExodusFile(const std::string& name, const std::string& context) : name_(name), context_(context) {
+    requireWholeClassicFile();
     ex_opts(0);  // errors come back as return values, not on stderr
     int cpuWordSize = 8, ioWordSize = 0;
     float version = 0.0f;
     id_ = ex_open(name.c_str(), EX_READ, &cpuWordSize, &ioWordSize, &version);
-    if (id_ < 0) fail("cannot open it as an Exodus II file: " + exodusLibraryError(id_));
+    if (id_ < 0)
+      fail("cannot open it as an Exodus II file: " + exodusLibraryError(id_) +
+           (format() == Format::Other ? std::string()
+                                      : "; it starts as a netCDF file, so it is probably truncated (cut short) or "
+                                        "corrupt: write or copy it again"));
   }
   ~ExodusFile() {
     if (id_ >= 0) ex_close(id_);
@@ -33,6 +41,43 @@ class ExodusFile {
   ExodusFile(const ExodusFile&) = delete;
   ExodusFile& operator=(const ExodusFile&) = delete;
   int id() const { return id_; }
+  /// A classic netCDF file holds all the data its header declares
+  /// (doc/user-guide.md, "Checks of a mesh file"): checked before the library
+  /// opens it, which would read zeros past the end of a file cut short and
+  /// allocate what a corrupt header declares.
+  void requireWholeClassicFile() const {
+    const NetcdfClassicExtent x = netcdfClassicExtent(name_);
+    if (!x.classic) return;
+    if (!x.readable)
+      fail("its netCDF header cannot be read (" + x.problem +
+           "): the file is truncated (cut short) or corrupt; write or copy it again");
+    if (bytes() < x.end) {
+      std::ostringstream os;
+      os << "it has " << std::llround(bytes()) << " bytes, but its header places the data of variable '"
+         << x.variable << "' up to byte " << std::llround(x.end)
+         << ": the file is truncated (cut short) or its header is corrupt (it declares more than the file holds); "
+            "write or copy it again";
+      fail(os.str());
+    }
+  }
+  /// The file's container, by its first bytes: netCDF classic (CDF1, 2 or 5:
+  /// every fixed-size variable is stored in full), HDF5 (netCDF-4: may be
+  /// compressed, and unwritten chunks take no room) or neither.
+  enum class Format { Classic, Hdf5, Other };
+  Format format() const {
+    char magic[4] = {0, 0, 0, 0};
+    std::ifstream in(name_, std::ios::binary);
+    in.read(magic, 4);
+    if (magic[0] == 'C' && magic[1] == 'D' && magic[2] == 'F') return Format::Classic;
+    if (magic[0] == '\x89' && magic[1] == 'H' && magic[2] == 'D' && magic[3] == 'F') return Format::Hdf5;
+    return Format::Other;
+  }
+  /// The file's size in bytes.
+  double bytes() const {
+    std::error_code ec;
+    const auto n = std::filesystem::file_size(name_, ec);
+    return ec ? 0.0 : double(n);
+  }
   /// Throws InputError: "<context>: Exodus II file '<name>': <what>".
   [[noreturn]] void fail(const std::string& what) const {
     DDC_THROW(InputError, context_ << ": Exodus II file '" << name_ << "': " << what);
@@ -130,6 +175,8 @@ class ExodusBodyReader {
   int read(const std::string& wantedBlock) {
     readSizes();
     chooseBlock(wantedBlock);
+    blocks_.readSizes(ex_);
+    requireDeclaredSizesFit();
     checkBlock();
     readNodesAndElements();
     readNodeSets();
@@ -172,7 +219,6 @@ class ExodusBodyReader {
   /// The block's elements are of the body's type, and there are some.
   /// Elements are numbered across the blocks in block order: firstElem_.
   void checkBlock() {
-    blocks_.readSizes(ex_);
     for (int b = 0; b < block_; ++b) firstElem_ += blocks_.size[b];
     const auto accepted = exodusElementTypeNames(type_);
     if (std::find(accepted.begin(), accepted.end(), blocks_.type[block_]) == accepted.end() ||
@@ -185,6 +231,16 @@ class ExodusBodyReader {
       ex_.fail(os.str());
     }
     if (blocks_.size[block_] == 0) ex_.fail(blockLabel_ + " has no elements");
+  }
+
+  /// The sizes the header declares fit the memory budget before anything of
+  /// those sizes is allocated (Mesh::requireRoom(); doc/user-guide.md,
+  /// "Checks of a mesh file"): all the file's coordinates are read, and a
+  /// netCDF-4 (HDF5) file may declare more than it stores (compressed or
+  /// unwritten chunks), so its size bounds nothing. (A classic file was
+  /// checked against its size when it was opened.)
+  void requireDeclaredSizesFit() {
+    mesh_.requireRoom(double(numNodes_), blocks_.size[block_], nen_, path_);
   }
 
   /// The body, its nodes (those of the block, in file order) and elements.
@@ -209,10 +265,25 @@ class ExodusBodyReader {
       if (bodyDim_ == 2 && std::abs(z[n]) > 1e-10 * std::max({1.0, std::abs(x[n]), std::abs(y[n])}))
         ex_.fail("node " + std::to_string(n + 1) + " of " + blockLabel_ + " has z = " + std::to_string(z[n]) +
                  ", and body '" + bodyName_ + "' is 2-D (planar meshes in z = 0 only)");
+      requireAdmissibleCoordinates(n, {x[n], y[n], z[n]});
       local_[n] = mesh_.addNode(x[n], y[n], bodyDim_ == 3 ? z[n] : 0.0);
     }
     addElements(conn);
     bodyFirstElement_ = mesh_.body(body_).firstElement;
+  }
+
+  /// Node n (0-based) of the file has finite coordinates within
+  /// Mesh::kMaxCoordinate (doc/user-guide.md, "Checks of a mesh file").
+  void requireAdmissibleCoordinates(int n, const std::array<double, 3>& x) const {
+    for (int c = 0; c < dim_; ++c)
+      if (!Mesh::admissibleCoordinate(x[c])) {
+        std::ostringstream os;
+        os << "node " << n + 1 << " of " << blockLabel_ << " has " << "xyz"[c] << " = " << x[c]
+           << "; every coordinate must be a finite number within +-" << Mesh::kMaxCoordinate
+           << " (the coordinate limit: lengths this large overflow in the element arithmetic): fix the node or "
+              "choose other length units";
+        ex_.fail(os.str());
+      }
   }
 
   /// The block's elements in DDContact's node order, each valid.

@@ -84,12 +84,22 @@ class MshLines {
     if (s.empty() || *end != '\0' || errno != 0) fail(std::string("expected an integer ") + what + ", found '" + s + "'");
     return v;
   }
-  double toDouble(const std::string& s, const char* what) const {
+  /// Coordinate `axis` of node `tag`: a number within the coordinate limit
+  /// Mesh::kMaxCoordinate (doc/user-guide.md, "Checks of a mesh file").
+  double toCoordinate(const std::string& s, char axis, long long tag) const {
     errno = 0;
     char* end = nullptr;
     const double v = std::strtod(s.c_str(), &end);
-    if (s.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
-      fail(std::string("expected a number ") + what + ", found '" + s + "'");
+    if (s.empty() || *end != '\0') fail(std::string("expected a number (") + axis + "), found '" + s + "'");
+    if (!Mesh::admissibleCoordinate(v)) {
+      std::ostringstream os;
+      os << "node " << tag << " has " << axis << " = " << s << "; every coordinate must be a finite number within +-"
+         << Mesh::kMaxCoordinate
+         << " (the coordinate limit: lengths this large overflow in the element arithmetic): fix the node or "
+            "choose other length units";
+      fail(os.str());
+    }
+    if (errno == ERANGE) fail(std::string("expected a number (") + axis + "), found '" + s + "'");
     return v;
   }
   int toCount(const std::string& s, const char* what) const {
@@ -293,7 +303,8 @@ void parseNodes(MshLines& in, MshData& d) {
     const size_t nc = 3 + (parametric ? static_cast<size_t>(std::max(0, std::min(dim, 2))) : 0);
     for (int k = 0; k < n; ++k) {
       const auto x = in.tokens("Nodes", nc, "node coordinates 'x y z'");
-      const std::array<double, 3> p{in.toDouble(x[0], "(x)"), in.toDouble(x[1], "(y)"), in.toDouble(x[2], "(z)")};
+      const std::array<double, 3> p{in.toCoordinate(x[0], 'x', tags[k]), in.toCoordinate(x[1], 'y', tags[k]),
+                                    in.toCoordinate(x[2], 'z', tags[k])};
       if (!d.nodes.emplace(tags[k], p).second)
         in.fail("node tag " + std::to_string(tags[k]) + " appears twice in section $Nodes");
     }

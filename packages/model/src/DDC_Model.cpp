@@ -7,6 +7,8 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <memory>
+#include <set>
 #include <cmath>
 #include <numeric>
 #include <sstream>
@@ -21,6 +23,47 @@
 #include "DDC_Substructuring.hpp"
 
 namespace ddc {
+
+namespace {
+
+/// doc/contact.md "Which slave nodes pair": for each slave node of the pairs,
+/// points of the slave body next to it, halfway from the node to the
+/// centroid of the corners of each of its elements; none for a pair of two
+/// surfaces of one body (self-contact: the slave body is the master body).
+std::function<std::vector<Eigen::VectorXd>(int, int)> slaveBodyPoints(const Mesh& mesh,
+                                                                      const ContactOptions& contact) {
+  auto points = std::make_shared<std::map<int, std::vector<Eigen::VectorXd>>>();
+  std::set<int> bodies;
+  std::vector<char> selfContact;
+  for (const auto& def : contact.pairs) {
+    const int slave = mesh.bodyIndex(def.slaveSet.substr(0, def.slaveSet.find('/')));
+    selfContact.push_back(slave == mesh.bodyIndex(def.masterSet.substr(0, def.masterSet.find('/'))));
+    if (selfContact.back()) continue;
+    bodies.insert(slave);
+    for (int n : mesh.nodeSet(def.slaveSet)) (*points)[n];
+  }
+  const int dim = mesh.dim();
+  for (int b : bodies) {
+    const int corners = referenceCell(mesh.body(b).cellType).numCorners;
+    for (int e = mesh.body(b).firstElement; e < mesh.body(b).firstElement + mesh.body(b).numElements; ++e) {
+      const int* en = mesh.elementNodes(e);
+      Eigen::VectorXd c = Eigen::VectorXd::Zero(dim);
+      for (int i = 0; i < corners; ++i) c += Eigen::Map<const Eigen::VectorXd>(mesh.coord(en[i]).data(), dim);
+      c /= corners;
+      for (int i = 0; i < mesh.elementNumNodes(e); ++i) {
+        auto it = points->find(en[i]);
+        if (it != points->end())
+          it->second.push_back(0.5 * (Eigen::Map<const Eigen::VectorXd>(mesh.coord(en[i]).data(), dim) + c));
+      }
+    }
+  }
+  return [points, selfContact](int pair, int n) {
+    const auto it = points->find(n);
+    return selfContact.at(pair) || it == points->end() ? std::vector<Eigen::VectorXd>() : it->second;
+  };
+}
+
+}  // namespace
 
 Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const Mesh> mesh,
              std::vector<std::shared_ptr<const Element>> elements, Partition partition, BoundaryConditions bcs,
@@ -76,7 +119,7 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
       else
         locate.push_back([l](const Eigen::VectorXd& x) { return l->elementContaining(Eigen::Vector3d(x)); });
     }
-    contact_->checkInitialPenetration(locate);
+    contact_->checkInitialPenetration(locate, slaveBodyPoints(*mesh_, contactOptions_));
   }
   buildTopology();
   assembleTractions();

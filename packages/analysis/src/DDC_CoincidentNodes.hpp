@@ -1,0 +1,21 @@
+// Nodes of different bodies at one position that nothing joins
+// (doc/user-guide.md, "Writing an input deck": "Bodies that touch").
+#pragma once
+
+#include "DDC_ContactParameters.hpp"
+#include "DDC_Mesh.hpp"
+
+namespace ddc {
+
+/// Refuse a mesh in which two bodies have nodes at the same position (within
+/// 1e-9 of the mesh's bounding-box diagonal) and no contact pair joins the
+/// two bodies: bodies share no nodes, so such bodies are analysed as if cut
+/// apart there (two element blocks of one conforming mesh read as two bodies
+/// carry no load across their interface). Found by a hash of the nodes'
+/// cells (O(number of nodes)). Every rank holds the mesh: every rank throws
+/// the same error.
+/// \throws InputError naming the two bodies, how many positions they share,
+///         one node of each and its coordinates, and what to do
+void requireJoinedCoincidentNodes(const Mesh& mesh, const ContactOptions& contact);
+
+}  // namespace ddc
