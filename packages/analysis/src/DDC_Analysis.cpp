@@ -40,7 +40,7 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
                     "(Contact/Pairs): there are no contact nodes to write");
   // Every rank reads the mesh and map files named in the parameters: a file
   // missing or different on some ranks must fail all ranks alike.
-  requireSameFilesOnEveryRank(*comm_, namedInputFiles(params, baseDirectory));
+  inputFiles_ = requireSameFilesOnEveryRank(*comm_, namedInputFiles(params, baseDirectory));
   buildModel(params, baseDirectory);
   unloaded_ = model_->createVector();
   if (dynamic_) dynamics_ = makeDynamics(params.sublist("Dynamics"), *model_, *strategy_);
@@ -121,8 +121,12 @@ const RunTiming& Analysis::timing() const {
 void Analysis::setRestart(RestartSource source) {
   DDC_INPUT_REQUIRE(source.checkpoint, "setRestart: no checkpoint");
   const CheckpointReader& c = *source.checkpoint;
+  requireCheckpointLayout(c);
   const auto saved = Teuchos::getParametersFromXmlString(c.bytes("parameters"));
   checkRestartParameters(*saved, params_, c.path());
+  checkRestartInputFiles(c.bytes(kInputFilesSection), inputFiles_, c.path());
+  const StepLoopSettings settings = stepLoopSettings(params_, dynamic_);
+  checkRestartFinalValue(checkpointLastStep(c), settings, c.path());
   restart_ = std::make_unique<RestartSource>(std::move(source));
 }
 
@@ -183,7 +187,7 @@ std::unique_ptr<Analysis::RunObservers> Analysis::makeObservers(OutputDirectory*
     if (checkpointInterval > 0)
       obs->checkpoint = std::make_unique<CheckpointObserver>(dir->path() + "/" + kCheckpointFileName,
                                                              dir->finalPath(), checkpointInterval, params_,
-                                                             obs->vtk.get());
+                                                             describeInputFiles(inputFiles_), obs->vtk.get());
     // contact_nodes.csv holds the contact state of the last converged step.
     if (model_->hasContact() && out.get<bool>("Contact Nodes"))
       obs->contactNodes = std::make_unique<ContactNodesObserver>(dir->path() + "/contact_nodes.csv");

@@ -15,6 +15,9 @@
 #include <vector>
 
 #include "DDC_Checkpoint.hpp"
+#include "DDC_InputDeck.hpp"
+#include "DDC_StepLoop.hpp"
+#include "DDC_StepRecord.hpp"
 
 namespace ddc {
 
@@ -47,6 +50,25 @@ const std::vector<std::string>& restartChangeableParameters();
 /// \throws InputError naming the first parameter that differs (its path,
 ///         both values, the checkpoint) and what may change
 void checkRestartParameters(const Teuchos::ParameterList& saved, const Teuchos::ParameterList& now,
+                            const std::string& checkpointPath);
+
+/// The files a run read, as its checkpoint records them: one line per file,
+/// "<size> <fingerprint> <parameter>\t<file>".
+std::string describeInputFiles(const std::vector<InputFileIdentity>& files);
+
+/// Check that each file this run reads (`now`) is, byte for byte as far as
+/// size and fingerprint tell, the one the checkpointed run read (`saved`,
+/// describeInputFiles()): a restart continues that run's state on its mesh.
+/// \throws InputError naming the parameter, the file, both sizes and the
+///         checkpoint, and what to do
+void checkRestartInputFiles(const std::string& saved, const std::vector<InputFileIdentity>& now,
+                            const std::string& checkpointPath);
+
+/// Check that the checkpoint's last step `last` does not lie beyond this
+/// run's final load factor (or final time), `settings.finalValue`: the
+/// result would end beyond what was asked for.
+/// \throws InputError naming the parameter, both values and the checkpoint
+void checkRestartFinalValue(const StepRecord& last, const StepLoopSettings& settings,
                             const std::string& checkpointPath);
 
 }  // namespace ddc
