@@ -138,6 +138,7 @@ void Analysis::run(const std::string& outputDirectory) {
   // A restart continuing in the directory of the unfinished run it
   // continues keeps that run's staging directory (its files are read).
   RunDescription description;
+  description.keepIfHolds = kCheckpointFileName;
   if (restart_ && restart_->unfinished && OutputDirectory::normalisedPath(outputDirectory) == restart_->finalPath)
     description.resumeWith = kCheckpointFileName;
   OutputDirectory dir(comm_, outputDirectory, description);

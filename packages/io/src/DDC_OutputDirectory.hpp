@@ -26,6 +26,11 @@ struct RunDescription {
   /// that file is kept as this run's staging directory instead of being
   /// removed. Empty: never kept.
   std::string resumeWith;
+  /// A file (a checkpoint) whose presence in the staging directory of an
+  /// unfinished run makes construction refuse instead of removing that
+  /// directory, unless resumeWith keeps it: a plain re-run does not discard
+  /// the state a restart could continue from. Empty: removed as any other.
+  std::string keepIfHolds;
 };
 
 /// \brief The output directory of one run, written through a staging directory.
@@ -34,7 +39,8 @@ struct RunDescription {
 ///  - `D/ddcontact-result.txt`, the *manifest*: the mark of a DDContact
 ///    result. It records the program and version, the input, the command,
 ///    the start time and a status; a committed result has
-///    `status: complete` and lists every file with its size.
+///    `status: complete` and lists every file with its size and FNV-1a
+///    fingerprint, and every directory.
 ///  - `D.partial`: the staging directory every writer writes into; its
 ///    manifest says `status: running` until commit().
 ///  - `D.old`: the previous result during a commit.
@@ -49,7 +55,10 @@ struct RunDescription {
 ///  - a D, D.partial or D.old that is not a directory, or a non-empty one
 ///    without a manifest (someone else's directory);
 ///  - a D whose manifest does not list all of its files (files added by
-///    someone else);
+///    someone else), or one of whose listed files no longer has the size
+///    and fingerprint the manifest records (edited by someone else), or
+///    with a directory the manifest does not list;
+///  - a D.partial of an unfinished run holding RunDescription::keepIfHolds;
 ///  - a D that another run holds (naming its pid, host, input and start).
 /// An empty directory counts as nothing to lose and may be used.
 ///
