@@ -74,6 +74,11 @@
 #   bad-checkpoint  the stopped run's checkpoint.ddc replaced by a directory,
 #                   a link to /dev/zero, an 8 GiB sparse file read under a
 #                   4 GiB address-space limit: refused naming the file.
+#   exodus-messages Output/Exodus switched on at the restart: a warning
+#                   naming the earlier run's missing results.e (no internal
+#                   file names); a full disk while the restart writes
+#                   results.e (seam enospc@results.e): "No space left on
+#                   device", the stopped run's directory unchanged.
 # Environment: REFERENCE_RUN, the directory of the uninterrupted run of the
 # same deck, options and rank count (a case `reference`): the cases sigterm,
 # newton-failure, kill, usr1-to-mpirun and other-ranks compare with it
@@ -447,6 +452,29 @@ bad-checkpoint)
   rm "$checkpoint"
   mv "$work/intact.ddc" "$checkpoint"
   [ "$(hashes "$work/stopped.partial")" = "$before" ] || fail "the stopped run's directory changed"
+  ;;
+exodus-messages)
+  # Exodus II output switched on only at the restart: a warning that names
+  # no internal file.
+  DDCONTACT_FAULT_INJECTION=sigterm@3 run "$work/stopped.log" "$np" --output-dir "$work/stopped"
+  every_rank_status "$work/stopped.log" 143
+  run "$work/switched.log" "$np" --restart "$work/stopped" --set "Output/Exodus=true"
+  every_rank_succeeded "$work/switched.log"
+  expect_in "$work/switched.log" \
+    "warning: restart: results.e holds none of the 3 steps before the checkpoint: the run that wrote it left no results.e \('.*stopped.partial/results.e'; Output/Exodus was false in that run" \
+    "Exodus II output switched on at the restart"
+  grep -Eq "before-restart|ex_open" "$work/switched.log" && fail "a message names an internal file or library call"
+  # A full disk while the restart writes results.e (seam enospc@results.e).
+  DDCONTACT_FAULT_INJECTION=sigterm@3 run "$work/exodus.log" "$np" --output-dir "$work/exodus" \
+    --set "Output/Exodus=true"
+  every_rank_status "$work/exodus.log" 143
+  before=$(hashes "$work/exodus.partial")
+  DDCONTACT_FAULT_INJECTION=enospc@results.e run "$work/full.log" "$np" --restart "$work/exodus" \
+    --output-dir "$work/full" --set "Output/Exodus=true"
+  every_rank_failed "$work/full.log"
+  expect_in "$work/full.log" "cannot write step 4 of the Exodus II results '.*full.partial/results.e' \(time\): No space left on device" \
+    "a full disk while writing results.e"
+  [ "$(hashes "$work/exodus.partial")" = "$before" ] || fail "the stopped run's directory changed"
   ;;
 *)
   echo "unknown case $case_name"
