@@ -209,7 +209,6 @@ int run(const std::vector<std::string>& args, const Teuchos::RCP<const Teuchos::
   for (const auto& a : args) command += " " + a;
   std::error_code ec;
   ddc::RunDescription description{std::filesystem::absolute(inputPath, ec).lexically_normal().string(), command, ""};
-  description.keepIfHolds = ddc::kCheckpointFileName;  // a stopped run's checkpoint is never discarded silently
   if (restart && restart->unfinished && ddc::OutputDirectory::normalisedPath(outDir) == restart->finalPath)
     description.resumeWith = ddc::kCheckpointFileName;
   std::unique_ptr<ddc::Analysis> analysis;

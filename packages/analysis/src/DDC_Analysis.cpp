@@ -138,7 +138,6 @@ void Analysis::run(const std::string& outputDirectory) {
   // A restart continuing in the directory of the unfinished run it
   // continues keeps that run's staging directory (its files are read).
   RunDescription description;
-  description.keepIfHolds = kCheckpointFileName;
   if (restart_ && restart_->unfinished && OutputDirectory::normalisedPath(outputDirectory) == restart_->finalPath)
     description.resumeWith = kCheckpointFileName;
   OutputDirectory dir(comm_, outputDirectory, description);
@@ -217,7 +216,19 @@ void Analysis::runSteps(OutputDirectory* dir) {
   }
   observers->addTo(*loop_);
   for (const auto& o : hostObservers_) loop_->addObserver(*o);
-  loop_->run();
+  // A run that stops or fails with a checkpoint, and says to continue it
+  // with a restart, marks its staging directory so: a plain run into the
+  // same directory does not discard it (doc/user-guide.md, "Checkpoints and
+  // restart").
+  try {
+    loop_->run();
+  } catch (const RunInterrupted&) {
+    if (dir && observers->checkpoint) dir->markResumable(kCheckpointFileName);
+    throw;
+  } catch (const SolverError&) {
+    if (dir && observers->checkpoint) dir->markResumable(kCheckpointFileName);
+    throw;
+  }
   if (dir) {
     dir->commit();
     progress("results in " + dir->finalPath());

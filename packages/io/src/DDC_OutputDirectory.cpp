@@ -502,13 +502,25 @@ bool checkOwned(const fs::path& p, const fs::path& final, const std::string& rol
   return false;
 }
 
-/// The checks and recovery of the constructor (rank 0, lock held).
-void prepare(const fs::path& final, const fs::path& staging, const fs::path& old, const std::string& resumeWith,
-             const std::string& keepIfHolds, std::vector<std::string>& notes, Failure& failure) {
+/// The file a staging directory was marked resumable with
+/// (OutputDirectory::markResumable()) if it is there, else "".
+std::string resumableFile(const fs::path& staging) {
+  const Manifest m = readManifest(staging);
+  const auto it = m.fields.find("resumable");
+  std::error_code ec;
+  if (it == m.fields.end() || it->second.empty() || !fs::exists(fs::symlink_status(staging / it->second, ec)))
+    return "";
+  return it->second;
+}
+
+/// The refusals of the constructor before any recovery step moves
+/// anything (rank 0, lock held): false with `failure` set if D, D.partial
+/// or D.old is not this program's to replace or remove.
+bool mayReplace(const fs::path& final, const fs::path& staging, const fs::path& old, Failure& failure) {
   if (!checkOwned(final, final, "the output directory", failure) ||
       !checkOwned(staging, final, "the staging directory of a run", failure) ||
       !checkOwned(old, final, "the previous result during a commit", failure))
-    return;
+    return false;
   // An earlier result may be replaced only if all its files are DDContact's;
   // checked before any recovery step moves it.
   if (fs::exists(final) && !isEmptyDirectory(final)) {
@@ -519,7 +531,7 @@ void prepare(const fs::path& final, const fs::path& staging, const fs::path& old
                                      listSome(final, foreign) +
                                      "; move them elsewhere or choose another --output-dir (a new result replaces "
                                      "the whole directory)"};
-      return;
+      return false;
     }
     const auto changed = changedEntries(final, readManifest(final));
     if (!changed.empty()) {
@@ -532,7 +544,7 @@ void prepare(const fs::path& final, const fs::path& staging, const fs::path& old
                                       std::string(OutputDirectory::manifestFileName()) + ")") +
                      ": it is yours now, and a new result would replace it; move it away or choose another "
                      "--output-dir"};
-      return;
+      return false;
     }
   }
   // A result this user cannot delete (another user's) would be moved to
@@ -544,7 +556,7 @@ void prepare(const fs::path& final, const fs::path& staging, const fs::path& old
       failure = {Failure::Input, "output directory '" + final.string() + "' holds an earlier result that this run "
                                  "could not remove when it replaces it: " + why +
                                  "; choose another --output-dir, or have its owner remove it"};
-      return;
+      return false;
     }
   }
   if (fs::exists(old) && !isEmptyDirectory(old)) {
@@ -553,9 +565,16 @@ void prepare(const fs::path& final, const fs::path& staging, const fs::path& old
       failure = {Failure::Input, "'" + old.string() + "', a previous result of output directory '" +
                                  final.string() + "' left by an earlier commit, cannot be removed: " + why +
                                  "; have its owner remove it, or choose another --output-dir"};
-      return;
+      return false;
     }
   }
+  return true;
+}
+
+/// The checks and recovery of the constructor (rank 0, lock held).
+void prepare(const fs::path& final, const fs::path& staging, const fs::path& old, const std::string& resumeWith,
+             std::vector<std::string>& notes, Failure& failure) {
+  if (!mayReplace(final, staging, old, failure)) return;
   std::error_code ec;
   // Empty leftovers hold nothing; clear them so the cases below are simple.
   for (const fs::path& p : {staging, old})
@@ -606,10 +625,10 @@ void prepare(const fs::path& final, const fs::path& staging, const fs::path& old
     } else if (!resumeWith.empty() && fs::is_regular_file(staging / resumeWith)) {
       notes.push_back("continuing in '" + staging.string() + "', the staging directory of the earlier run that did "
                       "not finish");
-    } else if (!keepIfHolds.empty() && fs::exists(fs::symlink_status(staging / keepIfHolds, ec))) {
+    } else if (const std::string kept = resumableFile(staging); !kept.empty()) {
       failure = {Failure::Input, "output directory '" + final.string() + "': '" + staging.string() +
                                      "' is the staging directory of an earlier run that did not finish and holds "
-                                     "its checkpoint '" + (staging / keepIfHolds).string() +
+                                     "its checkpoint '" + (staging / kept).string() +
                                      "'; continue that run with --restart '" + final.string() +
                                      "', or, to start anew and discard it, move or remove '" + staging.string() +
                                      "' first (or choose another --output-dir)"};
@@ -664,7 +683,7 @@ OutputDirectory::OutputDirectory(Teuchos::RCP<const Teuchos::Comm<int>> comm, st
       if (failure.kind == Failure::None) lockFd_ = acquireLock(lockPath(), final, run_, started_, failure);
       if (failure.kind == Failure::None) faultInjectionStage("locked");
       if (failure.kind == Failure::None)
-        prepare(final, staging, old, run_.resumeWith, run_.keepIfHolds, notes_, failure);
+        prepare(final, staging, old, run_.resumeWith, notes_, failure);
       if (failure.kind == Failure::None) {
         fs::create_directory(staging);  // kept (resumeWith) or new
         // Fault-injection name "...:start" tells this write from the commit's.
@@ -707,6 +726,25 @@ OutputDirectory::~OutputDirectory() {
     }
   }
   releaseLock(lockFd_, lockPath());
+}
+
+void OutputDirectory::markResumable(const std::string& file) {
+  if (committed_) return;
+  if (comm_->getRank() == 0) {
+    const fs::path staging(stagingDir_);
+    std::error_code ec;
+    if (fs::is_regular_file(staging / file, ec)) {
+      const std::string manifest = (staging / manifestFileName()).string();
+      try {
+        writeFileAtomically(manifest, manifestHeader(run_, started_, comm_->getSize()) + "status: running\n" +
+                                          "resumable: " + oneLine(file) + "\n",
+                            manifest + ":resumable");
+      } catch (const OutputError&) {
+        // Best effort: the run ends with its own error.
+      }
+    }
+  }
+  comm_->barrier();
 }
 
 void OutputDirectory::commit() {

@@ -26,11 +26,6 @@ struct RunDescription {
   /// that file is kept as this run's staging directory instead of being
   /// removed. Empty: never kept.
   std::string resumeWith;
-  /// A file (a checkpoint) whose presence in the staging directory of an
-  /// unfinished run makes construction refuse instead of removing that
-  /// directory, unless resumeWith keeps it: a plain re-run does not discard
-  /// the state a restart could continue from. Empty: removed as any other.
-  std::string keepIfHolds;
 };
 
 /// \brief The output directory of one run, written through a staging directory.
@@ -58,7 +53,8 @@ struct RunDescription {
 ///    someone else), or one of whose listed files no longer has the size
 ///    and fingerprint the manifest records (edited by someone else), or
 ///    with a directory the manifest does not list;
-///  - a D.partial of an unfinished run holding RunDescription::keepIfHolds;
+///  - a D.partial of an unfinished run marked resumable (markResumable())
+///    whose file is there, unless RunDescription::resumeWith keeps it;
 ///  - a D that another run holds (naming its pid, host, input and start).
 /// An empty directory counts as nothing to lose and may be used.
 ///
@@ -71,7 +67,8 @@ struct RunDescription {
 ///
 /// A run that fails never calls commit(): D is untouched and D.partial is
 /// left for inspection if anything was written into it (the next run removes
-/// it; if nothing but the manifest is there, the destructor removes it). The
+/// it unless it was marked resumable, markResumable(); if nothing but the
+/// manifest is there, the destructor removes it). The
 /// destructor releases the lock and never commits.
 ///
 /// All ranks must see the same file system (the usual shared-file-system
@@ -127,6 +124,14 @@ class OutputDirectory {
   /// \throws OutputError on every rank if the commit fails; the earlier
   ///   result stays (or is restored) complete.
   void commit();
+
+  /// Collective; before commit(). Marks the staging directory as that of a
+  /// run that stopped or failed leaving `file` (its checkpoint) to continue
+  /// from: a later run into the same directory refuses to remove it unless
+  /// it continues it (RunDescription::resumeWith). Does nothing if `file` is
+  /// not in the staging directory; a failure to mark is not reported (the
+  /// run is ending with its own error).
+  void markResumable(const std::string& file);
 
   /// The communicator the directory was created with.
   const Teuchos::RCP<const Teuchos::Comm<int>>& comm() const { return comm_; }

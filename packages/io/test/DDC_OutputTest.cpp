@@ -300,11 +300,11 @@ TEST_F(OutputTest, EarlierResultWithForeignFilesIsRefused) {
   EXPECT_EQ(snapshot(final), before);
 }
 
-/// The InputError message of opening `final` as an output directory (with
-/// `run`), "" if there is none.
-std::string refusalOf(const Comm& comm, const fs::path& final, const ddc::RunDescription& run = {}) {
+/// The InputError message of opening `final` as an output directory, "" if
+/// there is none.
+std::string refusalOf(const Comm& comm, const fs::path& final) {
   try {
-    OutputDirectory out(comm, final.string(), run);
+    OutputDirectory out(comm, final.string());
   } catch (const ddc::InputError& e) {
     return e.what();
   }
@@ -341,23 +341,30 @@ TEST_F(OutputTest, EarlierResultWithAnEditedFileOrAnAddedDirectoryIsRefused) {
   EXPECT_TRUE(fs::is_directory(final / "mine"));
 }
 
-TEST_F(OutputTest, AStagingDirectoryHoldingACheckpointIsKept) {
+TEST_F(OutputTest, AStagingDirectoryMarkedResumableIsKept) {
   const fs::path final = base_ / "run";
   {
     OutputDirectory stopped(comm_, final.string());
     if (rank() == 0) writeFile(fs::path(stopped.path()) / "checkpoint.ddc", "state\n");
     comm_->barrier();
+    stopped.markResumable("checkpoint.ddc");
   }
   const fs::path staging = final.string() + ".partial";
+  EXPECT_NE(readFile(staging / OutputDirectory::manifestFileName()).find("\nresumable: checkpoint.ddc\n"),
+            std::string::npos);
   const auto before = snapshot(staging);
-  ddc::RunDescription run;
-  run.keepIfHolds = "checkpoint.ddc";
-  EXPECT_NE(refusalOf(comm_, final, run).find("'" + staging.string() +
-                                              "' is the staging directory of an earlier run that did not finish "
-                                              "and holds its checkpoint"),
+  EXPECT_NE(refusalOf(comm_, final).find("'" + staging.string() +
+                                         "' is the staging directory of an earlier run that did not finish "
+                                         "and holds its checkpoint"),
             std::string::npos);
   comm_->barrier();
   EXPECT_EQ(snapshot(staging), before);
+  comm_->barrier();
+  // Continuing it (a restart into the same directory) keeps and reuses it.
+  ddc::RunDescription restart;
+  restart.resumeWith = "checkpoint.ddc";
+  OutputDirectory continued(comm_, final.string(), restart);
+  EXPECT_EQ(readFile(fs::path(continued.path()) / "checkpoint.ddc"), "state\n");
 }
 
 TEST_F(OutputTest, EmptyDirectoryMayBeUsed) {
