@@ -121,12 +121,14 @@ const RunTiming& Analysis::timing() const {
 void Analysis::setRestart(RestartSource source) {
   DDC_INPUT_REQUIRE(source.checkpoint, "setRestart: no checkpoint");
   const CheckpointReader& c = *source.checkpoint;
-  requireCheckpointLayout(c);
   const auto saved = Teuchos::getParametersFromXmlString(c.bytes("parameters"));
   checkRestartParameters(*saved, params_, c.path());
-  checkRestartInputFiles(c.bytes(kInputFilesSection), inputFiles_, c.path());
-  const StepLoopSettings settings = stepLoopSettings(params_, dynamic_);
-  checkRestartFinalValue(checkpointLastStep(c), settings, c.path());
+  // A checkpoint of another layout is refused by findRestartSource(), or by
+  // run() when it is restored (requireCheckpointLayout()).
+  if (c.has(kInputFilesSection)) {
+    checkRestartInputFiles(c.bytes(kInputFilesSection), inputFiles_, c.path());
+    checkRestartFinalValue(checkpointLastStep(c), stepLoopSettings(params_, dynamic_), c.path());
+  }
   restart_ = std::make_unique<RestartSource>(std::move(source));
 }
 

@@ -10,6 +10,7 @@
 #include "DDC_Error.hpp"
 #include "DDC_InputDeck.hpp"
 #include "DDC_OutputDirectory.hpp"
+#include "DDC_RunCheckpoint.hpp"
 
 namespace ddc {
 
@@ -89,6 +90,8 @@ RestartSource findRestartSource(Teuchos::RCP<const Teuchos::Comm<int>> comm, con
   s.directory = answer[0];
   s.unfinished = s.directory != s.finalPath;
   s.checkpoint = std::make_shared<CheckpointReader>(comm, (fs::path(s.directory) / kCheckpointFileName).string());
+  // Another layout is refused before the output directory is opened.
+  requireCheckpointLayout(*s.checkpoint);
   return s;
 }
 

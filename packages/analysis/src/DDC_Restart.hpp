@@ -35,8 +35,11 @@ struct RestartSource {
 /// Find and read the checkpoint of the run whose output directory was `dir`
 /// (collective; see the top of this file).
 /// \throws InputError naming `dir` when neither it nor its staging
-///         directory has a checkpoint, and CheckpointReader's errors for a
-///         corrupted, truncated or foreign file
+///         directory has a checkpoint (or `dir` names the staging directory
+///         or a file, the checkpoint is not a regular file, or the finished
+///         run's checkpoint would stand in for an unfinished run's),
+///         CheckpointReader's errors for a corrupted, truncated, foreign or
+///         too large file, and requireCheckpointLayout()'s for another layout
 RestartSource findRestartSource(Teuchos::RCP<const Teuchos::Comm<int>> comm, const std::string& dir);
 
 /// The parameters a restart may change: the steps (Load Stepping, Step

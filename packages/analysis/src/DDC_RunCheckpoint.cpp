@@ -112,10 +112,10 @@ void requireCheckpointLayout(const CheckpointReader& c) {
   const std::string& file = c.path();
   const auto run = c.has("run") ? c.doubles("run") : std::vector<double>();
   DDC_INPUT_REQUIRE(run.size() != 4 || run[0] >= kCheckpointLayout,
-                    "checkpoint '" << file << "' has layout " << run[0]
-                                   << ", written by an earlier version of DDContact that did not record the mesh and "
-                                      "element-map files the run read, so a restart cannot check that they are "
-                                      "unchanged: start the run anew (without --restart)");
+                    "checkpoint '" << file << "': written by another version of DDContact (layout " << run[0]
+                                   << ", which does not record the mesh and element-map files the run read, so a "
+                                      "restart cannot check that they are unchanged): start the run anew (without "
+                                      "--restart)");
   DDC_INPUT_REQUIRE(run.size() == 4 && run[0] == kCheckpointLayout && c.has("history fields") &&
                         c.bytes("history fields") == historyFieldList() && c.has(kInputFilesSection),
                     "checkpoint '" << file << "': written by another version of DDContact (sections 'run', "

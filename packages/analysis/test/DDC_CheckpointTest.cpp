@@ -286,7 +286,7 @@ TEST(Restart, ACheckpointOfAnOlderLayoutIsRefused) {
   w.write(path);
   const ddc::CheckpointReader c(world(), path);
   EXPECT_THAT(ddc::test::inputErrorOf([&] { ddc::requireCheckpointLayout(c); }),
-              HasSubstr("checkpoint '" + path + "' has layout 2, written by an earlier version of DDContact that did "
+              HasSubstr("checkpoint '" + path + "': written by another version of DDContact (layout 2, which does "
                         "not record the mesh and element-map files the run read"));
   world()->barrier();
   if (world()->getRank() == 0) std::remove(path.c_str());
