@@ -92,8 +92,22 @@ void checkOptionValue(const std::string& option, const std::string& value) {
                           << value << "' (quote a value with spaces: --set \"Load Stepping/Number of Steps=50\")");
 }
 
+/// Sets the value of an option that may be given once (--output-dir,
+/// --restart): given twice, the last would win silently and the run would
+/// continue or replace another directory than one of them names.
+void setOnce(const std::string& option, std::string& target, const std::string& value,
+             std::vector<std::string>& given) {
+  for (const auto& g : given)
+    DDC_INPUT_REQUIRE(g != option, "option " << option << " given twice ('" << ddc::echoed(target) << "' and '"
+                                             << ddc::echoed(value) << "'); give it once");
+  given.push_back(option);
+  target = value;
+  checkOptionValue(option, value);
+}
+
 Options parse(const std::vector<std::string>& args) {
   Options o;
+  std::vector<std::string> given;  // the options that may be given once, as seen
   const int argc = static_cast<int>(args.size());
   for (int i = 0; i < argc; ++i) {
     const std::string& a = args[i];
@@ -101,16 +115,17 @@ Options parse(const std::vector<std::string>& args) {
       o.help = true;
     } else if (a == "--print-parameters") {
       o.printParameters = true;
-    } else if (a == "--output-dir" || a == "--set" || a == "--restart") {
+    } else if (a == "--set") {
       DDC_INPUT_REQUIRE(i + 1 < argc, "option " << a << " needs a value\n" << kUsage);
-      (a == "--set" ? o.sets.emplace_back() : a == "--restart" ? o.restart : o.outputDir) = args[++i];
+      o.sets.push_back(args[++i]);
       checkOptionValue(a, args[i]);
+    } else if (a == "--output-dir" || a == "--restart") {
+      DDC_INPUT_REQUIRE(i + 1 < argc, "option " << a << " needs a value\n" << kUsage);
+      setOnce(a, a == "--restart" ? o.restart : o.outputDir, args[++i], given);
     } else if (a.rfind("--restart=", 0) == 0) {
-      o.restart = a.substr(10);
-      checkOptionValue("--restart", o.restart);
+      setOnce("--restart", o.restart, a.substr(10), given);
     } else if (a.rfind("--output-dir=", 0) == 0) {
-      o.outputDir = a.substr(13);
-      checkOptionValue("--output-dir", o.outputDir);
+      setOnce("--output-dir", o.outputDir, a.substr(13), given);
     } else if (a.rfind("--set=", 0) == 0) {
       o.sets.push_back(a.substr(6));
       checkOptionValue("--set", o.sets.back());

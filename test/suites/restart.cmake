@@ -92,3 +92,27 @@ foreach(np 1 2)
     ddc_add_restart_test(restart_${case}_np${np} ${np} ${case} ${DDC_HALF_RINGS} LABELS negative)
   endforeach()
 endforeach()
+# What a restart and a new run refuse, on a block read from a Gmsh file
+# (inputs/restart_block.xml, 16 elements; tools/restart_cases.sh, the cases
+# after `reference`): a mesh or element-map file changed since the run read
+# it (Gmsh also on 3 ranks), a final load factor below the checkpoint's, the
+# checkpoint of the finished run when the stopped one left none, a plain run
+# into a stopped run's directory, an earlier result edited by hand, --restart
+# naming the staging directory or the checkpoint file, and a checkpoint that
+# is a directory, a device or too large for memory; the messages of Exodus II
+# output switched on at a restart and of a full disk while writing
+# results.e. Each leaves the directories it names unchanged.
+if(NOT DDC_SYSTEM_PYTHON)
+  find_program(DDC_SYSTEM_PYTHON python3 PATHS /usr/bin NO_DEFAULT_PATH)
+endif()
+set(DDC_RESTART_BLOCK ${DDC_INPUTS}/restart_block.xml)
+foreach(np 1 2)
+  foreach(case input-change:gmsh input-change:map input-change:exodus final-below finished-checkpoint rerun-stopped
+          edited-result wrong-source bad-checkpoint exodus-messages)
+    string(REGEX REPLACE "[-:]" "_" name "${case}")
+    ddc_add_restart_test(restart_${name}_np${np} ${np} ${case} ${DDC_RESTART_BLOCK} LABELS negative
+      ENVIRONMENT PYTHON=${DDC_SYSTEM_PYTHON})
+  endforeach()
+endforeach()
+ddc_add_restart_test(restart_input_change_gmsh_np3 3 input-change:gmsh ${DDC_RESTART_BLOCK} PROCESSORS 2
+  LABELS negative)

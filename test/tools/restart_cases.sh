@@ -54,6 +54,37 @@
 #                   directory.
 #   reference       the uninterrupted run alone, into WORKDIR/reference: the
 #                   reference that several cases share (REFERENCE_RUN).
+# The cases below take DECK = test/inputs/restart_block.xml (a block read
+# from restart_block.msh, 6 steps); each refusal leaves the directories it
+# names unchanged (byte for byte):
+#   input-change:K  a file the run read changed after it stopped (step 3) -
+#                   K = gmsh: a node of restart_block.msh moved; map: an
+#                   element of restart_block.map moved to the other
+#                   subdomain; exodus: a node of an Exodus II mesh written
+#                   from the block (tools/write_exodus_mesh.py, PYTHON) moved:
+#                   --restart is refused naming the file and its parameter;
+#                   with the file restored it restarts.
+#   final-below     a restart to Final Load Factor 0.4 from the checkpoint of
+#                   step 3 (load factor 0.5): refused, naming what it reached.
+#   finished-checkpoint  a finished result in DIR, then a run into DIR stopped
+#                   without a checkpoint (interval 0): --restart DIR is
+#                   refused (the checkpoint in DIR is the finished run's).
+#   rerun-stopped   a plain run into the directory of a stopped run with a
+#                   checkpoint: refused, naming --restart and the staging
+#                   directory to move away.
+#   edited-result   a finished result whose history.csv was edited (same
+#                   size), then one with a directory added: a new run into it
+#                   is refused naming the file / the directory.
+#   wrong-source    --restart DIR.partial and --restart
+#                   DIR.partial/checkpoint.ddc: refused, naming DIR.
+#   bad-checkpoint  the stopped run's checkpoint.ddc replaced by a directory,
+#                   a link to /dev/zero, an 8 GiB sparse file read under a
+#                   4 GiB address-space limit: refused naming the file.
+#   exodus-messages Output/Exodus switched on at the restart: a warning
+#                   naming the earlier run's missing results.e (no internal
+#                   file names); a full disk while the restart writes
+#                   results.e (seam enospc@results.e): "No space left on
+#                   device", the stopped run's directory unchanged.
 # Environment: REFERENCE_RUN, the directory of the uninterrupted run of the
 # same deck, options and rank count (a case `reference`): the cases sigterm,
 # newton-failure, kill, usr1-to-mpirun and other-ranks compare with it
@@ -297,6 +328,170 @@ no-checkpoint)
   every_rank_failed "$work/restart.log"
   expect_in "$work/restart.log" "--restart '.*stopped': no checkpoint in '.*stopped.partial' or '.*stopped'" \
     "restart without a checkpoint"
+  ;;
+input-change:*)
+  kind=${case_name#input-change:}
+  src=$(dirname "$deck")
+  cp "$deck" "$src/restart_block.msh" "$src/restart_block.map" "$work/"
+  deck=$work/$(basename "$deck")
+  case $kind in
+  gmsh)
+    file=$work/restart_block.msh param="Mesh/Bodies/Block/Gmsh/File"
+    edit() { sed -i 's/^0.25 0.25 0$/0.26 0.25 0/' "$file"; }
+    ;;
+  map)
+    file=$work/restart_block.map param="Partition/Element Map File"
+    extra+=(--set "Partition/Method=Element Map File" --set "Partition/Element Map File=restart_block.map")
+    edit() { sed -i '0,/^0 0 1 1$/s//0 1 1 1/' "$file"; }
+    ;;
+  exodus)
+    file=$work/restart_block.e param="Mesh/Bodies/Block/Exodus/File"
+    run "$work/source.log" 1 --output-dir "$work/source" --set "Output/Exodus=true" \
+      --set "Load Stepping/Number of Steps=1" --set "Output/Checkpoint Interval=0"
+    np=1 every_rank_succeeded "$work/source.log" || exit 1
+    "${PYTHON:-python3}" "$here/write_exodus_mesh.py" "$work/source/results.e" "$file" &&
+      "${PYTHON:-python3}" "$here/exodus_deck.py" "$deck" "$work/exodus.xml" "$file" || exit 1
+    deck=$work/exodus.xml
+    edit() { "${PYTHON:-python3}" -c "import netCDF4, sys; d = netCDF4.Dataset(sys.argv[1], 'r+'); d['coordx'][6] += 0.01; d.close()" "$file"; }
+    ;;
+  esac
+  DDCONTACT_FAULT_INJECTION=sigterm@3 run "$work/stopped.log" "$np" --output-dir "$work/stopped"
+  every_rank_status "$work/stopped.log" 143
+  cp "$file" "$work/original"
+  before=$(hashes "$work/stopped.partial")
+  edit
+  cmp -s "$file" "$work/original" && fail "the edit left $file as it was"
+  run "$work/changed.log" "$np" --restart "$work/stopped"
+  every_rank_failed "$work/changed.log"
+  expect_in "$work/changed.log" \
+    "restart: the file '.*$(basename "$file")' \('$param'\) changed since the run that wrote the checkpoint '.*stopped.partial/checkpoint.ddc' read it .*restore the file, or start the run anew" \
+    "a changed $kind file"
+  [ "$(hashes "$work/stopped.partial")" = "$before" ] || fail "the stopped run's directory changed"
+  cp "$work/original" "$file"
+  run "$work/restored.log" "$np" --restart "$work/stopped"
+  every_rank_succeeded "$work/restored.log"
+  expect_in "$work/restored.log" "restart: continuing after step 3 " "the restart with the file restored"
+  ;;
+final-below)
+  DDCONTACT_FAULT_INJECTION=sigterm@3 run "$work/stopped.log" "$np" --output-dir "$work/stopped"
+  every_rank_status "$work/stopped.log" 143
+  before=$(hashes "$work/stopped.partial")
+  run "$work/below.log" "$np" --restart "$work/stopped" --set "Load Stepping/Final Load Factor=0.4"
+  every_rank_failed "$work/below.log"
+  expect_in "$work/below.log" \
+    "restart: 'Load Stepping/Final Load Factor' = 0.4 lies below the load factor 0.5 the checkpoint '.*stopped.partial/checkpoint.ddc' reached \(step 3\)" \
+    "a final load factor below the checkpoint's"
+  [ "$(hashes "$work/stopped.partial")" = "$before" ] || fail "the stopped run's directory changed"
+  ;;
+finished-checkpoint)
+  run "$work/finished.log" "$np" --output-dir "$work/run"
+  every_rank_succeeded "$work/finished.log" || exit 1
+  DDCONTACT_FAULT_INJECTION=sigterm@3 run "$work/stopped.log" "$np" --output-dir "$work/run" \
+    --set "Output/Checkpoint Interval=0"
+  every_rank_status "$work/stopped.log" 143
+  before=$(hashes "$work/run")$(hashes "$work/run.partial")
+  run "$work/restart.log" "$np" --restart "$work/run"
+  every_rank_failed "$work/restart.log"
+  expect_in "$work/restart.log" \
+    "--restart '.*run': the run that did not finish in '.*run.partial' left no checkpoint .*belongs to the earlier, finished run committed in '.*run', not to it" \
+    "the finished run's checkpoint"
+  [ "$(hashes "$work/run")$(hashes "$work/run.partial")" = "$before" ] || fail "the result or the staging directory changed"
+  ;;
+rerun-stopped)
+  DDCONTACT_FAULT_INJECTION=sigterm@3 run "$work/stopped.log" "$np" --output-dir "$work/stopped"
+  every_rank_status "$work/stopped.log" 143
+  before=$(hashes "$work/stopped.partial")
+  run "$work/rerun.log" "$np" --output-dir "$work/stopped"
+  every_rank_failed "$work/rerun.log"
+  expect_in "$work/rerun.log" \
+    "'.*stopped.partial' is the staging directory of an earlier run that did not finish and holds its checkpoint '.*stopped.partial/checkpoint.ddc'; continue that run with --restart '.*stopped', or, to start anew and discard it, move or remove" \
+    "a plain run into a stopped run's directory"
+  [ "$(hashes "$work/stopped.partial")" = "$before" ] || fail "the stopped run's directory changed"
+  ;;
+edited-result)
+  run "$work/finished.log" "$np" --output-dir "$work/result" --set "Load Stepping/Number of Steps=2"
+  every_rank_succeeded "$work/finished.log" || exit 1
+  cp "$work/result/history.csv" "$work/history.csv"
+  # One character of a value changed, the size kept.
+  sed -i '2s/0/1/' "$work/result/history.csv"
+  cmp -s "$work/result/history.csv" "$work/history.csv" && fail "the edit left history.csv as it was"
+  before=$(hashes "$work/result")
+  run "$work/edited.log" "$np" --output-dir "$work/result"
+  every_rank_failed "$work/edited.log"
+  expect_in "$work/edited.log" "'.*result/history.csv' changed since DDContact wrote it .*move it away or choose another --output-dir" \
+    "an edited file of the result"
+  [ "$(hashes "$work/result")" = "$before" ] || fail "the edited result changed"
+  cp "$work/history.csv" "$work/result/history.csv"
+  mkdir "$work/result/mine"
+  run "$work/added.log" "$np" --output-dir "$work/result"
+  every_rank_failed "$work/added.log"
+  expect_in "$work/added.log" "'.*result/mine/' is a directory DDContact did not make there" "a directory added to the result"
+  [ -d "$work/result/mine" ] || fail "the added directory is gone"
+  ;;
+wrong-source)
+  DDCONTACT_FAULT_INJECTION=sigterm@3 run "$work/stopped.log" "$np" --output-dir "$work/stopped"
+  every_rank_status "$work/stopped.log" 143
+  before=$(hashes "$work/stopped.partial")
+  run "$work/partial.log" "$np" --restart "$work/stopped.partial"
+  every_rank_failed "$work/partial.log"
+  expect_in "$work/partial.log" "--restart '.*stopped.partial' names the staging directory of a run; name the run's output directory instead: --restart '.*stopped'" \
+    "--restart DIR.partial"
+  run "$work/file.log" "$np" --restart "$work/stopped.partial/checkpoint.ddc"
+  every_rank_failed "$work/file.log"
+  expect_in "$work/file.log" "--restart '.*stopped.partial/checkpoint.ddc' names a file; .*that is --restart '.*stopped'\)" \
+    "--restart naming the checkpoint"
+  [ "$(hashes "$work/stopped.partial")" = "$before" ] || fail "the stopped run's directory changed"
+  ;;
+bad-checkpoint)
+  DDCONTACT_FAULT_INJECTION=sigterm@3 run "$work/stopped.log" "$np" --output-dir "$work/stopped"
+  every_rank_status "$work/stopped.log" 143
+  checkpoint=$work/stopped.partial/checkpoint.ddc
+  before=$(hashes "$work/stopped.partial")
+  mv "$checkpoint" "$work/intact.ddc"
+  mkdir "$checkpoint"
+  run "$work/directory.log" "$np" --restart "$work/stopped"
+  every_rank_failed "$work/directory.log"
+  expect_in "$work/directory.log" "'.*stopped.partial/checkpoint.ddc' is not a regular file \(a directory\)" "a directory"
+  rmdir "$checkpoint"
+  ln -s /dev/zero "$checkpoint"
+  run "$work/device.log" "$np" --restart "$work/stopped"
+  every_rank_failed "$work/device.log"
+  expect_in "$work/device.log" "'.*stopped.partial/checkpoint.ddc' is not a regular file \(a link to a device" "a link to a device"
+  rm "$checkpoint"
+  truncate -s 8G "$checkpoint"
+  rm -rf "$work/status"
+  mkdir -p "$work/status"
+  prlimit --as=4294967296 mpirun --oversubscribe -np "$np" sh "$here/record_exit_status.sh" "$work/status" "$app" \
+    "$deck" "${extra[@]}" --restart "$work/stopped" >"$work/large.log" 2>&1
+  every_rank_failed "$work/large.log"
+  expect_in "$work/large.log" "the checkpoint '.*stopped.partial/checkpoint.ddc' is 8.0 GiB; reading it takes about 16 GiB per rank, more than the .* available" \
+    "an 8 GiB checkpoint"
+  rm "$checkpoint"
+  mv "$work/intact.ddc" "$checkpoint"
+  [ "$(hashes "$work/stopped.partial")" = "$before" ] || fail "the stopped run's directory changed"
+  ;;
+exodus-messages)
+  # Exodus II output switched on only at the restart: a warning that names
+  # no internal file.
+  DDCONTACT_FAULT_INJECTION=sigterm@3 run "$work/stopped.log" "$np" --output-dir "$work/stopped"
+  every_rank_status "$work/stopped.log" 143
+  run "$work/switched.log" "$np" --restart "$work/stopped" --set "Output/Exodus=true"
+  every_rank_succeeded "$work/switched.log"
+  expect_in "$work/switched.log" \
+    "warning: restart: results.e holds none of the 3 steps before the checkpoint: the run that wrote it left no results.e \('.*stopped.partial/results.e'; Output/Exodus was false in that run" \
+    "Exodus II output switched on at the restart"
+  grep -Eq "before-restart|ex_open" "$work/switched.log" && fail "a message names an internal file or library call"
+  # A full disk while the restart writes results.e (seam enospc@results.e).
+  DDCONTACT_FAULT_INJECTION=sigterm@3 run "$work/exodus.log" "$np" --output-dir "$work/exodus" \
+    --set "Output/Exodus=true"
+  every_rank_status "$work/exodus.log" 143
+  before=$(hashes "$work/exodus.partial")
+  DDCONTACT_FAULT_INJECTION=enospc@results.e run "$work/full.log" "$np" --restart "$work/exodus" \
+    --output-dir "$work/full" --set "Output/Exodus=true"
+  every_rank_failed "$work/full.log"
+  expect_in "$work/full.log" "cannot write step 4 of the Exodus II results '.*full.partial/results.e' \(time\): No space left on device" \
+    "a full disk while writing results.e"
+  [ "$(hashes "$work/exodus.partial")" = "$before" ] || fail "the stopped run's directory changed"
   ;;
 *)
   echo "unknown case $case_name"

@@ -42,7 +42,7 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
                     "(Contact/Pairs): there are no contact nodes to write");
   // Every rank reads the mesh and map files named in the parameters: a file
   // missing or different on some ranks must fail all ranks alike.
-  requireSameFilesOnEveryRank(*comm_, namedInputFiles(params, baseDirectory));
+  inputFiles_ = requireSameFilesOnEveryRank(*comm_, namedInputFiles(params, baseDirectory));
   buildModel(params, baseDirectory);
   unloaded_ = model_->createVector();
   if (dynamic_) dynamics_ = makeDynamics(params.sublist("Dynamics"), *model_, *strategy_);
@@ -146,6 +146,12 @@ void Analysis::setRestart(RestartSource source) {
   const CheckpointReader& c = *source.checkpoint;
   const auto saved = Teuchos::getParametersFromXmlString(c.bytes("parameters"));
   checkRestartParameters(*saved, params_, c.path());
+  // A checkpoint of another layout is refused by findRestartSource(), or by
+  // run() when it is restored (requireCheckpointLayout()).
+  if (c.has(kInputFilesSection)) {
+    checkRestartInputFiles(c.bytes(kInputFilesSection), inputFiles_, c.path());
+    checkRestartFinalValue(checkpointLastStep(c), stepLoopSettings(params_, dynamic_), c.path());
+  }
   restart_ = std::make_unique<RestartSource>(std::move(source));
 }
 
@@ -206,7 +212,7 @@ std::unique_ptr<Analysis::RunObservers> Analysis::makeObservers(OutputDirectory*
     if (checkpointInterval > 0)
       obs->checkpoint = std::make_unique<CheckpointObserver>(dir->path() + "/" + kCheckpointFileName,
                                                              dir->finalPath(), checkpointInterval, params_,
-                                                             obs->vtk.get());
+                                                             describeInputFiles(inputFiles_), obs->vtk.get());
     // contact_nodes.csv holds the contact state of the last converged step.
     if (model_->hasContact() && out.get<bool>("Contact Nodes"))
       obs->contactNodes = std::make_unique<ContactNodesObserver>(dir->path() + "/contact_nodes.csv");
@@ -239,7 +245,19 @@ void Analysis::runSteps(OutputDirectory* dir) {
   }
   observers->addTo(*loop_);
   for (const auto& o : hostObservers_) loop_->addObserver(*o);
-  loop_->run();
+  // A run that stops or fails with a checkpoint, and says to continue it
+  // with a restart, marks its staging directory so: a plain run into the
+  // same directory does not discard it (doc/user-guide.md, "Checkpoints and
+  // restart").
+  try {
+    loop_->run();
+  } catch (const RunInterrupted&) {
+    if (dir && observers->checkpoint) dir->markResumable(kCheckpointFileName);
+    throw;
+  } catch (const SolverError&) {
+    if (dir && observers->checkpoint) dir->markResumable(kCheckpointFileName);
+    throw;
+  }
   if (dir) {
     dir->commit();
     progress("results in " + dir->finalPath());

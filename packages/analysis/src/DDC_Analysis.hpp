@@ -102,8 +102,10 @@ class Analysis {
   /// another. Collective.
   /// \throws InputError when this analysis' parameters differ from the
   ///         checkpointed run's beyond what a restart may change
-  ///         (checkRestartParameters()), or the checkpoint does not fit
-  ///         this model
+  ///         (checkRestartParameters()), a mesh or element-map file differs
+  ///         from the one that run read (checkRestartInputFiles()), the
+  ///         checkpoint is beyond this run's final load factor or time, or
+  ///         the checkpoint does not fit this model
   void setRestart(RestartSource source);
 
   /// The discrete model (mesh, DOF numbering, contact component).
@@ -157,6 +159,9 @@ class Analysis {
   Teuchos::RCP<Vector> unloaded_;                   ///< displacement() before a run
   std::unique_ptr<StepController> hostController_;  ///< setStepController()
   std::unique_ptr<RestartSource> restart_;          ///< setRestart()
+  /// The mesh and element-map files the model was built from (the
+  /// checkpoint records them; a restart requires them unchanged).
+  std::vector<InputFileIdentity> inputFiles_;
   std::vector<std::shared_ptr<StepObserver>> hostObservers_;  ///< addObserver()
   std::unique_ptr<StepLoop> loop_;                  ///< the last run's
 };

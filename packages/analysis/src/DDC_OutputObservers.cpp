@@ -80,12 +80,19 @@ ExodusObserver::ExodusObserver(Teuchos::RCP<const Teuchos::Comm<int>> comm, cons
   // that run's results.e is moved aside before this run's is created,
   // copied from and removed (a restart that failed before that finds it
   // aside).
+  origin_ = source_;
   if (!source_.empty()) {
     std::string error;
     std::error_code ec;
     const std::string sourceDirectory = std::filesystem::path(source_).parent_path().string();
-    if (comm_->getRank() == 0 && std::filesystem::equivalent(sourceDirectory, directory, ec)) {
-      const std::string aside = directory + "/results.e.before-restart";
+    const std::string aside = directory + "/results.e.before-restart";
+    std::string missing;
+    if (comm_->getRank() == 0 && !std::filesystem::exists(source_, ec) &&
+        !(std::filesystem::equivalent(sourceDirectory, directory, ec) && std::filesystem::exists(aside, ec)))
+      missing = "1";
+    sourceMissing_ = !broadcastStrings(*comm_, {missing}).front().empty();
+    if (sourceMissing_) source_.clear();
+    if (comm_->getRank() == 0 && !sourceMissing_ && std::filesystem::equivalent(sourceDirectory, directory, ec)) {
       if (!std::filesystem::exists(aside, ec) && std::filesystem::exists(source_, ec))
         std::filesystem::rename(source_, aside, ec);
       if (ec) error = "cannot move '" + source_ + "' aside for the restart: " + ec.message();
@@ -101,9 +108,19 @@ ExodusObserver::ExodusObserver(Teuchos::RCP<const Teuchos::Comm<int>> comm, cons
 }
 
 void ExodusObserver::started(const StepLoop& loop) {
-  if (!loop.restarted() || source_.empty()) return;
+  if (!loop.restarted()) return;
   const int count = static_cast<int>(loop.history().size());
-  const auto [copied, why] = writer_->copySteps(source_, count);
+  if (sourceMissing_) {
+    progress_("warning: restart: results.e holds none of the " + std::to_string(count) +
+              " steps before the checkpoint: the run that wrote it left no results.e ('" + origin_ +
+              "'; Output/Exodus was false in that run, or the file was removed); history.csv holds them all");
+    return;
+  }
+  if (source_.empty()) return;
+  auto [copied, why] = writer_->copySteps(source_, count);
+  // The earlier run's file by the name the user knows (not the name it was moved aside to).
+  for (auto at = why.find(source_); at != std::string::npos; at = why.find(source_, at + origin_.size()))
+    why.replace(at, source_.size(), origin_);
   if (copied < count)
     progress_("warning: restart: results.e holds " + std::to_string(copied) + " of the " + std::to_string(count) +
               " steps before the checkpoint (" + why + ")");

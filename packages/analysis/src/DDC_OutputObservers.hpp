@@ -79,6 +79,8 @@ class ExodusObserver final : public StepObserver {
   Teuchos::RCP<const Teuchos::Comm<int>> comm_;
   RunKind kind_;
   std::string source_;   ///< the restart's results.e ("" none)
+  std::string origin_;   ///< its name before it was moved aside, for messages
+  bool sourceMissing_ = false;  ///< the run a restart continues left no results.e
   bool sourceAside_ = false;  ///< source_ was moved aside and is removed once copied
   ProgressPrinter progress_;
   std::unique_ptr<ExodusWriter> writer_;

@@ -15,6 +15,9 @@
 #include <vector>
 
 #include "DDC_Checkpoint.hpp"
+#include "DDC_InputDeck.hpp"
+#include "DDC_StepLoop.hpp"
+#include "DDC_StepRecord.hpp"
 
 namespace ddc {
 
@@ -32,8 +35,11 @@ struct RestartSource {
 /// Find and read the checkpoint of the run whose output directory was `dir`
 /// (collective; see the top of this file).
 /// \throws InputError naming `dir` when neither it nor its staging
-///         directory has a checkpoint, and CheckpointReader's errors for a
-///         corrupted, truncated or foreign file
+///         directory has a checkpoint (or `dir` names the staging directory
+///         or a file, the checkpoint is not a regular file, or the finished
+///         run's checkpoint would stand in for an unfinished run's),
+///         CheckpointReader's errors for a corrupted, truncated, foreign or
+///         too large file, and requireCheckpointLayout()'s for another layout
 RestartSource findRestartSource(Teuchos::RCP<const Teuchos::Comm<int>> comm, const std::string& dir);
 
 /// The parameters a restart may change: the steps (Load Stepping, Step
@@ -47,6 +53,25 @@ const std::vector<std::string>& restartChangeableParameters();
 /// \throws InputError naming the first parameter that differs (its path,
 ///         both values, the checkpoint) and what may change
 void checkRestartParameters(const Teuchos::ParameterList& saved, const Teuchos::ParameterList& now,
+                            const std::string& checkpointPath);
+
+/// The files a run read, as its checkpoint records them: one line per file,
+/// "<size> <fingerprint> <parameter>\t<file>".
+std::string describeInputFiles(const std::vector<InputFileIdentity>& files);
+
+/// Check that each file this run reads (`now`) is, byte for byte as far as
+/// size and fingerprint tell, the one the checkpointed run read (`saved`,
+/// describeInputFiles()): a restart continues that run's state on its mesh.
+/// \throws InputError naming the parameter, the file, both sizes and the
+///         checkpoint, and what to do
+void checkRestartInputFiles(const std::string& saved, const std::vector<InputFileIdentity>& now,
+                            const std::string& checkpointPath);
+
+/// Check that the checkpoint's last step `last` does not lie beyond this
+/// run's final load factor (or final time), `settings.finalValue`: the
+/// result would end beyond what was asked for.
+/// \throws InputError naming the parameter, both values and the checkpoint
+void checkRestartFinalValue(const StepRecord& last, const StepLoopSettings& settings,
                             const std::string& checkpointPath);
 
 }  // namespace ddc

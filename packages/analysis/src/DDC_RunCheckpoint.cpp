@@ -17,7 +17,9 @@ namespace {
 /// The checkpoint's record of the run: its layout version, the ranks that
 /// wrote it, the number of step records and the external work. Layout 2:
 /// the step records' fields are those the "history fields" section names.
-constexpr double kCheckpointLayout = 2.0;
+/// Layout 3: the section kInputFilesSection identifies the mesh and
+/// element-map files the run read.
+constexpr double kCheckpointLayout = 3.0;
 
 /// The same entries as `v` (on model.ownedMap()) on a map of the
 /// partition-free DOF ids (Model::partitionFreeDof()), in the same local
@@ -53,7 +55,7 @@ std::string signalName(int signal) {
 }  // namespace
 
 void writeRunCheckpoint(const std::string& path, const StepLoop& loop, const Teuchos::ParameterList& params,
-                        const std::vector<std::pair<int, double>>& vtkSteps) {
+                        const std::string& inputFiles, const std::vector<std::pair<int, double>>& vtkSteps) {
   const Model& model = loop.model();
   const RunState& st = loop.state();
   CheckpointWriter w(model.comm());
@@ -63,6 +65,7 @@ void writeRunCheckpoint(const std::string& path, const StepLoop& loop, const Teu
   w.putDoubles("run", {kCheckpointLayout, double(model.comm()->getSize()), double(st.history.size()), st.externalWork});
   w.putDoubles("controller", st.controllerState);
   w.putBytes("history fields", historyFieldList());
+  w.putBytes(kInputFilesSection, inputFiles);
   w.putDoubles("history", packStepRecords(st.history));
   std::vector<double> vtk;
   for (const auto& [step, time] : vtkSteps) vtk.insert(vtk.end(), {double(step), time});
@@ -105,15 +108,32 @@ void restoreContact(Model& model, RunState& st, const CheckpointReader& c) {
 
 }  // namespace
 
+void requireCheckpointLayout(const CheckpointReader& c) {
+  const std::string& file = c.path();
+  const auto run = c.has("run") ? c.doubles("run") : std::vector<double>();
+  DDC_INPUT_REQUIRE(run.size() != 4 || run[0] >= kCheckpointLayout,
+                    "checkpoint '" << file << "': written by another version of DDContact (layout " << run[0]
+                                   << ", which does not record the mesh and element-map files the run read, so a "
+                                      "restart cannot check that they are unchanged): start the run anew (without "
+                                      "--restart)");
+  DDC_INPUT_REQUIRE(run.size() == 4 && run[0] == kCheckpointLayout && c.has("history fields") &&
+                        c.bytes("history fields") == historyFieldList() && c.has(kInputFilesSection),
+                    "checkpoint '" << file << "': written by another version of DDContact (sections 'run', "
+                                      "'history fields', '" << kInputFilesSection
+                                   << "'): restart it with that version, or start the run anew (without --restart)");
+}
+
+StepRecord checkpointLastStep(const CheckpointReader& c) {
+  const auto history = unpackStepRecords(c.doubles("history"), c.path());
+  DDC_INPUT_REQUIRE(!history.empty(), "checkpoint '" << c.path() << "' holds no converged step");
+  return history.back();
+}
+
 std::vector<std::pair<int, double>> restoreRunCheckpoint(StepLoop& loop, Model& model, const CheckpointReader& c) {
   const std::string& file = c.path();
   RunState& st = loop.state();
-  const auto run = c.doubles("run");
-  DDC_INPUT_REQUIRE(run.size() == 4 && run[0] == kCheckpointLayout && c.has("history fields") &&
-                        c.bytes("history fields") == historyFieldList(),
-                    "checkpoint '" << file << "': written by another version of DDContact (sections 'run', "
-                                      "'history fields')");
-  st.externalWork = run[3];
+  requireCheckpointLayout(c);
+  st.externalWork = c.doubles("run")[3];
   st.history = unpackStepRecords(c.doubles("history"), file);
   DDC_INPUT_REQUIRE(!st.history.empty(), "checkpoint '" << file << "' holds no converged step");
   StepController& steps = loop.controller();
@@ -153,11 +173,17 @@ std::vector<std::pair<int, double>> restoreRunCheckpoint(StepLoop& loop, Model& 
 // ---- the observers ---------------------------------------------------------------
 
 CheckpointObserver::CheckpointObserver(std::string path, std::string finalPath, int interval,
-                                       const Teuchos::ParameterList& params, const VtkObserver* vtk)
-    : path_(std::move(path)), finalPath_(std::move(finalPath)), interval_(interval), params_(params), vtk_(vtk) {}
+                                       const Teuchos::ParameterList& params, std::string inputFiles,
+                                       const VtkObserver* vtk)
+    : path_(std::move(path)),
+      finalPath_(std::move(finalPath)),
+      inputFiles_(std::move(inputFiles)),
+      interval_(interval),
+      params_(params),
+      vtk_(vtk) {}
 
 void CheckpointObserver::write(const StepLoop& loop) {
-  writeRunCheckpoint(path_, loop, params_, vtk_ ? vtk_->steps() : std::vector<std::pair<int, double>>());
+  writeRunCheckpoint(path_, loop, params_, inputFiles_, vtk_ ? vtk_->steps() : std::vector<std::pair<int, double>>());
   rows_ = loop.history().size();
 }
 

@@ -18,11 +18,25 @@ namespace ddc {
 
 class VtkObserver;
 
+/// The checkpoint section that identifies the mesh and element-map files
+/// the run read (describeInputFiles(), DDC_Restart.hpp).
+constexpr const char* kInputFilesSection = "input files";
+
 /// Write the checkpoint of the state after `loop`'s last accepted step to
-/// `path` (collective): `params` the run's validated parameters, `vtkSteps`
-/// the VTK series written so far.
+/// `path` (collective): `params` the run's validated parameters,
+/// `inputFiles` the files it read (describeInputFiles()), `vtkSteps` the VTK
+/// series written so far.
 void writeRunCheckpoint(const std::string& path, const StepLoop& loop, const Teuchos::ParameterList& params,
-                        const std::vector<std::pair<int, double>>& vtkSteps);
+                        const std::string& inputFiles, const std::vector<std::pair<int, double>>& vtkSteps);
+
+/// Refuse a checkpoint of another layout than this version writes (an older
+/// one lacks the identity of the input files), naming the file and what to do.
+/// \throws InputError
+void requireCheckpointLayout(const CheckpointReader& c);
+
+/// The last converged step the checkpoint holds.
+/// \throws InputError naming the file if it holds none
+StepRecord checkpointLastStep(const CheckpointReader& c);
 
 /// Put the state a checkpoint holds back into `loop` (and its model's
 /// contact state, its controller, its integrator), before loop.run(); marks
@@ -37,8 +51,9 @@ class CheckpointObserver final : public StepObserver {
   /// \param path the checkpoint in the staging directory
   /// \param finalPath the output directory a restart names
   /// \param vtk the VTK series (null: none)
+  /// \param inputFiles the files the run read (describeInputFiles())
   CheckpointObserver(std::string path, std::string finalPath, int interval, const Teuchos::ParameterList& params,
-                     const VtkObserver* vtk);
+                     std::string inputFiles, const VtkObserver* vtk);
   void accepted(const StepLoop& loop, const StepRecord& record, bool last) override;
   /// Writes the checkpoint of the last accepted step unless it is on disk,
   /// and says where it is (or why it is missing).
@@ -50,7 +65,7 @@ class CheckpointObserver final : public StepObserver {
 
  private:
   void write(const StepLoop& loop);
-  std::string path_, finalPath_;
+  std::string path_, finalPath_, inputFiles_;
   int interval_;
   const Teuchos::ParameterList& params_;
   const VtkObserver* vtk_;

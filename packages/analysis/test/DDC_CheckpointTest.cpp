@@ -2,8 +2,10 @@
 // distributed vector reads back on another number of ranks, and a file that
 // is not a checkpoint, truncated or corrupted is refused on every rank with
 // a message naming it. What a restart checks: contact slots round-trip
-// bit for bit (packSlots()), and a deck may change only the parameters
-// restartChangeableParameters() names.
+// bit for bit (packSlots()), a deck may change only the parameters
+// restartChangeableParameters() names, the files a run read must be
+// unchanged, the final load factor not below the checkpoint's, and a
+// checkpoint of an older layout is refused.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -18,6 +20,7 @@
 #include "DDC_Checkpoint.hpp"
 #include "DDC_ContactComponent.hpp"
 #include "DDC_Restart.hpp"
+#include "DDC_RunCheckpoint.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_MpiRecords.hpp"
 #include "DDC_TestErrors.hpp"
@@ -237,6 +240,56 @@ TEST(Restart, ADeckMayChangeOnlyTheStepsTheSolutionMethodAndTheOutput) {
   removed.sublist("Boundary Conditions").remove("Fix");
   EXPECT_THAT(ddc::test::inputErrorOf([&] { ddc::checkRestartParameters(saved, removed, file); }),
               HasSubstr("parameter 'Boundary Conditions/Fix' is (none) in this deck but was a sublist"));
+}
+
+TEST(Restart, AFileTheRunReadMustBeUnchanged) {
+  const std::vector<ddc::InputFileIdentity> read = {{"Mesh/Bodies/Block/Gmsh/File", "decks/block.msh", 967, 12345},
+                                                    {"Partition/Element Map File", "decks/block.map", 219, 678}};
+  const std::string saved = ddc::describeInputFiles(read);
+  const std::string file = "run/checkpoint.ddc";
+  EXPECT_NO_THROW(ddc::checkRestartInputFiles(saved, read, file));
+  // The same size, other content; another size: each names the file, its parameter and the checkpoint.
+  auto content = read;
+  content[0].hash = 12346;
+  EXPECT_THAT(ddc::test::inputErrorOf([&] { ddc::checkRestartInputFiles(saved, content, file); }),
+              HasSubstr("restart: the file 'decks/block.msh' ('Mesh/Bodies/Block/Gmsh/File') changed since the run "
+                        "that wrote the checkpoint 'run/checkpoint.ddc' read it (then 967 bytes, now 967 bytes with "
+                        "other content)"));
+  auto size = read;
+  size[1].size = 220;
+  EXPECT_THAT(ddc::test::inputErrorOf([&] { ddc::checkRestartInputFiles(saved, size, file); }),
+              HasSubstr("the file 'decks/block.map' ('Partition/Element Map File') changed since the run that wrote "
+                        "the checkpoint 'run/checkpoint.ddc' read it (then 219 bytes, now 220 bytes)"));
+}
+
+TEST(Restart, TheFinalValueMayNotLieBelowTheCheckpoints) {
+  ddc::StepRecord last;
+  last.step = 3;
+  last.loadFactor = 0.5;
+  ddc::StepLoopSettings settings;
+  settings.finalValue = 0.5;
+  EXPECT_NO_THROW(ddc::checkRestartFinalValue(last, settings, "run/checkpoint.ddc"));
+  settings.finalValue = 0.4;
+  EXPECT_THAT(ddc::test::inputErrorOf([&] { ddc::checkRestartFinalValue(last, settings, "run/checkpoint.ddc"); }),
+              HasSubstr("restart: 'Load Stepping/Final Load Factor' = 0.4 lies below the load factor 0.5 the "
+                        "checkpoint 'run/checkpoint.ddc' reached (step 3)"));
+  settings.stepping = "Dynamics";
+  settings.factorName = "time";
+  EXPECT_THAT(ddc::test::inputErrorOf([&] { ddc::checkRestartFinalValue(last, settings, "run/checkpoint.ddc"); }),
+              HasSubstr("'Dynamics/Final Time' = 0.4 lies below the time 0.5"));
+}
+
+TEST(Restart, ACheckpointOfAnOlderLayoutIsRefused) {
+  const std::string path = fileName("layout2");
+  ddc::CheckpointWriter w(world());
+  w.putDoubles("run", {2.0, 1.0, 0.0, 0.0});  // layout 2: no record of the files the run read
+  w.write(path);
+  const ddc::CheckpointReader c(world(), path);
+  EXPECT_THAT(ddc::test::inputErrorOf([&] { ddc::requireCheckpointLayout(c); }),
+              HasSubstr("checkpoint '" + path + "': written by another version of DDContact (layout 2, which does "
+                        "not record the mesh and element-map files the run read"));
+  world()->barrier();
+  if (world()->getRank() == 0) std::remove(path.c_str());
 }
 
 }  // namespace

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include "DDC_Error.hpp"
+#include "DDC_Memory.hpp"
 #include "DDC_MpiRecords.hpp"
 #include "DDC_ResultFile.hpp"
 
@@ -107,10 +109,41 @@ void CheckpointWriter::write(const std::string& path) const {
   if (!error.empty()) throw OutputError(error);
 }
 
+namespace {
+
+/// Rank 0's refusal of `path` before reading it, "" if none: not a regular
+/// file, or larger than the memory reading it takes (the whole file on rank
+/// 0 and its sections on every rank: twice its size) allows (collective).
+std::string refuseBeforeReading(const Teuchos::Comm<int>& comm, const std::string& path) {
+  std::string error;
+  double size = 0;
+  if (comm.getRank() == 0) {
+    std::error_code ec;
+    const auto st = std::filesystem::status(path, ec);
+    if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
+      error = "the checkpoint '" + path + "' is not a regular file (" +
+              (std::filesystem::is_directory(st) ? "a directory" : "a device or special file") +
+              "); move it away, or name another run";
+    else if (std::filesystem::exists(st))
+      size = double(std::filesystem::file_size(path, ec));
+  }
+  Teuchos::broadcast(comm, 0, Teuchos::outArg(size));
+  const MemoryLimit memory = availableMemory(comm);
+  if (error.empty() && 2 * size > memory.bytes)
+    error = "the checkpoint '" + path + "' is " + formatBytes(size) + "; reading it takes about " +
+            formatBytes(2 * size) + " per rank, more than the " + formatBytes(memory.bytes) + " available (" +
+            memory.source + "): restart on a host with more memory, or check that it is the file you meant";
+  return firstErrorOnAnyRank(comm, error);
+}
+
+}  // namespace
+
 CheckpointReader::CheckpointReader(Teuchos::RCP<const Teuchos::Comm<int>> comm, const std::string& path)
     : comm_(std::move(comm)), path_(path) {
   // Rank 0 reads and checks; the others get the checked bytes.
-  std::string content, error;
+  std::string error = refuseBeforeReading(*comm_, path);
+  DDC_INPUT_REQUIRE(error.empty(), error);
+  std::string content;
   if (comm_->getRank() == 0) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {

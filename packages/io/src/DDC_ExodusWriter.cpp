@@ -3,13 +3,19 @@
 #include <Teuchos_CommHelpers.hpp>
 #include <exodusII.h>
 
+#include <sys/statvfs.h>
+
 #include <algorithm>
 #include <array>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <stdexcept>
 
 #include "DDC_Error.hpp"
 #include "DDC_InputDeck.hpp"
 #include "DDC_MpiRecords.hpp"
+#include "DDC_ResultFile.hpp"
 
 namespace ddc {
 
@@ -46,6 +52,29 @@ std::vector<std::vector<double>> gatherColumns(const Teuchos::Comm<int>& comm, c
   return columns;
 }
 
+/// Why a write to the Exodus II file `path` failed: the library's message,
+/// led by "No space left on device" when that is the cause (the library's
+/// error code, or no space left on the file system of `path`).
+std::string writeError(const std::string& path, int status) {
+  const std::string why = exodusLibraryError(status);
+  const char *msg = nullptr, *func = nullptr;
+  int code = 0;
+  ex_get_err(&msg, &func, &code);
+  const std::string directory = std::filesystem::path(path).parent_path().string();
+  struct statvfs fs {};
+  const bool full = ::statvfs(directory.empty() ? "." : directory.c_str(), &fs) == 0 && fs.f_bavail == 0;
+  return code == ENOSPC || full ? std::string(std::strerror(ENOSPC)) + " (" + why + ")" : why;
+}
+
+/// The test seam enospc@NAME (faultInjection(), DDC_ResultFile.hpp) for the
+/// Exodus II file `path`: true for its first step written, as a full disk.
+bool simulatedFullDisk(const std::string& path) {
+  static bool used = false;
+  if (used || !faultInjection("enospc", path)) return false;
+  used = true;
+  return true;
+}
+
 }  // namespace
 
 ExodusWriter::ExodusWriter(Teuchos::RCP<const Teuchos::Comm<int>> comm, const std::string& path, const Mesh& mesh,
@@ -57,7 +86,7 @@ ExodusWriter::ExodusWriter(Teuchos::RCP<const Teuchos::Comm<int>> comm, const st
     // Each call below returns < 0 on failure; the first failure is the message.
     auto check = [&](int status, const char* what) {
       if (status < 0 && error.empty())
-        error = "cannot write the Exodus II results '" + path_ + "' (" + what + "): " + exodusLibraryError(status);
+        error = "cannot write the Exodus II results '" + path_ + "' (" + what + "): " + writeError(path_, status);
       return status >= 0;
     };
     ex_opts(0);  // no messages on stderr, no abort: errors come back here
@@ -186,7 +215,7 @@ std::pair<int, std::string> ExodusWriter::copySteps(const std::string& source, i
           const int w = ex_put_var(exoid_, step, type, var, id, length, values.data());
           if (w < 0)
             error = "cannot write step " + std::to_string(step) + " of the Exodus II results '" + path_ +
-                    "': " + exodusLibraryError(w);
+                    "': " + writeError(path_, w);
           return w >= 0;
         };
         bool ok = true;
@@ -248,11 +277,17 @@ void ExodusWriter::writeStep(double time, const ExodusStepValues& values) {
     auto check = [&](int status, const char* what) {
       if (status < 0 && error.empty())
         error = "cannot write step " + std::to_string(steps_ + 1) + " of the Exodus II results '" + path_ + "' (" +
-                what + "): " + exodusLibraryError(status);
+                what + "): " + writeError(path_, status);
       return status >= 0;
     };
     const int step = steps_ + 1;
-    bool ok = check(ex_put_time(exoid_, step, &time), "time");
+    bool ok = true;
+    if (simulatedFullDisk(path_)) {
+      ok = false;
+      error = "cannot write step " + std::to_string(step) + " of the Exodus II results '" + path_ +
+              "' (time): " + std::strerror(ENOSPC) + " (fault injection)";
+    }
+    ok = ok && check(ex_put_time(exoid_, step, &time), "time");
     for (size_t k = 0; ok && k < numNodal; ++k)
       ok = check(ex_put_var(exoid_, step, EX_NODAL, int(k) + 1, 1, mesh.numNodes(), nodal[k].data()),
                  "nodal variable");

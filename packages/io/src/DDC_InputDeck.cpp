@@ -328,8 +328,9 @@ std::vector<std::pair<std::string, std::string>> namedInputFiles(const Teuchos::
   return files;
 }
 
-void requireSameFilesOnEveryRank(const Teuchos::Comm<int>& comm,
-                                 const std::vector<std::pair<std::string, std::string>>& files) {
+std::vector<InputFileIdentity> requireSameFilesOnEveryRank(
+    const Teuchos::Comm<int>& comm, const std::vector<std::pair<std::string, std::string>>& files) {
+  std::vector<InputFileIdentity> identities;
   const int size = comm.getSize();
   const int rank = comm.getRank();
   // The file list is the same on every rank (it comes from the parameters).
@@ -363,7 +364,9 @@ void requireSameFilesOnEveryRank(const Teuchos::Comm<int>& comm,
     DDC_INPUT_REQUIRE(lo == hi, "'" << param << "' = '" << file
                                     << "': the file differs between ranks; every rank reads it, so all must see "
                                        "the same file (a shared file system)");
+    identities.push_back({param, file, std::uint64_t(bytes.size()), mine});
   }
+  return identities;
 }
 
 }  // namespace ddc

@@ -29,6 +29,7 @@
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_RCP.hpp>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -87,6 +88,13 @@ Teuchos::RCP<Teuchos::ParameterList> readDeck(const Teuchos::Comm<int>& comm, co
 /// the other ranks).
 std::vector<std::string> broadcastStrings(const Teuchos::Comm<int>& comm, const std::vector<std::string>& strings);
 
+/// A file a run read: the parameter naming it, its name as read, its size
+/// in bytes and the FNV-1a fingerprint of its content.
+struct InputFileIdentity {
+  std::string parameter, file;
+  std::uint64_t size = 0, hash = 0;
+};
+
 /// The files the Analysis parameters name, as (parameter path, file name
 /// resolved as the readers resolve it): "Mesh/Bodies/<Body>/Gmsh/File" of
 /// every Gmsh body and "Partition/Element Map File" with Method = Element Map
@@ -103,7 +111,10 @@ std::vector<std::pair<std::string, std::string>> namedInputFiles(const Teuchos::
 /// rather than some ranks failing alone (MPI_Abort) or building different
 /// meshes (a hang). A file no rank can read is left to its reader, whose
 /// message is then the same on every rank.
-void requireSameFilesOnEveryRank(const Teuchos::Comm<int>& comm,
-                                 const std::vector<std::pair<std::string, std::string>>& files);
+/// \return what was read of each file every rank read: its size and
+///         content fingerprint, the same on every rank (a checkpoint records
+///         them, so that a restart notices a changed file)
+std::vector<InputFileIdentity> requireSameFilesOnEveryRank(
+    const Teuchos::Comm<int>& comm, const std::vector<std::pair<std::string, std::string>>& files);
 
 }  // namespace ddc

@@ -22,6 +22,7 @@
 #include <Teuchos_CommHelpers.hpp>
 
 #include "DDC_Error.hpp"
+#include "DDC_FileFingerprint.hpp"
 #include "DDC_ResultFile.hpp"
 
 #ifndef DDC_VERSION
@@ -109,6 +110,11 @@ struct Manifest {
   bool present = false;  ///< a readable manifest with the magic first line
   std::map<std::string, std::string> fields;
   std::map<std::string, std::uintmax_t> files;  ///< relative path -> size
+  std::map<std::string, std::string> hashes;    ///< relative path -> fingerprint (hexFingerprint())
+  std::vector<std::string> dirs;                ///< the directories below it (relative paths)
+  /// Whether the manifest records fingerprints and directories (results of
+  /// earlier versions list sizes only).
+  bool fingerprinted() const { return !hashes.empty() || !dirs.empty(); }
   bool complete() const {
     auto it = fields.find("status");
     return present && it != fields.end() && it->second == "complete";
@@ -132,6 +138,11 @@ Manifest readManifest(const fs::path& dir) {
       std::string rel;
       std::getline(is >> std::ws, rel);
       m.files[rel] = size;
+    } else if (key == "fnv1a64") {
+      const auto space = value.find(' ');
+      if (space != std::string::npos) m.hashes[value.substr(space + 1)] = value.substr(0, space);
+    } else if (key == "dir") {
+      m.dirs.push_back(value);
     } else {
       m.fields[key] = value;
     }
@@ -150,6 +161,37 @@ std::vector<std::string> filesBelow(const fs::path& dir) {
     out.push_back(rel);
   }
   std::sort(out.begin(), out.end());
+  return out;
+}
+
+/// Directories below `dir` (relative paths, symbolic links not followed).
+std::vector<std::string> directoriesBelow(const fs::path& dir) {
+  std::vector<std::string> out;
+  for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator(); ++it)
+    if (it->is_directory() && !it->is_symlink()) out.push_back(it->path().lexically_relative(dir).generic_string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+/// Files and directories of the earlier result `dir` that are no longer as
+/// DDContact wrote them (a file whose size or fingerprint differs from
+/// its manifest's, a directory it did not make): the user's now. Manifests
+/// of earlier versions record neither; nothing is reported for them.
+std::vector<std::string> changedEntries(const fs::path& dir, const Manifest& m) {
+  std::vector<std::string> out;
+  if (!m.fingerprinted()) return out;
+  for (const auto& [rel, hash] : m.hashes) {
+    const fs::path p = dir / rel;
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(p, ec))) continue;  // gone: nothing of the user's to lose
+    std::uint64_t h = 0;
+    const auto size = m.files.find(rel);
+    if (!fs::is_regular_file(fs::symlink_status(p, ec)) || size == m.files.end() ||
+        fs::file_size(p, ec) != size->second || !fileFingerprint(p.string(), h) || hexFingerprint(h) != hash)
+      out.push_back(rel);
+  }
+  for (const auto& rel : directoriesBelow(dir))
+    if (std::find(m.dirs.begin(), m.dirs.end(), rel) == m.dirs.end()) out.push_back(rel + "/");
   return out;
 }
 
@@ -460,13 +502,25 @@ bool checkOwned(const fs::path& p, const fs::path& final, const std::string& rol
   return false;
 }
 
-/// The checks and recovery of the constructor (rank 0, lock held).
-void prepare(const fs::path& final, const fs::path& staging, const fs::path& old, const std::string& resumeWith,
-             std::vector<std::string>& notes, Failure& failure) {
+/// The file a staging directory was marked resumable with
+/// (OutputDirectory::markResumable()) if it is there, else "".
+std::string resumableFile(const fs::path& staging) {
+  const Manifest m = readManifest(staging);
+  const auto it = m.fields.find("resumable");
+  std::error_code ec;
+  if (it == m.fields.end() || it->second.empty() || !fs::exists(fs::symlink_status(staging / it->second, ec)))
+    return "";
+  return it->second;
+}
+
+/// The refusals of the constructor before any recovery step moves
+/// anything (rank 0, lock held): false with `failure` set if D, D.partial
+/// or D.old is not this program's to replace or remove.
+bool mayReplace(const fs::path& final, const fs::path& staging, const fs::path& old, Failure& failure) {
   if (!checkOwned(final, final, "the output directory", failure) ||
       !checkOwned(staging, final, "the staging directory of a run", failure) ||
       !checkOwned(old, final, "the previous result during a commit", failure))
-    return;
+    return false;
   // An earlier result may be replaced only if all its files are DDContact's;
   // checked before any recovery step moves it.
   if (fs::exists(final) && !isEmptyDirectory(final)) {
@@ -477,7 +531,20 @@ void prepare(const fs::path& final, const fs::path& staging, const fs::path& old
                                      listSome(final, foreign) +
                                      "; move them elsewhere or choose another --output-dir (a new result replaces "
                                      "the whole directory)"};
-      return;
+      return false;
+    }
+    const auto changed = changedEntries(final, readManifest(final));
+    if (!changed.empty()) {
+      const bool directory = changed.front().back() == '/';
+      failure = {Failure::Input,
+                 "output directory '" + final.string() + "' is an earlier DDContact result, but " +
+                     listSome(final, changed) +
+                     (directory ? " is a directory DDContact did not make there"
+                                : " changed since DDContact wrote it (its size or content no longer matches " +
+                                      std::string(OutputDirectory::manifestFileName()) + ")") +
+                     ": it is yours now, and a new result would replace it; move it away or choose another "
+                     "--output-dir"};
+      return false;
     }
   }
   // A result this user cannot delete (another user's) would be moved to
@@ -489,7 +556,7 @@ void prepare(const fs::path& final, const fs::path& staging, const fs::path& old
       failure = {Failure::Input, "output directory '" + final.string() + "' holds an earlier result that this run "
                                  "could not remove when it replaces it: " + why +
                                  "; choose another --output-dir, or have its owner remove it"};
-      return;
+      return false;
     }
   }
   if (fs::exists(old) && !isEmptyDirectory(old)) {
@@ -498,9 +565,16 @@ void prepare(const fs::path& final, const fs::path& staging, const fs::path& old
       failure = {Failure::Input, "'" + old.string() + "', a previous result of output directory '" +
                                  final.string() + "' left by an earlier commit, cannot be removed: " + why +
                                  "; have its owner remove it, or choose another --output-dir"};
-      return;
+      return false;
     }
   }
+  return true;
+}
+
+/// The checks and recovery of the constructor (rank 0, lock held).
+void prepare(const fs::path& final, const fs::path& staging, const fs::path& old, const std::string& resumeWith,
+             std::vector<std::string>& notes, Failure& failure) {
+  if (!mayReplace(final, staging, old, failure)) return;
   std::error_code ec;
   // Empty leftovers hold nothing; clear them so the cases below are simple.
   for (const fs::path& p : {staging, old})
@@ -551,6 +625,14 @@ void prepare(const fs::path& final, const fs::path& staging, const fs::path& old
     } else if (!resumeWith.empty() && fs::is_regular_file(staging / resumeWith)) {
       notes.push_back("continuing in '" + staging.string() + "', the staging directory of the earlier run that did "
                       "not finish");
+    } else if (const std::string kept = resumableFile(staging); !kept.empty()) {
+      failure = {Failure::Input, "output directory '" + final.string() + "': '" + staging.string() +
+                                     "' is the staging directory of an earlier run that did not finish and holds "
+                                     "its checkpoint '" + (staging / kept).string() +
+                                     "'; continue that run with --restart '" + final.string() +
+                                     "', or, to start anew and discard it, move or remove '" + staging.string() +
+                                     "' first (or choose another --output-dir)"};
+      return;
     } else {
       removeResultTree(staging);
       notes.push_back("removed '" + staging.string() + "', the staging directory of an earlier run that did not "
@@ -600,7 +682,8 @@ OutputDirectory::OutputDirectory(Teuchos::RCP<const Teuchos::Comm<int>> comm, st
       if (failure.kind == Failure::None) fs::create_directories(final.parent_path());
       if (failure.kind == Failure::None) lockFd_ = acquireLock(lockPath(), final, run_, started_, failure);
       if (failure.kind == Failure::None) faultInjectionStage("locked");
-      if (failure.kind == Failure::None) prepare(final, staging, old, run_.resumeWith, notes_, failure);
+      if (failure.kind == Failure::None)
+        prepare(final, staging, old, run_.resumeWith, notes_, failure);
       if (failure.kind == Failure::None) {
         fs::create_directory(staging);  // kept (resumeWith) or new
         // Fault-injection name "...:start" tells this write from the commit's.
@@ -645,6 +728,25 @@ OutputDirectory::~OutputDirectory() {
   releaseLock(lockFd_, lockPath());
 }
 
+void OutputDirectory::markResumable(const std::string& file) {
+  if (committed_) return;
+  if (comm_->getRank() == 0) {
+    const fs::path staging(stagingDir_);
+    std::error_code ec;
+    if (fs::is_regular_file(staging / file, ec)) {
+      const std::string manifest = (staging / manifestFileName()).string();
+      try {
+        writeFileAtomically(manifest, manifestHeader(run_, started_, comm_->getSize()) + "status: running\n" +
+                                          "resumable: " + oneLine(file) + "\n",
+                            manifest + ":resumable");
+      } catch (const OutputError&) {
+        // Best effort: the run ends with its own error.
+      }
+    }
+  }
+  comm_->barrier();
+}
+
 void OutputDirectory::commit() {
   if (committed_) return;
   // Every rank has finished writing into the staging directory.
@@ -663,7 +765,11 @@ void OutputDirectory::commit() {
       for (const auto& rel : filesBelow(staging)) {
         if (rel == std::string(manifestFileName()) + ".tmp") continue;
         os << "file: " << fs::file_size(staging / rel) << " " << rel << "\n";
+        std::uint64_t hash = 0;
+        if (fileFingerprint((staging / rel).string(), hash))
+          os << "fnv1a64: " << hexFingerprint(hash) << " " << rel << "\n";
       }
+      for (const auto& rel : directoriesBelow(staging)) os << "dir: " << rel << "\n";
       os << "status: complete\n";
       writeFileAtomically((staging / manifestFileName()).string(), os.str());
       syncDirectory(final.parent_path().string());
@@ -672,7 +778,9 @@ void OutputDirectory::commit() {
       //    added files since the run started).
       if (fs::exists(final) && !isEmptyDirectory(final)) {
         const Manifest m = readManifest(final);
-        const auto foreign = m.present ? foreignFiles(final, m) : filesBelow(final);
+        auto foreign = m.present ? foreignFiles(final, m) : filesBelow(final);
+        if (m.present)
+          for (const auto& rel : changedEntries(final, m)) foreign.push_back(rel);
         if (!m.present || !foreign.empty())
           DDC_THROW(OutputError, "cannot commit the results to '"
                                      << finalDir_ << "': since the run started it received files DDContact did not write ("

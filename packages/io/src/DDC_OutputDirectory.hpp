@@ -34,7 +34,8 @@ struct RunDescription {
 ///  - `D/ddcontact-result.txt`, the *manifest*: the mark of a DDContact
 ///    result. It records the program and version, the input, the command,
 ///    the start time and a status; a committed result has
-///    `status: complete` and lists every file with its size.
+///    `status: complete` and lists every file with its size and FNV-1a
+///    fingerprint, and every directory.
 ///  - `D.partial`: the staging directory every writer writes into; its
 ///    manifest says `status: running` until commit().
 ///  - `D.old`: the previous result during a commit.
@@ -49,7 +50,11 @@ struct RunDescription {
 ///  - a D, D.partial or D.old that is not a directory, or a non-empty one
 ///    without a manifest (someone else's directory);
 ///  - a D whose manifest does not list all of its files (files added by
-///    someone else);
+///    someone else), or one of whose listed files no longer has the size
+///    and fingerprint the manifest records (edited by someone else), or
+///    with a directory the manifest does not list;
+///  - a D.partial of an unfinished run marked resumable (markResumable())
+///    whose file is there, unless RunDescription::resumeWith keeps it;
 ///  - a D that another run holds (naming its pid, host, input and start).
 /// An empty directory counts as nothing to lose and may be used.
 ///
@@ -62,7 +67,8 @@ struct RunDescription {
 ///
 /// A run that fails never calls commit(): D is untouched and D.partial is
 /// left for inspection if anything was written into it (the next run removes
-/// it; if nothing but the manifest is there, the destructor removes it). The
+/// it unless it was marked resumable, markResumable(); if nothing but the
+/// manifest is there, the destructor removes it). The
 /// destructor releases the lock and never commits.
 ///
 /// All ranks must see the same file system (the usual shared-file-system
@@ -118,6 +124,14 @@ class OutputDirectory {
   /// \throws OutputError on every rank if the commit fails; the earlier
   ///   result stays (or is restored) complete.
   void commit();
+
+  /// Collective; before commit(). Marks the staging directory as that of a
+  /// run that stopped or failed leaving `file` (its checkpoint) to continue
+  /// from: a later run into the same directory refuses to remove it unless
+  /// it continues it (RunDescription::resumeWith). Does nothing if `file` is
+  /// not in the staging directory; a failure to mark is not reported (the
+  /// run is ending with its own error).
+  void markResumable(const std::string& file);
 
   /// The communicator the directory was created with.
   const Teuchos::RCP<const Teuchos::Comm<int>>& comm() const { return comm_; }

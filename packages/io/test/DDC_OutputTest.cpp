@@ -300,6 +300,73 @@ TEST_F(OutputTest, EarlierResultWithForeignFilesIsRefused) {
   EXPECT_EQ(snapshot(final), before);
 }
 
+/// The InputError message of opening `final` as an output directory, "" if
+/// there is none.
+std::string refusalOf(const Comm& comm, const fs::path& final) {
+  try {
+    OutputDirectory out(comm, final.string());
+  } catch (const ddc::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST_F(OutputTest, EarlierResultWithAnEditedFileOrAnAddedDirectoryIsRefused) {
+  const fs::path final = base_ / "run";
+  makeResult(final, {{"history.csv", "earlier\n"}, {"vtk/a.vtu", "abc"}});
+  const std::string m = readFile(final / OutputDirectory::manifestFileName());
+  EXPECT_NE(m.find("\nfnv1a64: "), std::string::npos) << m;
+  EXPECT_NE(m.find("\ndir: vtk\n"), std::string::npos) << m;
+  // The same size, other content: the user's file now.
+  if (rank() == 0) writeFile(final / "history.csv", "edited!\n");
+  comm_->barrier();
+  auto before = snapshot(final);
+  EXPECT_NE(refusalOf(comm_, final).find("'" + (final / "history.csv").string() +
+                                         "' changed since DDContact wrote it"),
+            std::string::npos);
+  comm_->barrier();
+  EXPECT_EQ(snapshot(final), before);
+  comm_->barrier();  // every rank has looked before rank 0 changes it again
+  // A directory added.
+  if (rank() == 0) {
+    writeFile(final / "history.csv", "earlier\n");
+    fs::create_directory(final / "mine");
+  }
+  comm_->barrier();
+  before = snapshot(final);
+  EXPECT_NE(refusalOf(comm_, final).find("'" + (final / "mine").string() + "/' is a directory DDContact did not make"),
+            std::string::npos);
+  comm_->barrier();
+  EXPECT_EQ(snapshot(final), before);
+  EXPECT_TRUE(fs::is_directory(final / "mine"));
+}
+
+TEST_F(OutputTest, AStagingDirectoryMarkedResumableIsKept) {
+  const fs::path final = base_ / "run";
+  {
+    OutputDirectory stopped(comm_, final.string());
+    if (rank() == 0) writeFile(fs::path(stopped.path()) / "checkpoint.ddc", "state\n");
+    comm_->barrier();
+    stopped.markResumable("checkpoint.ddc");
+  }
+  const fs::path staging = final.string() + ".partial";
+  EXPECT_NE(readFile(staging / OutputDirectory::manifestFileName()).find("\nresumable: checkpoint.ddc\n"),
+            std::string::npos);
+  const auto before = snapshot(staging);
+  EXPECT_NE(refusalOf(comm_, final).find("'" + staging.string() +
+                                         "' is the staging directory of an earlier run that did not finish "
+                                         "and holds its checkpoint"),
+            std::string::npos);
+  comm_->barrier();
+  EXPECT_EQ(snapshot(staging), before);
+  comm_->barrier();
+  // Continuing it (a restart into the same directory) keeps and reuses it.
+  ddc::RunDescription restart;
+  restart.resumeWith = "checkpoint.ddc";
+  OutputDirectory continued(comm_, final.string(), restart);
+  EXPECT_EQ(readFile(fs::path(continued.path()) / "checkpoint.ddc"), "state\n");
+}
+
 TEST_F(OutputTest, EmptyDirectoryMayBeUsed) {
   const fs::path final = base_ / "empty";
   if (rank() == 0) fs::create_directories(final);
