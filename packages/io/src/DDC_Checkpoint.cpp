@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "DDC_Error.hpp"
+#include "DDC_FileFingerprint.hpp"
 #include "DDC_Memory.hpp"
 #include "DDC_MpiRecords.hpp"
 #include "DDC_ResultFile.hpp"
@@ -19,15 +20,6 @@ namespace {
 
 const std::string kMagic = "DDContact checkpoint 1\n";
 
-/// FNV-1a, 64 bit: detects a changed or missing byte (not an attack).
-std::uint64_t fnv1a(const char* data, size_t n) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (size_t i = 0; i < n; ++i) {
-    h ^= static_cast<unsigned char>(data[i]);
-    h *= 1099511628211ull;
-  }
-  return h;
-}
 
 template <class T>
 void append(std::string& out, T value) {

@@ -7,6 +7,14 @@
 
 namespace ddc {
 
+std::uint64_t fnv1a(const char* data, std::size_t n, std::uint64_t hash) {
+  for (std::size_t i = 0; i < n; ++i) {
+    hash ^= static_cast<unsigned char>(data[i]);
+    hash *= 1099511628211ull;
+  }
+  return hash;
+}
+
 bool fileFingerprint(const std::string& path, std::uint64_t& hash) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) return false;
@@ -16,11 +24,7 @@ bool fileFingerprint(const std::string& path, std::uint64_t& hash) {
   std::vector<char> buffer(1 << 20);
   while (in) {
     in.read(buffer.data(), std::streamsize(buffer.size()));
-    const std::streamsize n = in.gcount();
-    for (std::streamsize i = 0; i < n; ++i) {
-      h ^= static_cast<unsigned char>(buffer[size_t(i)]);
-      h *= 1099511628211ull;
-    }
+    h = fnv1a(buffer.data(), static_cast<std::size_t>(in.gcount()), h);
   }
   if (in.bad()) return false;
   hash = h;

@@ -3,10 +3,15 @@
 // http://www.isthe.com/chongo/tech/comp/fnv/).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
 namespace ddc {
+
+/// The FNV-1a 64-bit hash of `n` bytes, continuing from `hash` (the offset
+/// basis for a new hash).
+std::uint64_t fnv1a(const char* data, std::size_t n, std::uint64_t hash = 14695981039346656037ull);
 
 /// The FNV-1a 64-bit hash of the file `path`, read in pieces; false if it
 /// cannot be read as a regular file.

@@ -17,6 +17,7 @@
 #include <system_error>
 
 #include "DDC_Error.hpp"
+#include "DDC_FileFingerprint.hpp"
 #include "DDC_MpiRecords.hpp"
 #include "DDC_OutputDirectory.hpp"
 #include "DDC_Parameters.hpp"
@@ -92,14 +93,7 @@ class DeckChecker {
 };
 
 /// FNV-1a: a content fingerprint to compare a file between ranks.
-std::uint64_t fingerprint(const std::string& bytes) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (const unsigned char c : bytes) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h ^ bytes.size();
-}
+std::uint64_t fingerprint(const std::string& bytes) { return fnv1a(bytes.data(), bytes.size()) ^ bytes.size(); }
 
 /// Whole file, or false if it cannot be read as a regular file.
 bool readWhole(const std::string& fileName, std::string& bytes) {
