@@ -17,6 +17,12 @@
 
 namespace ddc {
 
+/// The contact state of a slot as doc/contact.md ("Friction") names it:
+/// open (not in contact), stick (in contact, no tangential slip) or slip
+/// (in contact, the tangential force on the Coulomb cone). An active slot
+/// of a frictionless pair slips freely (Slip, no tangential force).
+enum class FrictionState : int { Open = 0, Stick = 1, Slip = 2 };
+
 /// One contact slot: a slave node of a pair, its multiplier, and its
 /// current pairing and state. Replicated on every rank.
 struct ContactSlot {
@@ -40,6 +46,19 @@ struct ContactSlot {
   FrozenFacetProjection frozen;
   double gap = 0.0;          ///< g_N at the last update
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< normal used by the element (z = 0 in 2-D)
+  /// The unit tangent basis τ_α used by the element, orthogonal to `normal`
+  /// (z = 0 and τ_2 = 0 in 2-D): frozen with n^p for the decomposed element,
+  /// at the current projection for the conventional one.
+  std::array<Eigen::Vector3d, 2> tangent{{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()}};
+  /// The tangential multipliers λ_t,α of a frictional pair, along
+  /// `tangent` (doc/contact.md, "Friction"): the tangential force on the
+  /// slave node is −Σ λ_t,α τ_α; zero in a frictionless pair.
+  std::array<double, 2> tangential{{0.0, 0.0}};
+  /// Stick or slip while active; Open otherwise (see contactState()).
+  FrictionState friction = FrictionState::Open;
+  /// |u_t|: the tangential slip of the slave node along the master surface
+  /// in the last step (zero while it sticks or is open).
+  double slip = 0.0;
   /// The slave node's share of the slave surface in the reference
   /// configuration: a length in 2-D (half the adjacent slave segments), an
   /// area in 3-D (doc/contact.md, "Curved facets and 3-D").
@@ -48,6 +67,17 @@ struct ContactSlot {
   double pressure() const { return active && tributaryLength > 0 ? -state.multiplier / tributaryLength : 0.0; }
   /// Whether the slot has a master facet.
   bool paired() const { return master[0] >= 0; }
+  /// The tangential contact force on the slave node, −Σ λ_t,α τ_α (zero
+  /// when inactive or frictionless).
+  Eigen::Vector3d tangentialForce() const {
+    return active ? Eigen::Vector3d(-tangential[0] * tangent[0] - tangential[1] * tangent[1])
+                  : Eigen::Vector3d::Zero();
+  }
+  /// The state for output: Open when inactive, else `friction` (an active
+  /// slot of a frictionless pair slips).
+  FrictionState contactState() const {
+    return !active ? FrictionState::Open : friction == FrictionState::Stick ? FrictionState::Stick : FrictionState::Slip;
+  }
 };
 
 /// The slots as numbers, for a checkpoint (every field; integers exactly).
