@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 
 #include "DDC_Element.hpp"
+#include "DDC_Friction.hpp"
 
 namespace ddc {
 
@@ -28,6 +29,15 @@ struct ContactPairState {
   double frozenXi = 0.0;
   /// n^p of the closed-form reference (see frozenXi).
   Eigen::Vector2d frozenNormal = Eigen::Vector2d::Zero();
+  /// Coulomb friction (DDC_Friction.hpp): with a coefficient > 0 the
+  /// element has the tangential multipliers after λ (dim − 1 of them).
+  FrictionPairState friction;
+  /// The element's multipliers: 1, or dim with friction.
+  int numMultipliers(int dim) const { return friction.frictional() ? dim : 1; }
+  /// The multipliers in the element's DOF order: λ, then λ_t.
+  std::array<double, 3> multipliers() const {
+    return {multiplier, friction.tangential[0], friction.tangential[1]};
+  }
 };
 
 /// The released (inactive) contribution Π_c = ½ λ² (paper eq. 2) on an
@@ -43,6 +53,26 @@ inline void releasedContribution(int numDofs, double lambda, unsigned what, Elem
   if (what & kTangent) {
     out.tangent.setZero(numDofs, numDofs);
     out.tangent(numDofs - 1, numDofs - 1) = 1.0;
+  }
+}
+
+/// The released contribution of an element whose last `numMultipliers`
+/// DOFs (of `numDofs`) are multipliers with the values `lambda`: Π_c =
+/// ½ |λ|², which restrains every multiplier to zero.
+inline void releasedContribution(int numDofs, const double* lambda, int numMultipliers, unsigned what,
+                                 ElementResult& out) {
+  const int first = numDofs - numMultipliers;
+  if (what & kEnergy) {
+    out.energy = 0.0;
+    for (int a = 0; a < numMultipliers; ++a) out.energy += 0.5 * lambda[a] * lambda[a];
+  }
+  if (what & kResidual) {
+    out.residual.setZero(numDofs);
+    for (int a = 0; a < numMultipliers; ++a) out.residual(first + a) = lambda[a];
+  }
+  if (what & kTangent) {
+    out.tangent.setZero(numDofs, numDofs);
+    for (int a = 0; a < numMultipliers; ++a) out.tangent(first + a, first + a) = 1.0;
   }
 }
 

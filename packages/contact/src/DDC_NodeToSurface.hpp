@@ -31,6 +31,12 @@
 // −(x_s − x(ξ))·a_α and J = ∂f/∂ξ at ξ̄, whose derivative is the implicit
 // derivative dξ̄/dx = −J⁻¹ ∂f/∂x exactly (f = 0 there); then G is evaluated
 // at ξ̄(x). No second derivatives of the shape functions are written by hand.
+//
+// Coulomb friction (DDC_Friction.hpp; doc/contact.md, "Friction"): a pair
+// with a friction coefficient has the tangential multipliers λ_t after λ and
+// the potential λ g_N + λ_t·u_t, u_t the slip of the step along the current
+// tangent basis (conventionalSlip()); its Hessian is exact by nested AD
+// through the projection (DDC_NodeToSurface.cpp, frictionalContact()).
 #pragma once
 
 #include <Eigen/Dense>
@@ -78,8 +84,18 @@ FacetProjection projectOntoFacet(CellType facet, const Eigen::MatrixXd& x, const
 bool facetPointAndNormal(CellType facet, const Eigen::MatrixXd& x, const std::array<double, 2>& xi,
                          Eigen::Vector3d& point, Eigen::Vector3d& normal);
 
+/// The slip u_t,α of the conventional element with friction (DDC_Friction.hpp)
+/// at the facet point ξ: τ_α·[(x_s − x_s⁰) − Σ N_i(ξ)(x_i − x_i⁰)], with
+/// τ_1 = a_1/|a_1| and, in 3-D, τ_2 = n × τ_1; `basis` gets τ (z = 0 in 2-D).
+/// \param x, x0 positions now and at the step start, slave first
+///        (1 + numCellNodes(facet) rows, dim columns)
+std::array<double, 2> conventionalSlip(CellType facet, const Eigen::MatrixXd& x, const Eigen::MatrixXd& x0,
+                                       const std::array<double, 2>& xi,
+                                       std::array<Eigen::Vector3d, 2>* basis = nullptr);
+
 /// Conventional node-to-surface element on a facet type. Nodes [slave, facet
-/// nodes...]; DOFs [u_s, u_1, ..., u_m, λ] (node-major, dim per node). The
+/// nodes...]; DOFs [u_s, u_1, ..., u_m, λ] (node-major, dim per node), and
+/// λ_t (dim − 1) after λ in a frictional pair. The
 /// contact component uses it directly (DDC_SurfaceContactElement.hpp wraps it
 /// as an Element for the factory).
 class NodeToSurfaceElement {
@@ -89,6 +105,7 @@ class NodeToSurfaceElement {
   CellType facet() const { return facet_; }
   int dim() const { return dim_; }
   int numNodes() const { return numNodes_; }
+  /// DOFs without friction (a frictional pair has dim − 1 more).
   int numDofs() const { return dim_ * numNodes_ + 1; }
   /// Energy, residual and tangent (see the top of this file).
   /// \param X, u reference positions and displacements, numNodes() x dim()

@@ -5,6 +5,9 @@
 // projection and of the normal), symmetry, exact gaps on flat facets, and the
 // 2-D Line2 case against the node-to-segment element; the decomposed slave
 // and master counterparts on every facet type (DDC_DecomposedNodeToSurface.hpp).
+// With Coulomb friction (DDC_Friction.hpp): the frictional element's every
+// row against finite differences in stick and in slip, the counterparts
+// against it, the stick/slip decision and the tangent basis.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -250,3 +253,216 @@ TEST(NodeToSurface, NonFacetCellTypesAreRejected) {
 }
 
 }  // namespace
+
+// ---- Coulomb friction (DDC_Friction.hpp) ----------------------------------------------
+
+namespace {
+
+/// A frictional state in contact: λ_n, λ_t, μ, c_t and the step-start
+/// displacements u0 of the element's nodes.
+ddc::ContactPairState frictionalState(const Eigen::MatrixXd& u0, bool stick) {
+  ddc::ContactPairState st;
+  st.active = true;
+  st.multiplier = -2.3;
+  st.friction.coefficient = 0.3;
+  st.friction.stiffness = 5.0;
+  st.friction.stick = stick;
+  st.friction.tangential = {0.4, -0.3};
+  st.friction.stepStart = u0;
+  return st;
+}
+
+/// Residual of the element at displacements u and multipliers w = [λ_n, λ_t].
+Eigen::VectorXd frictionalResidual(const NodeToSurfaceElement& e, const Case& k, const Eigen::MatrixXd& u,
+                                   ddc::ContactPairState st, const Eigen::VectorXd& w, double* energy = nullptr) {
+  st.multiplier = w[0];
+  for (int a = 1; a < w.size(); ++a) st.friction.tangential[a - 1] = w[a];
+  ddc::ElementResult r;
+  e.computeContact(k.X, u, st, ddc::kAll, r);
+  if (energy) *energy = r.energy;
+  return r.residual;
+}
+
+/// The frictional element's finite-difference checks on one facet (stick
+/// or slip): every residual row against the central-difference Jacobian
+/// in u and in the multipliers, and the displacement rows against the
+/// gradient of λ_n g_N + λ_t·u_t.
+void checkFrictionalDerivatives(CellType facet, std::array<double, 2> at, unsigned seed, bool stick) {
+  NodeToSurfaceElement e(facet);
+  const Case k = makeCase(facet, at, 0.05, seed);
+  const int dim = e.dim(), nd = dim * e.numNodes(), n = nd + dim;
+  // The step start: the nodes displaced by a different small amount, so
+  // the slip and its derivatives through the projection are not zero.
+  Eigen::MatrixXd u0 = 0.5 * k.u.reverse();
+  u0(0, 0) -= 0.03;  // the slave slid along x (the facets' first direction)
+  const ddc::ContactPairState st = frictionalState(u0, stick);
+  Eigen::VectorXd w(dim);
+  w << st.multiplier, st.friction.tangential[0], st.friction.tangential[1];
+  w.conservativeResize(dim);
+  ddc::ElementResult r;
+  e.computeContact(k.X, k.u, st, ddc::kAll, r);
+  ASSERT_EQ(r.residual.size(), n);
+  ASSERT_EQ(r.tangent.rows(), n);
+  // The slip rows of the slip state are not the trivial stick rows.
+  std::array<Eigen::Vector3d, 2> basis;
+  Eigen::MatrixXd x = k.X + k.u, x0 = k.X + u0;
+  const auto pr = e.project(k.X, k.u);
+  const auto slip = ddc::conventionalSlip(facet, x, x0, pr.xi, &basis);
+  if (stick)
+    for (int a = 0; a + 1 < dim; ++a) EXPECT_NEAR(r.residual[nd + 1 + a], slip[a], ddc::test::kRoundoff);
+  EXPECT_GT(std::abs(slip[0]), 1e-4) << "the case must slip for the check to mean anything";
+  Eigen::MatrixXd fd(n, n);
+  Eigen::VectorXd fdEnergy(nd);
+  for (int b = 0; b < n; ++b) {
+    Eigen::MatrixXd up = k.u, um = k.u;
+    Eigen::VectorXd wp = w, wm = w;
+    if (b < nd) {
+      up(b / dim, b % dim) += kStep;
+      um(b / dim, b % dim) -= kStep;
+    } else {
+      wp[b - nd] += kStep;
+      wm[b - nd] -= kStep;
+    }
+    double ep = 0.0, em = 0.0;
+    fd.col(b) = (frictionalResidual(e, k, up, st, wp, &ep) - frictionalResidual(e, k, um, st, wm, &em)) / (2 * kStep);
+    if (b < nd) fdEnergy[b] = (ep - em) / (2 * kStep);
+  }
+  const double scale = r.tangent.cwiseAbs().maxCoeff();
+  EXPECT_LE((r.tangent - fd).cwiseAbs().maxCoeff(), kFiniteDifference * scale)
+      << ddc::cellTypeName(facet) << (stick ? " stick" : " slip") << ": tangent vs d(residual)/d(u, lambda)\n"
+      << (r.tangent - fd).cwiseAbs().rowwise().maxCoeff().transpose();
+  EXPECT_LE((r.residual.head(nd) - fdEnergy).cwiseAbs().maxCoeff(),
+            kFiniteDifference * r.residual.head(nd).cwiseAbs().maxCoeff())
+      << ddc::cellTypeName(facet) << ": displacement rows vs d(lambda_n g + lambda_t . u_t)/du";
+}
+
+}  // namespace
+
+TEST(NodeToSurface, FrictionalResidualAndTangentMatchFiniteDifferencesOnEveryFacet) {
+  unsigned seed = 70;
+  for (bool stick : {true, false}) {
+    for (CellType f : kFacets3d) {
+      SCOPED_TRACE(ddc::cellTypeName(f));
+      const bool tri = f == CellType::Tri3 || f == CellType::Tri6;
+      checkFrictionalDerivatives(f, tri ? std::array<double, 2>{0.3, 0.3} : std::array<double, 2>{0.1, -0.2}, seed++,
+                                 stick);
+    }
+    for (CellType f : kFacets2d) {
+      SCOPED_TRACE(ddc::cellTypeName(f));
+      checkFrictionalDerivatives(f, {0.2, 0.0}, seed++, stick);
+    }
+  }
+}
+
+TEST(NodeToSurface, FrictionlessStateGivesTheFrictionlessElementBitForBit) {
+  // A zero coefficient is today's element: one multiplier, the same numbers.
+  for (CellType f : {CellType::Quad8, CellType::Line3}) {
+    NodeToSurfaceElement e(f);
+    const Case k = makeCase(f, {0.2, 0.1}, 0.05, 5);
+    ddc::ContactPairState plain;
+    plain.active = true;
+    plain.multiplier = -1.1;
+    ddc::ContactPairState withZero = plain;
+    withZero.friction.coefficient = 0.0;
+    withZero.friction.tangential = {0.5, 0.5};
+    withZero.friction.stepStart = k.u;
+    ddc::ElementResult a, b;
+    e.computeContact(k.X, k.u, plain, ddc::kAll, a);
+    e.computeContact(k.X, k.u, withZero, ddc::kAll, b);
+    EXPECT_EQ(a.residual, b.residual);
+    EXPECT_EQ(a.tangent, b.tangent);
+    EXPECT_EQ(a.energy, b.energy);
+  }
+}
+
+TEST(DecomposedNodeToSurface, FrictionalCounterpartsAddUpToTheConventionalElementAtTheStepStart) {
+  // Frozen at the projection of the step start, with the conventional
+  // element's tangent basis, the counterparts' residuals and multiplier rows
+  // add up to the conventional element's there (stick and slip), and in
+  // stick their tangents are the derivatives of their residuals.
+  unsigned seed = 90;
+  std::vector<CellType> facets(std::begin(kFacets3d), std::end(kFacets3d));
+  facets.insert(facets.end(), std::begin(kFacets2d), std::end(kFacets2d));
+  for (bool stick : {true, false})
+    for (CellType f : facets) {
+      SCOPED_TRACE(ddc::cellTypeName(f) + std::string(stick ? " stick" : " slip"));
+      const Case k = makeCase(f, {0.2, 0.1}, 0.03, seed++);
+      NodeToSurfaceElement nts(f);
+      ddc::DecomposedSurfaceCounterpart slave(f, false), master(f, true);
+      const int d = nts.dim(), m = master.numNodes(), nd = d * (m + 1), nt = d - 1;
+      const auto proj = nts.project(k.X, k.u);
+      ddc::FrozenFacetProjection frozen{proj.xi, proj.normal};
+      const Eigen::MatrixXd x = k.X + k.u;
+      ddc::conventionalSlip(f, x, x, proj.xi, &frozen.tangent);
+      ddc::ContactPairState st = frictionalState(k.u, stick);  // u = u0: no slip yet
+      ddc::ElementResult rs, rm, rc;
+      const Eigen::MatrixXd Xs = k.X.topRows(1), us = k.u.topRows(1), Xm = k.X.bottomRows(m), um = k.u.bottomRows(m);
+      ddc::ContactPairState ss = st, sm = st;
+      ss.friction.stepStart = us;
+      sm.friction.stepStart = um;
+      slave.computeContact(Xs, us, frozen, ss, ddc::kAll, rs);
+      master.computeContact(Xm, um, frozen, sm, ddc::kAll, rm);
+      nts.computeContact(k.X, k.u, st, ddc::kAll, rc);
+      Eigen::VectorXd sum(nd);
+      sum << rs.residual.head(d), rm.residual.head(d * m);
+      EXPECT_LE((sum - rc.residual.head(nd)).cwiseAbs().maxCoeff(), 10 * ddc::test::kRoundoff) << "displacement rows";
+      for (int a = 0; a <= nt; ++a)
+        EXPECT_NEAR(rs.residual[d + a] + rm.residual[d * m + a], rc.residual[nd + a], 10 * ddc::test::kRoundoff)
+            << "multiplier row " << a;
+      // The tangential rows' displacement columns: the slave's and the
+      // master's parts of the conventional rows.
+      for (int a = 1; a <= nt; ++a) {
+        Eigen::VectorXd row(nd);
+        row << rs.tangent.row(d + a).head(d).transpose(), rm.tangent.row(d * m + a).head(d * m).transpose();
+        EXPECT_LE((row - rc.tangent.row(nd + a).head(nd).transpose()).cwiseAbs().maxCoeff(),
+                  10 * ddc::test::kRoundoff)
+            << "tangential row " << a;
+        EXPECT_LE((rs.tangent.row(d + a).tail(d) - rc.tangent.row(nd + a).tail(d)).cwiseAbs().maxCoeff(),
+                  10 * ddc::test::kRoundoff)
+            << "multiplier columns of tangential row " << a << " (the slave's)";
+        EXPECT_EQ(rm.tangent.row(d * m + a).tail(d).cwiseAbs().maxCoeff(), 0.0) << "none in the master's";
+      }
+    }
+}
+
+TEST(Friction, TheStickSlipDecisionAndTheTangentBasis) {
+  ddc::FrictionPairState f;
+  f.coefficient = 0.5;
+  f.stiffness = 10.0;
+  const double lambdaN = -2.0;  // p = 2: the cone's radius μ p = 1
+  const double lt[2] = {0.3, 0.0};
+  const double small[2] = {0.05, 0.0}, large[2] = {0.08, 0.0};  // |z| = 0.8, 1.1
+  EXPECT_TRUE(ddc::sticks(1, small, lambdaN, lt, f));
+  EXPECT_FALSE(ddc::sticks(1, large, lambdaN, lt, f));
+  // On the cone: a sticking pair slips, a slipping pair stays slipping just
+  // inside it (hysteresis), and returns to stick below it.
+  const double onCone[2] = {0.07, 0.0};
+  EXPECT_FALSE(ddc::sticks(1, onCone, lambdaN, lt, f));
+  const double inside[2] = {0.07 - 1e-10, 0.0};
+  EXPECT_TRUE(ddc::sticks(1, inside, lambdaN, lt, f));
+  f.stick = false;
+  EXPECT_FALSE(ddc::sticks(1, inside, lambdaN, lt, f));
+  EXPECT_TRUE(ddc::sticks(1, small, lambdaN, lt, f));
+  // In tension nothing sticks.
+  EXPECT_FALSE(ddc::sticks(1, small, 0.5, lt, f));
+  // The slip row puts λ_t on the cone along the predictor.
+  const auto rows = ddc::frictionRows(1, large, lambdaN, lt, f);
+  EXPECT_NEAR(rows.residual[0], (0.3 - 1.0) / 10.0, 1e-15);
+  // Tangent bases: unit, orthogonal to n and to each other; 2-D τ = (−n_y, n_x).
+  const Eigen::Vector3d n2(0.6, -0.8, 0.0);
+  const auto b2 = ddc::tangentBasis(2, n2);
+  EXPECT_NEAR((b2[0] - Eigen::Vector3d(0.8, 0.6, 0.0)).norm(), 0.0, 1e-15);
+  const Eigen::Vector3d n3 = Eigen::Vector3d(0.2, -0.3, 0.9).normalized();
+  for (const Eigen::Vector3d& previous : {Eigen::Vector3d::Zero().eval(), Eigen::Vector3d(1, 0, 0), n3}) {
+    const auto b = ddc::tangentBasis(3, n3, previous);
+    EXPECT_NEAR(b[0].norm(), 1.0, 1e-14);
+    EXPECT_NEAR(b[1].norm(), 1.0, 1e-14);
+    EXPECT_NEAR(b[0].dot(n3), 0.0, 1e-14);
+    EXPECT_NEAR(b[1].dot(n3), 0.0, 1e-14);
+    EXPECT_NEAR(b[0].dot(b[1]), 0.0, 1e-14);
+  }
+  // A small rotation of n rotates τ_1 little (minimal rotation from the previous τ_1).
+  const auto before = ddc::tangentBasis(3, n3, Eigen::Vector3d(1, 0, 0));
+  const Eigen::Vector3d n3b = (n3 + Eigen::Vector3d(1e-3, 0, 0)).normalized();
+  EXPECT_LT((ddc::tangentBasis(3, n3b, before[0])[0] - before[0]).norm(), 2e-3);
+}

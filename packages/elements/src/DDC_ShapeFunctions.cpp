@@ -264,6 +264,11 @@ void shapeFunctionsT(CellType cell, const T* xi, T* N, T* dN) {
 template void shapeFunctionsT<double>(CellType, const double*, double*, double*);
 template void shapeFunctionsT<Sacado::Fad::DFad<double>>(CellType, const Sacado::Fad::DFad<double>*,
                                                           Sacado::Fad::DFad<double>*, Sacado::Fad::DFad<double>*);
+// Nested: the second derivatives of the frictional contact element
+// (DDC_NodeToSurface.cpp) through the projection.
+template void shapeFunctionsT<Sacado::Fad::DFad<Sacado::Fad::DFad<double>>>(
+    CellType, const Sacado::Fad::DFad<Sacado::Fad::DFad<double>>*, Sacado::Fad::DFad<Sacado::Fad::DFad<double>>*,
+    Sacado::Fad::DFad<Sacado::Fad::DFad<double>>*);
 
 void shapeFunctions(CellType cell, const std::array<double, 3>& xi, Eigen::VectorXd* N, Eigen::MatrixXd* dN) {
   const ReferenceCell& c = referenceCell(cell);
