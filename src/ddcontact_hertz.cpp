@@ -83,9 +83,14 @@ constexpr double kQuarterModel = 4.0;
 /// (the generator puts the pole node exactly on it).
 constexpr double kOnAxis = 1e-9;
 
+/// A row of contact_nodes.csv (doc/user-guide.md, "The output directory"),
+/// with r, the distance from the sphere's axis.
 struct Row {
-  double r = 0, multiplier = 0, pressure = 0;
+  double r = 0, x = 0, y = 0, multiplier = 0, tributary = 0, pressure = 0;
   bool active = false;
+  double tangential[3] = {0, 0, 0};  ///< tangential force on the slave node
+  double slip = 0;
+  int state = 0;  ///< 0 open, 1 stick, 2 slip
 };
 
 struct Material {
@@ -107,7 +112,8 @@ std::vector<Row> readContactNodes(const std::string& file, double cx, double cy)
   if (!in) throw BadInput("cannot read '" + file + "' (run with Output/Contact Nodes = true)");
   std::string line;
   std::getline(in, line);
-  const std::string header = "pair,node,x,y,z,gap,multiplier,tributary_area,pressure,active";
+  const std::string header =
+      "pair,node,x,y,z,gap,multiplier,tributary_area,pressure,active,tangential_x,tangential_y,tangential_z,slip,state";
   if (line != header) throw BadInput(file + ": header is not '" + header + "'");
   std::vector<Row> rows;
   int lineNo = 1;
@@ -122,8 +128,13 @@ std::vector<Row> readContactNodes(const std::string& file, double cx, double cy)
       if (cell.empty() || *end != '\0') throw BadInput(file + ":" + std::to_string(lineNo) + ": not a number: '" + cell + "'");
       v.push_back(d);
     }
-    if (v.size() != 10) throw BadInput(file + ":" + std::to_string(lineNo) + ": expected 10 columns");
-    rows.push_back({std::hypot(v[2] - cx, v[3] - cy), v[6], v[8], v[9] != 0.0});
+    if (v.size() != 15) throw BadInput(file + ":" + std::to_string(lineNo) + ": expected 15 columns");
+    Row r;
+    r.r = std::hypot(v[2] - cx, v[3] - cy), r.x = v[2], r.y = v[3];
+    r.multiplier = v[6], r.tributary = v[7], r.pressure = v[8], r.active = v[9] != 0.0;
+    r.tangential[0] = v[10], r.tangential[1] = v[11], r.tangential[2] = v[12], r.slip = v[13];
+    r.state = int(v[14]);
+    rows.push_back(r);
   }
   if (rows.empty()) throw BadInput(file + ": no slave nodes");
   return rows;
