@@ -1,8 +1,10 @@
 // ddcontact-hertz --cattaneo: a run of a plane-strain cylinder pressed on a
 // block of the same material and pushed sideways (examples/cattaneo_2d.xml)
 // against Hertz's and Cattaneo's solutions (doc/contact.md, "Cattaneo";
-// Johnson, Contact Mechanics, 1985, sections 4.3 and 7.1). Per unit
-// thickness, with 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2:
+// Johnson, Contact Mechanics, 1985: chapter 4, Hertz's line contact, and
+// chapter 7, tangential loading with partial slip after Cattaneo 1938 and
+// Mindlin 1949). Per unit thickness, with
+// 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2:
 //
 //   a = sqrt(4 P R / (pi E*)),  p(x) = p0 sqrt(1 - x^2/a^2),  p0 = 2 P / (pi a),
 //   c / a = sqrt(1 - Q / (mu P)),

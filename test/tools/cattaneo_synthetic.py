@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """cattaneo_synthetic.py OUTDIR [--all-slip]: an output directory of the
 Cattaneo problem from the analytic tractions, for ddcontact-hertz --cattaneo
-(doc/contact.md, "Cattaneo"; Johnson, Contact Mechanics, 1985, section 7.1).
+(doc/contact.md, "Cattaneo"; Johnson, Contact Mechanics, 1985, chapter 7).
 
 The cylinder (R = 1, axis x = 0.01, E = 1000, nu = 0.3 as the block) has
 slave nodes every a/100 along its arc over |x| < 1.3 a; the pair's friction
