@@ -113,7 +113,7 @@ def main():
         for surface, nodes, first in ((1, cn, 0), (2, bn, off)):
             f.write(f"2 {surface} 0 {len(nodes)}\n")
             f.write("".join(f"{tag(first + k)}\n" for k in range(len(nodes))))
-            f.write("".join(f"{x:.17g} {y:.17g} 0\n" for x, y in nodes))
+            f.write("".join(f"{x:.12g} {y:.12g} 0\n" for x, y in nodes))
         f.write("$EndNodes\n")
         blocks = [(1, 1, 1, arc, 0), (1, 2, 1, load, 0), (1, 3, 1, top, off), (1, 4, 1, bottom, off),
                   (2, 1, 3, cq, 0), (2, 2, 3, bq, off)]
