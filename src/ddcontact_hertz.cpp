@@ -4,6 +4,8 @@
 //
 //   ddcontact-hertz OUT_DIR [--sphere BODY] [--block BODY] [--profile FILE]
 //                   [--tolerance T]
+//   ddcontact-hertz --cattaneo OUT_DIR [--cylinder BODY] [--block BODY]
+//                   [--profile FILE] [--tolerance-a T] [--tolerance-c T]
 //
 // It reads OUT_DIR/parameters.xml (the run's validated parameters) and
 // OUT_DIR/contact_nodes.csv (Output/Contact Nodes = true). The sphere body
@@ -34,9 +36,14 @@
 // t_c = the last time in contact plus half a step (the release lies within
 // the next step).
 //
+// --cattaneo compares a plane-strain cylinder pressed on a block and pushed
+// sideways (examples/cattaneo_2d.xml) with Hertz's line contact and
+// Cattaneo's stick zone instead (src/ddcontact_hertz_cattaneo.cpp).
+//
 // Exit status: 0 done, 1 --tolerance given and |a or p0 relative error| > T
-// (impact: t_c or F_max), 2 bad input (usage, missing / malformed files, a
-// deck that is no Hertz case, no active node on the axis, no contact).
+// (impact: t_c or F_max; --cattaneo: a or c beyond --tolerance-a / -c), 2
+// bad input (usage, missing / malformed files, a deck that is no Hertz
+// case, no active node on the axis, no contact, no stick zone to fit).
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_XMLParameterListCoreHelpers.hpp>
 
@@ -52,50 +59,14 @@
 #include <string>
 #include <vector>
 
-namespace {
+#include "ddcontact_hertz.hpp"
 
-const char* kUsage =
-    "usage: ddcontact-hertz OUT_DIR [--sphere BODY] [--block BODY] [--profile FILE] [--tolerance T]\n"
-    "\n"
-    "Compares a ddcontact run of a sphere on a block (examples/hertz_sphere.xml) with Hertz's\n"
-    "solution for the contact force the run transmits (doc/contact.md, \"Hertz contact\").\n"
-    "\n"
-    "  OUT_DIR         the run's output directory: parameters.xml and contact_nodes.csv\n"
-    "                  (Output/Contact Nodes = true)\n"
-    "  --sphere BODY   the sphere body, a Sphere Octant (default: Sphere)\n"
-    "  --block BODY    the block body (default: Block)\n"
-    "  --profile FILE  write r,p_fe,p_hertz for every slave node\n"
-    "  --tolerance T   exit 1 if the contact radius or peak pressure differs from Hertz's by\n"
-    "                  more than T (relative)\n"
-    "\n"
-    "A dynamic run (examples/sphere_impact.xml) is compared with Hertz's impact solution\n"
-    "instead: contact time and peak force from OUT_DIR/history.csv (--tolerance applies to both).\n";
-
-struct BadInput : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-constexpr double kPi = 3.14159265358979323846;
-/// The Sphere Octant is a quarter of a hemisphere: the whole sphere's
-/// contact force is 4 times the model's.
-constexpr double kQuarterModel = 4.0;
-/// A slave node "on the axis": within this fraction of the radius of it
-/// (the generator puts the pole node exactly on it).
-constexpr double kOnAxis = 1e-9;
-
-struct Row {
-  double r = 0, multiplier = 0, pressure = 0;
-  bool active = false;
-};
-
-struct Material {
-  double E = 0, nu = 0;
-};
+namespace ddc_hertz {
 
 Material materialOf(const Teuchos::ParameterList& deck, const std::string& body, const std::string& file) {
   const std::string path = "Mesh/Bodies/" + body + "/Element/Material";
   const auto& bodies = deck.sublist("Mesh").sublist("Bodies");
-  if (!bodies.isSublist(body)) throw BadInput(file + ": no body '" + body + "' (use --sphere / --block)");
+  if (!bodies.isSublist(body)) throw BadInput(file + ": no body '" + body + "' (name it with --sphere, --cylinder or --block)");
   const auto& m = bodies.sublist(body).sublist("Element").sublist("Material");
   if (!m.isParameter("Young's Modulus") || !m.isParameter("Poisson's Ratio"))
     throw BadInput(file + ": '" + path + "' has no Young's Modulus / Poisson's Ratio");
@@ -107,7 +78,8 @@ std::vector<Row> readContactNodes(const std::string& file, double cx, double cy)
   if (!in) throw BadInput("cannot read '" + file + "' (run with Output/Contact Nodes = true)");
   std::string line;
   std::getline(in, line);
-  const std::string header = "pair,node,x,y,z,gap,multiplier,tributary_area,pressure,active";
+  const std::string header =
+      "pair,node,x,y,z,gap,multiplier,tributary_area,pressure,active,tangential_x,tangential_y,tangential_z,slip,state";
   if (line != header) throw BadInput(file + ": header is not '" + header + "'");
   std::vector<Row> rows;
   int lineNo = 1;
@@ -122,12 +94,72 @@ std::vector<Row> readContactNodes(const std::string& file, double cx, double cy)
       if (cell.empty() || *end != '\0') throw BadInput(file + ":" + std::to_string(lineNo) + ": not a number: '" + cell + "'");
       v.push_back(d);
     }
-    if (v.size() != 10) throw BadInput(file + ":" + std::to_string(lineNo) + ": expected 10 columns");
-    rows.push_back({std::hypot(v[2] - cx, v[3] - cy), v[6], v[8], v[9] != 0.0});
+    if (v.size() != 15) throw BadInput(file + ":" + std::to_string(lineNo) + ": expected 15 columns");
+    Row r;
+    r.r = std::hypot(v[2] - cx, v[3] - cy), r.x = v[2], r.y = v[3];
+    r.multiplier = v[6], r.tributary = v[7], r.pressure = v[8], r.active = v[9] != 0.0;
+    r.tangential[0] = v[10], r.tangential[1] = v[11], r.tangential[2] = v[12], r.slip = v[13];
+    r.state = int(v[14]);
+    rows.push_back(r);
   }
   if (rows.empty()) throw BadInput(file + ": no slave nodes");
   return rows;
 }
+
+double fittedHalfWidth(const std::vector<double>& s, const std::vector<double>& y) {
+  double s1 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    const double x = s[i] * s[i];
+    s1 += 1, sx += x, sy += y[i], sxx += x * x, sxy += x * y[i];
+  }
+  const double det = s1 * sxx - sx * sx;
+  const double B = det > 0 ? (s1 * sxy - sx * sy) / det : 0.0, A = det > 0 ? (sy - B * sx) / s1 : 0.0;
+  return (A > 0 && B < 0) ? std::sqrt(-A / B) : std::nan("");
+}
+
+}  // namespace ddc_hertz
+
+namespace {
+
+using namespace ddc_hertz;
+
+const char* kUsage =
+    "usage: ddcontact-hertz OUT_DIR [--sphere BODY] [--block BODY] [--profile FILE] [--tolerance T]\n"
+    "       ddcontact-hertz --cattaneo OUT_DIR [--cylinder BODY] [--block BODY] [--profile FILE]\n"
+    "                       [--tolerance-a T] [--tolerance-c T]\n"
+    "\n"
+    "Compares a ddcontact run of a sphere on a block (examples/hertz_sphere.xml) with Hertz's\n"
+    "solution for the contact force the run transmits (doc/contact.md, \"Hertz contact\").\n"
+    "\n"
+    "  OUT_DIR         the run's output directory: parameters.xml and contact_nodes.csv\n"
+    "                  (Output/Contact Nodes = true)\n"
+    "  --sphere BODY   the sphere body, a Sphere Octant (default: Sphere)\n"
+    "  --block BODY    the block body (default: Block)\n"
+    "  --profile FILE  write r,p_fe,p_hertz for every slave node\n"
+    "  --tolerance T   exit 1 if the contact radius or peak pressure differs from Hertz's by\n"
+    "                  more than T (relative)\n"
+    "\n"
+    "A dynamic run (examples/sphere_impact.xml) is compared with Hertz's impact solution\n"
+    "instead: contact time and peak force from OUT_DIR/history.csv (--tolerance applies to both).\n"
+    "\n"
+    "--cattaneo: a plane-strain cylinder pressed on a block of the same material and pushed\n"
+    "sideways by Q < mu P (examples/cattaneo_2d.xml; doc/contact.md, \"Cattaneo\"): the contact\n"
+    "half-width a against Hertz's for the transmitted P, and with friction (the pair's Friction\n"
+    "Coefficient mu > 0) and Q > 0 the stick half-width c against Cattaneo's a sqrt(1 - Q/(mu P)).\n"
+    "The deck has one contact pair, the cylinder's surface its slave side (R and the axis are\n"
+    "fitted to the slave nodes), the contact normal along y and Q along x.\n"
+    "  --cylinder BODY  the cylinder body (default: Cylinder)\n"
+    "  --profile FILE   write x,p_fe,p_hertz,q_fe,q_cattaneo,state for every slave node\n"
+    "  --tolerance-a T  exit 1 if a differs from Hertz's by more than T (relative)\n"
+    "  --tolerance-c T  exit 1 if c differs from Cattaneo's by more than T (relative; needs\n"
+    "                   mu > 0 and Q > 0)\n";
+
+/// The Sphere Octant is a quarter of a hemisphere: the whole sphere's
+/// contact force is 4 times the model's.
+constexpr double kQuarterModel = 4.0;
+/// A slave node "on the axis": within this fraction of the radius of it
+/// (the generator puts the pole node exactly on it).
+constexpr double kOnAxis = 1e-9;
 
 /// A column of history.csv by name.
 std::vector<double> historyColumn(const std::string& file, const std::string& name) {
@@ -211,10 +243,19 @@ int impact(const std::string& dir, const Teuchos::ParameterList& deck, const std
 
 /// The command line (kUsage).
 struct Options {
-  std::string dir, sphere = "Sphere", block = "Block", profile;
-  double tolerance = -1.0;
+  std::string dir, sphere = "Sphere", block = "Block", profile, cylinder = "Cylinder";
+  double tolerance = -1.0, toleranceA = -1.0, toleranceC = -1.0;
+  bool cattaneo = false;
   bool help = false;  ///< --help: print kUsage, nothing else
 };
+
+/// The value of option `name`, a number > 0. \throws BadInput
+double positiveNumber(const std::string& name, const std::string& t) {
+  char* end = nullptr;
+  const double v = std::strtod(t.c_str(), &end);
+  if (t.empty() || *end != '\0' || !(v > 0)) throw BadInput(name + " needs a number > 0, got '" + t + "'");
+  return v;
+}
 
 /// The options; stops at --help. \throws BadInput for a bad command line.
 Options parseArguments(int argc, char** argv) {
@@ -235,11 +276,15 @@ Options parseArguments(int argc, char** argv) {
     } else if (a == "--profile") {
       o.profile = value();
     } else if (a == "--tolerance") {
-      const std::string t = value();
-      char* end = nullptr;
-      o.tolerance = std::strtod(t.c_str(), &end);
-      if (t.empty() || *end != '\0' || !(o.tolerance > 0))
-        throw BadInput("--tolerance needs a number > 0, got '" + t + "'");
+      o.tolerance = positiveNumber(a, value());
+    } else if (a == "--cattaneo") {
+      o.cattaneo = true;
+    } else if (a == "--cylinder") {
+      o.cylinder = value();
+    } else if (a == "--tolerance-a") {
+      o.toleranceA = positiveNumber(a, value());
+    } else if (a == "--tolerance-c") {
+      o.toleranceC = positiveNumber(a, value());
     } else if (!a.empty() && a[0] == '-') {
       throw BadInput("unknown option '" + a + "'");
     } else if (o.dir.empty()) {
@@ -249,21 +294,19 @@ Options parseArguments(int argc, char** argv) {
     }
   }
   if (o.dir.empty()) throw BadInput("no output directory given");
+  if (o.cattaneo && o.tolerance > 0) throw BadInput("--cattaneo takes --tolerance-a and --tolerance-c, not --tolerance");
+  if (!o.cattaneo && (o.toleranceA > 0 || o.toleranceC > 0))
+    throw BadInput("--tolerance-a and --tolerance-c apply to --cattaneo only (use --tolerance)");
   return o;
 }
 
 /// The contact radius from a least-squares fit of p^2 = A + B r^2 over the
 /// active nodes: sqrt(-A / B), NaN where the fit has no such root.
 double fittedContactRadius(const std::vector<Row>& rows) {
-  double s1 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (const Row& r : rows)
-    if (r.active) {
-      const double x = r.r * r.r, y = r.pressure * r.pressure;
-      s1 += 1, sx += x, sy += y, sxx += x * x, sxy += x * y;
-    }
-  const double det = s1 * sxx - sx * sx;
-  const double B = det > 0 ? (s1 * sxy - sx * sy) / det : 0.0, A = det > 0 ? (sy - B * sx) / s1 : 0.0;
-  return (A > 0 && B < 0) ? std::sqrt(-A / B) : std::nan("");
+  std::vector<double> r, p2;
+  for (const Row& row : rows)
+    if (row.active) r.push_back(row.r), p2.push_back(row.pressure * row.pressure);
+  return fittedHalfWidth(r, p2);
 }
 
 /// Hertz's static solution against the contact nodes of a static run
@@ -327,6 +370,12 @@ int run(int argc, char** argv) {
     deck = Teuchos::getParametersFromXmlFile(xml);
   } catch (const std::exception& e) {
     throw BadInput(xml + ": " + e.what());
+  }
+  if (o.cattaneo) {
+    CattaneoOptions c;
+    c.dir = o.dir, c.cylinder = o.cylinder, c.block = o.block, c.profile = o.profile;
+    c.toleranceA = o.toleranceA, c.toleranceC = o.toleranceC;
+    return cattaneo(c, *deck, xml);
   }
   const auto& bodies = deck->sublist("Mesh").sublist("Bodies");
   if (!bodies.isSublist(o.sphere)) throw BadInput(xml + ": no body '" + o.sphere + "' (use --sphere)");

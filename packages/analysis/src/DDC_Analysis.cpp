@@ -75,6 +75,14 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
   nearlyIncompressible_ = nearlyIncompressibleBodies(*mesh, meshParams);
   requireAdmissibleElements(*mesh, elements);
   auto bcs = BoundaryConditions::fromParameters(params.sublist("Boundary Conditions"), *mesh, "Boundary Conditions");
+  // The integrators' terms of the previous step take the external force as
+  // the time times Model::externalForce(): a traction's Load Curve is static.
+  for (const auto& t : bcs.tractions)
+    DDC_INPUT_REQUIRE(!dynamic_ || t.curve.empty(),
+                      "parameter 'Boundary Conditions/" << t.name << "/Load Curve' is set on a traction, but "
+                          "'Dynamics/Integrator' is not None: a traction's Load Curve applies to static runs "
+                          "only; remove it (the traction then grows with the time) or set 'Dynamics/Integrator' "
+                          "= None");
   auto contact = ContactOptions::fromParameters(params.sublist("Contact"), *mesh, "Contact");
   if (dynamic_ && params.sublist("Contact").get<std::string>("Initial Contact State") == "Automatic")
     contact.initialInContact = false;  // Previous Step: a time step changes the active set little

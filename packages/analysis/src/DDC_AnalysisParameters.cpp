@@ -277,7 +277,8 @@ Teuchos::RCP<PL> outputValidParameters() {
           atLeast(0));
   pl->set("Contact Nodes", false,
           "Write contact_nodes.csv: one row per contact slave node at the last converged step (pair, node, "
-          "reference x y z, gap, multiplier, tributary area, pressure, active), for contact-pressure "
+          "reference x y z, gap, multiplier, tributary area, pressure, active, tangential force x y z, slip, state: "
+          "0 open, 1 stick, 2 slip), for contact-pressure "
           "distributions such as Hertz's (doc/contact.md).");
   return pl;
 }

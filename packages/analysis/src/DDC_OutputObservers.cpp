@@ -144,13 +144,16 @@ void ContactNodesObserver::finished(const StepLoop& loop) {
   std::string error;
   if (model.comm()->getRank() == 0) {
     std::ostringstream os;
-    os << "pair,node,x,y,z,gap,multiplier,tributary_area,pressure,active\n";
+    os << "pair,node,x,y,z,gap,multiplier,tributary_area,pressure,active,tangential_x,tangential_y,tangential_z,"
+          "slip,state\n";
     os.precision(17);
     for (const auto& s : loop.state().convergedSlots) {
       const auto& X = model.mesh().coord(s.slaveNode);
+      const Eigen::Vector3d t = s.tangentialForce() + Eigen::Vector3d::Zero();  // + 0: no "-0" when zero
       os << s.pair << ',' << s.slaveNode << ',' << X[0] << ',' << X[1] << ',' << (model.dim() == 3 ? X[2] : 0.0)
          << ',' << (s.paired() ? s.gap : 0.0) << ',' << (s.active ? s.state.multiplier : 0.0) << ','
-         << s.tributaryLength << ',' << s.pressure() << ',' << (s.active ? 1 : 0) << '\n';
+         << s.tributaryLength << ',' << s.pressure() << ',' << (s.active ? 1 : 0) << ',' << t[0] << ',' << t[1]
+         << ',' << t[2] << ',' << s.slip << ',' << int(s.contactState()) << '\n';
     }
     try {
       writeFileAtomically(path_, os.str());

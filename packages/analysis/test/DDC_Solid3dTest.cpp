@@ -1,7 +1,8 @@
 // 3-D continuum analysis (doc/verification.md "3-D analysis"):
 //   1. tractions on faces: the nodal forces of a uniform traction on a face
 //      set sum to traction x area, for every 3-D cell type (the facet's
-//      quadrature rule, facetQuadratureRule());
+//      quadrature rule, facetQuadratureRule()); a traction's Load Curve
+//      scales them;
 //   2. a cantilever of Hex20, Hex27 and Tet10 converges to Timoshenko beam
 //      theory under mesh refinement (within 1% on the finest mesh);
 //   3. a body held at two nodes only, or by prescribed displacements that
@@ -65,6 +66,54 @@ TEST(Solid3d, TractionOnAFaceSumsToTractionTimesArea) {
           << type << ": component " << c << " of the traction resultant is " << sum;
     }
   }
+}
+
+/// A Hex8 block 1.5 x 2 x 3 held on its left face, the traction `t` on its
+/// right face (area 6) with `curve` as its Load Curve (empty: none), two
+/// load steps.
+PL tractionBlock(const std::array<double, 3>& t, const std::string& curve) {
+  PL deck("DDContact");
+  BoxSpec box;
+  box.length[0] = 1.5, box.length[1] = 2.0, box.length[2] = 3.0;
+  box.elements[0] = 2, box.elements[1] = 3, box.elements[2] = 2;
+  addBox(deck, "Block", box);
+  setRunOptions(deck, 2);
+  addDisplacement(deck, "Clamped", "Block/left", "All");
+  addTraction3(deck, "Load", "Block/right", t);
+  if (!curve.empty()) deck.sublist("Boundary Conditions").sublist("Load").set("Load Curve", curve);
+  return deck;
+}
+
+// A traction with the Load Curve '0 0, 0.5 0, 1 1' (a push after a press:
+// examples/cattaneo_2d.xml) has no force up to load factor 0.5 and its whole
+// force at 1 (the resultant s(λ) t |face|, as above), and the run's
+// residual takes it so: no strain energy in step 1 (λ = 0.5), the energy of
+// the plain traction's run at λ = 1 in step 2.
+TEST(Solid3d, TractionWithALoadCurveStartsWhereTheCurveRises) {
+  const std::array<double, 3> t = {0.7, -1.3, 2.1};
+  PL curved = tractionBlock(t, "0 0, 0.5 0, 1 1"), straight = tractionBlock(t, "");
+  ddc::Analysis a(worldComm(), curved);
+  const ddc::Model& m = a.model();
+  auto f = m.createVector();
+  for (const auto& [lambda, s] : std::vector<std::array<double, 2>>{{0.25, 0.0}, {0.5, 0.0}, {0.75, 0.5}, {1.0, 1.0}}) {
+    m.externalForceAt(lambda, *f);
+    const auto g = gatherDisplacement(m, *f);
+    for (int c = 0; c < 3; ++c) {
+      double sum = 0.0;
+      for (int n = 0; n < m.mesh().numNodes(); ++n) sum += g[3 * n + c];
+      EXPECT_LE(std::abs(sum - s * 6.0 * t[c]), kTractionResultant * 6.0 * std::abs(t[c]))
+          << "load factor " << lambda << ": component " << c << " of the resultant is " << sum;
+    }
+  }
+  a.run("");
+  ddc::Analysis plain(worldComm(), straight);
+  plain.run("");
+  ASSERT_EQ(a.history().size(), 2u);
+  ASSERT_EQ(plain.history().size(), 2u);
+  EXPECT_EQ(a.history()[0].loadFactor, 0.5);
+  EXPECT_EQ(a.history()[0].strainEnergy, 0.0);
+  EXPECT_GT(plain.history()[0].strainEnergy, 0.0);
+  EXPECT_LE(relDiff(a.history()[1].strainEnergy, plain.history()[1].strainEnergy), kEnergyIdentity);
 }
 
 // ---------------------------------------------------------------------------

@@ -9,7 +9,7 @@
 
 namespace ddc {
 
-double DisplacementCondition::scale(double lambda) const {
+double loadCurveValue(const std::vector<std::array<double, 2>>& curve, double lambda) {
   if (curve.empty()) return lambda;
   if (lambda <= curve.front()[0]) return curve.front()[1];
   for (std::size_t i = 1; i < curve.size(); ++i)
@@ -19,6 +19,10 @@ double DisplacementCondition::scale(double lambda) const {
     }
   return curve.back()[1];
 }
+
+double DisplacementCondition::scale(double lambda) const { return loadCurveValue(curve, lambda); }
+
+double TractionCondition::scale(double lambda) const { return loadCurveValue(curve, lambda); }
 
 double DisplacementCondition::prescribed(int c, const std::array<double, 3>& X, double loadFactor) const {
   const double lambda = scale(loadFactor);
@@ -92,10 +96,11 @@ Teuchos::RCP<const Teuchos::ParameterList> BoundaryConditions::getValidParameter
               "du_x/dY); adds H (X - centre) to the values, for affine fields. Entries with Z: 3-D only.",
               finiteNumber());
   pl->set("Load Curve", "",
-          "Displacement: piecewise-linear factor s(load factor) of the values, gradient and angle, as "
-          "points 'load-factor value' separated by commas, load factors strictly increasing, constant "
-          "beyond the first and last point; e.g. '0 0, 0.25 1, 1 1' applies the values by load factor "
-          "0.25 and holds them, '0 0, 0.25 0, 1 1' starts them at 0.25. Empty: s = the load factor.");
+          "Piecewise-linear factor s(load factor) of a displacement's values, gradient and angle or of a "
+          "traction, as points 'load-factor value' separated by commas, load factors strictly increasing, "
+          "constant beyond the first and last point; e.g. '0 0, 0.25 1, 1 1' applies the values by load "
+          "factor 0.25 and holds them, '0 0, 0.25 0, 1 1' starts them at 0.25. Empty: s = the load factor. "
+          "A traction's Load Curve is for static runs (Dynamics/Integrator = None).");
   pl->set("Rotation Angle", 0.0,
           "Displacement: rigid rotation (degrees, counter-clockwise about the rotation axis) about the centre at "
           "load factor 1, added to the values; the angle grows linearly with the load factor. Needs every "
@@ -221,9 +226,6 @@ TractionCondition readTraction(const ConditionList& c, const std::string& name, 
     for (const char* b : kAxes) c.forbid(std::string("Gradient ") + a + b);
   }
   for (const char* key : {"Rotation Angle", "Rotation Axis X", "Rotation Axis Y", "Rotation Axis Z"}) c.forbid(key);
-  DDC_INPUT_REQUIRE(p.get<std::string>("Load Curve").empty(),
-                    "parameter '" << where << "/Load Curve' does not apply to Type = Traction (tractions "
-                                  << "grow with the load factor)");
   // "XY" was the default in 2-D before "All"; decks that spell it out keep working.
   const std::string comps = p.isParameter("Components") ? p.get<std::string>("Components") : "All";
   DDC_INPUT_REQUIRE(comps == "All" || (dim == 2 && comps == "XY"),
@@ -246,6 +248,8 @@ TractionCondition readTraction(const ConditionList& c, const std::string& name, 
   t.name = name;
   t.setName = set;
   for (int k = 0; k < 3; ++k) t.traction[k] = p.get<double>(std::string("Traction ") + kAxes[k]);
+  if (!p.get<std::string>("Load Curve").empty())
+    t.curve = parseLoadCurve(p.get<std::string>("Load Curve"), where + "/Load Curve");
   return t;
 }
 

@@ -41,12 +41,23 @@ struct DisplacementCondition {
 };
 
 /// A dead traction (force per unit reference length in 2-D, per unit
-/// reference area in 3-D) on a side set, scaled by λ.
+/// reference area in 3-D) on a side set, scaled by s(λ): λ, or the load
+/// curve as for a DisplacementCondition ("0 0, 0.5 0, 1 1": none until
+/// λ = 0.5, then growing to the whole traction; a press, then a push
+/// sideways: examples/cattaneo_2d.xml).
 struct TractionCondition {
   std::string name;
   std::string setName;  ///< qualified side set
   double traction[3] = {0.0, 0.0, 0.0};
+  /// Load curve points (λ_i strictly increasing, s_i); empty: s(λ) = λ.
+  std::vector<std::array<double, 2>> curve;
+  /// s(λ): the factor of the traction at load factor λ.
+  double scale(double lambda) const;
 };
+
+/// The piecewise-linear function through `curve` at λ (constant beyond its
+/// first and last point); λ itself when `curve` is empty.
+double loadCurveValue(const std::vector<std::array<double, 2>>& curve, double lambda);
 
 /// All boundary conditions of a model, parsed from "Boundary Conditions".
 struct BoundaryConditions {

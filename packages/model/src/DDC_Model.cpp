@@ -355,6 +355,29 @@ void Model::buildTopology() {
 }
 
 void Model::assembleTractions() {
+  std::vector<int> all, proportional;
+  curvedTractions_.clear();
+  for (int k = 0; k < int(bcs_.tractions.size()); ++k) {
+    all.push_back(k);
+    if (bcs_.tractions[k].curve.empty())
+      proportional.push_back(k);
+    else
+      curvedTractions_.emplace_back(k, tractionForce({k}));
+  }
+  fext_ = tractionForce(all);
+  proportionalForce_ = curvedTractions_.empty() ? Teuchos::null : tractionForce(proportional);
+}
+
+void Model::externalForceAt(double lambda, Vector& out) const {
+  if (curvedTractions_.empty()) {
+    out.update(lambda, *fext_, 0.0);
+    return;
+  }
+  out.update(lambda, *proportionalForce_, 0.0);
+  for (const auto& [k, f] : curvedTractions_) out.update(bcs_.tractions[k].scale(lambda), *f, 1.0);
+}
+
+Teuchos::RCP<Vector> Model::tractionForce(const std::vector<int>& which) const {
   const Mesh& mesh = *mesh_;
   auto fov = Teuchos::rcp(new Vector(overlapMap_));
   auto f = fov->getDataNonConst();
@@ -365,7 +388,8 @@ void Model::assembleTractions() {
   const int d = mesh.dim();
   Eigen::VectorXd N;
   Eigen::MatrixXd dN, xf;
-  for (const auto& t : bcs_.tractions) {
+  for (int k : which) {
+    const TractionCondition& t = bcs_.tractions[k];
     for (const Segment& s : mesh.sideSet(t.setName)) {
       if (!isLocal[s.element]) continue;
       const CellType facet = referenceCell(mesh.body(mesh.elementBody(s.element)).cellType).facets[s.localSide].type;
@@ -385,8 +409,9 @@ void Model::assembleTractions() {
     }
   }
   f = Teuchos::null;
-  fext_ = createVector();
-  fext_->doExport(*fov, *exporter_, Tpetra::ADD);
+  auto owned = createVector();
+  owned->doExport(*fov, *exporter_, Tpetra::ADD);
+  return owned;
 }
 
 Teuchos::RCP<Vector> Model::createVector() const { return Teuchos::rcp(new Vector(ownedMap_)); }

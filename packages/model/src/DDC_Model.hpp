@@ -188,7 +188,16 @@ class Model {
   /// The force of setBodyForce(), or nullptr if none was set.
   const Vector* bodyForce() const { return bodyForce_.get(); }
 
+  /// The force of every traction at s = 1 (its Load Curve aside), which the
+  /// load factor scales: the external force at load factor λ is λ times it
+  /// when no traction has a Load Curve. Owned map.
   const Vector& externalForce() const { return *fext_; }
+  /// The external force at load factor λ, Σ s_t(λ) f_t over the tractions
+  /// (s_t their Load Curve, else λ), into `out` (owned map).
+  void externalForceAt(double lambda, Vector& out) const;
+  /// Whether a traction has a Load Curve (externalForceAt() is then not
+  /// λ externalForce()).
+  bool hasTractionCurves() const { return !curvedTractions_.empty(); }
   Teuchos::RCP<Vector> toOverlap(const Vector& owned) const;
   const Element& elementOf(int e) const { return *elements_[mesh_->elementBody(e)]; }
 
@@ -280,6 +289,9 @@ class Model {
   void buildConstraints();
   void buildTopology();
   void assembleTractions();
+  /// The nodal forces of the tractions `which` (indices in bcs_.tractions)
+  /// at s = 1, owned map.
+  Teuchos::RCP<Vector> tractionForce(const std::vector<int>& which) const;
   /// DOF list of one element (global ids).
   void elementDofs(int e, std::vector<GO>& dofs) const;
   /// The mass matrix of the i-th local element (localElements_[i]), computed
@@ -323,6 +335,10 @@ class Model {
   Teuchos::RCP<const Tpetra::Export<LO, GO, Node>> exporter_;
   Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> importer_;
   Teuchos::RCP<Vector> fext_;
+  /// With curvedTractions_: the force of the tractions without a Load Curve.
+  Teuchos::RCP<Vector> proportionalForce_;
+  /// Each traction with a Load Curve (index in bcs_.tractions) and its force at s = 1.
+  std::vector<std::pair<int, Teuchos::RCP<Vector>>> curvedTractions_;
   int topologyVersion_ = 0;
 };
 

@@ -299,9 +299,16 @@ void Model::Assembly::exportResidual(double lambda) {
   residual.putScalar(0.0);
   residual.doExport(*rov_, *m_.exporter_, Tpetra::ADD);
   auto r = residual.getDataNonConst();
-  auto f = m_.fext_->getData();
+  // λ f_ext, or with a traction's Load Curve Σ s_t(λ) f_t (externalForceAt()).
+  Teuchos::RCP<Vector> curved;
+  if (m_.hasTractionCurves()) {
+    curved = m_.createVector();
+    m_.externalForceAt(lambda, *curved);
+  }
+  auto f = curved ? curved->getData() : m_.fext_->getData();
+  const double factor = curved ? 1.0 : lambda;
   for (size_t l = 0; l < numOwned; ++l)
-    if (!m_.constrained_[first + l]) r[l] -= lambda * f[l];
+    if (!m_.constrained_[first + l]) r[l] -= factor * f[l];
   if (m_.bodyForce_) {
     auto b = m_.bodyForce_->getData();
     for (size_t l = 0; l < numOwned; ++l)

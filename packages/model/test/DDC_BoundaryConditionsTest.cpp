@@ -33,6 +33,14 @@ ddc::Mesh oneCell(CellType type) {
   return m;
 }
 
+/// oneCell() with its first face as the side set "Body/all" too (what a
+/// traction acts on).
+ddc::Mesh oneCellWithFace(CellType type) {
+  ddc::Mesh m = oneCell(type);
+  m.addSideSet(0, "all", {m.makeSegment(0, 0)});
+  return m;
+}
+
 BoundaryConditions parse(const ddc::Mesh& m, PL condition) {
   PL list("Boundary Conditions");
   condition.set("Set", "Body/all");
@@ -183,10 +191,33 @@ TEST(BoundaryConditions, LoadCurveErrorsNameThePath) {
   EXPECT_THAT(curve("0 0, 0.5 1, 0.5 2"), HasSubstr("the load factors must increase strictly (0.5 follows 0.5)"));
   EXPECT_THAT(curve("0 1"), HasSubstr("a load curve needs at least two points"));
   EXPECT_THAT(curve("0 0, inf 1"), HasSubstr("cannot read ' inf 1'"));
+  // A traction's curve is read alike: the same errors, naming the path.
+  const auto face = oneCellWithFace(CellType::Hex8);
   PL t;
   t.set("Type", "Traction");
-  t.set("Load Curve", "0 0, 1 1");
-  EXPECT_THAT(errorOf(m, t), HasSubstr("parameter 'Boundary Conditions/C/Load Curve' does not apply to Type = Traction"));
+  t.set("Load Curve", "0 0, 0.5 1, 0.5 2");
+  EXPECT_THAT(errorOf(face, t), HasSubstr("parameter 'Boundary Conditions/C/Load Curve' = '0 0, 0.5 1, 0.5 2': the load "
+                                       "factors must increase strictly (0.5 follows 0.5)"));
+}
+
+// A traction's load curve scales it as a displacement's: '0 0, 0.5 0, 1 1'
+// (a push after a press) is nothing up to load factor 0.5, then grows to
+// the whole traction at 1; without a curve s = λ.
+TEST(BoundaryConditions, LoadCurveScalesATraction) {
+  const auto m = oneCellWithFace(CellType::Hex8);
+  PL push;
+  push.set("Type", "Traction");
+  push.set("Traction X", 2.0);
+  push.set("Load Curve", "0 0, 0.5 0, 1 1");
+  const auto t = parse(m, push).tractions.at(0);
+  EXPECT_EQ(t.traction[0], 2.0);
+  EXPECT_EQ(t.scale(0.25), 0.0);
+  EXPECT_EQ(t.scale(0.5), 0.0);
+  EXPECT_NEAR(t.scale(0.75), 0.5, kRoundoff);
+  EXPECT_EQ(t.scale(1.0), 1.0);
+  PL plain;
+  plain.set("Type", "Traction");
+  EXPECT_EQ(parse(m, plain).tractions.at(0).scale(0.3), 0.3);
 }
 
 }  // namespace
