@@ -213,6 +213,24 @@ foreach(case Monolithic_np1 FETI-DP_boxgrid_np1 FETI-DP_boxgrid_np2 FETI-DP_meti
       COLUMNS strain_energy load_factor contact_force_y)
   endif()
 endforeach()
+# The same with Coulomb friction (Friction Coefficient 0.3; doc/contact.md
+# "Friction"), solved monolithically with either formulation on 1 and 2 ranks:
+# both blocks strain alike, so the interface sticks with no tangential force
+# and the checks above hold unchanged. The left slave node and its master
+# point are both on x-rollers: their tangential row holds nothing and its
+# multiplier is restrained to zero (without that the matrix was singular).
+foreach(case decomposed_np1 decomposed_np2 conventional_np1 conventional_np2)
+  string(REGEX MATCH "[0-9]+$" np ${case})
+  set(name dd_contact_patch_friction_${case})
+  set(args ${DDC_INPUTS}/dd_contact_patch_press.xml --output-dir ${DDC_RUNS}/${name} --set "Solver/Strategy=Monolithic"
+    --set "Contact/Pairs/Interface/Friction Coefficient=0.3")
+  if(case MATCHES "^conventional")
+    list(APPEND args --set "Contact/Formulation=Node-To-Surface")
+  endif()
+  ddc_add_run_test(${name} RANKS ${np} FIXTURE ARGS ${args} FILES ${DDC_RUNS}/${name}/history.csv
+    LABELS contact dd_contact REGEX "step +2/2.*contacts 13")
+  dd_contact_check(${name}_force ${name} NROWS 2 CHECKS ${DD_PATCH_CHECKS})
+endforeach()
 # The same under a pressure p = 5 on general non-matching meshes (7 under 10,
 # neo-Hookean; inputs/dd_contact_patch_pressure.xml): by equilibrium of the
 # upper block the contact force is exactly (., 5) (2.5 at step 1), to 1e-9.
@@ -477,8 +495,15 @@ set_tests_properties(hertz_bad_inputs_setup PROPERTIES FIXTURES_REQUIRED hertz_s
 # example without friction, the cylinder's top held in x too, on 1 rank, in
 # 2 steps (the press, then the hold: without friction the answer does not
 # depend on the path; 6 steps give the same a): a within 2 % of Hertz's
-# (measured -0.48 %). The frictional check (c within
-# --tolerance-c) runs once the pair has a Friction Coefficient.
+# (measured -0.48 %). cattaneo_2d_<formulation>_np<r>: the deck as shipped
+# (Friction Coefficient 0.3; only friction holds the cylinder against Q),
+# solved monolithically, the conventional element on 1 rank and the
+# decomposed one on 2 (each the same on 1, 2 and 3 ranks, measured): a within
+# 2 % of Hertz's, c within 3 % of Cattaneo's (measured -0.54 % / +0.67 %
+# conventional, -0.53 % / +0.14 % decomposed, the same on 1, 2 and 3 ranks).
+# cattaneo_2d_gross_slip: Q three times the deck's (1.5 mu P): every node in
+# contact slips and the run ends with the gross-slip message naming the pair
+# and the body.
 find_program(DDC_SYSTEM_PYTHON python3 PATHS /usr/bin NO_DEFAULT_PATH)
 if(NOT DDC_SYSTEM_PYTHON)
   find_program(DDC_SYSTEM_PYTHON python3)
@@ -496,12 +521,63 @@ ddc_add_tool_test(cattaneo_synthetic_vs_theory TOOL ddcontact-hertz EXPECT succe
 set_tests_properties(cattaneo_synthetic_vs_theory PROPERTIES FIXTURES_REQUIRED cattaneo_synthetic)
 ddc_add_run_test(cattaneo_2d_frictionless RANKS 1 FIXTURE
   ARGS ${CATTANEO} --set "Boundary Conditions/Pressed/Components=All" --set "Load Stepping/Number of Steps=2"
+    --set "Contact/Pairs/Cylinder on block/Friction Coefficient=0"
     --output-dir ${DDC_RUNS}/cattaneo_2d_frictionless
   REGEX "step +2/2 .*contacts [1-9]" FILES ${DDC_RUNS}/cattaneo_2d_frictionless/contact_nodes.csv
   LABELS example contact)
 ddc_add_tool_test(cattaneo_2d_frictionless_vs_theory TOOL ddcontact-hertz EXPECT success LABELS contact
   ARGS --cattaneo ${DDC_RUNS}/cattaneo_2d_frictionless --tolerance-a 0.02 REGEX "check: .a error. <= 0.02: passed")
 set_tests_properties(cattaneo_2d_frictionless_vs_theory PROPERTIES FIXTURES_REQUIRED cattaneo_2d_frictionless)
+# Across partitions: FETI-DP needs every body held by its own supports, so
+# the cylinder's top is slid by a prescribed x displacement (0.0025, Q/(mu P)
+# = 0.5) instead of pushed; the decomposed element solved monolithically is
+# the reference. Box Grid 2 x 2 cuts the contact zone at x = 0 in both
+# bodies, METIS 8 on 2 ranks as METIS cuts (the same on 3 ranks, measured). FETI-DP (stick rows as
+# constraints, slip rows' multipliers stepped onto the cone, doc/feti-dp.md
+# "Friction rows") equals it to 1e-8 in energy and contact force (measured
+# 2e-10) with the same active sets; c within 3 % (measured +0.09 %).
+set(CATTANEO_SLIDE ${CATTANEO} --set "Contact/Formulation=Decomposed Node-To-Surface"
+  --set "Boundary Conditions/Push/Type=Displacement" --set "Boundary Conditions/Push/Components=X"
+  --set "Boundary Conditions/Push/Value X=0.0025" --set "Boundary Conditions/Push/Traction X=0")
+set(CATTANEO_SLIDE_boxgrid --set "Partition/Method=Box Grid" --set "Partition/Box Grid X=2" --set "Partition/Box Grid Y=2")
+set(CATTANEO_SLIDE_metis8 --set "Partition/Method=METIS" --set "Partition/Number of Subdomains=8")
+ddc_add_run_test(cattaneo_2d_slide_Monolithic RANKS 1 FIXTURE
+  ARGS ${CATTANEO_SLIDE} --output-dir ${DDC_RUNS}/cattaneo_2d_slide_Monolithic
+  REGEX "step +6/6 .*contacts [1-9]" FILES ${DDC_RUNS}/cattaneo_2d_slide_Monolithic/history.csv
+  LABELS example contact)
+foreach(case boxgrid_np1 metis8_np2)
+  string(REGEX MATCH "[0-9]+$" np ${case})
+  string(REGEX REPLACE "_np[0-9]+$" "" part ${case})
+  set(run cattaneo_2d_slide_FETI-DP_${case})
+  ddc_add_run_test(${run} RANKS ${np} FIXTURE
+    ARGS ${CATTANEO_SLIDE} ${DD_FETI} ${CATTANEO_SLIDE_${part}} --output-dir ${DDC_RUNS}/${run}
+    REGEX "step +6/6 .*contacts [1-9].*each subdomain factorised 1 time"
+    FILES ${DDC_RUNS}/${run}/contact_nodes.csv ${DDC_RUNS}/${run}/history.csv
+    LABELS example contact feti dd_contact)
+  ddc_compare_histories(${run}_vs_monolithic ${run} cattaneo_2d_slide_Monolithic 1e-8
+    COLUMNS strain_energy contact_force_x contact_force_y LABELS contact feti dd_contact)
+  ddc_compare_histories(${run}_active_set ${run} cattaneo_2d_slide_Monolithic 0
+    COLUMNS active_contacts LABELS contact feti dd_contact)
+  ddc_add_tool_test(${run}_vs_theory TOOL ddcontact-hertz EXPECT success LABELS contact
+    ARGS --cattaneo ${DDC_RUNS}/${run} --tolerance-a 0.02 --tolerance-c 0.03
+    REGEX "check: .a error. <= 0.02: passed.*check: .c error. <= 0.03: passed")
+  set_tests_properties(${run}_vs_theory PROPERTIES FIXTURES_REQUIRED ${run})
+endforeach()
+set(CATTANEO_conventional Node-To-Surface)
+set(CATTANEO_decomposed "Decomposed Node-To-Surface")
+foreach(case conventional_np1 decomposed_np2)
+  string(REGEX MATCH "[0-9]+$" np ${case})
+  string(REGEX REPLACE "_np[0-9]+$" "" form ${case})
+  set(run cattaneo_2d_${case})
+  ddc_add_run_test(${run} RANKS ${np} FIXTURE
+    ARGS ${CATTANEO} --set "Contact/Formulation=${CATTANEO_${form}}" --output-dir ${DDC_RUNS}/${run}
+    REGEX "step +6/6 .*contacts [1-9]" FILES ${DDC_RUNS}/${run}/contact_nodes.csv ${DDC_RUNS}/${run}/history.csv
+    LABELS example contact)
+  ddc_add_tool_test(${run}_vs_theory TOOL ddcontact-hertz EXPECT success LABELS contact
+    ARGS --cattaneo ${DDC_RUNS}/${run} --tolerance-a 0.02 --tolerance-c 0.03
+    REGEX "stick, [0-9]+ slip.*check: .a error. <= 0.02: passed.*check: .c error. <= 0.03: passed")
+  set_tests_properties(${run}_vs_theory PROPERTIES FIXTURES_REQUIRED ${run})
+endforeach()
 
 # ---- contact input that is not contact ---------------------------------------------
 # Contact/Formulation = Decomposed Node-To-Segment in a deck without contact

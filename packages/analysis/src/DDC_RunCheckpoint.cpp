@@ -19,7 +19,9 @@ namespace {
 /// the step records' fields are those the "history fields" section names.
 /// Layout 3: the section kInputFilesSection identifies the mesh and
 /// element-map files the run read.
-constexpr double kCheckpointLayout = 3.0;
+constexpr double kCheckpointLayout = 4.0;  // 4: the contact slots carry Coulomb friction's state
+/// The first layout that records the input files.
+constexpr double kFirstLayoutWithInputFiles = 3.0;
 
 /// The same entries as `v` (on model.ownedMap()) on a map of the
 /// partition-free DOF ids (Model::partitionFreeDof()), in the same local
@@ -111,7 +113,7 @@ void restoreContact(Model& model, RunState& st, const CheckpointReader& c) {
 void requireCheckpointLayout(const CheckpointReader& c) {
   const std::string& file = c.path();
   const auto run = c.has("run") ? c.doubles("run") : std::vector<double>();
-  DDC_INPUT_REQUIRE(run.size() != 4 || run[0] >= kCheckpointLayout,
+  DDC_INPUT_REQUIRE(run.size() != 4 || run[0] >= kFirstLayoutWithInputFiles,
                     "checkpoint '" << file << "': written by another version of DDContact (layout " << run[0]
                                    << ", which does not record the mesh and element-map files the run read, so a "
                                       "restart cannot check that they are unchanged): start the run anew (without "

@@ -179,6 +179,12 @@ TEST(Checkpoint, ContactSlotsRoundTripBitForBit) {
   a.gap = -1e-300;
   a.normal = {1e-17, 2.0, -3.0};
   a.tributaryLength = 0.125;
+  a.tangent = {Eigen::Vector3d(0.6, 0.8, 0.0), Eigen::Vector3d(0.0, 0.0, -1.0)};
+  a.frozen.tangent = {Eigen::Vector3d(1.0 / 3.0, 0.0, 1e-320), Eigen::Vector3d(-0.0, 1.0, 0.0)};
+  a.tangential = {-std::nextafter(0.1, 1.0), 3e-17};
+  a.friction = ddc::FrictionState::Slip;
+  a.tangentialSlip = {1e-9, -2.5e-7};
+  a.slip = std::hypot(1e-9, -2.5e-7);
   ddc::ContactSlot b;  // unpaired, defaults
   const auto back = ddc::unpackSlots(ddc::packSlots({a, b}));
   ASSERT_EQ(back.size(), 2u);
@@ -199,9 +205,17 @@ TEST(Checkpoint, ContactSlotsRoundTripBitForBit) {
   EXPECT_EQ(c.gap, a.gap);
   EXPECT_EQ(c.normal, a.normal);
   EXPECT_EQ(c.tributaryLength, a.tributaryLength);
+  EXPECT_EQ(c.tangent, a.tangent);
+  EXPECT_EQ(c.frozen.tangent, a.frozen.tangent);
+  EXPECT_EQ(c.tangential, a.tangential);
+  EXPECT_EQ(c.friction, a.friction);
+  EXPECT_EQ(c.tangentialSlip, a.tangentialSlip);
+  EXPECT_EQ(c.slip, a.slip);
+  EXPECT_EQ(back[1].friction, ddc::FrictionState::Open);
   EXPECT_FALSE(back[1].paired());
   EXPECT_EQ(back[1].slaveNode, -1);
   EXPECT_THROW(ddc::unpackSlots(std::vector<double>(31, 0.0)), std::invalid_argument);
+  EXPECT_THROW(ddc::unpackSlots(std::vector<double>(30, 0.0)), std::invalid_argument) << "the frictionless layout";
 }
 
 TEST(Restart, ADeckMayChangeOnlyTheStepsTheSolutionMethodAndTheOutput) {

@@ -47,6 +47,11 @@ void ContactComponent::addPairedRecord(const std::vector<char>& record) { pairin
 
 void ContactComponent::activateAllPaired() { pairing_->activateAllPaired(); }
 
+void ContactComponent::beginStep(const Vector& u0) {
+  topology_->requireCommitted("beginStep");
+  pairing_->beginStep(u0);
+}
+
 std::vector<int> ContactComponent::updateActiveSet(const Vector& u, const Vector* multipliers) {
   return pairing_->updateActiveSet(u, multipliers);
 }
@@ -84,7 +89,17 @@ const std::vector<int>& ContactComponent::localMasterSlots() const { return pair
 
 Teuchos::RCP<const Map> ContactComponent::multiplierMap() const { return topology_->multiplierMap(); }
 
-GO ContactComponent::multiplierId(int k) const { return topology_->multiplierId(k); }
+GO ContactComponent::multiplierId(int k, int c) const { return topology_->multiplierId(k, c); }
+
+int ContactComponent::numMultipliers(int k) const { return topology_->numMultipliers(k); }
+
+bool ContactComponent::slipRowHeld(int k, int alpha) const { return pairing_->frozenSlipHeld(k, alpha); }
+
+bool ContactComponent::frictional() const { return topology_->frictional(); }
+
+double ContactComponent::frictionStiffness(int k) const {
+  return topology_->pair(topology_->slots()[k].pair).frictionStiffness;
+}
 
 std::vector<GO> ContactComponent::slotDofs(int k) const { return pairing_->slotDofs(k); }
 

@@ -148,9 +148,15 @@ class ContactComponent {
   /// Activate every paired slot (Initial Contact State = In Contact), except
   /// the fully prescribed ones (fullyPrescribed()).
   void activateAllPaired();
+  /// Start a step (an increment of Newton's method) from the displacements
+  /// u0: the slip of frictional pairs is measured from there
+  /// (DDC_Friction.hpp). Collective; nothing to do without friction.
+  void beginStep(const Vector& u0);
   /// Update gaps and multipliers from (u, λ), then apply the contact-state
   /// rules: release an active slot in tension (λ > 0), activate an inactive
-  /// paired slot with g_N < −tol. Returns the slots whose state changed.
+  /// paired slot with g_N < −tol; an active slot of a frictional pair sticks
+  /// or slips by Coulomb's law (DDC_Friction.hpp), a new contact sticking.
+  /// Returns the slots whose state changed (a stick/slip flip included).
   /// λ: `multipliers` on multiplierMap(), or, when the host gave multiplier
   /// DOFs to setDofs(), null (read from u).
   /// \throws InputError (every rank: the slots are replicated) if a fully
@@ -168,14 +174,20 @@ class ContactComponent {
   bool restoreSlots(const std::vector<ContactSlot>& saved);
 
   // ---- what the host assembles or solves with ---------------------------------
-  /// Decomposed element: the constraint row of every paired slot whose
+  /// Decomposed element: the constraint rows of every paired slot whose
   /// counterparts this rank evaluates (slave: the slots it owns; master: the
-  /// slots whose master facet it registered), in host DOF ids. The
+  /// slots whose master facet it registered), in host DOF ids: the gap's,
+  /// and a frictional pair's slip rows as they are in stick. The
   /// coefficients are the multiplier row of each counterpart's tangent, so
   /// any registered counterpart pair works; they do not depend on the state
   /// (frozen geometry). Zero coefficients are left out.
   /// \throws std::logic_error before the first updatePairing().
   std::vector<ContactRowEntry> contactRows() const;
+  /// Decomposed element: whether slip row `alpha` (0-based tangent
+  /// direction) of frictional slot k has its every displacement coefficient
+  /// on a prescribed DOF, so its multiplier is restrained to zero and the
+  /// row is no constraint (replicated data: any rank, not collective).
+  bool slipRowHeld(int k, int alpha) const;
   /// Every contact contribution evaluated on this rank at (u, λ) — the
   /// conventional element of each owned slot, or the two counterparts where
   /// they live; a released or unpaired slot contributes Π = ½λ² on its
@@ -203,11 +215,19 @@ class ContactComponent {
   const std::vector<int>& localMasterSlots() const;
   /// This rank's multipliers, one per owned slot: a one-to-one map.
   Teuchos::RCP<const Map> multiplierMap() const;
-  /// Multiplier id of slot k (host DOF id when the host gave them).
-  GO multiplierId(int k) const;
+  /// Multiplier c of slot k (host DOF id when the host gave them): c = 0 the
+  /// normal λ_n, 1..dim−1 a frictional pair's tangential λ_t.
+  GO multiplierId(int k, int c = 0) const;
+  /// The multipliers of slot k: 1, or dim in a frictional pair (μ > 0).
+  int numMultipliers(int k) const;
+  /// Whether some pair has friction.
+  bool frictional() const;
+  /// c_t of slot k's pair (ContactPairSurfaces::frictionStiffness; 0 without friction).
+  double frictionStiffness(int k) const;
   /// Host DOF ids of the DOFs of the conventional element of slot k
   /// ([u_s, u_1, ..., u_m, λ]; [λ] when unpaired) and of the decomposed
-  /// counterparts ([u_s, λ] / [u_1, ..., u_m, λ]).
+  /// counterparts ([u_s, λ] / [u_1, ..., u_m, λ]); λ stands for all the
+  /// slot's multipliers (numMultipliers()).
   std::vector<GO> slotDofs(int k) const;
   /// The slave counterpart's DOF ids of slot k ([u_s, λ]).
   std::vector<GO> slaveSideDofs(int k) const;

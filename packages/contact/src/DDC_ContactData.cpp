@@ -8,7 +8,7 @@ namespace ddc {
 
 namespace {
 /// Numbers per slot in packSlots().
-constexpr size_t kPackedSlot = 30;
+constexpr size_t kPackedSlot = 48;
 }  // namespace
 
 std::vector<double> packSlots(const std::vector<ContactSlot>& slots) {
@@ -22,6 +22,11 @@ std::vector<double> packSlots(const std::vector<ContactSlot>& slots) {
                            s.state.frozenNormal.y(), s.frozen.xi[0], s.frozen.xi[1], s.frozen.normal.x(),
                            s.frozen.normal.y(), s.frozen.normal.z(), s.gap, s.normal.x(), s.normal.y(), s.normal.z(),
                            s.tributaryLength});
+    // Coulomb friction: the bases, the tangential multipliers, the state and the slip.
+    for (const auto* basis : {&s.tangent, &s.frozen.tangent})
+      for (const Eigen::Vector3d& t : *basis) out.insert(out.end(), {t.x(), t.y(), t.z()});
+    out.insert(out.end(), {s.tangential[0], s.tangential[1], double(int(s.friction)), s.tangentialSlip[0],
+                           s.tangentialSlip[1], s.slip});
   }
   return out;
 }
@@ -51,6 +56,15 @@ std::vector<ContactSlot> unpackSlots(const std::vector<double>& packed) {
     s.gap = *p++;
     for (int c = 0; c < 3; ++c) s.normal(c) = *p++;
     s.tributaryLength = *p++;
+    for (auto* basis : {&s.tangent, &s.frozen.tangent})
+      for (Eigen::Vector3d& t : *basis)
+        for (int c = 0; c < 3; ++c) t(c) = *p++;
+    s.tangential[0] = *p++;
+    s.tangential[1] = *p++;
+    s.friction = FrictionState(int(*p++));
+    s.tangentialSlip[0] = *p++;
+    s.tangentialSlip[1] = *p++;
+    s.slip = *p++;
   }
   return slots;
 }

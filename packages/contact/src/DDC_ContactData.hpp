@@ -56,6 +56,9 @@ struct ContactSlot {
   std::array<double, 2> tangential{{0.0, 0.0}};
   /// Stick or slip while active; Open otherwise (see contactState()).
   FrictionState friction = FrictionState::Open;
+  /// u_t,α: the slip along `tangent` since the step start at the last
+  /// update of the active set (frictional pairs).
+  std::array<double, 2> tangentialSlip{{0.0, 0.0}};
   /// |u_t|: the tangential slip of the slave node along the master surface
   /// in the last step (zero while it sticks or is open).
   double slip = 0.0;
@@ -89,7 +92,9 @@ std::vector<ContactSlot> unpackSlots(const std::vector<double>& packed);
 /// Summary of the contact state for output.
 struct ContactSummary {
   int active = 0;  ///< active slots
-  double force[3] = {0.0, 0.0, 0.0};  ///< resultant contact force on the slave bodies, Σ -λ n (z = 0 in 2-D)
+  /// Resultant contact force on the slave bodies, Σ −λ n − Σ λ_t,α τ_α
+  /// (the tangential part in frictional pairs; z = 0 in 2-D).
+  double force[3] = {0.0, 0.0, 0.0};
 };
 
 /// A contact-surface node, registered by the rank that owns its DOFs.
@@ -144,6 +149,14 @@ struct ContactPairSurfaces {
   std::vector<int> slaveNodes;  ///< candidate slave nodes; nodes on the master surface are skipped
   std::vector<ContactFacet> slaveFacets;   ///< oriented with the slave body on the left
   std::vector<ContactFacet> masterFacets;  ///< with depth
+  /// Coulomb friction coefficient μ ≥ 0 (doc/contact.md, "Friction"); 0:
+  /// frictionless, one multiplier per slot. With μ > 0 every slot of the
+  /// pair has dim multipliers: λ_n, then λ_t along the tangent basis.
+  double friction = 0.0;
+  /// The complementarity parameter c_t > 0 of a frictional pair (force per
+  /// length; DDC_Friction.hpp): the stick/slip decision and the slip rows'
+  /// scale.
+  double frictionStiffness = 0.0;
 };
 
 /// Options of the component (resolved values, not parameter names).

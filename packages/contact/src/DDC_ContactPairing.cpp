@@ -113,8 +113,18 @@ bool ContactPairing::keepPreviousFacet(const Pair& pair, ContactSlot& s, const F
     return false;
   s.gap = pr.gap;
   s.normal = pr.normal;
-  if (freeze) s.frozen = {pr.xi, pr.normal};
+  if (freeze) freezeGeometry(pair, s, pr.xi, pr.normal);
   return true;
+}
+
+void ContactPairing::freezeGeometry(const Pair& pair, ContactSlot& s, const std::array<double, 2>& xi,
+                                    const Eigen::Vector3d& normal) const {
+  // ξ^p and n^p (paper eq. 1), and for a frictional pair the tangent basis
+  // τ^p rotated least from the last step's (tangentBasis()).
+  const Eigen::Vector3d previous = s.frozen.tangent[0];
+  s.frozen.xi = xi;
+  s.frozen.normal = normal;
+  if (pair.friction > 0.0) s.frozen.tangent = tangentBasis(topo_.dim(), normal, previous);
 }
 
 bool ContactPairing::assignFacet(const Pair& pair, ContactSlot& s, const Found& c, bool freeze) const {
@@ -135,7 +145,7 @@ bool ContactPairing::assignFacet(const Pair& pair, ContactSlot& s, const Found& 
   s.masterElement = r.element;
   s.gap = c.gap;
   s.normal = c.normal;
-  if (freeze) s.frozen = {c.xi, c.normal};
+  if (freeze) freezeGeometry(pair, s, c.xi, c.normal);
   return changed;
 }
 
@@ -372,8 +382,12 @@ ContactSummary ContactPairing::summary() const {
   for (const auto& s : slots_) {
     if (!s.active || !s.paired()) continue;
     ++c.active;
-    // The slave feels −λ n (compression: λ < 0 pushes it along +n).
+    // The slave feels −λ n (compression: λ < 0 pushes it along +n), and
+    // in a frictional pair −λ_t·τ along the surface.
+    const Eigen::Vector3d t = s.tangentialForce();
     for (int d = 0; d < 3; ++d) c.force[d] -= s.state.multiplier * s.normal[d];
+    if (s.tangential[0] != 0.0 || s.tangential[1] != 0.0)
+      for (int d = 0; d < 3; ++d) c.force[d] += t[d];
   }
   return c;
 }

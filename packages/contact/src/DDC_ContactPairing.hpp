@@ -66,8 +66,12 @@ class ContactPairing {
 
   // ---- per iteration: the active set and what the host assembles ---------------
   void activateAllPaired();
+  /// The step start of the slip of frictional pairs (ContactComponent::beginStep()).
+  void beginStep(const Vector& u0);
   std::vector<int> updateActiveSet(const Vector& u, const Vector* multipliers);
   std::vector<ContactRowEntry> contactRows() const;
+  /// ContactComponent::slipRowHeld().
+  bool frozenSlipHeld(int k, int alpha) const;
   void assemble(const Vector& u, const Vector* multipliers, unsigned what,
                 const std::function<void(const std::vector<GO>& dofs, ElementResult& result)>& add) const;
 
@@ -125,6 +129,8 @@ class ContactPairing {
   bool keepPreviousFacet(const Pair& pair, ContactSlot& s, const Found& c, const Position& position,
                          bool freeze) const;
   bool assignFacet(const Pair& pair, ContactSlot& s, const Found& c, bool freeze) const;
+  void freezeGeometry(const Pair& pair, ContactSlot& s, const std::array<double, 2>& xi,
+                      const Eigen::Vector3d& normal) const;
   void notePairing(const FoundAll& found);
   std::string whyNotPaired(const Pair& pair, int node, double& depth) const;
 
@@ -133,8 +139,18 @@ class ContactPairing {
   void refreshSlotGeometry(const std::vector<double>& surfaceValues);
   void assembleFrozenGaps(const Vector& u, const Vector* multipliers);
   Field gatherField(const Vector& u, const Vector* multipliers) const;
+  /// forceStick: a frictional pair's tangential rows as in stick (its slip parts).
   void evaluate(int k, SurfaceContactRole role, const Field& f, bool forceActive, unsigned what, ElementResult& er,
-                std::vector<GO>& dofs) const;
+                std::vector<GO>& dofs, bool forceStick = false) const;
+  void appendMultipliers(int k, std::vector<GO>& dofs) const;
+  /// A tangential row on prescribed DOFs only: its multiplier restrained to zero.
+  void restrainHeldSlip(int k, SurfaceContactRole role, const std::vector<GO>& dofs, const ContactPairState& state,
+                        ElementResult& er) const;
+  void refreshSlip(ContactSlot& s, const std::array<double, 2>& xi, const Position& position) const;
+  FrictionState newContactState(const ContactSlot& s) const;
+  void slipNewContactsOfSlidingPairs(const std::vector<int>& activated);
+  /// Stick or slip of active slot k; true if a frictional pair's state flipped.
+  bool updateFriction(int k);
   /// Throws std::logic_error before the first updatePairing().
   void requirePaired(const char* what) const;
 
@@ -149,6 +165,8 @@ class ContactPairing {
   long distributedQueries_ = 0;
   mutable long exchanges_ = 0, bytesExchanged_ = 0;
 
+  Teuchos::RCP<Vector> stepStart_;        ///< u at the step start (frictional pairs; beginStep())
+  std::vector<double> stepStartSurface_;  ///< its surface values (conventional element)
   Teuchos::RCP<const Map> dofOverlapMap_;  ///< host DOFs of this rank's counterparts / elements
   Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> dofImporter_;
   Teuchos::RCP<const Map> lmOverlapMap_;   ///< multipliers of this rank's counterparts

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "DDC_NodeToSurface.hpp"
+#include "DDC_ShapeFunctions.hpp"
+
 #include "DDC_ContactPairing.hpp"
 #include "DDC_Error.hpp"
 
@@ -22,13 +25,18 @@ Teuchos::RCP<const Map> mapOf(const std::vector<GO>& gids, const Teuchos::RCP<co
 
 }  // namespace
 
-/// Field values at this rank's counterpart DOFs (dof) and multipliers (lm).
+/// Field values at this rank's counterpart DOFs (dof; dof0 at the step
+/// start, frictional pairs) and multipliers (lm).
 struct ContactPairing::Field {
-  Teuchos::RCP<Vector> dof, lm;
-  Teuchos::ArrayRCP<const double> d, l;
+  Teuchos::RCP<Vector> dof, dof0, lm;
+  Teuchos::ArrayRCP<const double> d, d0, l;
   const ContactPairing* c = nullptr;
   double at(GO g) const { return d[c->dofOverlapMap_->getLocalElement(g)]; }
-  double multiplier(int k) const { return l[c->lmOverlapMap_->getLocalElement(c->topo_.multiplierId(k))]; }
+  /// The step-start value (0 before the first beginStep()).
+  double atStart(GO g) const { return d0.size() ? d0[c->dofOverlapMap_->getLocalElement(g)] : 0.0; }
+  double multiplier(int k, int m = 0) const {
+    return l[c->lmOverlapMap_->getLocalElement(c->topo_.multiplierId(k, m))];
+  }
 };
 
 void ContactPairing::requirePaired(const char* what) const {
@@ -38,6 +46,10 @@ void ContactPairing::requirePaired(const char* what) const {
                            "updatePairing(u, /*global=*/true, /*freeze=*/true) once after setDofs()");
 }
 
+void ContactPairing::appendMultipliers(int k, std::vector<GO>& dofs) const {
+  for (int c = 0; c < topo_.numMultipliers(k); ++c) dofs.push_back(topo_.multiplierId(k, c));
+}
+
 std::vector<GO> ContactPairing::slotDofs(int k) const {
   const ContactSlot& s = slots_[k];
   std::vector<GO> dofs;
@@ -45,21 +57,21 @@ std::vector<GO> ContactPairing::slotDofs(int k) const {
     topo_.appendNodeDofs(s.slaveNode, dofs);
     for (int a = 0; a < s.numMaster; ++a) topo_.appendNodeDofs(s.master[a], dofs);
   }
-  dofs.push_back(topo_.multiplierId(k));
+  appendMultipliers(k, dofs);
   return dofs;
 }
 
 std::vector<GO> ContactPairing::slaveSideDofs(int k) const {
   std::vector<GO> dofs;
   topo_.appendNodeDofs(slots_[k].slaveNode, dofs);
-  dofs.push_back(topo_.multiplierId(k));
+  appendMultipliers(k, dofs);
   return dofs;
 }
 
 std::vector<GO> ContactPairing::masterSideDofs(int k) const {
   std::vector<GO> dofs;
   for (int a = 0; a < slots_[k].numMaster; ++a) topo_.appendNodeDofs(slots_[k].master[a], dofs);
-  dofs.push_back(topo_.multiplierId(k));
+  appendMultipliers(k, dofs);
   return dofs;
 }
 
@@ -75,12 +87,13 @@ void ContactPairing::buildEvaluationMaps() {
         localMasterSlots_.push_back(static_cast<int>(k));
   // Host DOFs and multipliers this rank's evaluations read.
   std::vector<GO> dofs, lms;
-  auto add = [&](const std::vector<GO>& d) {
-    dofs.insert(dofs.end(), d.begin(), d.end() - 1);
-    lms.push_back(d.back());
+  auto add = [&](int k, const std::vector<GO>& d) {
+    const int nm = topo_.numMultipliers(k);
+    dofs.insert(dofs.end(), d.begin(), d.end() - nm);
+    lms.insert(lms.end(), d.end() - nm, d.end());
   };
-  for (int k : topo_.ownedSlots()) add(decomposed && slots_[k].paired() ? slaveSideDofs(k) : slotDofs(k));
-  for (int k : localMasterSlots_) add(masterSideDofs(k));
+  for (int k : topo_.ownedSlots()) add(k, decomposed && slots_[k].paired() ? slaveSideDofs(k) : slotDofs(k));
+  for (int k : localMasterSlots_) add(k, masterSideDofs(k));
   for (auto* v : {&dofs, &lms}) {
     std::sort(v->begin(), v->end());
     v->erase(std::unique(v->begin(), v->end()), v->end());
@@ -107,13 +120,18 @@ ContactPairing::Field ContactPairing::gatherField(const Vector& u, const Vector*
     topo_.requireHostMultipliers();
     f.lm->doImport(u, *lmHostImporter_, Tpetra::INSERT);
   }
+  if (stepStart_ != Teuchos::null) {
+    f.dof0 = Teuchos::rcp(new Vector(dofOverlapMap_));
+    f.dof0->doImport(*stepStart_, *dofImporter_, Tpetra::INSERT);
+    f.d0 = f.dof0->getData();
+  }
   f.d = f.dof->getData();
   f.l = f.lm->getData();
   return f;
 }
 
 void ContactPairing::evaluate(int k, SurfaceContactRole role, const Field& f, bool forceActive, unsigned what,
-                              ElementResult& er, std::vector<GO>& dofs) const {
+                              ElementResult& er, std::vector<GO>& dofs, bool forceStick) const {
   // The slave counterpart on [u_s, λ], the master counterpart on
   // [u_1..u_m, λ], the conventional element on [u_s, u_1..u_m, λ].
   const int dim = topo_.dim();
@@ -132,7 +150,71 @@ void ContactPairing::evaluate(int k, SurfaceContactRole role, const Field& f, bo
     X.row(i) = topo_.referencePosition(nodes[i]).head(dim).transpose();
     for (int c = 0; c < dim; ++c) ue(i, c) = f.at(dofs[dim * i + c]);
   }
+  const Pair& pair = topo_.pair(s.pair);
+  if (pair.friction > 0.0) {
+    FrictionPairState& fr = state.friction;
+    fr.coefficient = pair.friction;
+    fr.stiffness = pair.frictionStiffness;
+    fr.stick = forceStick || s.friction != FrictionState::Slip;
+    for (int c = 1; c < dim; ++c) fr.tangential[c - 1] = f.multiplier(k, c);
+    fr.slip = s.tangentialSlip;
+    fr.stepStart.resize(nn, dim);
+    for (int i = 0; i < nn; ++i)
+      for (int c = 0; c < dim; ++c) fr.stepStart(i, c) = f.atStart(dofs[dim * i + c]);
+  }
   topo_.surfaceElement(role, topo_.pair(s.pair).masterType).computeSurfaceContact(X, ue, s.frozen, state, what, er);
+  if (state.friction.frictional() && state.active) restrainHeldSlip(k, role, dofs, state, er);
+}
+
+void ContactPairing::restrainHeldSlip(int k, SurfaceContactRole role, const std::vector<GO>& dofs,
+                                      const ContactPairState& state, ElementResult& er) const {
+  // A tangential row whose every displacement coefficient sits on a
+  // prescribed DOF (a slave node and its master point both on supports
+  // along the surface) holds nothing and would make the system singular,
+  // like the gap row of a fully prescribed pair: its multiplier is
+  // restrained to zero (the supports take the tangential force). The
+  // conventional element sees all its coefficients; the decomposed
+  // counterparts decide from the frozen row, replicated on every rank.
+  const ContactSlot& s = slots_[k];
+  const int dim = topo_.dim(), nm = dim, n = int(dofs.size()), nd = n - nm;
+  std::vector<int> nodes;
+  if (role != SurfaceContactRole::Master) nodes.push_back(s.slaveNode);
+  if (role != SurfaceContactRole::Slave) nodes.insert(nodes.end(), s.master.begin(), s.master.begin() + s.numMaster);
+  for (int al = 0; al + 1 < dim; ++al) {
+    bool held = true;
+    if (role == SurfaceContactRole::Conventional) {
+      if (er.tangent.rows() != n) return;  // no coefficients to judge by (the element always has them in assemble())
+      for (int a = 0; a < nd && held; ++a)
+        held = er.tangent(a, nd + 1 + al) == 0.0 || topo_.componentPrescribed(nodes[a / dim], a % dim);
+    } else {
+      held = frozenSlipHeld(k, al);
+    }
+    if (!held) continue;
+    const int row = nd + 1 + al;
+    const bool carries = role != SurfaceContactRole::Master;  // the slave / conventional holds the multiplier row
+    if (er.residual.size() == n) er.residual[row] = carries ? state.friction.tangential[al] : 0.0;
+    if (er.tangent.rows() == n) {
+      er.tangent.row(row).setZero();
+      if (carries) er.tangent(row, row) = 1.0;
+    }
+  }
+}
+
+bool ContactPairing::frozenSlipHeld(int k, int alpha) const {
+  // Every node and component of the frozen slip row τ^p·(x_s − Σ N_i x_i)
+  // with a nonzero coefficient is prescribed.
+  const ContactSlot& s = slots_[k];
+  const int dim = topo_.dim();
+  const Eigen::Vector3d& t = s.frozen.tangent[alpha];
+  std::vector<double> N(s.numMaster);
+  shapeFunctionsT<double>(topo_.pair(s.pair).masterType, s.frozen.xi.data(), N.data(), nullptr);
+  for (int c = 0; c < dim; ++c) {
+    if (t[c] == 0.0) continue;
+    if (!topo_.componentPrescribed(s.slaveNode, c)) return false;
+    for (int i = 0; i < s.numMaster; ++i)
+      if (N[i] != 0.0 && !topo_.componentPrescribed(s.master[i], c)) return false;
+  }
+  return true;
 }
 
 void ContactPairing::assemble(const Vector& u, const Vector* multipliers, unsigned what,
@@ -152,8 +234,12 @@ void ContactPairing::assemble(const Vector& u, const Vector* multipliers, unsign
     if (slots_[k].paired()) {
       evaluate(k, role, f, false, what | kTangent, er, dofs);
     } else {
-      dofs.assign(1, topo_.multiplierId(k));
-      releasedContribution(1, f.multiplier(k), kAll, er);
+      dofs.clear();
+      appendMultipliers(k, dofs);
+      const int nm = int(dofs.size());
+      double lambda[3] = {0.0, 0.0, 0.0};
+      for (int c = 0; c < nm; ++c) lambda[c] = f.multiplier(k, c);
+      releasedContribution(nm, lambda, nm, kAll, er);
     }
     add(dofs, er);
   }
@@ -177,14 +263,18 @@ std::vector<ContactRowEntry> ContactPairing::contactRows() const {
   f.l = f.lm->getData();
   ElementResult er;
   std::vector<GO> dofs;
+  // Every multiplier's row: the gap's, and a frictional pair's slip rows
+  // as they are in stick (the rows of the constraint operator).
   auto add = [&](int k, SurfaceContactRole role) {
-    evaluate(k, role, f, true, kTangent, er, dofs);
-    const int row = int(dofs.size()) - 1;
+    evaluate(k, role, f, true, kTangent, er, dofs, /*forceStick=*/true);
+    const int nm = topo_.numMultipliers(k), first = int(dofs.size()) - nm;
     const int sub = role == SurfaceContactRole::Master
                         ? topo_.pair(slots_[k].pair).masterFacets[slots_[k].segment].subdomain
                         : -1;
-    for (int a = 0; a < row; ++a)
-      if (er.tangent(row, a) != 0.0) out.push_back({k, topo_.multiplierId(k), dofs[a], er.tangent(row, a), role, sub});
+    for (int c = 0; c < nm; ++c)
+      for (int a = 0; a < first; ++a)
+        if (er.tangent(first + c, a) != 0.0)
+          out.push_back({k, topo_.multiplierId(k, c), dofs[a], er.tangent(first + c, a), role, sub});
   };
   for (int k : topo_.ownedSlots())
     if (slots_[k].paired()) add(k, SurfaceContactRole::Slave);
@@ -206,9 +296,9 @@ void ContactPairing::gatherSurface(const Vector& u, const Vector* multipliers, s
     topo_.requireHostMultipliers();
     Vector owned(topo_.multiplierMap());
     auto ud = u.getData();
-    const auto& local = topo_.ownedSlots();
-    for (size_t i = 0; i < local.size(); ++i)
-      owned.replaceLocalValue(LO(i), ud[topo_.hostMap()->getLocalElement(topo_.multiplierId(local[i]))]);
+    const Map& ownedMap = *topo_.multiplierMap();
+    for (size_t i = 0; i < ownedMap.getNodeNumElements(); ++i)
+      owned.replaceLocalValue(LO(i), ud[topo_.hostMap()->getLocalElement(ownedMap.getGlobalElement(LO(i)))]);
     lm.doImport(owned, *topo_.multiplierAllImporter(), Tpetra::INSERT);
   }
   ++exchanges_;
@@ -216,15 +306,21 @@ void ContactPairing::gatherSurface(const Vector& u, const Vector* multipliers, s
   auto d = s.getData();
   values.assign(d.begin(), d.end());
   auto l = lm.getData();
-  for (size_t k = 0; k < slots_.size(); ++k) values.push_back(l[allMap.getLocalElement(topo_.multiplierId(int(k)))]);
+  for (size_t k = 0; k < slots_.size(); ++k)
+    for (int c = 0; c < topo_.numMultipliers(int(k)); ++c)
+      values.push_back(l[allMap.getLocalElement(topo_.multiplierId(int(k), c))]);
 }
 
 void ContactPairing::refreshSlotGeometry(const std::vector<double>& v) {
   const size_t base = size_t(topo_.dim()) * topo_.surfaceNodes().size();
   const Position position = [&](int n) { return currentPosition(n, v); };
+  size_t at = base;
   for (size_t k = 0; k < slots_.size(); ++k) {
     ContactSlot& s = slots_[k];
-    s.state.multiplier = v[base + k];
+    const int nm = topo_.numMultipliers(int(k));
+    s.state.multiplier = v[at];
+    for (int c = 1; c < nm; ++c) s.tangential[c - 1] = v[at + c];
+    at += size_t(nm);
     if (!s.paired()) continue;
     const Pair& pair = topo_.pair(s.pair);
     // The conventional element's own projection (DDC_NodeToSurface.hpp).
@@ -232,13 +328,33 @@ void ContactPairing::refreshSlotGeometry(const std::vector<double>& v) {
                                                 position(s.slaveNode).head(topo_.dim()));
     s.normal = pr.normal;
     s.gap = pr.gap;
+    if (nm > 1) refreshSlip(s, pr.xi, position);
   }
 }
 
+void ContactPairing::refreshSlip(ContactSlot& s, const std::array<double, 2>& xi, const Position& position) const {
+  // u_t of the conventional element at its projection, from the surface's
+  // step-start positions (beginStep()).
+  const Pair& pair = topo_.pair(s.pair);
+  const int dim = topo_.dim();
+  const Position start = [&](int n) {
+    return stepStartSurface_.empty() ? topo_.referencePosition(n) : currentPosition(n, stepStartSurface_);
+  };
+  Eigen::MatrixXd x(1 + s.numMaster, dim), x0(1 + s.numMaster, dim);
+  x.row(0) = position(s.slaveNode).head(dim).transpose();
+  x0.row(0) = start(s.slaveNode).head(dim).transpose();
+  for (int a = 0; a < s.numMaster; ++a) {
+    x.row(1 + a) = position(s.master[a]).head(dim).transpose();
+    x0.row(1 + a) = start(s.master[a]).head(dim).transpose();
+  }
+  s.tangentialSlip = conventionalSlip(pair.masterType, x, x0, xi, &s.tangent);
+}
+
 void ContactPairing::assembleFrozenGaps(const Vector& u, const Vector* multipliers) {
-  // Partial gaps of the counterparts at their multipliers, summed on the
-  // multiplier map (Export ADD), then (g_N, λ) of every slot to every rank.
-  // Only multiplier-map values travel, no geometry.
+  // Partial gaps (and slips, frictional pairs) of the counterparts at their
+  // multipliers, summed on the multiplier map (Export ADD), then (value,
+  // multiplier) of every slot's multipliers to every rank. Only
+  // multiplier-map values travel, no geometry.
   const Field f = gatherField(u, multipliers);
   const auto& local = topo_.ownedSlots();
   Vector gOv(lmOverlapMap_), gOwned(topo_.multiplierMap());
@@ -246,42 +362,61 @@ void ContactPairing::assembleFrozenGaps(const Vector& u, const Vector* multiplie
     auto g = gOv.getDataNonConst();
     ElementResult er;
     std::vector<GO> dofs;
+    // The multiplier rows of a sticking pair: the gap and the slip parts.
+    auto addRows = [&](int k, SurfaceContactRole role) {
+      evaluate(k, role, f, true, kResidual, er, dofs, /*forceStick=*/true);
+      const int nm = topo_.numMultipliers(k), first = int(er.residual.size()) - nm;
+      for (int c = 0; c < nm; ++c) g[lmOverlapMap_->getLocalElement(topo_.multiplierId(k, c))] += er.residual[first + c];
+    };
     for (int k : local)
-      if (slots_[k].paired()) {
-        evaluate(k, SurfaceContactRole::Slave, f, true, kResidual, er, dofs);
-        g[lmOverlapMap_->getLocalElement(topo_.multiplierId(k))] += er.residual[er.residual.size() - 1];
-      }
-    for (int k : localMasterSlots_) {
-      evaluate(k, SurfaceContactRole::Master, f, true, kResidual, er, dofs);
-      g[lmOverlapMap_->getLocalElement(topo_.multiplierId(k))] += er.residual[er.residual.size() - 1];
-    }
+      if (slots_[k].paired()) addRows(k, SurfaceContactRole::Slave);
+    for (int k : localMasterSlots_) addRows(k, SurfaceContactRole::Master);
   }
   gOwned.doExport(gOv, *lmExporter_, Tpetra::ADD);
+  const Map& ownedMap = *topo_.multiplierMap();
   MultiVector owned(topo_.multiplierMap(), 2), all(topo_.multiplierAllMap(), 2);
   {
     auto g = gOwned.getData();
-    for (size_t i = 0; i < local.size(); ++i) {
+    for (size_t i = 0; i < ownedMap.getNodeNumElements(); ++i) {
       owned.replaceLocalValue(LO(i), 0, g[i]);
-      owned.replaceLocalValue(LO(i), 1, f.multiplier(local[i]));
+      owned.replaceLocalValue(LO(i), 1, f.l[lmOverlapMap_->getLocalElement(ownedMap.getGlobalElement(LO(i)))]);
     }
   }
   all.doImport(owned, *topo_.multiplierAllImporter(), Tpetra::INSERT);
   auto g = all.getData(0), lam = all.getData(1);
+  const Map& allMap = *topo_.multiplierAllMap();
   for (size_t k = 0; k < slots_.size(); ++k) {
     ContactSlot& s = slots_[k];
-    const LO l = topo_.multiplierAllMap()->getLocalElement(topo_.multiplierId(int(k)));
-    s.state.multiplier = lam[l];
+    const int nm = topo_.numMultipliers(int(k));
+    auto at = [&](int c) { return allMap.getLocalElement(topo_.multiplierId(int(k), c)); };
+    s.state.multiplier = lam[at(0)];
+    for (int c = 1; c < nm; ++c) s.tangential[c - 1] = lam[at(c)];
     if (!s.paired()) continue;
     s.normal = s.frozen.normal;
-    s.gap = g[l];
+    s.gap = g[at(0)];
+    if (nm > 1) {
+      s.tangent = s.frozen.tangent;
+      for (int c = 1; c < nm; ++c) s.tangentialSlip[c - 1] = g[at(c)];
+    }
   }
+}
+
+FrictionState ContactPairing::newContactState(const ContactSlot& s) const {
+  // A new contact of a frictional pair starts sticking; a frictionless one slips.
+  return topo_.pair(s.pair).friction > 0.0 ? FrictionState::Stick : FrictionState::Slip;
 }
 
 void ContactPairing::activateAllPaired() {
   // A pair whose DOFs are all prescribed has a prescribed gap: its
   // constraint row would be empty (a singular system), so it never becomes
   // active (updateActiveSet() reports it if it penetrates).
-  for (size_t k = 0; k < slots_.size(); ++k) slots_[k].active = slots_[k].paired() && !fullyPrescribed(int(k));
+  for (size_t k = 0; k < slots_.size(); ++k) {
+    ContactSlot& s = slots_[k];
+    const bool was = s.active;
+    s.active = s.paired() && !fullyPrescribed(int(k));
+    if (!s.active) s.friction = FrictionState::Open;
+    if (s.active && !was) s.friction = newContactState(s);
+  }
 }
 
 std::vector<int> ContactPairing::updateActiveSet(const Vector& u, const Vector* multipliers) {
@@ -298,7 +433,7 @@ std::vector<int> ContactPairing::updateActiveSet(const Vector& u, const Vector* 
   for (const auto& s : slots_) lmax = std::max(lmax, std::abs(s.state.multiplier));
   const double tensionTol = 1e-10 * lmax;
   const double tol = topo_.options().penetrationTolerance;
-  std::vector<int> changed;
+  std::vector<int> changed, activated;
   for (size_t k = 0; k < slots_.size(); ++k) {
     ContactSlot& s = slots_[k];
     if (!s.paired()) continue;
@@ -313,10 +448,70 @@ std::vector<int> ContactPairing::updateActiveSet(const Vector& u, const Vector* 
                                 << s.gap << "); free the contact surfaces or change the prescribed values");
     } else if (!s.active && s.gap < -tol) {
       s.active = true;
+      s.friction = newContactState(s);
+      changed.push_back(static_cast<int>(k));
+      activated.push_back(static_cast<int>(k));
+    } else if (s.active && updateFriction(int(k))) {
       changed.push_back(static_cast<int>(k));
     }
+    if (!s.active) s.friction = FrictionState::Open;
+    s.slip = s.active ? std::hypot(s.tangentialSlip[0], s.tangentialSlip[1]) : 0.0;
   }
+  if (topo_.frictional()) slipNewContactsOfSlidingPairs(activated);
   return changed;
+}
+
+void ContactPairing::slipNewContactsOfSlidingPairs(const std::vector<int>& activated) {
+  // A new contact starts sticking (newContactState()), unless every other
+  // slave node in contact of its pair slips: then the pair slides, and a
+  // new contact sticking alone would hold it for one more iteration (and
+  // hide a gross slip from the singularity check).
+  std::vector<char> isNew(slots_.size(), 0);
+  for (int k : activated) isNew[k] = slots_[k].friction == FrictionState::Stick;
+  std::vector<int> others(topo_.numPairs(), 0), sticking(topo_.numPairs(), 0);
+  for (size_t k = 0; k < slots_.size(); ++k)
+    if (slots_[k].active && !isNew[k]) {
+      ++others[slots_[k].pair];
+      sticking[slots_[k].pair] += slots_[k].friction == FrictionState::Stick;
+    }
+  for (size_t k = 0; k < slots_.size(); ++k)
+    if (isNew[k] && others[slots_[k].pair] > 0 && sticking[slots_[k].pair] == 0) slots_[k].friction = FrictionState::Slip;
+}
+
+bool ContactPairing::updateFriction(int k) {
+  // Stick or slip of an active frictional pair (DDC_Friction.hpp); an
+  // active frictionless pair slips freely.
+  ContactSlot& s = slots_[k];
+  const Pair& pair = topo_.pair(s.pair);
+  const FrictionState before = s.friction;
+  if (pair.friction == 0.0) {
+    s.friction = FrictionState::Slip;
+    return false;
+  }
+  FrictionPairState f;
+  f.coefficient = pair.friction;
+  f.stiffness = pair.frictionStiffness;
+  f.stick = before != FrictionState::Slip;
+  const bool stick = sticks(topo_.dim() - 1, s.tangentialSlip.data(), s.state.multiplier, s.tangential.data(), f);
+  s.friction = stick ? FrictionState::Stick : FrictionState::Slip;
+  return before != FrictionState::Open && s.friction != before;
+}
+
+void ContactPairing::beginStep(const Vector& u0) {
+  // The step start of the slip (DDC_Friction.hpp): kept for the
+  // counterparts' imports, and, for the conventional element, the surface's
+  // positions (one gather per step).
+  if (!topo_.frictional()) return;
+  stepStart_ = Teuchos::rcp(new Vector(u0, Teuchos::Copy));
+  if (!topo_.options().decomposed) {
+    Vector v(topo_.surfaceMap());
+    v.doImport(u0, *topo_.surfaceImporter(), Tpetra::INSERT);
+    auto d = v.getData();
+    stepStartSurface_.assign(d.begin(), d.end());
+    ++exchanges_;
+    bytesExchanged_ += topo_.bytesPerExchange();
+  }
+  for (auto& s : slots_) s.tangentialSlip = {0.0, 0.0};
 }
 
 }  // namespace ddc

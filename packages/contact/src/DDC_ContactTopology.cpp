@@ -105,6 +105,15 @@ int ContactTopology::registerPair(ContactPairSurfaces pair) {
   p.path = pair.path.empty() ? pair.name : pair.path;
   p.slaveName = pair.slaveName;
   p.masterName = pair.masterName;
+  p.friction = pair.friction;
+  p.frictionStiffness = pair.frictionStiffness;
+  DDC_INPUT_REQUIRE(std::isfinite(pair.friction) && pair.friction >= 0.0,
+                    "contact pair '" << p.path << "': friction coefficient " << pair.friction
+                                     << " is not a finite number >= 0");
+  DDC_INPUT_REQUIRE(pair.friction == 0.0 || (std::isfinite(pair.frictionStiffness) && pair.frictionStiffness > 0.0),
+                    "contact pair '" << p.path << "': a frictional pair needs a finite complementarity parameter "
+                                        "c_t > 0 (ContactPairSurfaces::frictionStiffness), got "
+                                     << pair.frictionStiffness);
   p.slaveType = pair.slaveFacetType;
   p.masterType = pair.masterFacetType;
   pairs_.push_back(std::move(p));
@@ -125,6 +134,14 @@ void ContactTopology::commit() {
   const int me = comm_->getRank();
   for (size_t k = 0; k < slots_.size(); ++k)
     if (slots_[k].owner == me) localSlots_.push_back(static_cast<int>(k));
+  // Multipliers per slot: λ_n, and λ_t (dim − 1) in a frictional pair.
+  lmStart_.assign(slots_.size() + 1, 0);
+  for (size_t k = 0; k < slots_.size(); ++k) {
+    const bool friction = pairs_[slots_[k].pair].friction > 0.0;
+    frictional_ = frictional_ || friction;
+    lmStart_[k + 1] = lmStart_[k] + (friction ? dim_ : 1);
+  }
+  lmGid_.assign(size_t(lmStart_.back()), -1);
   if (options_.decomposed) findSlaveNeighbourSends();
   committed_ = true;
 }
@@ -444,9 +461,12 @@ std::string ContactTopology::checkNodeDofs(const Map& hostMap, const std::vector
 std::string ContactTopology::checkMultiplierDofs(const Map& hostMap, const std::vector<ContactNodeDofs>& nodeDofs,
                                                  const std::vector<GO>& multiplierDofs) const {
   const int me = comm_->getRank();
-  if (multiplierDofs.size() != localSlots_.size())
+  size_t expected = 0;
+  for (int k : localSlots_) expected += size_t(numMultipliers(k));
+  if (multiplierDofs.size() != expected)
     return "contact: rank " + std::to_string(me) + " gives " + std::to_string(multiplierDofs.size()) +
-           " multiplier DOFs for its " + std::to_string(localSlots_.size()) + " contact slots";
+           " multiplier DOFs for its " + std::to_string(localSlots_.size()) + " contact slots, which have " +
+           std::to_string(expected) + " multipliers";
   // A multiplier needs an id of its own: not a surface node's DOF, not
   // another multiplier's (the DOFs of the host's other nodes are beyond
   // what the component sees).
@@ -455,17 +475,19 @@ std::string ContactTopology::checkMultiplierDofs(const Map& hostMap, const std::
   for (const auto& nd : nodeDofs)
     for (int c = 0; c < dim_; ++c)
       taken[nd.dofs[c]] = std::string("the u_") + "xyz"[c] + " DOF of surface node " + std::to_string(nd.id);
-  for (size_t i = 0; i < multiplierDofs.size() && error.empty(); ++i) {
-    const GO g = multiplierDofs[i];
-    if (!hostMap.isNodeGlobalElement(g)) {
-      error = "contact: multiplier DOF id " + std::to_string(g) + " is not owned by rank " + std::to_string(me) +
-              " (the owner of its slave node) in the host's DOF map";
-    } else if (const auto it = taken.find(g); it != taken.end()) {
-      error = "contact: multiplier DOF id " + std::to_string(g) + " of " + describeSlot(localSlots_[i]) +
-              " is also " + it->second + ": each multiplier needs a DOF id of its own in the host's map";
+  size_t i = 0;
+  for (int k : localSlots_)
+    for (int c = 0; c < numMultipliers(k) && error.empty(); ++c, ++i) {
+      const GO g = multiplierDofs[i];
+      if (!hostMap.isNodeGlobalElement(g)) {
+        error = "contact: multiplier DOF id " + std::to_string(g) + " is not owned by rank " + std::to_string(me) +
+                " (the owner of its slave node) in the host's DOF map";
+      } else if (const auto it = taken.find(g); it != taken.end()) {
+        error = "contact: multiplier DOF id " + std::to_string(g) + " of " + describeSlot(k) + " is also " +
+                it->second + ": each multiplier needs a DOF id of its own in the host's map";
+      }
+      taken[g] = "the multiplier of " + describeSlot(k);
     }
-    taken[g] = "the multiplier of " + describeSlot(localSlots_[i]);
-  }
   return error;
 }
 
@@ -492,21 +514,26 @@ void ContactTopology::replicateDofs(const std::vector<ContactNodeDofs>& nodeDofs
 }
 
 void ContactTopology::buildMultiplierMaps(const std::vector<GO>& multiplierDofs) {
-  // Multiplier ids: the host's DOFs, or the slot index.
-  lmGid_.assign(slots_.size(), -1);
+  // Multiplier ids: the host's DOFs, or consecutive numbers slot by slot
+  // (the slot index when no pair has friction).
+  std::vector<GO> ids(lmGid_.size(), -1);
   if (multipliersInHost_) {
     struct LmRecord {
-      int slot;
+      int at;
       GO gid;
     };
     std::vector<LmRecord> lm;
-    for (size_t i = 0; i < localSlots_.size(); ++i) lm.push_back({localSlots_[i], multiplierDofs[i]});
-    for (const auto& r : allGather(rawComm(comm_), lm)) lmGid_[r.slot] = r.gid;
+    size_t i = 0;
+    for (int k : localSlots_)
+      for (int c = 0; c < numMultipliers(k); ++c) lm.push_back({lmStart_[k] + c, multiplierDofs[i++]});
+    for (const auto& r : allGather(rawComm(comm_), lm)) ids[r.at] = r.gid;
   } else {
-    for (size_t k = 0; k < slots_.size(); ++k) lmGid_[k] = GO(k);
+    for (size_t a = 0; a < ids.size(); ++a) ids[a] = GO(a);
   }
+  lmGid_ = std::move(ids);
   std::vector<GO> ownedLm;
-  for (int k : localSlots_) ownedLm.push_back(lmGid_[k]);
+  for (int k : localSlots_)
+    for (int c = 0; c < numMultipliers(k); ++c) ownedLm.push_back(multiplierId(k, c));
   multiplierMap_ = mapOf(ownedLm, comm_);
   multiplierAllMap_ = mapOf(lmGid_, comm_);
   lmAllImporter_ = Teuchos::rcp(new TpetraImport(multiplierMap_, multiplierAllMap_));

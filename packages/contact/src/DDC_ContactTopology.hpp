@@ -70,6 +70,8 @@ class ContactTopology {
     /// of node ids).
     std::vector<std::vector<std::vector<int>>> freeSides;
     std::vector<int> slots;  ///< slots of the pair, in search order
+    double friction = 0.0;           ///< μ (ContactPairSurfaces::friction)
+    double frictionStiffness = 0.0;  ///< c_t (ContactPairSurfaces::frictionStiffness)
     /// Node ids of master facet f.
     std::vector<int> facetNodes(int f) const {
       return {masterFacets[f].nodes.begin(), masterFacets[f].nodes.begin() + masterFacets[f].numNodes};
@@ -135,10 +137,18 @@ class ContactTopology {
   void appendNodeDofs(int id, std::vector<GO>& dofs) const;
   /// Every DOF of node `id` is prescribed.
   bool nodePrescribed(int id) const;
+  /// Component c of node `id` is prescribed.
+  bool componentPrescribed(int id, int c) const { return prescribed_[index(id)][c] != 0; }
 
   // ---- multipliers and gathers (after setDofs()) ----------------------------------
   bool multipliersInHost() const { return multipliersInHost_; }
-  GO multiplierId(int k) const { return lmGid_[k]; }
+  /// Multiplier c of slot k: 0 the normal λ_n, 1..dim−1 the tangential
+  /// λ_t of a frictional pair (host DOF id when the host gave them).
+  GO multiplierId(int k, int c = 0) const { return lmGid_[lmStart_[k] + c]; }
+  /// The multipliers of slot k: 1, or dim in a frictional pair.
+  int numMultipliers(int k) const { return lmStart_[k + 1] - lmStart_[k]; }
+  /// Whether some pair has friction.
+  bool frictional() const { return frictional_; }
   const Teuchos::RCP<const Map>& hostMap() const { return hostMap_; }
   const Teuchos::RCP<const Map>& multiplierMap() const { return multiplierMap_; }
   /// Every slot's multiplier on every rank.
@@ -207,7 +217,9 @@ class ContactTopology {
   std::vector<int> masterSurfaceNodes_;
   double pairingMargin_ = 0.0;
 
-  std::vector<GO> lmGid_;
+  std::vector<GO> lmGid_;   ///< every slot's multiplier ids, slot by slot
+  std::vector<int> lmStart_;  ///< slot k's ids are lmGid_[lmStart_[k] .. lmStart_[k + 1])
+  bool frictional_ = false;
   Teuchos::RCP<const Map> hostMap_;
   Teuchos::RCP<const Map> surfaceMap_;
   Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> surfaceImporter_;

@@ -193,6 +193,17 @@ Teuchos::RCP<const Teuchos::ParameterList> ContactOptions::getValidParameters() 
   pair.set("Master", "",
            "Master side set 'Body/set': sides of 2-D bodies (2-node segments of Quad4, 3-node of Quad9) or faces "
            "of 3-D bodies (Tri3, Tri6, Quad4, Quad8, Quad9 faces of Tet4, Tet10, Hex8, Hex20, Hex27).");
+  // Finite and bounded: μ enters the cone μ p, and a coefficient beyond
+  // kMaxFriction is no friction law anyone measured (a bonded pair is a
+  // tie, not friction).
+  constexpr double kMaxFriction = 1e3;
+  pair.set("Friction Coefficient", 0.0,
+           "Coulomb friction coefficient mu >= 0 of the pair (doc/contact.md, 'Friction'): a slave node in contact "
+           "sticks while its tangential force is below mu times its normal force and slips along the master "
+           "surface against a force of mu times it otherwise, decided exactly in Newton's method (no penalty). 0: "
+           "frictionless (today's element, one multiplier per slave node). Each slave node of a frictional pair "
+           "has dim - 1 tangential multipliers more. At most 1e3.",
+           between(0.0, kMaxFriction));
   setSublist(pairs, "<Pair Name>", pair, "One sublist per contact pair.");
   setSublist(*pl, "Pairs", pairs, "Contact pairs; none means no contact.");
   return pl;
@@ -218,8 +229,14 @@ ContactOptions ContactOptions::fromParameters(Teuchos::ParameterList& list, cons
     const std::string where = path + "/Pairs/" + name;
     DDC_INPUT_REQUIRE(pairs.isSublist(name), "'" << where << "' must be a sublist with Slave and Master");
     auto& p = pairs.sublist(name);
+    // A coefficient set (a --set, a typo in the pair's name) for a pair the
+    // deck does not define: no such pair.
+    DDC_INPUT_REQUIRE(!p.isParameter("Friction Coefficient") || p.isParameter("Slave") || p.isParameter("Master"),
+                      "'" << where << "/Friction Coefficient' is given, but the deck defines no contact pair '"
+                          << name << "' (no Slave and Master): name one of the pairs in '" << path << "/Pairs'");
     validateLevel(p, validPair, where);
-    ContactPairDefinition d{name, p.get<std::string>("Slave"), p.get<std::string>("Master")};
+    ContactPairDefinition d{name, p.get<std::string>("Slave"), p.get<std::string>("Master"),
+                            p.get<double>("Friction Coefficient")};
     for (const auto& [key, set] : {std::pair<const char*, std::string>{"Slave", d.slaveSet}, {"Master", d.masterSet}}) {
       DDC_INPUT_REQUIRE(!set.empty(), "parameter '" << where << "/" << key << "' is required (a side set 'Body/set')");
       // A node set (a generator's "all" or corner, a Gmsh physical point) has
@@ -248,6 +265,7 @@ ContactOptions ContactOptions::fromParameters(Teuchos::ParameterList& list, cons
   }
   checkPairsDoNotOverlap(o.pairs, mesh, path);
   const double h = facets ? sizeSum / facets : 1.0;
+  o.length = h;
   o.searchRadius = list.get<double>("Search Radius");
   if (o.searchRadius == 0.0) o.searchRadius = h;
   const double tol = list.get<double>("Penetration Tolerance");

@@ -26,6 +26,9 @@ struct ContactPairDefinition {
   std::string name;       ///< sublist name, for messages
   std::string slaveSet;   ///< qualified side set "Body/set"
   std::string masterSet;  ///< qualified side set
+  /// Coulomb friction coefficient μ ≥ 0 ("Friction Coefficient"; 0:
+  /// frictionless).
+  double friction = 0.0;
 };
 
 /// Validated contact options with automatic values resolved.
@@ -38,6 +41,7 @@ struct ContactOptions {
   /// a dynamic Analysis sets it false.
   bool initialInContact = true;
   double searchRadius = 0.0;          ///< absolute (automatic: h, the file comment)
+  double length = 1.0;                ///< h, the mean master facet size (the file comment)
   double penetrationTolerance = 0.0;  ///< absolute: activate when g_N < -tol (the parameter times h)
   /// Conventional formulation: when the pairing cycles inside an increment,
   /// keep it for the rest of the increment (true) or fail the increment
@@ -46,6 +50,12 @@ struct ContactOptions {
   std::vector<ContactPairDefinition> pairs;
 
   bool enabled() const { return !pairs.empty(); }
+  /// Whether some pair has friction (μ > 0).
+  bool frictional() const {
+    for (const auto& p : pairs)
+      if (p.friction > 0.0) return true;
+    return false;
+  }
 
   static Teuchos::RCP<const Teuchos::ParameterList> getValidParameters();
   /// Validate "Contact" (in place) against the mesh: sets must exist and be

@@ -103,7 +103,8 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
       nodeDofs.push_back(d);
     }
     std::vector<GO> lm;
-    for (int k : contact_->ownedSlots()) lm.push_back(lmDof_[k]);
+    for (int k : contact_->ownedSlots())
+      for (int c = 0; c < contact_->numMultipliers(k); ++c) lm.push_back(lmDof_[k] + c);
     contact_->setDofs(ownedMap_, nodeDofs, lm);
     // Initial pairing in the reference configuration.
     auto zero = createVector();
@@ -164,6 +165,8 @@ void Model::buildContact(ContactComponent::SurfaceElementSource surfaceElements)
     pair.masterName = def.masterSet;
     pair.slaveFacets = facets(def.slaveSet, false, pair.slaveFacetType);
     pair.masterFacets = facets(def.masterSet, true, pair.masterFacetType);
+    pair.friction = def.friction;
+    if (def.friction > 0.0) pair.frictionStiffness = frictionStiffness(def);
     for (int n : mesh.nodeSet(def.slaveSet)) {
       isSurface[n] = 1;
       if (nodeOwner_[n] == me) pair.slaveNodes.push_back(n);
@@ -176,6 +179,39 @@ void Model::buildContact(ContactComponent::SurfaceElementSource surfaceElements)
       nodes.push_back({n, Eigen::Vector3d(mesh.coord(n)[0], mesh.coord(n)[1], mesh.coord(n)[2])});
   contact_->registerNodes(nodes);
   contact_->commit();
+}
+
+std::vector<std::string> Model::pairsInGrossSlip() const {
+  std::vector<std::string> out;
+  if (!contact_) return out;
+  const auto& pairs = contactOptions_.pairs;
+  std::vector<int> active(pairs.size(), 0), stick(pairs.size(), 0);
+  for (const auto& s : contact_->slots()) {
+    active[s.pair] += s.active;
+    stick[s.pair] += s.active && s.friction == FrictionState::Stick;
+  }
+  for (size_t p = 0; p < pairs.size(); ++p)
+    if (pairs[p].friction > 0.0 && active[p] > 0 && stick[p] == 0) {
+      auto body = [](const std::string& set) { return set.substr(0, set.find('/')); };
+      out.push_back("'Contact/Pairs/" + pairs[p].name + "' (bodies '" + body(pairs[p].slaveSet) + "' and '" +
+                    body(pairs[p].masterSet) + "')");
+    }
+  return out;
+}
+
+double Model::frictionStiffness(const ContactPairDefinition& def) const {
+  // c_t of a frictional pair (DDC_Friction.hpp): the smaller Young's
+  // modulus of its two bodies times h^(dim−2), h the mean master facet size
+  // — the stiffness of a facet-sized piece of material, force per length,
+  // so c_t u_t compares with the nodal force λ_t. A body whose element has no
+  // Young's modulus counts as 1.
+  double E = std::numeric_limits<double>::infinity();
+  for (const std::string& set : {def.slaveSet, def.masterSet}) {
+    const int b = mesh_->bodyIndex(set.substr(0, set.find('/')));
+    const auto* ce = b >= 0 ? dynamic_cast<const ContinuumElement*>(elements_[b].get()) : nullptr;
+    E = std::min(E, ce ? ce->material().youngsModulus() : 1.0);
+  }
+  return E * std::pow(contactOptions_.length, mesh_->dim() - 2);
 }
 
 Model::~Model() = default;
@@ -200,7 +236,8 @@ void Model::buildDofNumbering() {
   std::vector<GO> count(nranks, 0);
   const int d = mesh.dim();
   for (int n = 0; n < mesh.numNodes(); ++n) count[nodeOwner_[n]] += d;
-  for (size_t k = 0; k < numSlots; ++k) count[contact_->slotOwner(static_cast<int>(k))] += 1;
+  for (size_t k = 0; k < numSlots; ++k)
+    count[contact_->slotOwner(static_cast<int>(k))] += contact_->numMultipliers(static_cast<int>(k));
   std::vector<GO> offset(nranks + 1, 0);
   for (int r = 0; r < nranks; ++r) offset[r + 1] = offset[r] + count[r];
   numGlobalDofs_ = offset[nranks];
@@ -210,13 +247,26 @@ void Model::buildDofNumbering() {
     nodeDof_[n] = next[nodeOwner_[n]];
     next[nodeOwner_[n]] += d;
   }
+  // A slot's multipliers are consecutive: λ_n, then λ_t (frictional pairs).
   lmDof_.assign(numSlots, -1);
-  for (size_t k = 0; k < numSlots; ++k) lmDof_[k] = next[contact_->slotOwner(static_cast<int>(k))]++;
+  lmFreeOffset_.assign(numSlots, 0);
+  int maxMultipliers = 1;
+  for (size_t k = 0; k < numSlots; ++k) {
+    const int nm = contact_->numMultipliers(static_cast<int>(k));
+    if (k + 1 < numSlots) lmFreeOffset_[k + 1] = lmFreeOffset_[k] + nm;
+    maxMultipliers = std::max(maxMultipliers, nm);
+    lmDof_[k] = next[contact_->slotOwner(static_cast<int>(k))];
+    next[contact_->slotOwner(static_cast<int>(k))] += nm;
+  }
   dofEntity_.assign(numGlobalDofs_, 0);
   for (int n = 0; n < mesh.numNodes(); ++n)
     for (int c = 0; c < d; ++c) dofEntity_[nodeDof_[n] + c] = n;
-  for (size_t k = 0; k < numSlots; ++k) dofEntity_[lmDof_[k]] = -1 - static_cast<int>(k);
-  rigidCheck_ = std::make_unique<RigidMotionCheck>(mesh, static_cast<int>(numSlots));
+  for (size_t k = 0; k < numSlots; ++k)
+    for (int c = 0; c < contact_->numMultipliers(static_cast<int>(k)); ++c)
+      dofEntity_[lmDof_[k] + c] = -1 - static_cast<int>(k);
+  // One row per multiplier: slot k's c-th at k * maxMultipliers + c.
+  rigidRowsPerSlot_ = maxMultipliers;
+  rigidCheck_ = std::make_unique<RigidMotionCheck>(mesh, static_cast<int>(numSlots) * maxMultipliers);
   ownedMap_ = Teuchos::rcp(new Map(numGlobalDofs_, static_cast<size_t>(count[me]), 0, comm_));
 }
 
@@ -642,6 +692,21 @@ void Model::restoreContactState(const std::vector<ContactSlot>& saved) {
 
 std::array<long, 3> Model::searchCounters() const {
   return contact_ ? contact_->searchCounters() : std::array<long, 3>{0, 0, 0};
+}
+
+void Model::subtractContactRowForces(const std::vector<ContactRowEntry>& rows, const Vector& values, Vector& b) const {
+  Vector ov(overlapMap_), fov(overlapMap_), f(ownedMap_);
+  ov.doImport(values, *importer_, Tpetra::INSERT);
+  {
+    auto v = ov.getData();
+    auto fv = fov.getDataNonConst();
+    for (const ContactRowEntry& e : rows) {
+      const double value = v[overlapMap_->getLocalElement(e.row)];
+      if (value != 0.0) fv[overlapMap_->getLocalElement(e.dof)] += e.coefficient * value;
+    }
+  }
+  f.doExport(fov, *exporter_, Tpetra::ADD);
+  b.update(-1.0, f, 1.0);
 }
 
 std::vector<std::vector<ConstraintEntry>> Model::contactRowEntries(const std::vector<SubdomainSystem>& systems) const {

@@ -123,15 +123,20 @@ class Model {
   Teuchos::RCP<const Map> overlapMap() const { return overlapMap_; }
   /// Global DOF id of component c of mesh node n.
   GO dof(int n, int c) const { return nodeDof_[n] + c; }
-  /// Global DOF id of the multiplier of contact slot k.
-  GO multiplierDof(int k) const { return lmDof_[k]; }
+  /// Global DOF id of multiplier c of contact slot k (c = 0: λ_n; 1..dim−1:
+  /// a frictional pair's λ_t).
+  GO multiplierDof(int k, int c = 0) const { return lmDof_[k] + c; }
   /// The id of DOF g that does not depend on the partition or the number of
   /// ranks (a checkpoint's): node·dim + component for a node's DOF,
-  /// numNodes·dim + k for the multiplier of contact slot k.
+  /// numNodes·dim + m for the multipliers, m counting them slot by slot
+  /// (slot k's c-th: the slots before it have m multipliers; without
+  /// friction m = k).
   GO partitionFreeDof(GO g) const {
     const int e = dofEntity_[g];
     const GO d = mesh_->dim();
-    return e >= 0 ? GO(e) * d + (g - nodeDof_[e]) : GO(mesh_->numNodes()) * d + (-1 - e);
+    if (e >= 0) return GO(e) * d + (g - nodeDof_[e]);
+    const int k = -1 - e;
+    return GO(mesh_->numNodes()) * d + lmFreeOffset_[k] + (g - lmDof_[k]);
   }
   bool isConstrained(GO g) const { return constrained_[g] != 0; }
 
@@ -167,6 +172,11 @@ class Model {
   /// The bodies whose element has no mass (Element::hasMass() false), by
   /// name; empty when every body has one (what a dynamic analysis needs).
   std::vector<std::string> bodiesWithoutMass() const;
+  /// The frictional contact pairs in gross slip: some slave node in
+  /// contact, none sticking (doc/contact.md, "Friction"); for each, its
+  /// parameter path and its two bodies ("'Contact/Pairs/P' (bodies 'A' and
+  /// 'B')").
+  std::vector<std::string> pairsInGrossSlip() const;
   /// Kinetic energy ½ vᵀ M v of the velocities v (owned map). Collective.
   /// \throws std::logic_error if a body has no mass
   double kineticEnergy(const Vector& v) const;
@@ -238,6 +248,17 @@ class Model {
   /// ContactComponent::updateActiveSet() with the multipliers of u.
   /// Without contact: nothing to do, returns no slots.
   std::vector<int> updateActiveSet(const Vector& u);
+  /// ContactComponent::beginStep(): a step (Newton's increment) starts
+  /// from u. Without contact: nothing to do.
+  void beginContactStep(const Vector& u) {
+    if (contact_) contact_->beginStep(u);
+  }
+  /// b −= Σ over `rows` of coefficient · values(row) at the entry's DOF:
+  /// the forces of contact multiplier increments that are known before a
+  /// solve (a slipping pair's under FETI-DP, doc/feti-dp.md "Friction
+  /// rows"). `values` holds them at the multiplier DOFs (owned map); `rows`
+  /// are this rank's ContactComponent::contactRows(). Collective.
+  void subtractContactRowForces(const std::vector<ContactRowEntry>& rows, const Vector& values, Vector& b) const;
   /// Decomposed contact in FETI-DP: the constraint row of every contact slot
   /// (row id = the slot's multiplier DOF; ContactComponent::contactRows()),
   /// split into the entries of the subdomains on this rank: the slave
@@ -284,6 +305,8 @@ class Model {
   class Assembly;
   friend class Assembly;
   void computeNodeOwners();
+  /// c_t of a frictional pair (DDC_Friction.hpp), from its bodies' materials.
+  double frictionStiffness(const ContactPairDefinition& def) const;
   void buildContact(ContactComponent::SurfaceElementSource surfaceElements);
   void buildDofNumbering();
   void buildConstraints();
@@ -322,7 +345,9 @@ class Model {
   mutable std::vector<Eigen::MatrixXd> elementMass_;  ///< per local element (elementMass())
   std::vector<int> nodeOwner_;
   std::vector<GO> nodeDof_;  ///< first DOF of each node
-  std::vector<GO> lmDof_;    ///< DOF of each contact slot's multiplier
+  std::vector<GO> lmDof_;    ///< DOF of each contact slot's first multiplier (λ_n; λ_t follow it)
+  std::vector<GO> lmFreeOffset_;  ///< multipliers of the slots before slot k (partitionFreeDof())
+  int rigidRowsPerSlot_ = 1;  ///< rows of the rigid-motion check per slot (its most multipliers)
   /// Per global DOF: its node (≥ 0), or −1 − k for the multiplier of slot k.
   std::vector<int> dofEntity_;
   mutable std::unique_ptr<RigidMotionCheck> rigidCheck_;  ///< see AssemblyResult::freeMotions

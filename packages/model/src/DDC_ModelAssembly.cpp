@@ -223,14 +223,26 @@ void Model::Assembly::elements() {
 }
 
 void Model::Assembly::addContactRow(const std::vector<GO>& d, const ElementResult& r) {
-  // The multiplier's row (last) of the tangent is the contact row C_k.
-  const int last = static_cast<int>(d.size()) - 1;
-  if (!rigid_ || last <= 0 || m_.dofEntity_[d[last]] >= 0) return;
-  for (int a = 0; a < last; ++a) {
-    const int n = m_.dofEntity_[d[a]];
-    if (n >= 0 && r.tangent(last, a) != 0.0)
-      rigid_->addRowEntry(-1 - m_.dofEntity_[d[last]], n, static_cast<int>(d[a] - m_.nodeDof_[n]), position(n),
-                          r.tangent(last, a));
+  // The multipliers' rows of the tangent are the contact rows C_k: the
+  // normal row always (an inactive one is empty), a frictional pair's
+  // tangential rows only while it sticks (a slipping pair does not hold the
+  // bodies along the surface).
+  if (!rigid_) return;
+  const int n = static_cast<int>(d.size());
+  int first = n;
+  while (first > 0 && m_.dofEntity_[d[first - 1]] < 0) --first;
+  if (first == 0 || first == n) return;
+  const int k = -1 - m_.dofEntity_[d[first]];
+  const bool sticks = m_.contact_->slots()[k].friction == FrictionState::Stick;
+  for (int c = 0; c < n - first; ++c) {
+    if (c > 0 && !sticks) break;
+    const int row = first + c;
+    for (int a = 0; a < first; ++a) {
+      const int node = m_.dofEntity_[d[a]];
+      if (r.tangent(row, a) != 0.0)
+        rigid_->addRowEntry(k * m_.rigidRowsPerSlot_ + c, node, static_cast<int>(d[a] - m_.nodeDof_[node]),
+                            position(node), r.tangent(row, a));
+    }
   }
 }
 

@@ -44,7 +44,8 @@ class RigidMotionCheck {
   /// 1e-10 already makes the solution of the Newton system meaningless).
   static constexpr double kRestraintTolerance = 1e-10;
 
-  /// \param numSlots contact slots (rows) of the model, 0 without contact
+  /// \param numSlots contact constraint rows of the model (one per multiplier
+  ///        slot), 0 without contact
   RigidMotionCheck(const Mesh& mesh, int numSlots);
 
   /// Forget the restraints (call before an assembly).

@@ -173,10 +173,32 @@ class FetiDpStrategy : public SolutionStrategy {
     // iterations; only their active flags and right-hand sides change.
     if (!model_->hasContact()) return;
     feti_->setConstraintRows(model_->multiplierMap(), model_->contactRowEntries(subdomains_));
+    rowEntries_ = model_->contact()->contactRows();
+    // The rows in the multiplier map's order: each owned slot's multipliers.
     lmLids_.clear();
+    rows_.clear();
+    const ContactComponent& c = *model_->contact();
     for (int k : model_->ownedSlots())
-      lmLids_.push_back(model_->ownedMap()->getLocalElement(model_->contact()->multiplierId(k)));
+      for (int m = 0; m < c.numMultipliers(k); ++m) {
+        lmLids_.push_back(model_->ownedMap()->getLocalElement(c.multiplierId(k, m)));
+        rows_.push_back({k, m, m > 0 && c.slipRowHeld(k, m - 1)});
+      }
   }
+
+  /// What row i of the contact rows is now (doc/feti-dp.md, "Friction rows").
+  enum class RowKind { Constraint, Released, Slip };
+  RowKind rowKind(size_t i) const {
+    const auto& sl = model_->contactSlots()[rows_[i].slot];
+    if (!(sl.active && sl.paired())) return RowKind::Released;
+    if (rows_[i].multiplier == 0) return RowKind::Constraint;
+    if (rows_[i].held) return RowKind::Released;
+    return sl.friction == FrictionState::Stick ? RowKind::Constraint : RowKind::Slip;
+  }
+
+  /// The multiplier increment of a slipping row, known before the solve:
+  /// the step onto the Coulomb cone with the current normal force and
+  /// predictor, −c_t × the slip row's residual (its b entry).
+  double slipIncrement(size_t i, double b) const { return model_->contact()->frictionStiffness(rows_[i].slot) * b; }
 
   AssemblyResult assemble(const Vector& u, double lambda, Vector& r, const Vector* prescribedStep) override {
     AssemblyRequest request;
@@ -195,20 +217,28 @@ class FetiDpStrategy : public SolutionStrategy {
     Lap lap;
     const bool contact = model_->hasContact();
     if (contact) {
-      // Contact rows: active flag per slot, c = the right-hand side of the
+      // Contact rows: active flag per row, c = the right-hand side of the
       // multiplier row (−g_N, with the predictor's share of the prescribed
-      // increment in the first iteration). The multipliers are not
-      // subdomain DOFs: b is 0 there.
+      // increment in the first iteration; −u_t of a sticking pair). The
+      // multipliers are not subdomain DOFs: b is 0 there. A slipping pair's
+      // tangential multipliers step onto the Coulomb cone and their forces
+      // enter b as known (doc/feti-dp.md, "Friction rows").
       std::vector<char> active;
       std::vector<double> c;
       b_->assign(bModel);
-      auto bv = b_->getDataNonConst();
-      for (size_t i = 0; i < lmLids_.size(); ++i) {
-        const auto& sl = model_->contactSlots()[model_->ownedSlots()[i]];
-        active.push_back(sl.active && sl.paired());
-        c.push_back(bv[lmLids_[i]]);
-        bv[lmLids_[i]] = 0.0;
+      auto slip = model_->createVector();
+      {
+        auto bv = b_->getDataNonConst();
+        auto sv = slip->getDataNonConst();
+        for (size_t i = 0; i < lmLids_.size(); ++i) {
+          const RowKind kind = rowKind(i);
+          active.push_back(kind == RowKind::Constraint);
+          c.push_back(bv[lmLids_[i]]);
+          if (kind == RowKind::Slip) sv[lmLids_[i]] = slipIncrement(i, bv[lmLids_[i]]);
+          bv[lmLids_[i]] = 0.0;
+        }
       }
+      if (model_->contact()->frictional()) model_->subtractContactRowForces(rowEntries_, *slip, *b_);
       feti_->setConstraintState(active, c);
     }
     // The subdomain matrices hold the element tangents only (contact enters
@@ -227,13 +257,16 @@ class FetiDpStrategy : public SolutionStrategy {
     const auto info = feti_->solve(contact ? *b_ : bModel, du);
     if (contact) {
       // Multiplier increments: from FETI-DP on active rows; a released
-      // multiplier goes to zero (its row of b is −λ).
+      // multiplier goes to zero (its row of b is −λ); a slipping one onto
+      // the cone.
       auto mu = feti_->constraintMultipliers()->getData();
       auto dv = du.getDataNonConst();
       auto rv = bModel.getData();
       for (size_t i = 0; i < lmLids_.size(); ++i) {
-        const auto& sl = model_->contactSlots()[model_->ownedSlots()[i]];
-        dv[lmLids_[i]] = sl.active && sl.paired() ? mu[i] : rv[lmLids_[i]];
+        const RowKind kind = rowKind(i);
+        dv[lmLids_[i]] = kind == RowKind::Constraint ? mu[i]
+                         : kind == RowKind::Slip     ? slipIncrement(i, rv[lmLids_[i]])
+                                                     : rv[lmLids_[i]];
       }
     }
     out.solveSeconds = lap();
@@ -276,9 +309,35 @@ class FetiDpStrategy : public SolutionStrategy {
   SubdomainSink sink_;
   Teuchos::RCP<Vector> b_;    ///< right-hand side without the multiplier rows
   std::vector<LO> lmLids_;    ///< owned multiplier DOFs (LIDs in the model's map), in row-map order
+  /// Per row of lmLids_: its slot, which of the slot's multipliers (0 the
+  /// gap's), and whether a slip row holds nothing (slipRowHeld()).
+  struct Row {
+    int slot, multiplier;
+    bool held;
+  };
+  std::vector<Row> rows_;
+  std::vector<ContactRowEntry> rowEntries_;  ///< this rank's contact rows of the increment
   bool factored_ = false;     ///< numeric() done once
   double factoredMassFactor_ = 0.0;  ///< tangentMassFactor() of that numeric()
 };
+
+}  // namespace
+
+namespace {
+
+/// Friction makes the tangent nonsymmetric (doc/contact.md, "Friction"):
+/// MUMPS must factorise the whole matrix (SYM=0), not read its lower
+/// triangle only. An explicit Symmetric = true is refused.
+void requireNonsymmetricSolver(Teuchos::ParameterList& linear, const ContactOptions& contact) {
+  if (!contact.frictional() || (linear.isParameter("Type") && linear.get<std::string>("Type") != "MUMPS")) return;
+  Teuchos::ParameterList& mumps = linear.sublist("MUMPS");
+  const auto* entry = mumps.getEntryPtr("Symmetric");
+  DDC_INPUT_REQUIRE(!entry || entry->isDefault() || !mumps.get<bool>("Symmetric"),
+                    "'Solver/Linear Solver/MUMPS/Symmetric' = true, but a contact pair has a 'Friction Coefficient' > 0: "
+                    "friction makes the tangent nonsymmetric, which a symmetric factorisation (reading only the "
+                    "lower triangle) would solve wrongly; remove the parameter or set it to false");
+  mumps.set("Symmetric", false);
+}
 
 }  // namespace
 
@@ -296,6 +355,7 @@ std::unique_ptr<SolutionStrategy> makeSolutionStrategy(Teuchos::RCP<const Teucho
     return std::make_unique<FetiDpStrategy>(comm, solver);
   }
   DDC_INPUT_REQUIRE(!solver.isSublist("FETI-DP"), "sublist 'Solver/FETI-DP' does not apply to Solver/Strategy = Monolithic");
+  requireNonsymmetricSolver(solver.sublist("Linear Solver"), contact);
   auto strategy = std::make_unique<MonolithicStrategy>(solver);
   const std::string type = solver.sublist("Linear Solver").get<std::string>("Type");
   DDC_INPUT_REQUIRE(!contact.enabled() || type == "MUMPS" || type == "Amesos2",

@@ -80,12 +80,13 @@ Newton::Newton(Model& model, SolutionStrategy& strategy, NewtonSettings settings
 
 namespace {
 
-/// The contact state whose repetition is cycling: the active set and the
-/// pairing (a slave flipping between two segments cycles as surely as one
-/// flipping its state).
+/// The contact state whose repetition is cycling: the active set with the
+/// stick/slip states and the pairing (a slave flipping between two segments
+/// cycles as surely as one flipping its state).
 std::vector<int> activeSetSignature(const Model& model) {
   std::vector<int> a;
-  for (const auto& sl : model.contactSlots()) a.insert(a.end(), {int(sl.active), sl.master[0], sl.master[1], sl.segment});
+  for (const auto& sl : model.contactSlots())
+    a.insert(a.end(), {int(sl.contactState()), sl.master[0], sl.master[1], sl.segment});
   return a;
 }
 
@@ -118,10 +119,12 @@ bool Newton::solve(double lambda0, double lambda1, Vector& uStart, StepRecord& r
   rec.residualHistory.clear();
   rec.failure.clear();
   seen_.clear();
+  grossSlip_.clear();
   if (contact) seen_.push_back(activeSetSignature(model_));
   // Conventional element, Contact/Pairing Cycles = Freeze: once the pairing
   // cycles, it is kept for the rest of the increment (doc/contact.md).
   pairingFrozen_ = false;
+  if (contact) model_.beginContactStep(*u);  // the slip of frictional pairs starts here
   strategy_.beginIncrement();
   for (int it = 0; it < s.maxIterations; ++it) {
     Iteration i;
@@ -160,6 +163,7 @@ bool Newton::solve(double lambda0, double lambda1, Vector& uStart, StepRecord& r
     if (contact) {
       if (conventional && !pairingFrozen_) i.pairingChanged = model_.updatePairing(*u, false, false, &i.repaired);
       i.changed = model_.updateActiveSet(*u);
+      noteGrossSlip(it);
     }
     printIteration(i);
     if (!std::isfinite(i.energy)) {
@@ -178,7 +182,8 @@ bool Newton::solve(double lambda0, double lambda1, Vector& uStart, StepRecord& r
     }
   }
   rec.failure = "no convergence in " + std::to_string(s.maxIterations) + " iterations (Newton/Max Iterations)" +
-                unmetCriterion(rec.residualHistory, lastEnergy, e0, lambda1 - lambda0);
+                unmetCriterion(rec.residualHistory, lastEnergy, e0, lambda1 - lambda0) +
+                (grossSlip_.empty() ? "" : "; " + grossSlip_);
   return false;
 }
 
@@ -201,11 +206,13 @@ bool Newton::assemble(int it, const Vector& u, double lambda0, double lambda1, V
   // on every rank: the check ends with a reduction).
   if (!assembled.freeMotions.empty()) {
     std::ostringstream os;
+    if (!grossSlip_.empty()) os << grossSlip_ << "; then ";
     os << "the problem is singular in step " << rec.step << " (load factor " << lambda0 << " -> " << lambda1
        << "), Newton iteration " << it << ": no prescribed displacement and no active contact restrains "
        << assembled.freeMotions
-       << ". Prescribe displacements (Boundary Conditions) that hold these motions; frictionless contact "
-          "holds a body only along its contact normals (doc/user-guide.md, \"A singular problem\")";
+       << ". Prescribe displacements (Boundary Conditions) that hold these motions; contact holds a body "
+          "along its contact normals, and along the surface only where a pair with a 'Friction Coefficient' "
+          "sticks (doc/user-guide.md, \"A singular problem\")";
     throw SolverError(os.str());
   }
   timing_.assembly += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -261,6 +268,19 @@ void Newton::printIteration(const Iteration& i) const {
     line += "  active " + std::to_string(model_.contactSummary().active) + " (" + std::to_string(i.changed.size()) +
             " changed" + (i.pairingChanged ? ", new pairing" : "") + ")";
   std::cout << line << std::endl;
+}
+
+void Newton::noteGrossSlip(int it) {
+  // Gross slip (doc/contact.md, "Friction"): every slave node in contact of
+  // a frictional pair slips, so Coulomb friction holds the bodies along the
+  // surface no more; the first one of the increment goes into the failure
+  // messages.
+  if (!grossSlip_.empty()) return;
+  for (const std::string& pair : model_.pairsInGrossSlip())
+    grossSlip_ += (grossSlip_.empty() ? "" : "; ") + std::string("gross slip: every slave node in contact of the pair ") +
+                  pair + " slips at Newton iteration " + std::to_string(it) +
+                  ": the tangential load exceeds what Coulomb friction can hold (the friction coefficient times the "
+                  "normal load), so the bodies slide along each other without bound unless something else holds them";
 }
 
 bool Newton::contactSettled(const Iteration& i, StepRecord& rec) {

@@ -81,6 +81,8 @@ class Newton {
   void printIteration(const Iteration& i) const;
   /// The contact checks after an update: true if the iteration may go on;
   /// false with `record.failure` set when the active set cycles.
+  /// Record the first gross slip of the increment (grossSlip_).
+  void noteGrossSlip(int it);
   bool contactSettled(const Iteration& i, StepRecord& record);
 
   Model& model_;
@@ -94,6 +96,9 @@ class Newton {
   bool forcing_ = false;
   std::vector<std::vector<int>> seen_;  ///< active sets after each change in this increment
   bool pairingFrozen_ = false;
+  /// The first gross slip of this increment (a frictional pair whose every
+  /// slave node in contact slips), for the failure messages; empty: none.
+  std::string grossSlip_;
 };
 
 }  // namespace ddc

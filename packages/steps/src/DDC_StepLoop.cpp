@@ -60,8 +60,22 @@ StepLoop::StepLoop(std::shared_ptr<Model> model, SolutionStrategy& strategy, Dyn
 
 StepLoop::~StepLoop() = default;
 
+namespace {
+
+/// The work of the friction forces against the slip of a step: Σ λ_t·u_t
+/// over the slave nodes in contact (zero without friction).
+double frictionalWork(const std::vector<ContactSlot>& slots) {
+  double w = 0.0;
+  for (const ContactSlot& s : slots)
+    if (s.active) w += s.tangential[0] * s.tangentialSlip[0] + s.tangential[1] * s.tangentialSlip[1];
+  return w;
+}
+
+}  // namespace
+
 RunKind StepLoop::kind() const {
-  return RunKind{dynamics_ != nullptr, model_->decomposedContact(), model_->dim()};
+  return RunKind{dynamics_ != nullptr, model_->decomposedContact(), model_->dim(),
+                 model_->hasContact() && model_->contactOptions().frictional()};
 }
 
 std::string StepLoop::stepLabel(int n) const {
@@ -253,6 +267,8 @@ void StepLoop::accept(const StepProposal& p, StepRecord& rec, Measured& m) {
   state_.u->assign(*trial_);
   if (model_->hasContact()) {
     state_.convergedSlots = std::move(m.convergedSlots);
+    rec.frictionalDissipation = (state_.history.empty() ? 0.0 : state_.history.back().frictionalDissipation) +
+                                frictionalWork(state_.convergedSlots);
     rec.activeContacts = m.contact.active;
     for (int c = 0; c < 3; ++c) rec.contactForce[c] = m.contact.force[c];
     rec.contactExchanges = model_->exchanges() - att.exchanges0;

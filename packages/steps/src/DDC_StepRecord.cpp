@@ -12,6 +12,7 @@ bool present(When when, const RunKind& kind) {
     case When::Dynamic: return kind.dynamic;
     case When::Decomposed: return kind.decomposed;
     case When::ThreeD: return kind.dim == 3;
+    case When::Frictional: return kind.frictional;
   }
   return false;
 }
@@ -42,6 +43,7 @@ const std::vector<StepField>& stepFields() {
       {"rejected_steps", "1", W::Decomposed, W::Never, [](const R& r) { return double(r.rejections); }, [](R& r, double v) { r.rejections = int(v); }},
       {"geometry_corrections", "1", W::Decomposed, W::Never, [](const R& r) { return double(r.corrections); }, [](R& r, double v) { r.corrections = int(v); }},
       {"geometry_error", "1", W::Decomposed, W::Never, [](const R& r) { return r.geometryError; }, [](R& r, double v) { r.geometryError = v; }},
+      {"frictional_dissipation", "energy", W::Frictional, W::Frictional, [](const R& r) { return r.frictionalDissipation; }, [](R& r, double v) { r.frictionalDissipation = v; }},
   };
   return fields;
 }

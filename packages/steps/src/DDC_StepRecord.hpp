@@ -29,6 +29,10 @@ struct StepRecord {
   double wallSeconds = 0.0;  ///< since the start of the run (a restart goes on from the checkpoint's)
   std::vector<double> residualHistory;  ///< ||r|| per Newton iteration
   double externalWork = 0.0;  ///< work of reactions and tractions, trapezoidal in λ, since λ = 0
+  /// Work of the friction forces against the slip since λ = 0: Σ over the
+  /// steps and the slave nodes in contact of λ_t·u_t (doc/contact.md,
+  /// "Friction"); ≥ 0.
+  double frictionalDissipation = 0.0;
   int activeContacts = 0;  ///< active contact slots at the end of the (sub)step
   double contactForce[3] = {0.0, 0.0, 0.0};  ///< resultant on the slave bodies (Σ −λ n); z = 0 in 2-D
   long contactExchanges = 0;  ///< contact-geometry exchanges in this (sub)step (Model::exchanges())
@@ -54,10 +58,11 @@ struct RunKind {
   bool dynamic = false;     ///< implicit dynamics (the load factor is the time)
   bool decomposed = false;  ///< the decomposed contact element (step sizes, frozen-geometry error)
   int dim = 2;              ///< space dimension
+  bool frictional = false;  ///< some contact pair has friction
 };
 
 /// In which runs an output has a field.
-enum class When { Never, Always, QuasiStatic, Dynamic, Decomposed, ThreeD };
+enum class When { Never, Always, QuasiStatic, Dynamic, Decomposed, ThreeD, Frictional };
 
 /// True if an output with presence `when` has the field in a run of `kind`.
 bool present(When when, const RunKind& kind);
