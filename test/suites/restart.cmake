@@ -83,6 +83,19 @@ ddc_add_restart_test(restart_other_ranks_monolithic_np2_to_1 2 other-ranks:1 ${D
 ddc_add_restart_test(restart_sigterm_dynamics_np2 2 sigterm ${PROJECT_SOURCE_DIR}/examples/bar_impact.xml)
 ddc_add_restart_test(restart_sigterm_step_control_np2 2 sigterm
   ${PROJECT_SOURCE_DIR}/examples/two_half_rings_adaptive.xml)
+# Coulomb friction (the slots' stick/slip states, tangential bases and
+# multipliers in the checkpoint; the slip measured from the step start):
+# the Cattaneo cylinder stopped during the push, the conventional element
+# solved monolithically on 1 rank (history equal field for field), and the
+# decomposed element under FETI-DP (the slide variant, Box Grid 2 x 2)
+# stopped on 2 ranks and continued on 1 (to 1e-10).
+set(DDC_CATTANEO ${PROJECT_SOURCE_DIR}/examples/cattaneo_2d.xml)
+ddc_add_restart_test(restart_sigterm_friction_monolithic_np1 1 sigterm ${DDC_CATTANEO} LABELS contact)
+ddc_add_restart_test(restart_other_ranks_friction_feti_np2_to_1 2 other-ranks:1 ${DDC_CATTANEO} LABELS contact
+  ARGS --set "Contact/Formulation=Decomposed Node-To-Surface" --set "Boundary Conditions/Push/Type=Displacement"
+    --set "Boundary Conditions/Push/Components=X" --set "Boundary Conditions/Push/Value X=0.0025"
+    --set "Boundary Conditions/Push/Traction X=0" --set "Solver/Strategy=FETI-DP"
+    --set "Solver/FETI-DP/Belos/Convergence Tolerance=1e-12" --set "Partition/Method=Box Grid")
 # A failed run whose checkpoint cannot be written reports both.
 ddc_add_restart_test(restart_unwritable_np2 2 unwritable ${DDC_HALF_RINGS} LABELS negative)
 # A finished run taken further (a larger final load factor).

@@ -194,8 +194,12 @@ struct FrozenGeometryError {
   /// puts across the updated normal n, over the slip s of the contact point
   /// along the master surface in the step (reference lengths).
   double normalWork = 0.0;
-  /// The indicator: gapWork + normalWork.
-  double total() const { return gapWork + normalWork; }
+  /// Σ_α |λ_t,α| |τ_α − τ^p_α| s over the same slots of frictional pairs:
+  /// the tangential force along the frozen basis τ^p across the updated
+  /// one, over the same slip (0 without friction).
+  double tangentWork = 0.0;
+  /// The indicator: gapWork + normalWork + tangentWork.
+  double total() const { return gapWork + normalWork + tangentWork; }
 };
 
 }  // namespace ddc

@@ -350,7 +350,7 @@ FrozenGeometryError ContactPairing::frozenGeometryError(const std::vector<Contac
     Eigen::Vector3d point, normal;
     return facetPointAndNormal(type, X, xi, point, normal) ? std::optional<Eigen::Vector3d>(point) : std::nullopt;
   };
-  double gapWork = 0.0, normalWork = 0.0;
+  double gapWork = 0.0, normalWork = 0.0, tangentWork = 0.0;
   for (size_t k = 0; k < slots_.size(); ++k) {
     const ContactSlot& before = converged[k];
     const ContactSlot& now = slots_[k];
@@ -361,9 +361,15 @@ FrozenGeometryError ContactPairing::frozenGeometryError(const std::vector<Contac
     const CellType type = topo_.pair(before.pair).masterType;
     const auto from = referencePoint(type, before, before.frozen.xi);
     const auto to = referencePoint(type, now, now.frozen.xi);
-    if (from && to) normalWork += std::abs(lambda) * (now.normal - before.frozen.normal).norm() * (*to - *from).norm();
+    if (!(from && to)) continue;
+    const double s = (*to - *from).norm();
+    normalWork += std::abs(lambda) * (now.normal - before.frozen.normal).norm() * s;
+    // Friction: the tangential force along the frozen basis, across the updated one.
+    for (int a = 0; a + 1 < dim; ++a)
+      if (before.tangential[a] != 0.0)
+        tangentWork += std::abs(before.tangential[a]) * (now.frozen.tangent[a] - before.frozen.tangent[a]).norm() * s;
   }
-  return {std::abs(gapWork), normalWork};
+  return {std::abs(gapWork), normalWork, tangentWork};
 }
 
 // ---- queries -------------------------------------------------------------------------------------

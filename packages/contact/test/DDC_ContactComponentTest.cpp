@@ -191,7 +191,46 @@ TEST(ContactComponent, TheFrozenGeometryErrorOfAStepAgainstItsClosedForm) {
   const ddc::FrozenGeometryError none = c->frozenGeometryError(again);
   EXPECT_NEAR(none.gapWork, 0.0, kRoundoff);
   EXPECT_NEAR(none.normalWork, 0.0, kRoundoff);
+  EXPECT_EQ(e.tangentWork, 0.0) << "no friction, no tangential term";
   EXPECT_THROW(c->frozenGeometryError({}), std::invalid_argument);
+}
+
+TEST(ContactComponent, TheFrozenGeometryErrorOfAFrictionalStepHasTheTangentialTerm) {
+  // The step of the test above with a frictional pair: the tangent basis is
+  // frozen with the normal, so slave 11's tangential force along the
+  // frozen τ^p lies across the updated τ by |τ − τ^p| = |n − n^p| (2-D: τ
+  // = (−n_y, n_x)) over the same slip; slave 10's basis does not turn.
+  Host h;
+  auto c = registered(h, true, [](std::vector<ddc::ContactNode>&, ddc::ContactPairSurfaces& p) {
+    p.friction = 0.3;
+    p.frictionStiffness = 10.0;
+  });
+  auto map = h.map();
+  c->setDofs(map, dofsOf(h));
+  c->updatePairing(*state(h, map, 0.0), true, true);
+  const double s = 0.2, d = 0.01, delta = 0.1, lambdaT = 0.25;
+  auto u = state(h, map, kGap0 + d);
+  for (int i = 3; i < 5; ++i)
+    if (h.owns(i)) u->replaceGlobalValue(GO(2 * i), s);
+  if (h.owns(2)) u->replaceGlobalValue(GO(2 * 2 + 1), delta);
+  ddc::Vector lambda(c->multiplierMap());
+  c->updateActiveSet(*u, &lambda);
+  std::vector<ddc::ContactSlot> converged = c->slots();
+  for (auto& sl : converged) {
+    ASSERT_TRUE(sl.active);
+    ASSERT_EQ(c->numMultipliers(&sl - converged.data()), 2);
+    sl.state.multiplier = -1.0;
+    sl.tangential[0] = lambdaT;
+  }
+  c->updatePairing(*u, true, true);
+  const ddc::FrozenGeometryError e = c->frozenGeometryError(converged);
+  const double L = std::sqrt(1 + delta * delta);
+  const double f = ((0.5 + s) - d * delta) / (L * L);
+  const double slip = std::abs(f - 0.5);
+  const double rotation = std::hypot(-delta / L, 1 / L - 1);
+  EXPECT_NEAR(e.tangentWork, lambdaT * rotation * slip, kRoundoff);
+  EXPECT_NEAR(e.normalWork, rotation * slip, kRoundoff) << "the normal term as without friction";
+  EXPECT_NEAR(e.total(), e.gapWork + e.normalWork + e.tangentWork, 0.0);
 }
 
 TEST(ContactComponent, ConventionalContributionsUseHostDofs) {
