@@ -188,14 +188,6 @@ std::unique_ptr<StepController> makeStepController(const PL& params, bool dynami
 
 std::unique_ptr<Dynamics> makeDynamics(PL& dyn, Model& model, SolutionStrategy& strategy) {
   const Mesh& mesh = model.mesh();
-  // The energy balance of a dynamic run has no frictional dissipation yet.
-  for (const auto& pair : model.contactOptions().pairs)
-    DDC_INPUT_REQUIRE(pair.friction == 0.0, "'Contact/Pairs/" << pair.name << "/Friction Coefficient' = "
-                                                << pair.friction << " with 'Dynamics/Integrator' = "
-                                                << dyn.get<std::string>("Integrator")
-                                                << ": friction in dynamic runs is not built yet (its energy balance "
-                                                   "lacks the frictional dissipation); run quasi-statically "
-                                                   "(Integrator = None) or set the coefficient to 0");
   // Every body needs inertia.
   for (const auto& name : model.bodiesWithoutMass())
     DDC_THROW(InputError, "'Dynamics/Integrator' = " << dyn.get<std::string>("Integrator") << " needs the mass of "

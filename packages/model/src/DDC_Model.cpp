@@ -700,9 +700,11 @@ void Model::subtractContactRowForces(const std::vector<ContactRowEntry>& rows, c
   {
     auto v = ov.getData();
     auto fv = fov.getDataNonConst();
+    // A prescribed DOF takes the force as a reaction: it is no part of b
+    // (as it has no entry in contactRowEntries()).
     for (const ContactRowEntry& e : rows) {
       const double value = v[overlapMap_->getLocalElement(e.row)];
-      if (value != 0.0) fv[overlapMap_->getLocalElement(e.dof)] += e.coefficient * value;
+      if (value != 0.0 && !constrained_[e.dof]) fv[overlapMap_->getLocalElement(e.dof)] += e.coefficient * value;
     }
   }
   f.doExport(fov, *exporter_, Tpetra::ADD);

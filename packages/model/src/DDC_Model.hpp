@@ -253,7 +253,8 @@ class Model {
   void beginContactStep(const Vector& u) {
     if (contact_) contact_->beginStep(u);
   }
-  /// b −= Σ over `rows` of coefficient · values(row) at the entry's DOF:
+  /// b −= Σ over `rows` of coefficient · values(row) at the entry's DOF
+  /// (free DOFs only: a prescribed one takes it as a reaction):
   /// the forces of contact multiplier increments that are known before a
   /// solve (a slipping pair's under FETI-DP, doc/feti-dp.md "Friction
   /// rows"). `values` holds them at the multiplier DOFs (owned map); `rows`

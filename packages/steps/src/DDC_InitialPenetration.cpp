@@ -45,12 +45,16 @@ std::string initialPenetrationWarning(const InitialPenetration& p) {
   return os.str();
 }
 
-std::string injectedEnergyWarning(const InitialPenetration& p, double before, double after, double work) {
-  const double gained = after - before - work;
+std::string injectedEnergyWarning(const InitialPenetration& p, double before, double after, double work,
+                                  double dissipated) {
+  // Friction took `dissipated` out of the energy the step had to keep.
+  const double gained = after + dissipated - before - work;
   std::ostringstream os;
   os << "warning: step 1: the initial penetration (" << p.depth << " at slave node " << p.node << " of contact pair '"
      << p.pair << "') changed the total energy from " << before << " to " << after << " with external work "
-     << work << ": " << gained << " beyond it";
+     << work;
+  if (dissipated > 0.0) os << " and frictional dissipation " << dissipated;
+  os << ": " << gained << " beyond it";
   if (before > 0.0) os << " (" << (gained >= 0 ? "+" : "") << std::setprecision(3) << 100.0 * gained / before << " %)";
   return os.str();
 }

@@ -29,7 +29,9 @@ std::string initialPenetrationWarning(const InitialPenetration& p);
 
 /// "warning: ..." on the energy the first step gained: `before` the total
 /// energy at the start, `after` at the first step's end, `work` the
-/// external work of that step.
-std::string injectedEnergyWarning(const InitialPenetration& p, double before, double after, double work);
+/// external work of that step, `dissipated` the frictional dissipation of
+/// that step (doc/contact.md, "Friction"; named in the message when > 0).
+std::string injectedEnergyWarning(const InitialPenetration& p, double before, double after, double work,
+                                  double dissipated = 0.0);
 
 }  // namespace ddc

@@ -286,7 +286,8 @@ void StepLoop::accept(const StepProposal& p, StepRecord& rec, Measured& m) {
     note(buf);
   }
   if (penetration_.depth > 0.0 && state_.history.empty())
-    note(injectedEnergyWarning(penetration_, initialEnergy_, rec.kineticEnergy + rec.strainEnergy, rec.externalWork));
+    note(injectedEnergyWarning(penetration_, initialEnergy_, rec.kineticEnergy + rec.strainEnergy, rec.externalWork,
+                               rec.frictionalDissipation));
   rec.wallSeconds = now() - start_ + state_.wallOffset;
   state_.history.push_back(rec);
   const bool last = controller_->done();
