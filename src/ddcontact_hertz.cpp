@@ -6,6 +6,8 @@
 //                   [--tolerance T]
 //   ddcontact-hertz --cattaneo OUT_DIR [--cylinder BODY] [--block BODY]
 //                   [--profile FILE] [--tolerance-a T] [--tolerance-c T]
+//   ddcontact-hertz --mindlin OUT_DIR [--sphere BODY] [--block BODY]
+//                   [--profile FILE] [--tolerance-a T] [--tolerance-c T]
 //
 // It reads OUT_DIR/parameters.xml (the run's validated parameters) and
 // OUT_DIR/contact_nodes.csv (Output/Contact Nodes = true). The sphere body
@@ -38,10 +40,14 @@
 //
 // --cattaneo compares a plane-strain cylinder pressed on a block and pushed
 // sideways (examples/cattaneo_2d.xml) with Hertz's line contact and
-// Cattaneo's stick zone instead (src/ddcontact_hertz_cattaneo.cpp).
+// Cattaneo's stick zone instead (src/ddcontact_hertz_cattaneo.cpp);
+// --mindlin a sphere pressed on a block and pushed sideways
+// (examples/mindlin_sphere.xml, a half model) with Hertz's circular contact
+// and Mindlin's stick zone (src/ddcontact_hertz_mindlin.cpp).
 //
 // Exit status: 0 done, 1 --tolerance given and |a or p0 relative error| > T
-// (impact: t_c or F_max; --cattaneo: a or c beyond --tolerance-a / -c), 2
+// (impact: t_c or F_max; --cattaneo, --mindlin: a or c beyond
+// --tolerance-a / -c), 2
 // bad input (usage, missing / malformed files, a deck that is no Hertz
 // case, no active node on the axis, no contact, no stick zone to fit).
 #include <Teuchos_ParameterList.hpp>
@@ -96,7 +102,7 @@ std::vector<Row> readContactNodes(const std::string& file, double cx, double cy)
     }
     if (v.size() != 15) throw BadInput(file + ":" + std::to_string(lineNo) + ": expected 15 columns");
     Row r;
-    r.r = std::hypot(v[2] - cx, v[3] - cy), r.x = v[2], r.y = v[3];
+    r.r = std::hypot(v[2] - cx, v[3] - cy), r.x = v[2], r.y = v[3], r.z = v[4];
     r.multiplier = v[6], r.tributary = v[7], r.pressure = v[8], r.active = v[9] != 0.0;
     r.tangential[0] = v[10], r.tangential[1] = v[11], r.tangential[2] = v[12], r.slip = v[13];
     r.state = int(v[14]);
@@ -104,6 +110,17 @@ std::vector<Row> readContactNodes(const std::string& file, double cx, double cy)
   }
   if (rows.empty()) throw BadInput(file + ": no slave nodes");
   return rows;
+}
+
+double frictionCoefficient(const Teuchos::ParameterList& deck, const std::string& xml, const std::string& mode,
+                           std::string& pair) {
+  const auto& pairs = deck.sublist("Contact").sublist("Pairs");
+  int n = 0;
+  for (auto it = pairs.begin(); it != pairs.end(); ++it)
+    if (pairs.isSublist(pairs.name(it))) ++n, pair = pairs.name(it);
+  if (n != 1) throw BadInput(xml + ": " + mode + " needs exactly one pair in 'Contact/Pairs', found " + std::to_string(n));
+  const auto& p = pairs.sublist(pair);
+  return p.isParameter("Friction Coefficient") ? p.get<double>("Friction Coefficient") : 0.0;
 }
 
 double fittedHalfWidth(const std::vector<double>& s, const std::vector<double>& y) {
@@ -126,6 +143,8 @@ using namespace ddc_hertz;
 const char* kUsage =
     "usage: ddcontact-hertz OUT_DIR [--sphere BODY] [--block BODY] [--profile FILE] [--tolerance T]\n"
     "       ddcontact-hertz --cattaneo OUT_DIR [--cylinder BODY] [--block BODY] [--profile FILE]\n"
+    "                       [--tolerance-a T] [--tolerance-c T]\n"
+    "       ddcontact-hertz --mindlin OUT_DIR [--sphere BODY] [--block BODY] [--profile FILE]\n"
     "                       [--tolerance-a T] [--tolerance-c T]\n"
     "\n"
     "Compares a ddcontact run of a sphere on a block (examples/hertz_sphere.xml) with Hertz's\n"
@@ -152,7 +171,16 @@ const char* kUsage =
     "  --profile FILE   write x,p_fe,p_hertz,q_fe,q_cattaneo,state for every slave node\n"
     "  --tolerance-a T  exit 1 if a differs from Hertz's by more than T (relative)\n"
     "  --tolerance-c T  exit 1 if c differs from Cattaneo's by more than T (relative; needs\n"
-    "                   mu > 0 and Q > 0)\n";
+    "                   mu > 0 and Q > 0)\n"
+    "\n"
+    "--mindlin: a sphere pressed on a block of the same material and pushed sideways by\n"
+    "Q < mu P (examples/mindlin_sphere.xml, half of the problem, the plane y = 0 a symmetry\n"
+    "plane; doc/contact.md, \"Mindlin\"): the contact radius a against Hertz's for the\n"
+    "transmitted P, and with friction and Q > 0 the stick radius c against Mindlin's\n"
+    "a (1 - Q/(mu P))^(1/3). P and Q are twice the model's. The deck has one contact pair, the\n"
+    "sphere's surface its slave side (R and the axis are fitted to the slave nodes), the\n"
+    "contact normal along z and Q along x. --sphere names the sphere body (default: Sphere),\n"
+    "--profile writes x,y,r,p_fe,p_hertz,q_fe,q_mindlin,state, --tolerance-a / -c as above.\n";
 
 /// The Sphere Octant is a quarter of a hemisphere: the whole sphere's
 /// contact force is 4 times the model's.
@@ -245,7 +273,7 @@ int impact(const std::string& dir, const Teuchos::ParameterList& deck, const std
 struct Options {
   std::string dir, sphere = "Sphere", block = "Block", profile, cylinder = "Cylinder";
   double tolerance = -1.0, toleranceA = -1.0, toleranceC = -1.0;
-  bool cattaneo = false;
+  bool cattaneo = false, mindlin = false;
   bool help = false;  ///< --help: print kUsage, nothing else
 };
 
@@ -279,6 +307,8 @@ Options parseArguments(int argc, char** argv) {
       o.tolerance = positiveNumber(a, value());
     } else if (a == "--cattaneo") {
       o.cattaneo = true;
+    } else if (a == "--mindlin") {
+      o.mindlin = true;
     } else if (a == "--cylinder") {
       o.cylinder = value();
     } else if (a == "--tolerance-a") {
@@ -294,9 +324,11 @@ Options parseArguments(int argc, char** argv) {
     }
   }
   if (o.dir.empty()) throw BadInput("no output directory given");
+  if (o.cattaneo && o.mindlin) throw BadInput("--cattaneo and --mindlin exclude each other; give one");
   if (o.cattaneo && o.tolerance > 0) throw BadInput("--cattaneo takes --tolerance-a and --tolerance-c, not --tolerance");
-  if (!o.cattaneo && (o.toleranceA > 0 || o.toleranceC > 0))
-    throw BadInput("--tolerance-a and --tolerance-c apply to --cattaneo only (use --tolerance)");
+  if (o.mindlin && o.tolerance > 0) throw BadInput("--mindlin takes --tolerance-a and --tolerance-c, not --tolerance");
+  if (!o.cattaneo && !o.mindlin && (o.toleranceA > 0 || o.toleranceC > 0))
+    throw BadInput("--tolerance-a and --tolerance-c apply to --cattaneo and --mindlin only (use --tolerance)");
   return o;
 }
 
@@ -376,6 +408,12 @@ int run(int argc, char** argv) {
     c.dir = o.dir, c.cylinder = o.cylinder, c.block = o.block, c.profile = o.profile;
     c.toleranceA = o.toleranceA, c.toleranceC = o.toleranceC;
     return cattaneo(c, *deck, xml);
+  }
+  if (o.mindlin) {
+    MindlinOptions m;
+    m.dir = o.dir, m.sphere = o.sphere, m.block = o.block, m.profile = o.profile;
+    m.toleranceA = o.toleranceA, m.toleranceC = o.toleranceC;
+    return mindlin(m, *deck, xml);
   }
   const auto& bodies = deck->sublist("Mesh").sublist("Bodies");
   if (!bodies.isSublist(o.sphere)) throw BadInput(xml + ": no body '" + o.sphere + "' (use --sphere)");

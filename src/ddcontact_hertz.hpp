@@ -1,6 +1,7 @@
 // What the modes of ddcontact-hertz share (src/ddcontact_hertz.cpp: the
 // sphere and the impact; src/ddcontact_hertz_cattaneo.cpp: the cylinder
-// with friction): the input errors, contact_nodes.csv, the materials of the
+// with friction; src/ddcontact_hertz_mindlin.cpp: the sphere with
+// friction): the input errors, contact_nodes.csv, the materials of the
 // deck, the least-squares fit of the contact half-width.
 #pragma once
 
@@ -23,7 +24,7 @@ constexpr double kPi = 3.14159265358979323846;
 /// A row of contact_nodes.csv (doc/user-guide.md, "The output directory"),
 /// with r, the distance of (x, y) from the point given to readContactNodes().
 struct Row {
-  double r = 0, x = 0, y = 0, multiplier = 0, tributary = 0, pressure = 0;
+  double r = 0, x = 0, y = 0, z = 0, multiplier = 0, tributary = 0, pressure = 0;
   bool active = false;
   double tangential[3] = {0, 0, 0};  ///< tangential force on the slave node
   double slip = 0;
@@ -40,6 +41,12 @@ Material materialOf(const Teuchos::ParameterList& deck, const std::string& body,
 /// The rows of a contact_nodes.csv, r measured from (cx, cy).
 std::vector<Row> readContactNodes(const std::string& file, double cx, double cy);
 
+/// The friction coefficient of the deck's one contact pair
+/// ("Contact/Pairs/<pair>/Friction Coefficient", 0 without it) and its name
+/// in `pair`. \throws BadInput (naming `mode`) unless the deck has one pair.
+double frictionCoefficient(const Teuchos::ParameterList& deck, const std::string& xml, const std::string& mode,
+                           std::string& pair);
+
 /// The contact half-width of an elliptical profile from a least-squares fit
 /// of y = A + B s^2 over the points (s, y): sqrt(-A / B), NaN where the fit
 /// has no such root (y = p^2 for Hertz's p, (mu p - |q|)^2 for Cattaneo's
@@ -55,5 +62,15 @@ struct CattaneoOptions {
 /// Cattaneo's line contact against a run of examples/cattaneo_2d.xml; the
 /// exit status. \throws BadInput
 int cattaneo(const CattaneoOptions& o, const Teuchos::ParameterList& deck, const std::string& xml);
+
+/// The options of --mindlin (see kUsage in src/ddcontact_hertz.cpp).
+struct MindlinOptions {
+  std::string dir, sphere = "Sphere", block = "Block", profile;
+  double toleranceA = -1.0, toleranceC = -1.0;  ///< <= 0: no check
+};
+
+/// Mindlin's circular contact against a run of examples/mindlin_sphere.xml;
+/// the exit status. \throws BadInput
+int mindlin(const MindlinOptions& o, const Teuchos::ParameterList& deck, const std::string& xml);
 
 }  // namespace ddc_hertz

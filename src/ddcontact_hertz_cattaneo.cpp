@@ -75,18 +75,6 @@ Circle fitCircle(const std::vector<Row>& rows, const std::string& file) {
   return c;
 }
 
-/// The friction coefficient of the deck's one contact pair
-/// ("Contact/Pairs/<pair>/Friction Coefficient", 0 without it) and its name.
-double frictionCoefficient(const Teuchos::ParameterList& deck, const std::string& xml, std::string& pair) {
-  const auto& pairs = deck.sublist("Contact").sublist("Pairs");
-  int n = 0;
-  for (auto it = pairs.begin(); it != pairs.end(); ++it)
-    if (pairs.isSublist(pairs.name(it))) ++n, pair = pairs.name(it);
-  if (n != 1) throw BadInput(xml + ": --cattaneo needs exactly one pair in 'Contact/Pairs', found " + std::to_string(n));
-  const auto& p = pairs.sublist(pair);
-  return p.isParameter("Friction Coefficient") ? p.get<double>("Friction Coefficient") : 0.0;
-}
-
 /// What the run transmits over the active slave nodes.
 struct Totals {
   double P = 0, Q = 0;
@@ -149,7 +137,7 @@ std::string num(double v) {
 int cattaneo(const CattaneoOptions& o, const Teuchos::ParameterList& deck, const std::string& xml) {
   const Material m1 = materialOf(deck, o.cylinder, xml), m2 = materialOf(deck, o.block, xml);
   std::string pair;
-  const double mu = frictionCoefficient(deck, xml, pair);
+  const double mu = frictionCoefficient(deck, xml, "--cattaneo", pair);
   const std::string file = o.dir + "/contact_nodes.csv";
   const auto rows = readContactNodes(file, 0.0, 0.0);
   const Circle circle = fitCircle(rows, file);

@@ -613,6 +613,42 @@ foreach(case generalized_alpha_np1 hht_alpha_np1 newmark_np1 feti_decomposed_np2
     LABELS "system;contact;dynamics")
 endforeach()
 
+# ---- Mindlin ----------------------------------------------------------------------
+# Mindlin's problem in 3-D (examples/mindlin_sphere.xml, doc/contact.md
+# "Mindlin"): a sphere pressed on a block of the same material, then pushed
+# sideways; half of the problem, the plane y = 0 a symmetry plane.
+# mindlin_sphere_mesh_up_to_date: the committed examples/mindlin_sphere.msh is
+# what examples/mindlin_sphere_mesh.py writes. mindlin_synthetic_vs_theory:
+# ddcontact-hertz --mindlin on the analytic tractions
+# (test/tools/mindlin_synthetic.py) recovers a to round-off (its P is Hertz's
+# for a by construction; 1e-9) and c to 1e-3 (the synthetic node sums'
+# quadrature error; measured 1e-5). mindlin_sphere_frictionless: the example
+# without friction, the sphere's top held in x and y too, in 1 step (without
+# friction the answer does not depend on the path; 2 steps give the same a),
+# the decomposed element solved monolithically on 1 rank: a within 2 % of
+# Hertz's (measured +0.62 %). The frictional deck as shipped does not
+# converge yet (doc/contact.md, "Mindlin"): no test of c.
+set(MINDLIN ${PROJECT_SOURCE_DIR}/examples/mindlin_sphere.xml)
+add_test(NAME mindlin_sphere_mesh_up_to_date COMMAND sh -c
+  "mkdir -p ${DDC_RUNS}/mindlin_mesh && ${DDC_SYSTEM_PYTHON} ${PROJECT_SOURCE_DIR}/examples/mindlin_sphere_mesh.py ${DDC_RUNS}/mindlin_mesh/mindlin_sphere.msh && ${CMAKE_COMMAND} -E compare_files ${DDC_RUNS}/mindlin_mesh/mindlin_sphere.msh ${PROJECT_SOURCE_DIR}/examples/mindlin_sphere.msh")
+set_tests_properties(mindlin_sphere_mesh_up_to_date PROPERTIES LABELS "system;contact;example")
+add_test(NAME mindlin_synthetic_setup COMMAND sh -c
+  "${DDC_SYSTEM_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/tools/mindlin_synthetic.py ${DDC_RUNS}/mindlin_synthetic && ${DDC_SYSTEM_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/tools/mindlin_synthetic.py ${DDC_RUNS}/mindlin_synthetic_all_slip --all-slip")
+set_tests_properties(mindlin_synthetic_setup PROPERTIES FIXTURES_SETUP mindlin_synthetic LABELS "system;contact")
+ddc_add_tool_test(mindlin_synthetic_vs_theory TOOL ddcontact-hertz EXPECT success LABELS contact
+  ARGS --mindlin ${DDC_RUNS}/mindlin_synthetic --tolerance-a 1e-9 --tolerance-c 1e-3
+  REGEX "2546 active slave nodes: 1606 stick, 940 slip.*check: .a error. <= 1e-09: passed.*check: .c error. <= 0.001: passed")
+set_tests_properties(mindlin_synthetic_vs_theory PROPERTIES FIXTURES_REQUIRED mindlin_synthetic)
+ddc_add_run_test(mindlin_sphere_frictionless RANKS 1 FIXTURE
+  ARGS ${MINDLIN} --set "Boundary Conditions/Pressed/Components=All" --set "Load Stepping/Number of Steps=1"
+    --set "Contact/Pairs/Sphere on block/Friction Coefficient=0"
+    --output-dir ${DDC_RUNS}/mindlin_sphere_frictionless
+  REGEX "step +1/1 .*contacts [1-9]" FILES ${DDC_RUNS}/mindlin_sphere_frictionless/contact_nodes.csv
+  LABELS example contact)
+ddc_add_tool_test(mindlin_sphere_frictionless_vs_theory TOOL ddcontact-hertz EXPECT success LABELS contact
+  ARGS --mindlin ${DDC_RUNS}/mindlin_sphere_frictionless --tolerance-a 0.02 REGEX "check: .a error. <= 0.02: passed")
+set_tests_properties(mindlin_sphere_frictionless_vs_theory PROPERTIES FIXTURES_REQUIRED mindlin_sphere_frictionless)
+
 # ---- contact input that is not contact ---------------------------------------------
 # Contact/Formulation = Decomposed Node-To-Segment in a deck without contact
 # pairs (inputs/small_block.xml has no Contact sublist) is a plain analysis;

@@ -72,6 +72,10 @@ class ContactPairing {
   std::vector<ContactRowEntry> contactRows() const;
   /// ContactComponent::slipRowHeld().
   bool frozenSlipHeld(int k, int alpha) const;
+  /// A slip row is held by the supports when its free coefficients lie in
+  /// the span of the gap row's and the earlier slip rows' to this fraction
+  /// (slipRowRedundant() in DDC_ContactPairingEvaluation.cpp).
+  static constexpr double kHeldSlipRow = 1e-8;
   void assemble(const Vector& u, const Vector* multipliers, unsigned what,
                 const std::function<void(const std::vector<GO>& dofs, ElementResult& result)>& add) const;
 
@@ -143,7 +147,9 @@ class ContactPairing {
   void evaluate(int k, SurfaceContactRole role, const Field& f, bool forceActive, unsigned what, ElementResult& er,
                 std::vector<GO>& dofs, bool forceStick = false) const;
   void appendMultipliers(int k, std::vector<GO>& dofs) const;
-  /// A tangential row on prescribed DOFs only: its multiplier restrained to zero.
+  /// A tangential row that holds nothing the supports and the gap row do not
+  /// (on prescribed DOFs only, or redundant on a symmetry plane): its
+  /// multiplier restrained to zero.
   void restrainHeldSlip(int k, SurfaceContactRole role, const std::vector<GO>& dofs, const ContactPairState& state,
                         ElementResult& er) const;
   void refreshSlip(ContactSlot& s, const std::array<double, 2>& xi, const Position& position) const;

@@ -170,25 +170,32 @@ void ContactPairing::restrainHeldSlip(int k, SurfaceContactRole role, const std:
                                       const ContactPairState& state, ElementResult& er) const {
   // A tangential row whose every displacement coefficient sits on a
   // prescribed DOF (a slave node and its master point both on supports
-  // along the surface) holds nothing and would make the system singular,
-  // like the gap row of a fully prescribed pair: its multiplier is
-  // restrained to zero (the supports take the tangential force). The
-  // conventional element sees all its coefficients; the decomposed
-  // counterparts decide from the frozen row, replicated on every rank.
+  // along the surface), or whose free coefficients repeat the gap row's and
+  // the other tangential row's (the two on a symmetry plane, once the
+  // master surface tilts across it: slipRowRedundant()), holds nothing and
+  // would make the system singular, like the gap row of a fully prescribed
+  // pair: its multiplier is restrained to zero (the supports take the
+  // tangential force). The conventional element sees all its coefficients;
+  // the decomposed counterparts decide from the frozen rows, replicated on
+  // every rank.
   const ContactSlot& s = slots_[k];
   const int dim = topo_.dim(), nm = dim, n = int(dofs.size()), nd = n - nm;
   std::vector<int> nodes;
   if (role != SurfaceContactRole::Master) nodes.push_back(s.slaveNode);
   if (role != SurfaceContactRole::Slave) nodes.insert(nodes.end(), s.master.begin(), s.master.begin() + s.numMaster);
-  for (int al = 0; al + 1 < dim; ++al) {
-    bool held = true;
-    if (role == SurfaceContactRole::Conventional) {
-      if (er.tangent.rows() != n) return;  // no coefficients to judge by (the element always has them in assemble())
-      for (int a = 0; a < nd && held; ++a)
-        held = er.tangent(a, nd + 1 + al) == 0.0 || topo_.componentPrescribed(nodes[a / dim], a % dim);
-    } else {
-      held = frozenSlipHeld(k, al);
+  std::vector<Eigen::VectorXd> rows;
+  if (role == SurfaceContactRole::Conventional) {
+    if (er.tangent.rows() != n) return;  // no coefficients to judge by (the element always has them in assemble())
+    for (int m = 0; m < nm; ++m) {  // the multipliers' columns of the displacement rows, on free DOFs
+      Eigen::VectorXd v = er.tangent.block(0, nd + m, nd, 1);
+      for (int a = 0; a < nd; ++a)
+        if (topo_.componentPrescribed(nodes[a / dim], a % dim)) v[a] = 0.0;
+      rows.push_back(v);
     }
+  }
+  for (int al = 0; al + 1 < dim; ++al) {
+    const bool held = role == SurfaceContactRole::Conventional ? slipRowRedundant(rows, al, kHeldSlipRow)
+                                                               : frozenSlipHeld(k, al);
     if (!held) continue;
     const int row = nd + 1 + al;
     const bool carries = role != SurfaceContactRole::Master;  // the slave / conventional holds the multiplier row
@@ -201,20 +208,24 @@ void ContactPairing::restrainHeldSlip(int k, SurfaceContactRole role, const std:
 }
 
 bool ContactPairing::frozenSlipHeld(int k, int alpha) const {
-  // Every node and component of the frozen slip row τ^p·(x_s − Σ N_i x_i)
-  // with a nonzero coefficient is prescribed.
+  // The frozen rows n^p·(x_s − Σ N_i x_i) and τ^p_α·(x_s − Σ N_i x_i) on
+  // the free DOFs (slipRowRedundant()).
   const ContactSlot& s = slots_[k];
-  const int dim = topo_.dim();
-  const Eigen::Vector3d& t = s.frozen.tangent[alpha];
+  const int dim = topo_.dim(), nn = 1 + s.numMaster;
   std::vector<double> N(s.numMaster);
   shapeFunctionsT<double>(topo_.pair(s.pair).masterType, s.frozen.xi.data(), N.data(), nullptr);
-  for (int c = 0; c < dim; ++c) {
-    if (t[c] == 0.0) continue;
-    if (!topo_.componentPrescribed(s.slaveNode, c)) return false;
-    for (int i = 0; i < s.numMaster; ++i)
-      if (N[i] != 0.0 && !topo_.componentPrescribed(s.master[i], c)) return false;
+  std::vector<Eigen::VectorXd> rows;
+  for (int m = 0; m < dim; ++m) {
+    const Eigen::Vector3d& d = m == 0 ? s.frozen.normal : s.frozen.tangent[m - 1];
+    Eigen::VectorXd v = Eigen::VectorXd::Zero(nn * dim);
+    for (int i = 0; i < nn; ++i) {
+      const int node = i == 0 ? s.slaveNode : s.master[i - 1];
+      for (int c = 0; c < dim; ++c)
+        if (!topo_.componentPrescribed(node, c)) v[i * dim + c] = (i == 0 ? 1.0 : -N[i - 1]) * d[c];
+    }
+    rows.push_back(v);
   }
-  return true;
+  return slipRowRedundant(rows, alpha, kHeldSlipRow);
 }
 
 void ContactPairing::assemble(const Vector& u, const Vector* multipliers, unsigned what,

@@ -65,4 +65,17 @@ std::array<Eigen::Vector3d, 2> tangentBasis(int dim, const Eigen::Vector3d& n, c
   return {t1, n.cross(t1)};
 }
 
+bool slipRowRedundant(const std::vector<Eigen::VectorXd>& rows, int alpha, double tolerance) {
+  // Gram-Schmidt over the rows before it, skipping those already in the span.
+  std::vector<Eigen::VectorXd> basis;
+  for (int r = 0; r <= alpha; ++r) {
+    Eigen::VectorXd v = rows[r];
+    for (const auto& b : basis) v -= b.dot(v) * b;
+    if (v.norm() > tolerance * rows[r].norm() && v.norm() > 0.0) basis.push_back(v / v.norm());
+  }
+  Eigen::VectorXd v = rows[1 + alpha];
+  for (const auto& b : basis) v -= b.dot(v) * b;
+  return v.norm() <= tolerance * rows[1 + alpha].norm();
+}
+
 }  // namespace ddc

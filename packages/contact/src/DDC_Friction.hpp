@@ -31,6 +31,7 @@
 
 #include <Eigen/Dense>
 #include <array>
+#include <vector>
 
 namespace ddc {
 
@@ -87,5 +88,18 @@ constexpr double kStickHysteresis = 1e-8;
 /// least aligned with n; τ_2 = n × τ_1.
 std::array<Eigen::Vector3d, 2> tangentBasis(int dim, const Eigen::Vector3d& normal,
                                             const Eigen::Vector3d& previous = Eigen::Vector3d::Zero());
+
+/// Whether tangential row `alpha` of a pair holds nothing that the supports
+/// and the rows before it do not: `rows` are the displacement coefficients
+/// of the gap row and of the tangential rows on the free DOFs (prescribed
+/// ones zeroed); row 1 + alpha is redundant when what is left of it outside
+/// the span of rows 0..alpha is at most `tolerance` times its size (a row
+/// with no free coefficient at all, too). A slave node and its master point
+/// on a symmetry plane have two free relative directions; once the master
+/// surface tilts across the plane the gap row and both tangential rows
+/// each have free coefficients, but they span only those two directions:
+/// the last row is redundant, and the system singular unless its
+/// multiplier is restrained (ContactPairing::restrainHeldSlip()).
+bool slipRowRedundant(const std::vector<Eigen::VectorXd>& rows, int alpha, double tolerance);
 
 }  // namespace ddc

@@ -466,3 +466,39 @@ TEST(Friction, TheStickSlipDecisionAndTheTangentBasis) {
   const Eigen::Vector3d n3b = (n3 + Eigen::Vector3d(1e-3, 0, 0)).normalized();
   EXPECT_LT((ddc::tangentBasis(3, n3b, before[0])[0] - before[0]).norm(), 2e-3);
 }
+
+// A slave node and its master point on a symmetry plane y = 0 (both held in
+// y): the free relative motion is (x, z). With the master surface tilted
+// across the plane the normal n has a y part and τ_2 = n × τ_1 an x or z
+// part, so no row is zero on the free DOFs, yet the gap row and the two
+// tangential rows span only (x, z): the second tangential row is redundant
+// (ContactPairing::restrainHeldSlip() restrains its multiplier). Off the
+// plane every row counts; a row on prescribed DOFs only is redundant too.
+TEST(Friction, ASlipRowOnASymmetryPlaneIsRedundant) {
+  const Eigen::Vector3d n = Eigen::Vector3d(0.01, 0.05, 1.0).normalized();
+  const auto t = ddc::tangentBasis(3, n, Eigen::Vector3d(1, 0, 0));
+  // Slave node and one master node (N = 1) with the relative motion
+  // x_s − x_m: the rows' coefficients (d, −d) on (slave, master).
+  auto rows = [&](bool yHeld) {
+    std::vector<Eigen::VectorXd> r;
+    for (const Eigen::Vector3d& d : {n, t[0], t[1]}) {
+      Eigen::VectorXd v(6);
+      v << d, -d;
+      if (yHeld) v[1] = v[4] = 0.0;
+      r.push_back(v);
+    }
+    return r;
+  };
+  const double tol = 1e-8;
+  EXPECT_FALSE(ddc::slipRowRedundant(rows(false), 0, tol));
+  EXPECT_FALSE(ddc::slipRowRedundant(rows(false), 1, tol));
+  EXPECT_FALSE(ddc::slipRowRedundant(rows(true), 0, tol));
+  EXPECT_TRUE(ddc::slipRowRedundant(rows(true), 1, tol));
+  // Neither row is small on its own (the old zero test missed it).
+  EXPECT_GT(rows(true)[2].norm(), 0.05);
+  // Every DOF prescribed: both rows hold nothing.
+  std::vector<Eigen::VectorXd> none(3, Eigen::VectorXd::Zero(6));
+  none[0] = rows(false)[0];
+  EXPECT_TRUE(ddc::slipRowRedundant(none, 0, tol));
+  EXPECT_TRUE(ddc::slipRowRedundant(none, 1, tol));
+}
