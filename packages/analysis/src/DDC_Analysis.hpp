@@ -151,8 +151,9 @@ class Analysis {
   MemoryEstimate memoryEstimate_;
   /// What the memory check allowed (no limits when it is off).
   MemoryBudget memoryBudget_;
-  /// The bodies whose Poisson's ratio makes them nearly incompressible ("" if none).
-  std::string nearlyIncompressible_;
+  /// Said at the start and with a Newton failure: nearly incompressible
+  /// bodies, friction in 3-D (not validated yet).
+  std::string caveats_;
   bool progressEnabled_ = true;
   bool dynamic_ = false;  ///< Dynamics/Integrator is not None
   NewtonSettings newton_;

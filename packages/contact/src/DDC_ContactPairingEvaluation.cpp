@@ -406,8 +406,10 @@ void ContactPairing::assembleFrozenGaps(const Vector& u, const Vector* multiplie
     s.normal = s.frozen.normal;
     s.gap = g[at(0)];
     if (nm > 1) {
+      // A held slip row's residual is its multiplier (restrainHeldSlip()),
+      // not a slip: its direction takes no part in the decision.
       s.tangent = s.frozen.tangent;
-      for (int c = 1; c < nm; ++c) s.tangentialSlip[c - 1] = g[at(c)];
+      for (int c = 1; c < nm; ++c) s.tangentialSlip[c - 1] = frozenSlipHeld(int(k), c - 1) ? 0.0 : g[at(c)];
     }
   }
 }
