@@ -532,7 +532,8 @@ set_tests_properties(cattaneo_2d_frictionless_vs_theory PROPERTIES FIXTURES_REQU
 # the cylinder's top is slid by a prescribed x displacement (0.0025, Q/(mu P)
 # = 0.5) instead of pushed; the decomposed element solved monolithically is
 # the reference. Box Grid 2 x 2 cuts the contact zone at x = 0 in both
-# bodies, METIS 8 on 2 ranks as METIS cuts (the same on 3 ranks, measured). FETI-DP (stick rows as
+# bodies, METIS 8 as METIS cuts, both on 2 ranks (the same on 1 and 3 ranks,
+# measured). FETI-DP (stick rows as
 # constraints, slip rows' multipliers stepped onto the cone, doc/feti-dp.md
 # "Friction rows") equals it to 1e-8 in energy and contact force (measured
 # 2e-10) with the same active sets; c within 3 % (measured +0.09 %).
@@ -545,7 +546,7 @@ ddc_add_run_test(cattaneo_2d_slide_Monolithic RANKS 1 FIXTURE
   ARGS ${CATTANEO_SLIDE} --output-dir ${DDC_RUNS}/cattaneo_2d_slide_Monolithic
   REGEX "step +6/6 .*contacts [1-9]" FILES ${DDC_RUNS}/cattaneo_2d_slide_Monolithic/history.csv
   LABELS example contact)
-foreach(case boxgrid_np1 metis8_np2)
+foreach(case boxgrid_np2 metis8_np2)
   string(REGEX MATCH "[0-9]+$" np ${case})
   string(REGEX REPLACE "_np[0-9]+$" "" part ${case})
   set(run cattaneo_2d_slide_FETI-DP_${case})
