@@ -123,6 +123,18 @@ double frictionCoefficient(const Teuchos::ParameterList& deck, const std::string
   return p.isParameter("Friction Coefficient") ? p.get<double>("Friction Coefficient") : 0.0;
 }
 
+Totals transmitted(const std::vector<Row>& rows, double modelFactor) {
+  Totals t;
+  double qx = 0.0;
+  for (const Row& r : rows)
+    if (r.active) {
+      t.P += std::abs(r.multiplier), qx += r.tangential[0], ++t.active;
+      t.stick += r.state == 1, t.slip += r.state == 2;
+    }
+  t.P *= modelFactor, t.Q = modelFactor * std::abs(qx);
+  return t;
+}
+
 double fittedHalfWidth(const std::vector<double>& s, const std::vector<double>& y) {
   double s1 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
   for (size_t i = 0; i < s.size(); ++i) {

@@ -53,6 +53,16 @@ double frictionCoefficient(const Teuchos::ParameterList& deck, const std::string
 /// stick zone).
 double fittedHalfWidth(const std::vector<double>& s, const std::vector<double>& y);
 
+/// What a run transmits over the active slave nodes of a frictional
+/// contact: P = Σ|λ_n|, Q = |Σ tangential_x| (the load along x), both times
+/// `modelFactor` (the whole problem of a symmetric part model), and the
+/// numbers of nodes in contact, sticking and slipping.
+struct Totals {
+  double P = 0, Q = 0;
+  int active = 0, stick = 0, slip = 0;
+};
+Totals transmitted(const std::vector<Row>& rows, double modelFactor);
+
 /// The options of --cattaneo (see kUsage in src/ddcontact_hertz.cpp).
 struct CattaneoOptions {
   std::string dir, cylinder = "Cylinder", block = "Block", profile;

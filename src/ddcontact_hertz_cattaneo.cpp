@@ -75,23 +75,6 @@ Circle fitCircle(const std::vector<Row>& rows, const std::string& file) {
   return c;
 }
 
-/// What the run transmits over the active slave nodes.
-struct Totals {
-  double P = 0, Q = 0;
-  int active = 0, stick = 0, slip = 0;
-};
-
-Totals totals(const std::vector<Row>& rows) {
-  Totals t;
-  double qx = 0.0;
-  for (const Row& r : rows)
-    if (r.active) {
-      t.P += std::abs(r.multiplier), qx += r.tangential[0], ++t.active;
-      t.stick += r.state == 1, t.slip += r.state == 2;
-    }
-  t.Q = std::abs(qx);
-  return t;
-}
 
 /// Nodal tractions p and |q| (force over tributary length).
 double normalTraction(const Row& r) { return r.tributary > 0 ? std::abs(r.multiplier) / r.tributary : 0.0; }
@@ -141,7 +124,7 @@ int cattaneo(const CattaneoOptions& o, const Teuchos::ParameterList& deck, const
   const std::string file = o.dir + "/contact_nodes.csv";
   const auto rows = readContactNodes(file, 0.0, 0.0);
   const Circle circle = fitCircle(rows, file);
-  const Totals t = totals(rows);
+  const Totals t = transmitted(rows, 1.0);
   if (t.active == 0) throw BadInput(file + ": no active slave node (no contact)");
   const bool frictional = mu > 0 && t.Q > 0;
   if (frictional && t.Q >= mu * t.P)

@@ -94,23 +94,6 @@ Sphere fitSphere(const std::vector<Row>& rows, const std::string& file) {
   return c;
 }
 
-/// What the run transmits over the active slave nodes (the whole problem).
-struct Totals {
-  double P = 0, Q = 0;
-  int active = 0, stick = 0, slip = 0;
-};
-
-Totals totals(const std::vector<Row>& rows) {
-  Totals t;
-  double qx = 0.0;
-  for (const Row& r : rows)
-    if (r.active) {
-      t.P += std::abs(r.multiplier), qx += r.tangential[0], ++t.active;
-      t.stick += r.state == 1, t.slip += r.state == 2;
-    }
-  t.P *= kHalfModel, t.Q = kHalfModel * std::abs(qx);
-  return t;
-}
 
 /// Nodal tractions p and |q| (force over tributary area).
 double normalTraction(const Row& r) { return r.tributary > 0 ? std::abs(r.multiplier) / r.tributary : 0.0; }
@@ -184,7 +167,7 @@ int mindlin(const MindlinOptions& o, const Teuchos::ParameterList& deck, const s
   const std::string file = o.dir + "/contact_nodes.csv";
   const Sphere sphere = fitSphere(readContactNodes(file, 0.0, 0.0), file);
   const auto rows = readContactNodes(file, sphere.cx, sphere.cy);
-  const Totals t = totals(rows);
+  const Totals t = transmitted(rows, kHalfModel);
   checkRun(t, mu, o, file);
   const bool frictional = mu > 0 && t.Q > 0;
 
