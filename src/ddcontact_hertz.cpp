@@ -123,6 +123,28 @@ double frictionCoefficient(const Teuchos::ParameterList& deck, const std::string
   return p.isParameter("Friction Coefficient") ? p.get<double>("Friction Coefficient") : 0.0;
 }
 
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+void checkPartialSlipRun(const Totals& t, double mu, double toleranceC, const std::string& file,
+                         const std::string& body, const std::string& theory) {
+  if (t.active == 0) throw BadInput(file + ": no active slave node (no contact)");
+  const bool frictional = mu > 0 && t.Q > 0;
+  if (frictional && t.Q >= mu * t.P)
+    throw BadInput(file + ": Q / (mu P) = " + num(t.Q / (mu * t.P)) + " >= 1: the " + body + " slides; " + theory +
+                   "'s partial slip needs Q < mu P");
+  if (frictional && t.stick < kMinStickNodes)
+    throw BadInput(file + ": " + std::to_string(t.stick) + " stick node(s) (state 1) with mu = " + num(mu) +
+                   " and Q > 0: the stick zone needs at least " + std::to_string(kMinStickNodes) +
+                   " to fit c (a frictionless run, or a contact zone too coarse)");
+  if (toleranceC > 0 && !frictional)
+    throw BadInput("--tolerance-c needs a run with friction and a tangential load (here mu = " + num(mu) +
+                   ", Q = " + num(t.Q) + ")");
+}
+
 Totals transmitted(const std::vector<Row>& rows, double modelFactor) {
   Totals t;
   double qx = 0.0;

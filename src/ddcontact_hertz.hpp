@@ -63,6 +63,19 @@ struct Totals {
 };
 Totals transmitted(const std::vector<Row>& rows, double modelFactor);
 
+/// Fewest stick nodes c is fitted from (two distinct distances at least).
+constexpr int kMinStickNodes = 3;
+
+/// A number as %g prints it.
+std::string num(double v);
+
+/// The input checks of a partial-slip comparison (--cattaneo, --mindlin):
+/// contact, Q < mu P (else the `body` slides; `theory` names the
+/// solution), enough stick nodes to fit c, and --tolerance-c only with
+/// friction and a tangential load. \throws BadInput naming `file`
+void checkPartialSlipRun(const Totals& t, double mu, double toleranceC, const std::string& file,
+                         const std::string& body, const std::string& theory);
+
 /// The options of --cattaneo (see kUsage in src/ddcontact_hertz.cpp).
 struct CattaneoOptions {
   std::string dir, cylinder = "Cylinder", block = "Block", profile;

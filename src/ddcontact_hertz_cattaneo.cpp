@@ -35,8 +35,6 @@ namespace {
 
 /// The slave nodes lie on the cylinder's surface to this fraction of R.
 constexpr double kOnCircle = 1e-6;
-/// Fewest stick nodes c is fitted from (two distinct |x| at least).
-constexpr int kMinStickNodes = 3;
 
 struct Circle {
   double cx = 0, cy = 0, R = 0;
@@ -108,13 +106,6 @@ void writeProfile(const std::string& file, const std::vector<Row>& rows, double 
   if (!out.flush()) throw BadInput("cannot write '" + file + "'");
 }
 
-/// A number as %g prints it.
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
 }  // namespace
 
 int cattaneo(const CattaneoOptions& o, const Teuchos::ParameterList& deck, const std::string& xml) {
@@ -125,18 +116,8 @@ int cattaneo(const CattaneoOptions& o, const Teuchos::ParameterList& deck, const
   const auto rows = readContactNodes(file, 0.0, 0.0);
   const Circle circle = fitCircle(rows, file);
   const Totals t = transmitted(rows, 1.0);
-  if (t.active == 0) throw BadInput(file + ": no active slave node (no contact)");
+  checkPartialSlipRun(t, mu, o.toleranceC, file, "cylinder", "Cattaneo");
   const bool frictional = mu > 0 && t.Q > 0;
-  if (frictional && t.Q >= mu * t.P)
-    throw BadInput(file + ": Q / (mu P) = " + num(t.Q / (mu * t.P)) +
-                   " >= 1: the cylinder slides; Cattaneo's partial slip needs Q < mu P");
-  if (frictional && t.stick < kMinStickNodes)
-    throw BadInput(file + ": " + std::to_string(t.stick) + " stick node(s) (state 1) with mu = " + num(mu) +
-                   " and Q > 0: the stick zone needs at least " + std::to_string(kMinStickNodes) +
-                   " to fit c (a frictionless run, or a contact zone too coarse)");
-  if (o.toleranceC > 0 && !frictional)
-    throw BadInput("--tolerance-c needs a run with friction and a tangential load (here mu = " + num(mu) +
-                   ", Q = " + num(t.Q) + ")");
 
   const double Estar = 1.0 / ((1.0 - m1.nu * m1.nu) / m1.E + (1.0 - m2.nu * m2.nu) / m2.E);
   const double a = std::sqrt(4.0 * t.P * circle.R / (kPi * Estar));

@@ -37,8 +37,6 @@ namespace {
 
 /// The slave nodes lie on the sphere's surface to this fraction of R.
 constexpr double kOnSphere = 1e-6;
-/// Fewest stick nodes c is fitted from (two distinct r at least).
-constexpr int kMinStickNodes = 3;
 /// The model is half of the problem (the symmetry plane y = 0).
 constexpr double kHalfModel = 2.0;
 
@@ -129,28 +127,6 @@ void writeProfile(const std::string& file, const std::vector<Row>& rows, double 
   if (!out.flush()) throw BadInput("cannot write '" + file + "'");
 }
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
-/// The input checks of mindlin(): contact, partial slip, a stick zone.
-void checkRun(const Totals& t, double mu, const MindlinOptions& o, const std::string& file) {
-  if (t.active == 0) throw BadInput(file + ": no active slave node (no contact)");
-  const bool frictional = mu > 0 && t.Q > 0;
-  if (frictional && t.Q >= mu * t.P)
-    throw BadInput(file + ": Q / (mu P) = " + num(t.Q / (mu * t.P)) +
-                   " >= 1: the sphere slides; Mindlin's partial slip needs Q < mu P");
-  if (frictional && t.stick < kMinStickNodes)
-    throw BadInput(file + ": " + std::to_string(t.stick) + " stick node(s) (state 1) with mu = " + num(mu) +
-                   " and Q > 0: the stick zone needs at least " + std::to_string(kMinStickNodes) +
-                   " to fit c (a frictionless run, or a contact zone too coarse)");
-  if (o.toleranceC > 0 && !frictional)
-    throw BadInput("--tolerance-c needs a run with friction and a tangential load (here mu = " + num(mu) +
-                   ", Q = " + num(t.Q) + ")");
-}
-
 /// "check: ... passed / FAILED" for one tolerance; whether it passed.
 bool check(const char* what, double err, double tolerance) {
   const bool pass = std::abs(err) <= tolerance;  // false for a NaN fit
@@ -168,7 +144,7 @@ int mindlin(const MindlinOptions& o, const Teuchos::ParameterList& deck, const s
   const Sphere sphere = fitSphere(readContactNodes(file, 0.0, 0.0), file);
   const auto rows = readContactNodes(file, sphere.cx, sphere.cy);
   const Totals t = transmitted(rows, kHalfModel);
-  checkRun(t, mu, o, file);
+  checkPartialSlipRun(t, mu, o.toleranceC, file, "sphere", "Mindlin");
   const bool frictional = mu > 0 && t.Q > 0;
 
   const double Estar = 1.0 / ((1.0 - m1.nu * m1.nu) / m1.E + (1.0 - m2.nu * m2.nu) / m2.E);
