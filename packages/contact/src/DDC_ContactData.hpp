@@ -59,6 +59,9 @@ struct ContactSlot {
   /// u_t,α: the slip along `tangent` since the step start at the last
   /// update of the active set (frictional pairs).
   std::array<double, 2> tangentialSlip{{0.0, 0.0}};
+  /// Consecutive updates of the active set at which the slot's slip
+  /// reversed (slipReverses()); reset by beginStep().
+  int reversals = 0;
   /// |u_t|: the tangential slip of the slave node along the master surface
   /// in the last step (zero while it sticks or is open).
   double slip = 0.0;

@@ -72,10 +72,6 @@ class ContactPairing {
   std::vector<ContactRowEntry> contactRows() const;
   /// ContactComponent::slipRowHeld().
   bool frozenSlipHeld(int k, int alpha) const;
-  /// A slip row is held by the supports when its free coefficients lie in
-  /// the span of the gap row's and the earlier slip rows' to this fraction
-  /// (slipRowRedundant() in DDC_ContactPairingEvaluation.cpp).
-  static constexpr double kHeldSlipRow = 1e-8;
   void assemble(const Vector& u, const Vector* multipliers, unsigned what,
                 const std::function<void(const std::vector<GO>& dofs, ElementResult& result)>& add) const;
 

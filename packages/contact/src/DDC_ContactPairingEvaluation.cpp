@@ -184,17 +184,19 @@ void ContactPairing::restrainHeldSlip(int k, SurfaceContactRole role, const std:
   if (role != SurfaceContactRole::Master) nodes.push_back(s.slaveNode);
   if (role != SurfaceContactRole::Slave) nodes.insert(nodes.end(), s.master.begin(), s.master.begin() + s.numMaster);
   std::vector<Eigen::VectorXd> rows;
+  std::vector<double> sizes;
   if (role == SurfaceContactRole::Conventional) {
     if (er.tangent.rows() != n) return;  // no coefficients to judge by (the element always has them in assemble())
     for (int m = 0; m < nm; ++m) {  // the multipliers' columns of the displacement rows, on free DOFs
       Eigen::VectorXd v = er.tangent.block(0, nd + m, nd, 1);
+      sizes.push_back(v.norm());
       for (int a = 0; a < nd; ++a)
         if (topo_.componentPrescribed(nodes[a / dim], a % dim)) v[a] = 0.0;
       rows.push_back(v);
     }
   }
   for (int al = 0; al + 1 < dim; ++al) {
-    const bool held = role == SurfaceContactRole::Conventional ? slipRowRedundant(rows, al, kHeldSlipRow)
+    const bool held = role == SurfaceContactRole::Conventional ? slipRowRedundant(rows, sizes, al, kHeldSlipRow)
                                                                : frozenSlipHeld(k, al);
     if (!held) continue;
     const int row = nd + 1 + al;
@@ -215,17 +217,23 @@ bool ContactPairing::frozenSlipHeld(int k, int alpha) const {
   std::vector<double> N(s.numMaster);
   shapeFunctionsT<double>(topo_.pair(s.pair).masterType, s.frozen.xi.data(), N.data(), nullptr);
   std::vector<Eigen::VectorXd> rows;
+  std::vector<double> sizes;
   for (int m = 0; m < dim; ++m) {
     const Eigen::Vector3d& d = m == 0 ? s.frozen.normal : s.frozen.tangent[m - 1];
     Eigen::VectorXd v = Eigen::VectorXd::Zero(nn * dim);
+    double size2 = 0.0;
     for (int i = 0; i < nn; ++i) {
       const int node = i == 0 ? s.slaveNode : s.master[i - 1];
-      for (int c = 0; c < dim; ++c)
-        if (!topo_.componentPrescribed(node, c)) v[i * dim + c] = (i == 0 ? 1.0 : -N[i - 1]) * d[c];
+      for (int c = 0; c < dim; ++c) {
+        const double a = (i == 0 ? 1.0 : -N[i - 1]) * d[c];
+        size2 += a * a;
+        if (!topo_.componentPrescribed(node, c)) v[i * dim + c] = a;
+      }
     }
     rows.push_back(v);
+    sizes.push_back(std::sqrt(size2));
   }
-  return slipRowRedundant(rows, alpha, kHeldSlipRow);
+  return slipRowRedundant(rows, sizes, alpha, kHeldSlipRow);
 }
 
 void ContactPairing::assemble(const Vector& u, const Vector* multipliers, unsigned what,
@@ -505,7 +513,10 @@ bool ContactPairing::updateFriction(int k) {
   f.coefficient = pair.friction;
   f.stiffness = pair.frictionStiffness;
   f.stick = before != FrictionState::Slip;
-  const bool stick = sticks(topo_.dim() - 1, s.tangentialSlip.data(), s.state.multiplier, s.tangential.data(), f);
+  const int nt = topo_.dim() - 1;
+  bool stick = sticks(nt, s.tangentialSlip.data(), s.state.multiplier, s.tangential.data(), f);
+  s.reversals = slipReverses(nt, s.tangentialSlip.data(), s.tangential.data(), f) ? s.reversals + 1 : 0;
+  if (s.reversals >= 2) stick = true, s.reversals = 0;
   s.friction = stick ? FrictionState::Stick : FrictionState::Slip;
   return before != FrictionState::Open && s.friction != before;
 }
@@ -524,7 +535,10 @@ void ContactPairing::beginStep(const Vector& u0) {
     ++exchanges_;
     bytesExchanged_ += topo_.bytesPerExchange();
   }
-  for (auto& s : slots_) s.tangentialSlip = {0.0, 0.0};
+  for (auto& s : slots_) {
+    s.tangentialSlip = {0.0, 0.0};
+    s.reversals = 0;
+  }
 }
 
 }  // namespace ddc

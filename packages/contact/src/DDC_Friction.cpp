@@ -50,6 +50,10 @@ bool sticks(int nt, const double* slip, double lambdaN, const double* lambdaT, c
   return predictor(nt, slip, lambdaT, f).norm() < bound;
 }
 
+bool slipReverses(int nt, const double* slip, const double* lambdaT, const FrictionPairState& f) {
+  return !f.stick && predictor(nt, slip, lambdaT, f).dot(Eigen::Map<const Eigen::VectorXd>(lambdaT, nt)) < 0.0;
+}
+
 std::array<Eigen::Vector3d, 2> tangentBasis(int dim, const Eigen::Vector3d& n, const Eigen::Vector3d& previous) {
   if (dim == 2) return {Eigen::Vector3d(-n.y(), n.x(), 0.0), Eigen::Vector3d::Zero()};
   Eigen::Vector3d t1 = previous - previous.dot(n) * n;
@@ -65,17 +69,19 @@ std::array<Eigen::Vector3d, 2> tangentBasis(int dim, const Eigen::Vector3d& n, c
   return {t1, n.cross(t1)};
 }
 
-bool slipRowRedundant(const std::vector<Eigen::VectorXd>& rows, int alpha, double tolerance) {
-  // Gram-Schmidt over the rows before it, skipping those already in the span.
+bool slipRowRedundant(const std::vector<Eigen::VectorXd>& rows, const std::vector<double>& sizes, int alpha,
+                      double tolerance) {
+  // Gram-Schmidt over the rows before it, skipping those already in the
+  // span (to the tolerance, of their own size with the prescribed DOFs).
   std::vector<Eigen::VectorXd> basis;
   for (int r = 0; r <= alpha; ++r) {
     Eigen::VectorXd v = rows[r];
     for (const auto& b : basis) v -= b.dot(v) * b;
-    if (v.norm() > tolerance * rows[r].norm() && v.norm() > 0.0) basis.push_back(v / v.norm());
+    if (v.norm() > tolerance * sizes[r] && v.norm() > 0.0) basis.push_back(v / v.norm());
   }
   Eigen::VectorXd v = rows[1 + alpha];
   for (const auto& b : basis) v -= b.dot(v) * b;
-  return v.norm() <= tolerance * rows[1 + alpha].norm();
+  return v.norm() <= tolerance * sizes[1 + alpha];
 }
 
 }  // namespace ddc

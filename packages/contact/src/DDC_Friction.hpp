@@ -77,6 +77,20 @@ FrictionRows frictionRows(int nt, const double* slip, double lambdaN, const doub
 /// so a pair exactly on the cone does not flip with round-off.
 bool sticks(int nt, const double* slip, double lambdaN, const double* lambdaT, const FrictionPairState& friction);
 
+/// Whether a slipping pair's predictor z = λ_t + c_t u_t turns against the
+/// force its slip row imposed (z·λ_t < 0, λ_t = μ p⁺ t̂ of the last
+/// iterate): the solve with the force one way slid the node the other way.
+/// When neither direction is consistent with the load the pair sticks, but
+/// |z| stays above μ p⁺ and Newton cycles between the two directions with
+/// no change of the stick/slip set (the Hertz octant's symmetry-plane
+/// nodes in 3-D, doc/contact.md "Friction"). ContactPairing sticks a pair
+/// whose slip reverses at two consecutive iterations (Coulomb's law sticks
+/// a node whose slip reverses); if the stick iterate's force leaves the
+/// cone it slips again, in that force's direction. A single reversal is
+/// left alone: Newton's first iterates, or a sliding body's vibration
+/// (the incline under FETI-DP), reverse a node's slip once and go on.
+bool slipReverses(int nt, const double* slip, const double* lambdaT, const FrictionPairState& friction);
+
 /// Relative margin of sticks() for a pair that slips.
 constexpr double kStickHysteresis = 1e-8;
 
@@ -92,14 +106,31 @@ std::array<Eigen::Vector3d, 2> tangentBasis(int dim, const Eigen::Vector3d& norm
 /// Whether tangential row `alpha` of a pair holds nothing that the supports
 /// and the rows before it do not: `rows` are the displacement coefficients
 /// of the gap row and of the tangential rows on the free DOFs (prescribed
-/// ones zeroed); row 1 + alpha is redundant when what is left of it outside
-/// the span of rows 0..alpha is at most `tolerance` times its size (a row
-/// with no free coefficient at all, too). A slave node and its master point
-/// on a symmetry plane have two free relative directions; once the master
+/// ones zeroed), `sizes` the norms of the same rows with the prescribed
+/// DOFs; row 1 + alpha is redundant when what is left of it outside the
+/// span of rows 0..alpha is at most `tolerance` times its size (a row with
+/// no free coefficient at all, too). A slave node and its master point on
+/// a symmetry plane have two free relative directions; once the master
 /// surface tilts across the plane the gap row and both tangential rows
 /// each have free coefficients, but they span only those two directions:
 /// the last row is redundant, and the system singular unless its
-/// multiplier is restrained (ContactPairing::restrainHeldSlip()).
-bool slipRowRedundant(const std::vector<Eigen::VectorXd>& rows, int alpha, double tolerance);
+/// multiplier is restrained (ContactPairing::restrainHeldSlip()). The
+/// tolerance is relative to the whole row, not to its free part: a row
+/// tilted off the plane by round-off of the deformed geometry (a free part
+/// of 1e-7 of the row) would otherwise count, and its multiplier grow as
+/// the inverse of the tilt.
+/// A slip row is held by the supports when what is left of its free
+/// coefficients outside the span of the earlier rows' is at most this
+/// fraction of the whole row (slipRowRedundant()). Only a slave node on a
+/// support (a symmetry plane) has such a row, and there the deformed master
+/// surface tilts the basis across the plane by about h times the surface's
+/// curvature: measured up to 1.3e-7 on the Hertz octant and 1.1e-4 on the
+/// Mindlin half model (doc/contact.md, "Mindlin"), each a nearly singular
+/// system (multipliers of 1/tilt) when counted. A row that carries force
+/// has a free part of order one (its slave node free along it).
+constexpr double kHeldSlipRow = 1e-2;
+
+bool slipRowRedundant(const std::vector<Eigen::VectorXd>& rows, const std::vector<double>& sizes, int alpha,
+                      double tolerance);
 
 }  // namespace ddc

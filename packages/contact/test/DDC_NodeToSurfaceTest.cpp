@@ -467,6 +467,25 @@ TEST(Friction, TheStickSlipDecisionAndTheTangentBasis) {
   EXPECT_LT((ddc::tangentBasis(3, n3b, before[0])[0] - before[0]).norm(), 2e-3);
 }
 
+// A slipping pair whose predictor turns against the force of its slip row
+// (the solve slid the node the other way) reverses; one along it, a
+// sticking pair, or a 3-D turn of less than 90 degrees does not.
+TEST(Friction, ASlipThatTurnsAgainstItsForceReverses) {
+  ddc::FrictionPairState f;
+  f.coefficient = 0.5;
+  f.stiffness = 10.0;
+  f.stick = false;
+  const double lt[2] = {1.0, 0.0};  // on the cone μ p = 1, along +τ_1
+  const double along[2] = {0.05, 0.0}, against[2] = {-0.2, 0.0};  // z = 1.5, −1
+  EXPECT_FALSE(ddc::slipReverses(1, along, lt, f));
+  EXPECT_TRUE(ddc::slipReverses(1, against, lt, f));
+  const double turned[2] = {-0.05, 0.3}, reversed[2] = {-0.15, 0.3};  // z = (0.5, 3), (−0.5, 3)
+  EXPECT_FALSE(ddc::slipReverses(2, turned, lt, f));
+  EXPECT_TRUE(ddc::slipReverses(2, reversed, lt, f));
+  f.stick = true;
+  EXPECT_FALSE(ddc::slipReverses(1, against, lt, f));
+}
+
 // A slave node and its master point on a symmetry plane y = 0 (both held in
 // y): the free relative motion is (x, z). With the master surface tilted
 // across the plane the normal n has a y part and τ_2 = n × τ_1 an x or z
@@ -489,16 +508,48 @@ TEST(Friction, ASlipRowOnASymmetryPlaneIsRedundant) {
     }
     return r;
   };
-  const double tol = 1e-8;
-  EXPECT_FALSE(ddc::slipRowRedundant(rows(false), 0, tol));
-  EXPECT_FALSE(ddc::slipRowRedundant(rows(false), 1, tol));
-  EXPECT_FALSE(ddc::slipRowRedundant(rows(true), 0, tol));
-  EXPECT_TRUE(ddc::slipRowRedundant(rows(true), 1, tol));
+  const double tol = ddc::kHeldSlipRow;
+  const std::vector<double> sizes(3, std::sqrt(2.0));  // |(d, −d)| of a unit d
+  EXPECT_FALSE(ddc::slipRowRedundant(rows(false), sizes, 0, tol));
+  EXPECT_FALSE(ddc::slipRowRedundant(rows(false), sizes, 1, tol));
+  EXPECT_FALSE(ddc::slipRowRedundant(rows(true), sizes, 0, tol));
+  EXPECT_TRUE(ddc::slipRowRedundant(rows(true), sizes, 1, tol));
   // Neither row is small on its own (the old zero test missed it).
   EXPECT_GT(rows(true)[2].norm(), 0.05);
   // Every DOF prescribed: both rows hold nothing.
   std::vector<Eigen::VectorXd> none(3, Eigen::VectorXd::Zero(6));
   none[0] = rows(false)[0];
-  EXPECT_TRUE(ddc::slipRowRedundant(none, 0, tol));
-  EXPECT_TRUE(ddc::slipRowRedundant(none, 1, tol));
+  EXPECT_TRUE(ddc::slipRowRedundant(none, sizes, 0, tol));
+  EXPECT_TRUE(ddc::slipRowRedundant(none, sizes, 1, tol));
+}
+
+// The same node on the plane x = 0 (held in x) under a flat master whose
+// deformed facet tilts τ_1 ≈ x off the plane by 1e-7 (the Hertz octant's
+// symmetry-plane nodes in step 2): τ_1's free part is 1e-7 of the row, far
+// from zero relative to itself, but nothing beside round-off of the
+// geometry. Judged against its own free part it counted, and its
+// multiplier grew as 1/1e-7 (Newton diverged); judged against the whole
+// row it is held, as is the 1e-4 tilt of the Mindlin half model. A tilt of
+// 0.1 counts.
+TEST(Friction, ASlipRowTiltedOffASymmetryPlaneByRoundOffIsRedundant) {
+  auto rows = [&](double tilt) {
+    const Eigen::Vector3d n(0.0, 0.0, 1.0);
+    const Eigen::Vector3d t1 = Eigen::Vector3d(1.0, tilt, 0.0).normalized();
+    std::vector<Eigen::VectorXd> r;
+    for (const Eigen::Vector3d& d : {n, t1, Eigen::Vector3d(n.cross(t1))}) {
+      Eigen::VectorXd v(6);
+      v << d, -d;
+      v[0] = v[3] = 0.0;  // x held on the slave node and on the master node
+      r.push_back(v);
+    }
+    return r;
+  };
+  const double tol = ddc::kHeldSlipRow;
+  const std::vector<double> sizes(3, std::sqrt(2.0));
+  for (double tilt : {1e-7, 1e-4}) {
+    EXPECT_TRUE(ddc::slipRowRedundant(rows(tilt), sizes, 0, tol)) << tilt;
+    EXPECT_FALSE(ddc::slipRowRedundant(rows(tilt), sizes, 1, tol)) << tilt;
+  }
+  EXPECT_FALSE(ddc::slipRowRedundant(rows(0.1), sizes, 0, tol));
+  EXPECT_TRUE(ddc::slipRowRedundant(rows(0.1), sizes, 1, tol));
 }
