@@ -432,6 +432,38 @@ foreach(case bybody_np1 bybody_np2 metis8_np3 metis32_np2)
     COLUMNS ${HERTZ_COLUMNS})
   dd_contact_check(hertz_sphere_${case}_one_exchange_per_step ${name} NROWS 4 CHECKS "all:contact_exchanges:==:1")
 endforeach()
+# Hertz with friction (mu = 0.3; the block 1000 times stiffer, so the
+# sphere's surface slides outwards under the load: 8 nodes stick, 1 slips at
+# the end): 3-D friction on the quarter model, whose symmetry-plane nodes
+# have a tangential row held by the supports (doc/contact.md, "Friction").
+# The conventional and the decomposed element solved monolithically converge
+# in every step; the decomposed element under FETI-DP on 8 METIS subdomains
+# (3 ranks) and 32 (2 ranks), both cutting the contact zone, equals the
+# Monolithic solve to 1e-6 in energy, contact forces and dissipation
+# (measured 3e-8) with the same active sets.
+set(HERTZ_FRICTION --set "Contact/Pairs/Sphere on block/Friction Coefficient=0.3" --set "Output/VTK=false")
+set(HERTZ_FRICTION_COLUMNS strain_energy contact_force_x contact_force_y contact_force_z frictional_dissipation)
+ddc_add_run_test(hertz_sphere_friction_conventional_Monolithic RANKS 1
+  ARGS ${HERTZ} ${HERTZ_FRICTION} --set "Contact/Formulation=Node-To-Surface" --set "Solver/Strategy=Monolithic"
+    --output-dir ${DDC_RUNS}/hertz_sphere_friction_conventional_Monolithic
+  REGEX "step +4/4 .*contacts [1-9]" LABELS contact)
+ddc_add_run_test(hertz_sphere_friction_decomposed_Monolithic RANKS 1 FIXTURE
+  ARGS ${HERTZ} ${HERTZ_FRICTION} --set "Solver/Strategy=Monolithic"
+    --output-dir ${DDC_RUNS}/hertz_sphere_friction_decomposed_Monolithic
+  REGEX "step +4/4 .*contacts [1-9]" FILES ${DDC_RUNS}/hertz_sphere_friction_decomposed_Monolithic/history.csv
+  LABELS contact dd_contact)
+foreach(case metis8_np3 metis32_np2)
+  string(REGEX MATCH "^[a-z0-9]+" part ${case})
+  string(REGEX MATCH "[0-9]+$" np ${case})
+  set(name hertz_sphere_friction_FETI-DP_${case})
+  ddc_add_run_test(${name} RANKS ${np} FIXTURE
+    ARGS ${HERTZ} ${HERTZ_FRICTION} ${HERTZ_PART_${part}} --output-dir ${DDC_RUNS}/${name}
+    REGEX "step +4/4 .*contacts [1-9]" FILES ${DDC_RUNS}/${name}/history.csv LABELS contact feti dd_contact)
+  ddc_compare_histories(${name}_vs_monolithic ${name} hertz_sphere_friction_decomposed_Monolithic 1e-6
+    COLUMNS ${HERTZ_FRICTION_COLUMNS} LABELS contact feti dd_contact)
+  ddc_compare_histories(${name}_active_set ${name} hertz_sphere_friction_decomposed_Monolithic 0
+    COLUMNS active_contacts LABELS contact feti dd_contact)
+endforeach()
 # Hertz impact (examples/sphere_impact.xml, doc/contact.md "Hertz impact"):
 # the hemisphere dropped on the block; ddcontact-hertz compares the contact
 # time and the peak force with Hertz's impact solution within
@@ -623,12 +655,11 @@ endforeach()
 # ddcontact-hertz --mindlin on the analytic tractions
 # (test/tools/mindlin_synthetic.py) recovers a to round-off (its P is Hertz's
 # for a by construction; 1e-9) and c to 1e-3 (the synthetic node sums'
-# quadrature error; measured 1e-5). mindlin_sphere_frictionless: the example
-# without friction, the sphere's top held in x and y too, in 1 step (without
-# friction the answer does not depend on the path; 2 steps give the same a),
-# the decomposed element solved monolithically on 1 rank: a within 2 % of
-# Hertz's (measured +0.62 %). The frictional deck as shipped does not
-# converge yet (doc/contact.md, "Mindlin"): no test of c.
+# quadrature error; measured 1e-5). mindlin_sphere: the deck as shipped (the
+# press, then the push Q = 0.5 mu P), the decomposed element solved
+# monolithically on 1 rank: a within 2 % of Hertz's and c within 5 % of
+# Mindlin's (measured +0.49 % and +1.28 %). It replaces the frictionless run
+# that stood in for it while the frictional deck did not converge.
 set(MINDLIN ${PROJECT_SOURCE_DIR}/examples/mindlin_sphere.xml)
 add_test(NAME mindlin_sphere_mesh_up_to_date COMMAND sh -c
   "mkdir -p ${DDC_RUNS}/mindlin_mesh && ${DDC_SYSTEM_PYTHON} ${PROJECT_SOURCE_DIR}/examples/mindlin_sphere_mesh.py ${DDC_RUNS}/mindlin_mesh/mindlin_sphere.msh && ${CMAKE_COMMAND} -E compare_files ${DDC_RUNS}/mindlin_mesh/mindlin_sphere.msh ${PROJECT_SOURCE_DIR}/examples/mindlin_sphere.msh")
@@ -640,15 +671,14 @@ ddc_add_tool_test(mindlin_synthetic_vs_theory TOOL ddcontact-hertz EXPECT succes
   ARGS --mindlin ${DDC_RUNS}/mindlin_synthetic --tolerance-a 1e-9 --tolerance-c 1e-3
   REGEX "2546 active slave nodes: 1606 stick, 940 slip.*check: .a error. <= 1e-09: passed.*check: .c error. <= 0.001: passed")
 set_tests_properties(mindlin_synthetic_vs_theory PROPERTIES FIXTURES_REQUIRED mindlin_synthetic)
-ddc_add_run_test(mindlin_sphere_frictionless RANKS 1 FIXTURE
-  ARGS ${MINDLIN} --set "Boundary Conditions/Pressed/Components=All" --set "Load Stepping/Number of Steps=1"
-    --set "Contact/Pairs/Sphere on block/Friction Coefficient=0"
-    --output-dir ${DDC_RUNS}/mindlin_sphere_frictionless
-  REGEX "step +1/1 .*contacts [1-9]" FILES ${DDC_RUNS}/mindlin_sphere_frictionless/contact_nodes.csv
+ddc_add_run_test(mindlin_sphere RANKS 1 FIXTURE
+  ARGS ${MINDLIN} --set "Output/VTK=false" --output-dir ${DDC_RUNS}/mindlin_sphere
+  REGEX "step +2/2 .*contacts [1-9]" FILES ${DDC_RUNS}/mindlin_sphere/contact_nodes.csv
   LABELS example contact)
-ddc_add_tool_test(mindlin_sphere_frictionless_vs_theory TOOL ddcontact-hertz EXPECT success LABELS contact
-  ARGS --mindlin ${DDC_RUNS}/mindlin_sphere_frictionless --tolerance-a 0.02 REGEX "check: .a error. <= 0.02: passed")
-set_tests_properties(mindlin_sphere_frictionless_vs_theory PROPERTIES FIXTURES_REQUIRED mindlin_sphere_frictionless)
+ddc_add_tool_test(mindlin_sphere_vs_theory TOOL ddcontact-hertz EXPECT success LABELS contact
+  ARGS --mindlin ${DDC_RUNS}/mindlin_sphere --tolerance-a 0.02 --tolerance-c 0.05
+  REGEX "stick, [0-9]+ slip.*check: .a error. <= 0.02: passed.*check: .c error. <= 0.05: passed")
+set_tests_properties(mindlin_sphere_vs_theory PROPERTIES FIXTURES_REQUIRED mindlin_sphere)
 
 # ---- contact input that is not contact ---------------------------------------------
 # Contact/Formulation = Decomposed Node-To-Segment in a deck without contact

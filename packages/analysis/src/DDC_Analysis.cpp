@@ -101,13 +101,6 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
   if (memoryCheck) requireMemory(*mesh, partition, solver, contact);
   else memoryEstimate_ = estimateMemory(*mesh, partition, ranks, solver, contact);
   strategy_ = makeSolutionStrategy(comm_, params.sublist("Solver"), contact);
-  // 3-D friction passes its element checks, but Newton has not converged on
-  // Mindlin's problem after its first step: said at the start and with a
-  // Newton failure.
-  if (contact.frictional() && mesh->dim() == 3)
-    caveats_ += std::string(caveats_.empty() ? "" : "; ") +
-                "Coulomb friction in 3-D is not validated yet: on Mindlin's problem Newton does not converge after "
-                "the first step (doc/contact.md, \"Mindlin\")";
   // The contact elements by role and facet type, from the factory (host
   // codes may replace them there).
   auto surfaceElements = [factory = factory_](SurfaceContactRole role, CellType facet) {

@@ -152,7 +152,7 @@ class Analysis {
   /// What the memory check allowed (no limits when it is off).
   MemoryBudget memoryBudget_;
   /// Said at the start and with a Newton failure: nearly incompressible
-  /// bodies, friction in 3-D (not validated yet).
+  /// bodies.
   std::string caveats_;
   bool progressEnabled_ = true;
   bool dynamic_ = false;  ///< Dynamics/Integrator is not None
