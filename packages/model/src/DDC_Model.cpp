@@ -200,10 +200,11 @@ std::vector<std::string> Model::pairsInGrossSlip() const {
 }
 
 double Model::frictionStiffness(const ContactPairDefinition& def) const {
-  // c_t of a frictional pair (DDC_Friction.hpp): the smaller Young's
-  // modulus of its two bodies times h^(dim−2), h the mean master facet size
-  // — the stiffness of a facet-sized piece of material, force per length,
-  // so c_t u_t compares with the nodal force λ_t. A body whose element has no
+  // c_t of a frictional pair (DDC_Friction.hpp): kFrictionStiffnessFactor
+  // times the smaller Young's modulus of its two bodies times h^(dim−2), h
+  // the mean master facet size — a tenth of the stiffness of a facet-sized
+  // piece of material, force per length, so c_t u_t compares with the nodal
+  // force λ_t (doc/contact.md, "Friction"). A body whose element has no
   // Young's modulus counts as 1.
   double E = std::numeric_limits<double>::infinity();
   for (const std::string& set : {def.slaveSet, def.masterSet}) {
@@ -211,7 +212,7 @@ double Model::frictionStiffness(const ContactPairDefinition& def) const {
     const auto* ce = b >= 0 ? dynamic_cast<const ContinuumElement*>(elements_[b].get()) : nullptr;
     E = std::min(E, ce ? ce->material().youngsModulus() : 1.0);
   }
-  return E * std::pow(contactOptions_.length, mesh_->dim() - 2);
+  return kFrictionStiffnessFactor * E * std::pow(contactOptions_.length, mesh_->dim() - 2);
 }
 
 Model::~Model() = default;
