@@ -103,6 +103,17 @@ constexpr double kStickHysteresis = 1e-8;
 std::array<Eigen::Vector3d, 2> tangentBasis(int dim, const Eigen::Vector3d& normal,
                                             const Eigen::Vector3d& previous = Eigen::Vector3d::Zero());
 
+/// A slip row is held by the supports when what is left of its free
+/// coefficients outside the span of the earlier rows' is at most this
+/// fraction of the whole row (slipRowRedundant()). Only a slave node on a
+/// support (a symmetry plane) has such a row, and there the deformed master
+/// surface tilts the basis across the plane by about h times the surface's
+/// curvature: measured up to 1.3e-7 on the Hertz octant and 1.1e-4 on the
+/// Mindlin half model (doc/contact.md, "Mindlin"), each a nearly singular
+/// system (multipliers of 1/tilt) when counted. A row that carries force
+/// has a free part of order one (its slave node free along it).
+constexpr double kHeldSlipRow = 1e-2;
+
 /// Whether tangential row `alpha` of a pair holds nothing that the supports
 /// and the rows before it do not: `rows` are the displacement coefficients
 /// of the gap row and of the tangential rows on the free DOFs (prescribed
@@ -116,20 +127,9 @@ std::array<Eigen::Vector3d, 2> tangentBasis(int dim, const Eigen::Vector3d& norm
 /// the last row is redundant, and the system singular unless its
 /// multiplier is restrained (ContactPairing::restrainHeldSlip()). The
 /// tolerance is relative to the whole row, not to its free part: a row
-/// tilted off the plane by round-off of the deformed geometry (a free part
-/// of 1e-7 of the row) would otherwise count, and its multiplier grow as
-/// the inverse of the tilt.
-/// A slip row is held by the supports when what is left of its free
-/// coefficients outside the span of the earlier rows' is at most this
-/// fraction of the whole row (slipRowRedundant()). Only a slave node on a
-/// support (a symmetry plane) has such a row, and there the deformed master
-/// surface tilts the basis across the plane by about h times the surface's
-/// curvature: measured up to 1.3e-7 on the Hertz octant and 1.1e-4 on the
-/// Mindlin half model (doc/contact.md, "Mindlin"), each a nearly singular
-/// system (multipliers of 1/tilt) when counted. A row that carries force
-/// has a free part of order one (its slave node free along it).
-constexpr double kHeldSlipRow = 1e-2;
-
+/// that the deformed master surface tilts off the plane (a free part of
+/// 1e-7 to 1e-4 of the row, kHeldSlipRow) would otherwise count, and its
+/// multiplier grow as the inverse of the tilt.
 bool slipRowRedundant(const std::vector<Eigen::VectorXd>& rows, const std::vector<double>& sizes, int alpha,
                       double tolerance);
 

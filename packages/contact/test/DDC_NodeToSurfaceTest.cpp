@@ -526,7 +526,7 @@ TEST(Friction, ASlipRowOnASymmetryPlaneIsRedundant) {
 // The same node on the plane x = 0 (held in x) under a flat master whose
 // deformed facet tilts τ_1 ≈ x off the plane by 1e-7 (the Hertz octant's
 // symmetry-plane nodes in step 2): τ_1's free part is 1e-7 of the row, far
-// from zero relative to itself, but nothing beside round-off of the
+// from zero relative to itself, but nothing beside the tilt of the deformed
 // geometry. Judged against its own free part it counted, and its
 // multiplier grew as 1/1e-7 (Newton diverged); judged against the whole
 // row it is held, as is the 1e-4 tilt of the Mindlin half model. A tilt of
