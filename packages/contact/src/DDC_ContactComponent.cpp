@@ -97,6 +97,16 @@ bool ContactComponent::slipRowHeld(int k, int alpha) const { return pairing_->fr
 
 bool ContactComponent::frictional() const { return topology_->frictional(); }
 
+FrictionRows ContactComponent::slipLinearisation(int k) const {
+  const ContactSlot& s = pairing_->slots()[k];
+  const auto& pair = topology_->pair(s.pair);
+  FrictionPairState f;
+  f.coefficient = pair.friction;
+  f.stiffness = pair.frictionStiffness;
+  f.stick = false;
+  return frictionRows(topology_->dim() - 1, s.tangentialSlip.data(), s.state.multiplier, s.tangential.data(), f);
+}
+
 double ContactComponent::frictionStiffness(int k) const {
   return topology_->pair(topology_->slots()[k].pair).frictionStiffness;
 }

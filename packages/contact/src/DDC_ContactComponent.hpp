@@ -188,6 +188,11 @@ class ContactComponent {
   /// on a prescribed DOF, so its multiplier is restrained to zero and the
   /// row is no constraint (replicated data: any rank, not collective).
   bool slipRowHeld(int k, int alpha) const;
+  /// The linearised slip rows of frictional slot k as it slips
+  /// (frictionRows() of DDC_Friction.hpp), at the multipliers and slip of
+  /// the last updateActiveSet() or beginStep(), the state the elements
+  /// assemble with (replicated data: any rank, not collective).
+  FrictionRows slipLinearisation(int k) const;
   /// Every contact contribution evaluated on this rank at (u, λ) — the
   /// conventional element of each owned slot, or the two counterparts where
   /// they live; a released or unpaired slot contributes Π = ½λ² on its

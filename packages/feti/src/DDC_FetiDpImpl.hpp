@@ -217,6 +217,26 @@ struct SparseRows {
   }
 };
 
+/// The coupling of the extra rows for the next solve()
+/// (FetiDpSolver::setConstraintCoupling(), doc/feti-dp.md "Coupled rows"):
+/// the multipliers lambda = T x of the dual unknowns x, the equations
+/// G (B u) + E x, and the preconditioner's scaling D of the compliant rows.
+/// Indices are LIDs of the owned LM map (the rows of a coupling are owned
+/// by one rank). T and G differ from the mask P only in the listed rows.
+struct RowCoupling {
+  struct Term {
+    LO i, j;
+    double v;
+  };
+  std::vector<Term> columns;         ///< T(i, j) of the listed rows i
+  std::vector<Term> rowsOfG;         ///< G(i, j) of the listed rows i
+  std::vector<char> listedT, listedG;  ///< per owned LM LID: row i of T / G is listed
+  std::vector<double> compliance;    ///< E's diagonal per owned LM LID (empty: none)
+  std::vector<double> scale;         ///< D per owned LM LID (empty: 1)
+  bool symmetric = true;             ///< T = Gᵀ on every rank
+  bool any() const { return !listedT.empty(); }
+};
+
 /// B~ and its weighted B_D: the compatibility rows (one per pair of
 /// subdomains sharing a non-primal DOF, +1 / -1), the caller's extra rows,
 /// the distributed LM maps, the mask of restrained rows, the right-hand
@@ -286,6 +306,7 @@ class JumpOperator {
   RCP<Import> sideImport;
   RCP<Export> sideExport;
   RCP<Vector> mask;        ///< on lmMap: 1 = row in the problem, 0 = restrained to zero (null: all rows)
+  RowCoupling coupling;    ///< setConstraintCoupling() (none: T = G = the mask, E = 0)
   RCP<Vector> rhs;         ///< c on lmMap (B u = c); zero on compatibility rows
   RCP<Vector> rowEntries;  ///< number of entries of each row (on lmMap)
   RCP<Vector> lastLambda;  ///< multipliers of the last solve() (on lmMap)
@@ -307,6 +328,17 @@ class JumpOperator {
   void computeWeights(const Context& ctx, const std::vector<Subdomain>& subs);
   /// v <- P v (restrained rows to zero).
   void applyMask(Vector& v) const;
+  /// lambda = T x: the multipliers of the dual unknowns x (P x without a
+  /// coupling; DDC_FetiDpCoupling.cpp).
+  void multipliers(const Vector& x, Vector& lambda) const;
+  /// y <- G y (+ E x when x is given): the equations of the dual problem
+  /// from the rows' values y = B u (P y without a coupling).
+  void equations(Vector& y, const Vector* x) const;
+  /// w = D Gᵀ x (P x without a coupling): the preconditioner's input; its
+  /// output y <- D G y is equationsScaled().
+  void equationsTransposedScaled(const Vector& x, Vector& w) const;
+  /// y <- D G y.
+  void equationsScaled(Vector& y) const;
 
  private:
   /// Rows::Br and Bp from the entries, and with `weights` BDd and lumped.
@@ -429,7 +461,7 @@ class Preconditioner {
   /// Refresh the blocks' values from each K and factorise K_II (collective
   /// error). \throws SolverError naming the subdomain.
   void factor(const Context& ctx, const std::vector<Subdomain>& subs, bool analysed);
-  /// y = P M^{-1} P x.
+  /// y = D G M^{-1} Gᵀ D x (P M^{-1} P x without coupled rows).
   void apply(const std::vector<Subdomain>& subs, const JumpOperator& jump, const Vector& x, Vector& y);
 };
 
@@ -468,7 +500,11 @@ struct FetiDpSolver::Impl {
   Info setup;
   RCP<Operator> fOp, mOp;
 
+  bool couplingScaled = false;  ///< RowCoupling::scale is that of the current coupling and factorisation
+
   std::string param(const std::string& name) const { return ctx.param(name); }
+  /// RowCoupling::scale of the compliant rows (DDC_FetiDpCoupling.cpp).
+  void scaleCompliantRows();
 
   /// setTopology() (DDC_FetiDpInterface.cpp).
   void buildTopology(std::vector<FetiSubdomain> local, RCP<const Map> owned);

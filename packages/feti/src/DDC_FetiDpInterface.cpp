@@ -571,6 +571,7 @@ void JumpOperator::finalize(const Context& ctx, const std::vector<Subdomain>& su
   rhs = rcp(new Vector(lmMap));
   lastLambda = rcp(new Vector(lmMap));
   mask = Teuchos::null;
+  coupling = RowCoupling();
   Vector countOv(lmOvMap);
   {
     auto c = countOv.getDataNonConst();

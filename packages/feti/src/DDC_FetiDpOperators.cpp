@@ -153,7 +153,8 @@ void DualOperator::gatherB(const JumpOperator& jump, Vector& y) {
   y.doExport(*jump.ovWork, *jump.lmExport, Tpetra::ADD);
 }
 
-/// y = P F P x, P = the mask (restrained rows out).
+/// y = G F T x + E x: P F P x without coupled rows, P = the mask (restrained
+/// rows out; doc/feti-dp.md "Coupled rows").
 void DualOperator::apply(const std::vector<Subdomain>& subs, JumpOperator& jump, CoarseProblem& coarse,
                          const Vector& x, Vector& y) {
   for (LocalProblem& lp : local) {
@@ -163,12 +164,12 @@ void DualOperator::apply(const std::vector<Subdomain>& subs, JumpOperator& jump,
   if (jump.mask.is_null()) {
     scatterBt(jump, x, 1.0);
   } else {
-    jump.work->elementWiseMultiply(1.0, *jump.mask, x, 0.0);
+    jump.multipliers(x, *jump.work);
     scatterBt(jump, *jump.work, 1.0);
   }
   applyKtildeInv(subs, coarse, nullptr);
   gatherB(jump, y);
-  jump.applyMask(y);
+  jump.equations(y, &x);
   ++nApply;
 }
 

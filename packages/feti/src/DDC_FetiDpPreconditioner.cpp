@@ -96,7 +96,7 @@ void Preconditioner::factor(const Context& ctx, const std::vector<Subdomain>& su
   raiseCollectively<SolverError>(ctx.mpi, msg);
 }
 
-/// y = P M^{-1} P x, M^{-1} = sum_s B_D^s S^s B_D^sT with S^s = K_DD - K_DI
+/// y = D G M^{-1} Gᵀ D x (P M^{-1} P x without coupled rows), M^{-1} = sum_s B_D^s S^s B_D^sT with S^s = K_DD - K_DI
 /// K_II^{-1} K_ID (Dirichlet) or K_DD (lumped). Primal DOFs count as fixed,
 /// so entries of compatibility rows on primal DOFs do not enter; entries of
 /// extra rows on primal or interior DOFs enter lumped and diagonal
@@ -106,7 +106,7 @@ void Preconditioner::apply(const std::vector<Subdomain>& subs, const JumpOperato
   if (jump.mask.is_null()) {
     jump.ovWork->doImport(x, *jump.lmImport, Tpetra::INSERT);
   } else {
-    jump.work->elementWiseMultiply(1.0, *jump.mask, x, 0.0);
+    jump.equationsTransposedScaled(x, *jump.work);
     jump.ovWork->doImport(*jump.work, *jump.lmImport, Tpetra::INSERT);
   }
   std::vector<double> yOv(jump.lmOvMap->getNodeNumElements(), 0.0);
@@ -143,7 +143,7 @@ void Preconditioner::apply(const std::vector<Subdomain>& subs, const JumpOperato
   }
   y.putScalar(0.0);
   y.doExport(*jump.ovWork, *jump.lmExport, Tpetra::ADD);
-  jump.applyMask(y);
+  jump.equationsScaled(y);
   ++nApply;
   tApply += MPI_Wtime() - t0;
 }

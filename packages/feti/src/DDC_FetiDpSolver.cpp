@@ -250,6 +250,7 @@ void FetiDpSolver::numeric() {
   Impl& m = *impl_;
   if (!m.haveTopology) throw std::logic_error("FetiDpSolver::numeric() called before setTopology()");
   m.factored = false;
+  m.couplingScaled = false;
   const double t0 = MPI_Wtime();
   Info& st = m.setup;
   st = Info{};
@@ -380,6 +381,11 @@ void solveDualProblem(Impl& m, const RCP<MultiVector>& d, const RCP<MultiVector>
   bp->setParameters(m.belosExtra);
   Belos::ReturnType ret = Belos::Unconverged;
   std::string failure, type = m.belosType;
+  // Coupled rows with T != Gᵀ make F nonsymmetric: CG and MINRES do not apply.
+  if (!m.jump.coupling.symmetric && type != "GMRES") {
+    type = "GMRES";
+    info.gmresForCoupledRows = true;
+  }
   auto run = [&] {
     lambda->putScalar(0.0);
     info.conditionEstimate = -1.0;  // from CG only, and from the last run
@@ -481,9 +487,10 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
   auto lambda = rcp(new MultiVector(m.jump.lmMap, 1));
   m.dual.applyKtildeInv(m.subs, m.coarse, &fPi);
   m.dual.gatherB(m.jump, *d->getVectorNonConst(0));
-  // d = P (B K~^{-1} f~ - c)
+  // d = G B K~^{-1} f~ - c (G = P without coupled rows; c = 0 on inactive rows)
+  m.jump.equations(*d->getVectorNonConst(0), nullptr);
   d->getVectorNonConst(0)->update(-1.0, *m.jump.rhs, 1.0);
-  m.jump.applyMask(*d->getVectorNonConst(0));
+  if (!m.couplingScaled) m.scaleCompliantRows(), m.couplingScaled = true;
 
   double dNorm = 0.0;
   {
@@ -495,15 +502,15 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
   if (m.jump.lmMap->getGlobalNumElements() > 0 && dNorm > 0.0) solveDualProblem(m, d, lambda, info);
   const double tb1 = MPI_Wtime();
 
-  m.jump.applyMask(*lambda->getVectorNonConst(0));  // restrained rows: exactly zero
-  m.jump.lastLambda->assign(*lambda->getVector(0));
+  // The multipliers T x (restrained rows exactly zero)
+  m.jump.multipliers(*lambda->getVector(0), *m.jump.lastLambda);
 
   // u = K~^{-1} (f~ - B^T lambda)
   for (size_t ls = 0; ls < m.subs.size(); ++ls) {
     m.dual.local[ls].fr = frBase[ls];
     m.dual.local[ls].fp = fpBase[ls];
   }
-  m.dual.scatterBt(m.jump, *lambda->getVector(0), -1.0);
+  m.dual.scatterBt(m.jump, *m.jump.lastLambda, -1.0);
   m.dual.applyKtildeInv(m.subs, m.coarse, &fPi);
   assembleDisplacement(m, u);
 
@@ -617,6 +624,8 @@ void FetiDpSolver::setConstraintState(const std::vector<char>& active, const std
           std::to_string(n) + ")";
   raiseCollectively<std::invalid_argument>(m.ctx.mpi, msg);
   if (n == 0 && m.jump.extraRowMap.is_null()) return;
+  m.jump.coupling = RowCoupling();
+  m.couplingScaled = false;
   m.jump.mask = rcp(new Vector(m.jump.lmMap));
   m.jump.mask->putScalar(1.0);
   m.jump.rhs->putScalar(0.0);

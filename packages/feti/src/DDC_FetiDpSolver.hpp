@@ -29,6 +29,7 @@
 #include <Tpetra_Operator.hpp>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "DDC_DirectSolver.hpp"
@@ -68,6 +69,21 @@ struct FetiSubdomain {
   /// dim values per local DOF: the coordinates of its node, for the
   /// rotational edge / face constraints ("Rotational Constraints").
   std::vector<double> coordinates;
+};
+
+/// How one extra row enters the next solve() beyond its active flag
+/// (FetiDpSolver::setConstraintCoupling(); doc/feti-dp.md "Coupled rows").
+/// The dual problem's unknowns x live on the active rows; by default an
+/// active row's multiplier is its unknown and its equation (B u)_row = c_row,
+/// an inactive row's multiplier is zero. A coupled row replaces either:
+///   multiplier:  λ_row = Σ_j a_j x_j  (j: active rows of this rank),
+///   equation:    Σ_j g_j (B u)_j − compliance · x_row = c_row  (active rows).
+/// Rows are LIDs of the caller's row map on this rank.
+struct CoupledRow {
+  LO row = 0;                                      ///< the row (LID in the row map)
+  std::vector<std::pair<LO, double>> multiplier;   ///< (j, a_j); empty: the default
+  std::vector<std::pair<LO, double>> equation;     ///< (j, g_j); empty: the default
+  double compliance = 0.0;                         ///< >= 0, active rows only
 };
 
 /// One entry of an extra constraint row (FetiDpSolver::setConstraintRows()):
@@ -135,6 +151,9 @@ class FetiDpSolver {
     /// CG broke down (F indefinite) and GMRES solved the system
     /// (Belos/GMRES on CG Breakdown); iterations count both.
     bool gmresAfterBreakdown = false;
+    /// The coupled rows made the dual problem nonsymmetric and GMRES solved
+    /// it in place of the configured symmetric solver (setConstraintCoupling()).
+    bool gmresForCoupledRows = false;
     /// Lanczos estimate of the condition number of the preconditioned F from
     /// the CG coefficients (Belos "Estimate Condition Number" = true with
     /// Solver Type CG); -1 otherwise.
@@ -282,8 +301,21 @@ class FetiDpSolver {
   ///         subdomain DOF (it cannot be enforced).
   void setConstraintState(const std::vector<char>& active, const std::vector<double>& rhs);
 
+  /// Collective; optional, after setConstraintState() (which clears it).
+  /// Couples this rank's extra rows for the next solve()s (CoupledRow):
+  /// the multipliers λ = T x and the equations G B u − E x = c of the
+  /// dual unknowns x, so that F -> G F T + E, d -> G B K~^{-1} f~ − c,
+  /// M^{-1} -> D G M^{-1} Gᵀ D (D a diagonal scaling of the compliant rows by
+  /// their preconditioner's diagonal). T = Gᵀ keeps the dual problem
+  /// symmetric (CG); otherwise solve() uses GMRES (Info::gmresForCoupledRows).
+  /// \throws std::invalid_argument (every rank) for a row or column out of
+  ///         range, a listed row twice, a multiplier column or an equation on
+  ///         an inactive row, a negative or non-finite value.
+  void setConstraintCoupling(const std::vector<CoupledRow>& rows);
+
   /// Multipliers of the extra rows from the last solve() (on the row map;
-  /// exactly 0 for inactive rows); null without extra rows.
+  /// exactly 0 for inactive rows without a coupled multiplier); null
+  /// without extra rows.
   Teuchos::RCP<const Vector> constraintMultipliers() const;
 
   /// Timings of the last numeric() (setup fields of Info only).

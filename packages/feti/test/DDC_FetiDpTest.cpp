@@ -587,10 +587,19 @@ struct ReferenceRow {
   bool active;
 };
 
+/// Coupled rows in the reference (FetiDpSolver::setConstraintCoupling()),
+/// dense over the rows: multipliers T x, equations G B u - E x.
+struct ReferenceCoupling {
+  std::vector<std::vector<double>> T, G;
+  std::vector<double> E;
+};
+
 /// [K B^T; B 0] [u; mu] = [b; c] solved by MUMPS (checked by its residual),
 /// the multiplier of row r at n + r (n = K's size); returned on every rank
-/// (a replicated map), to compare with a solution in any layout.
-Vector saddlePointReference(const CrsMatrix& K, const Vector& b, const std::vector<ReferenceRow>& rows) {
+/// (a replicated map), to compare with a solution in any layout. With a
+/// coupling: [K B^T T; G B -E] [u; x] = [b; c], x the dual unknowns.
+Vector saddlePointReference(const CrsMatrix& K, const Vector& b, const std::vector<ReferenceRow>& rows,
+                            const ReferenceCoupling* coupling = nullptr) {
   const int me = worldRank();
   const GO n = GO(K.getRowMap()->getGlobalNumElements());
   const GO N = n + GO(rows.size());
@@ -615,11 +624,29 @@ Vector saddlePointReference(const CrsMatrix& K, const Vector& b, const std::vect
         A->insertGlobalValues(row, 1, &one, &row);
         continue;
       }
-      for (const auto& [d, v] : rows[r].entries) {
-        A->insertGlobalValues(row, 1, &v, &d);
-        A->insertGlobalValues(d, 1, &v, &row);
+      if (!coupling) {
+        for (const auto& [d, v] : rows[r].entries) {
+          A->insertGlobalValues(row, 1, &v, &d);
+          A->insertGlobalValues(d, 1, &v, &row);
+        }
+        continue;
       }
+      for (size_t q = 0; q < rows.size(); ++q)  // the equation: sum_q G(r, q) B_q u
+        for (const auto& [d, v] : rows[q].entries) {
+          const double gv = coupling->G[r][q] * v;
+          if (gv != 0.0) A->insertGlobalValues(row, 1, &gv, &d);
+        }
+      const double e = -coupling->E[r];
+      if (e != 0.0) A->insertGlobalValues(row, 1, &e, &row);
     }
+  if (me == 0 && coupling)  // the columns: B_r^T lambda_r, lambda_r = sum_j T(r, j) x_j
+    for (size_t r = 0; r < rows.size(); ++r)
+      for (size_t j = 0; j < rows.size(); ++j)
+        for (const auto& [d, v] : rows[r].entries) {
+          const double tv = coupling->T[r][j] * v;
+          const GO col = n + GO(j);
+          if (tv != 0.0) A->insertGlobalValues(d, 1, &tv, &col);
+        }
   A->fillComplete();
   {
     // b on the saddle-point map (a different distribution): moved by an Export.
@@ -630,6 +657,7 @@ Vector saddlePointReference(const CrsMatrix& K, const Vector& b, const std::vect
   }
   Teuchos::ParameterList dp;
   dp.set("Type", std::string("MUMPS"));
+  if (coupling) dp.sublist("MUMPS").set("Symmetric", false);  // T != Gᵀ: the whole matrix, not its lower triangle
   auto direct = ddc::DirectSolverFactory::withBuiltins().create(dp, "Reference");
   direct->symbolic(A);
   direct->numeric();
@@ -651,20 +679,35 @@ Vector saddlePointReference(const CrsMatrix& K, const Vector& b, const std::vect
   return xAll;
 }
 
+/// A coupling of extraRows() for checkExtraRows(): the rows' active flags
+/// and right-hand sides, the coupled rows (LID = row number: every row on
+/// rank 0), and the same as dense matrices for the reference.
+struct CouplingCase {
+  std::vector<char> active;
+  std::vector<double> c;
+  std::vector<ddc::CoupledRow> rows;
+  ReferenceCoupling dense;
+  bool nonsymmetric;
+};
+
 /// K u + B_c^T mu = b, B_c u = c on the active rows, mu = 0 on the
 /// inactive one: FETI-DP with setConstraintRows()/setConstraintState()
-/// against MUMPS on the assembled saddle-point matrix.
-void checkExtraRows(const std::string& primal) {
+/// against MUMPS on the assembled saddle-point matrix; with a coupling
+/// (setConstraintCoupling()) its saddle point.
+void checkExtraRows(const std::string& primal, const CouplingCase* coupling = nullptr) {
   Spec s;
   s.Sx = 2, s.Sy = 2, s.H = 4, s.dpn = 2;
   Problem pb(s);
-  const auto rows = extraRows();
+  auto rows = extraRows();
+  if (coupling)
+    for (size_t r = 0; r < rows.size(); ++r) rows[r].active = coupling->active[r], rows[r].c = coupling->c[r];
   const int P = worldSize(), me = worldRank();
   const GO n = GO(pb.ownedMap()->getGlobalNumElements());
-  // Rows owned round-robin; row GIDs 100 + r (any one-to-one map will do).
+  // Rows owned round-robin (a coupling: all on rank 0, its rows are local
+  // to one rank); row GIDs 100 + r (any one-to-one map will do).
   std::vector<GO> mine;
   for (size_t r = 0; r < rows.size(); ++r)
-    if (int(r) % P == me) mine.push_back(100 + GO(r));
+    if ((coupling ? 0 : int(r) % P) == me) mine.push_back(100 + GO(r));
   auto rowMap = rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
                             Teuchos::ArrayView<const GO>(mine), 0, worldComm()));
   auto subs = pb.subdomains();
@@ -699,12 +742,14 @@ void checkExtraRows(const std::string& primal) {
   std::vector<double> c;
   for (GO g : mine) active.push_back(rows[g - 100].active), c.push_back(rows[g - 100].c);
   feti.setConstraintState(active, c);
+  if (coupling) feti.setConstraintCoupling(me == 0 ? coupling->rows : std::vector<ddc::CoupledRow>{});
   feti.numeric();
   auto b = pb.load();
   Vector u(pb.ownedMap());
   const auto info = feti.solve(*b, u);
   auto mu = feti.constraintMultipliers();
   ASSERT_FALSE(mu.is_null());
+  if (coupling) EXPECT_EQ(info.gmresForCoupledRows, coupling->nonsymmetric);
 
   // Reference: [K B^T; B 0] (identity row for the inactive multiplier).
   std::vector<ReferenceRow> refRows;
@@ -716,8 +761,16 @@ void checkExtraRows(const std::string& primal) {
     }
     refRows.push_back(rr);
   }
-  Vector xAll = saddlePointReference(*pb.globalK(), *b, refRows);
+  Vector xAll = saddlePointReference(*pb.globalK(), *b, refRows, coupling ? &coupling->dense : nullptr);
   auto xa = xAll.getData();
+  // The reference multipliers: T x (x itself without a coupling).
+  std::vector<double> lambdaRef(rows.size());
+  for (size_t r = 0; r < rows.size(); ++r)
+    if (!coupling) {
+      lambdaRef[r] = xa[n + GO(r)];
+    } else {
+      for (size_t j = 0; j < rows.size(); ++j) lambdaRef[r] += coupling->dense.T[r][j] * xa[n + GO(j)];
+    }
   double du = 0.0, un = 0.0;
   {
     auto uv = u.getData();
@@ -732,9 +785,9 @@ void checkExtraRows(const std::string& primal) {
     auto m = mu->getData();
     for (size_t k = 0; k < mine.size(); ++k) {
       const GO r = mine[k] - 100;
-      dm = std::max(dm, std::abs(m[k] - xa[n + r]));
-      mn = std::max(mn, std::abs(xa[n + r]));
-      if (!rows[r].active) EXPECT_EQ(m[k], 0.0) << "released row " << r << " multiplier must be exactly zero";
+      dm = std::max(dm, std::abs(m[k] - lambdaRef[r]));
+      mn = std::max(mn, std::abs(lambdaRef[r]));
+      if (!rows[r].active && !coupling) EXPECT_EQ(m[k], 0.0) << "released row " << r << " multiplier must be exactly zero";
     }
   }
   double g[4] = {du, un, dm, mn}, G[4];
@@ -747,7 +800,7 @@ void checkExtraRows(const std::string& primal) {
   EXPECT_LT(G[2] / G[3], ddc::test::kFetiVsDirect);
   // The active rows hold: B_c u = c.
   for (size_t r = 0; r < rows.size(); ++r) {
-    if (!rows[r].active) continue;
+    if (!rows[r].active || coupling) continue;
     double v = 0.0;
     for (size_t k = 0; k < rows[r].at.size(); ++k) {
       const auto [i, j, cc] = rows[r].at[k];
@@ -758,6 +811,45 @@ void checkExtraRows(const std::string& primal) {
 }
 
 TEST(FetiDp, ExtraRowsMatchTheSaddlePointSolve) { checkExtraRows("Vertices"); }
+
+/// Coupled rows as the friction rows use them (doc/feti-dp.md "Coupled
+/// rows"): rows 3 and 4 rotated into one unknown (row 4 inactive, its
+/// multiplier 0.8 x_3, row 3's 0.6 x_3, its equation 0.6 B_3 u + 0.8 B_4 u
+/// with a compliance) and, when `dependent`, inactive row 2's multiplier a
+/// combination of rows 0 and 1 (T != Gᵀ: GMRES).
+CouplingCase couplingCase(bool dependent) {
+  const size_t R = extraRows().size();
+  CouplingCase cc;
+  cc.active = {1, 1, 0, 1, 0};
+  cc.c = {0.1, -0.2, 0.0, 0.02, 0.0};
+  cc.dense.T.assign(R, std::vector<double>(R, 0.0));
+  cc.dense.G = cc.dense.T;
+  cc.dense.E.assign(R, 0.0);
+  for (size_t r = 0; r < R; ++r)
+    if (cc.active[r]) cc.dense.T[r][r] = cc.dense.G[r][r] = 1.0;
+  const double compliance = 0.05;
+  cc.rows.push_back({3, {{3, 0.6}}, {{3, 0.6}, {4, 0.8}}, compliance});
+  cc.rows.push_back({4, {{3, 0.8}}, {}, 0.0});
+  cc.dense.T[3][3] = 0.6, cc.dense.T[4][3] = 0.8;
+  cc.dense.G[3][3] = 0.6, cc.dense.G[3][4] = 0.8;
+  cc.dense.E[3] = compliance;
+  if (dependent) {
+    cc.rows.push_back({2, {{0, 0.3}, {1, -0.2}}, {}, 0.0});
+    cc.dense.T[2][0] = 0.3, cc.dense.T[2][1] = -0.2;
+  }
+  cc.nonsymmetric = dependent;
+  return cc;
+}
+
+TEST(FetiDp, SymmetricCoupledRowsMatchTheSaddlePointSolve) {
+  const CouplingCase cc = couplingCase(false);
+  checkExtraRows("Vertices", &cc);
+}
+
+TEST(FetiDp, NonsymmetricCoupledRowsMatchTheSaddlePointSolveByGmres) {
+  const CouplingCase cc = couplingCase(true);
+  checkExtraRows("Vertices", &cc);
+}
 
 /// Contact rows keep working with edge constraints: rows on edge DOFs are
 /// transformed with the change of basis (ChangeOfBasis::rowToNew).
@@ -1005,6 +1097,20 @@ TEST(FetiDp, ExtraRowErrorsAreCollective) {
   const size_t owned = rowMap->getNodeNumElements();
   expectThrowWith<ddc::SolverError>([&] { feti.setConstraintState(std::vector<char>(owned, 1), std::vector<double>(owned, 1.0)); },
                   {"constraint row 0", "no entry"});
+  // Coupled rows (on the row's owner; the others pass none): a row outside
+  // the row map, an equation on an inactive row, a negative compliance.
+  feti.setConstraintState(std::vector<char>(owned, 0), std::vector<double>(owned, 0.0));
+  auto coupled = [&](const ddc::CoupledRow& r) {
+    return owned ? std::vector<ddc::CoupledRow>{r} : std::vector<ddc::CoupledRow>{};
+  };
+  expectThrowWith<std::invalid_argument>([&] { feti.setConstraintCoupling(coupled({5, {}, {}, 0.0})); },
+                                         {"row 5", "not a local row"});
+  expectThrowWith<std::invalid_argument>([&] { feti.setConstraintCoupling(coupled({0, {}, {{0, 1.0}}, 0.0})); },
+                                         {"row 0", "inactive row"});
+  expectThrowWith<std::invalid_argument>([&] { feti.setConstraintCoupling(coupled({0, {{0, 1.0}}, {}, 0.0})); },
+                                         {"row 0", "active local row"});
+  expectThrowWith<std::invalid_argument>([&] { feti.setConstraintCoupling(coupled({0, {}, {}, -1.0})); },
+                                         {"row 0", "finite and >= 0"});
 }
 
 // ---- a host-registered local solver --------------------------------------------

@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "DDC_Error.hpp"
+#include "DDC_FetiSlipRows.hpp"
 
 namespace ddc {
 
@@ -195,10 +196,59 @@ class FetiDpStrategy : public SolutionStrategy {
     return sl.friction == FrictionState::Stick ? RowKind::Constraint : RowKind::Slip;
   }
 
-  /// The multiplier increment of a slipping row, known before the solve:
-  /// the step onto the Coulomb cone with the current normal force and
-  /// predictor, −c_t × the slip row's residual (its b entry).
-  double slipIncrement(size_t i, double b) const { return model_->contact()->frictionStiffness(rows_[i].slot) * b; }
+  /// The contact rows' state for the next solve (doc/feti-dp.md "Extra rows",
+  /// "Friction rows"): per row its active flag, c = the right-hand side of
+  /// the multiplier row (−g_N, with the predictor's share of the prescribed
+  /// increment in the first iteration; −u_t of a sticking pair), and a
+  /// slipping pair's rows coupled to its normal row with the known part of
+  /// their multipliers in known_ (their forces go into b_). The multipliers
+  /// are not subdomain DOFs: b_ is 0 there.
+  void setContactRows(const Vector& bModel) {
+    std::vector<char> active;
+    std::vector<double> c;
+    std::vector<CoupledRow> coupled;
+    b_->assign(bModel);
+    known_.assign(lmLids_.size(), 0.0);
+    auto bv = b_->getDataNonConst();
+    for (size_t i = 0; i < lmLids_.size(); ++i) {
+      active.push_back(rowKind(i) == RowKind::Constraint);
+      c.push_back(bv[lmLids_[i]]);
+    }
+    const ContactComponent& contact = *model_->contact();
+    for (size_t i = 0; i < lmLids_.size(); ++i) {
+      if (rows_[i].multiplier != 0) continue;
+      const int k = rows_[i].slot, nt = contact.numMultipliers(k) - 1;
+      bool slips = false;
+      for (int a = 1; a <= nt; ++a) slips |= rowKind(i + a) == RowKind::Slip;
+      if (!slips) continue;
+      std::vector<double> b;
+      std::vector<char> held;
+      std::vector<LO> rows;
+      for (int a = 1; a <= nt; ++a) {
+        b.push_back(bv[lmLids_[i + a]]);
+        held.push_back(rowKind(i + a) != RowKind::Slip);
+        rows.push_back(LO(i + a));
+      }
+      const SlipRowsInDual sd = slipRowsInDual(contact.slipLinearisation(k), b, held, LO(i), rows);
+      for (int a = 0; a < nt; ++a) {
+        active[i + 1 + a] = sd.active[a];
+        c[i + 1 + a] = sd.active[a] ? sd.rhs[a] : 0.0;
+        known_[i + 1 + a] = sd.known[a];
+      }
+      coupled.insert(coupled.end(), sd.coupled.begin(), sd.coupled.end());
+    }
+    auto slip = model_->createVector();
+    {
+      auto sv = slip->getDataNonConst();
+      for (size_t i = 0; i < lmLids_.size(); ++i) {
+        sv[lmLids_[i]] = known_[i];
+        bv[lmLids_[i]] = 0.0;
+      }
+    }
+    if (contact.frictional()) model_->subtractContactRowForces(rowEntries_, *slip, *b_);
+    feti_->setConstraintState(active, c);
+    if (contact.frictional()) feti_->setConstraintCoupling(coupled);
+  }
 
   AssemblyResult assemble(const Vector& u, double lambda, Vector& r, const Vector* prescribedStep) override {
     AssemblyRequest request;
@@ -216,31 +266,7 @@ class FetiDpStrategy : public SolutionStrategy {
     StrategySolveInfo out;
     Lap lap;
     const bool contact = model_->hasContact();
-    if (contact) {
-      // Contact rows: active flag per row, c = the right-hand side of the
-      // multiplier row (−g_N, with the predictor's share of the prescribed
-      // increment in the first iteration; −u_t of a sticking pair). The
-      // multipliers are not subdomain DOFs: b is 0 there. A slipping pair's
-      // tangential multipliers step onto the Coulomb cone and their forces
-      // enter b as known (doc/feti-dp.md, "Friction rows").
-      std::vector<char> active;
-      std::vector<double> c;
-      b_->assign(bModel);
-      auto slip = model_->createVector();
-      {
-        auto bv = b_->getDataNonConst();
-        auto sv = slip->getDataNonConst();
-        for (size_t i = 0; i < lmLids_.size(); ++i) {
-          const RowKind kind = rowKind(i);
-          active.push_back(kind == RowKind::Constraint);
-          c.push_back(bv[lmLids_[i]]);
-          if (kind == RowKind::Slip) sv[lmLids_[i]] = slipIncrement(i, bv[lmLids_[i]]);
-          bv[lmLids_[i]] = 0.0;
-        }
-      }
-      if (model_->contact()->frictional()) model_->subtractContactRowForces(rowEntries_, *slip, *b_);
-      feti_->setConstraintState(active, c);
-    }
+    if (contact) setContactRows(bModel);
     // The subdomain matrices hold the element tangents only (contact enters
     // as constraint rows): with a linear material they are factorised once
     // per analysis, contact or not.
@@ -256,16 +282,16 @@ class FetiDpStrategy : public SolutionStrategy {
     out.setupSeconds = lap();
     const auto info = feti_->solve(contact ? *b_ : bModel, du);
     if (contact) {
-      // Multiplier increments: from FETI-DP on active rows; a released
-      // multiplier goes to zero (its row of b is −λ); a slipping one onto
-      // the cone.
+      // Multiplier increments: from FETI-DP on active and slipping rows
+      // (with a slipping row's known part); a released multiplier goes to
+      // zero (its row of b is −λ).
       auto mu = feti_->constraintMultipliers()->getData();
       auto dv = du.getDataNonConst();
       auto rv = bModel.getData();
       for (size_t i = 0; i < lmLids_.size(); ++i) {
         const RowKind kind = rowKind(i);
         dv[lmLids_[i]] = kind == RowKind::Constraint ? mu[i]
-                         : kind == RowKind::Slip     ? slipIncrement(i, rv[lmLids_[i]])
+                         : kind == RowKind::Slip     ? mu[i] + known_[i]
                                                      : rv[lmLids_[i]];
       }
     }
@@ -317,6 +343,7 @@ class FetiDpStrategy : public SolutionStrategy {
   };
   std::vector<Row> rows_;
   std::vector<ContactRowEntry> rowEntries_;  ///< this rank's contact rows of the increment
+  std::vector<double> known_;  ///< per row: a slipping row's known multiplier increment (setContactRows())
   bool factored_ = false;     ///< numeric() done once
   double factoredMassFactor_ = 0.0;  ///< tangentMassFactor() of that numeric()
 };
