@@ -142,3 +142,20 @@ ddc_add_script_test(ironing_3d_study PROCESSORS 2 LONG LABELS study example cont
 # on average when a subdomain was one side).
 ddc_check_history(ironing_3d_dual_iterations ironing_3d/decomposed-40 FIXTURE_OF ironing_3d_study NROWS 40
   CHECKS "all:dual_iterations/newton_iterations:<=:45" LABELS contact dd_contact)
+# With Coulomb friction (mu = 0.3, doc/contact.md "Ironing"), the
+# across-partition stress case: the decomposed element under FETI-DP on the
+# deck's 4 METIS subdomains, 2 ranks, the die pressed 1.0 (at 1.4 its drag
+# crushes the slab's top side-edge elements, inverted in step 24 under
+# FETI-DP and monolithically alike). The slip rows linearised exactly in the
+# dual problem take it to the end in at most 8 Newton iterations a step
+# (measured 6-8, one bisection in step 40; the lagged rows cycled in step
+# 1) and at most 60 dual iterations per Newton iteration (measured up to
+# 47), dissipating by friction.
+ddc_add_run_test(ironing_3d_friction RANKS 2 FIXTURE
+  ARGS ${PROJECT_SOURCE_DIR}/examples/ironing_3d.xml --set "Contact/Pairs/Die on slab/Friction Coefficient=0.3"
+    --set "Boundary Conditions/Die press/Value Y=-1.0" --output-dir ${DDC_RUNS}/ironing_3d_friction
+  REGEX "step +40/40 +load 1 .*contacts [1-9]" FILES ${DDC_RUNS}/ironing_3d_friction/history.csv
+  LABELS example contact feti dd_contact)
+ddc_check_history(ironing_3d_friction_history ironing_3d_friction
+  CHECKS "all:newton_iterations:<=:8" "all:dual_iterations/newton_iterations:<=:60"
+    "last:frictional_dissipation:>:0" LABELS contact dd_contact)
