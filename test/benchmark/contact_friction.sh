@@ -9,10 +9,14 @@
 #   - hertz3: the Hertz sphere (examples/hertz_sphere.xml) at Refinement 3
 #     (50,424 DOFs), 4 load steps, METIS with the default subdomain count.
 #     Normal load only: the quarter model's symmetry planes admit no
-#     tangential load (Mindlin's half model takes one, but FETI-DP does not
+#     tangential load; the sphere's surface slides outwards on the 1000
+#     times stiffer block, so the contact has stick and slip nodes;
+#   - mindlin: Mindlin's half model (examples/mindlin_sphere.xml, 41,910
+#     DOFs) with a tangential load after the normal one: the sphere's top
+#     slid 0.0015 in x after the press (Q/(mu P) = 0.515), 2 load steps,
+#     METIS SUBDOMAINS subdomains (with the default 25 FETI-DP does not
 #     converge on its graded mesh even without friction: doc/contact.md,
-#     "Mindlin"); the sphere's surface slides outwards on the 1000 times
-#     stiffer block, so the contact has stick and slip nodes.
+#     "Mindlin").
 # Each table: the decomposed element under FETI-DP without and with
 # friction (mu = 0.3): Newton iterations per step and dual iterations per
 # Newton solve, and their ratio; against the conventional frictional element
@@ -20,14 +24,14 @@
 # Not part of ctest.
 #
 #   bash test/benchmark/contact_friction.sh [BUILD_DIR]     # default: build
-# Environment: RANKS (2), REPS (3), SUBDOMAINS (8, cattaneo), CASES
-# ("cattaneo hertz3").
+# Environment: RANKS (2), REPS (3), SUBDOMAINS (8, cattaneo and mindlin),
+# CASES ("cattaneo hertz3 mindlin").
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 # shellcheck source=common.sh
 . test/benchmark/common.sh "${1:-build}"
 SUBDOMAINS=${SUBDOMAINS:-8}
-CASES=${CASES:-cattaneo hertz3}
+CASES=${CASES:-cattaneo hertz3 mindlin}
 DECOMPOSED=(--set "Contact/Formulation=Decomposed Node-To-Surface")
 CONVENTIONAL=(--set "Contact/Formulation=Node-To-Surface")
 MONO=(--set "Solver/Strategy=Monolithic")
@@ -81,6 +85,13 @@ for case in $CASES; do
       friction_table "Hertz sphere at Refinement 3 (FETI-DP on METIS, default subdomains)" \
         examples/hertz_sphere.xml 4 "Sphere on block" FETI_HERTZ \
         --set "Mesh/Bodies/Sphere/Sphere Octant/Refinement=3" --set "Mesh/Bodies/Block/Box/Refinement=3" ;;
-    *) echo "contact_friction.sh: unknown case '$case' in CASES (cattaneo, hertz3)" >&2; exit 2 ;;
+    mindlin)
+      FETI_MINDLIN=(--set "Solver/Strategy=FETI-DP" --set "Partition/Method=METIS"
+                    --set "Partition/Number of Subdomains=$SUBDOMAINS")
+      friction_table "Mindlin's sphere slid after the press (FETI-DP on METIS $SUBDOMAINS)" \
+        examples/mindlin_sphere.xml 2 "Sphere on block" FETI_MINDLIN \
+        --set "Boundary Conditions/Push/Type=Displacement" --set "Boundary Conditions/Push/Components=X" \
+        --set "Boundary Conditions/Push/Value X=0.0015" --set "Boundary Conditions/Push/Traction X=0" ;;
+    *) echo "contact_friction.sh: unknown case '$case' in CASES (cattaneo, hertz3, mindlin)" >&2; exit 2 ;;
   esac
 done
