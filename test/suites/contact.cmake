@@ -465,7 +465,8 @@ foreach(case metis8_np3 metis32_np2)
     COLUMNS active_contacts LABELS contact feti dd_contact)
   # The slip rows linearised exactly in the dual problem (doc/feti-dp.md
   # "Friction rows"): the same Newton iterations as the monolithic solve,
-  # step by step (measured 6, 6, 7, 6; 32 in all with the lagged rows).
+  # step by step (measured 6, 4, 3, 4; with every step starting In Contact
+  # 6, 6, 7, 6, and 32 in all with the lagged rows).
   ddc_compare_histories(${name}_newton ${name} hertz_sphere_friction_decomposed_Monolithic 0
     COLUMNS newton_iterations LABELS contact feti dd_contact)
 endforeach()
@@ -574,7 +575,8 @@ set_tests_properties(cattaneo_2d_frictionless_vs_theory PROPERTIES FIXTURES_REQU
 # constraints, slip rows coupled to the normal rows, doc/feti-dp.md
 # "Friction rows") equals it to 1e-8 in energy and contact force (measured
 # 2e-10) with the same active sets and the same Newton iterations in every
-# step (9, 8, 8, 9, 10, 9; 62 in all with the lagged slip rows); c within
+# step (9, 5, 5, 4, 5, 5; with every step starting In Contact 9, 8, 8,
+# 9, 10, 9, and 62 in all with the lagged slip rows); c within
 # 3 % (measured +0.09 %).
 set(CATTANEO_SLIDE ${CATTANEO} --set "Contact/Formulation=Decomposed Node-To-Surface"
   --set "Boundary Conditions/Push/Type=Displacement" --set "Boundary Conditions/Push/Components=X"
@@ -693,11 +695,11 @@ set_tests_properties(mindlin_sphere_vs_theory PROPERTIES FIXTURES_REQUIRED mindl
 # pushed (Q/(mu P) = 0.515); METIS 8 cuts the contact zone of both bodies
 # (subdomains 0, 2, 3 of the sphere and 4, 6, 7 of the block), 2 ranks. The
 # decomposed element with the slip rows coupled in the dual problem: a
-# within 2 % and c within 5 % (measured +0.54 % and +1.20 %), Newton 8 + 11
-# as the same run solved monolithically (which it equals to 2e-10 in
-# energy, contact forces and dissipation, measured; not repeated here for
-# the suite's time) and at most 160 dual iterations per Newton iteration
-# in a step (measured 125).
+# within 2 % and c within 5 % (measured +0.54 % and +1.20 %), at most 8
+# Newton iterations a step (measured 8 + 6, as the same run solved
+# monolithically, which it equals to 2e-10 in energy, contact forces and
+# dissipation, measured; not repeated here for the suite's time) and at
+# most 160 dual iterations per Newton iteration in a step (measured 121).
 set(MINDLIN_SLIDE --set "Boundary Conditions/Push/Type=Displacement" --set "Boundary Conditions/Push/Components=X"
   --set "Boundary Conditions/Push/Value X=0.0015" --set "Boundary Conditions/Push/Traction X=0")
 ddc_add_run_test(mindlin_sphere_slide_FETI-DP_metis8_np2 RANKS 2 FIXTURE
@@ -706,7 +708,7 @@ ddc_add_run_test(mindlin_sphere_slide_FETI-DP_metis8_np2 RANKS 2 FIXTURE
   REGEX "step +2/2 .*contacts [1-9].*each subdomain factorised 1 time"
   FILES ${DDC_RUNS}/mindlin_sphere_slide_FETI-DP_metis8_np2/history.csv LABELS example contact feti dd_contact)
 ddc_check_history(mindlin_sphere_slide_FETI-DP_metis8_np2_history mindlin_sphere_slide_FETI-DP_metis8_np2 NROWS 2
-  CHECKS "1:newton_iterations:<=:8" "2:newton_iterations:<=:11" "all:dual_iterations/newton_iterations:<=:160"
+  CHECKS "all:newton_iterations:<=:8" "all:dual_iterations/newton_iterations:<=:160"
     "last:frictional_dissipation:>:0" LABELS contact feti dd_contact)
 ddc_add_tool_test(mindlin_sphere_slide_FETI-DP_metis8_np2_vs_theory TOOL ddcontact-hertz EXPECT success LABELS contact
   ARGS --mindlin ${DDC_RUNS}/mindlin_sphere_slide_FETI-DP_metis8_np2 --tolerance-a 0.02 --tolerance-c 0.05

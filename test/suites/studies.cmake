@@ -148,9 +148,9 @@ ddc_check_history(ironing_3d_dual_iterations ironing_3d/decomposed-40 FIXTURE_OF
 # crushes the slab's top side-edge elements, inverted in step 24 under
 # FETI-DP and monolithically alike). The slip rows linearised exactly in the
 # dual problem take it to the end in at most 8 Newton iterations a step
-# (measured 6-8, one bisection in step 40; the lagged rows cycled in step
-# 1) and at most 60 dual iterations per Newton iteration (measured up to
-# 47), dissipating by friction.
+# (measured 4-7, 197 in all; the lagged rows cycled in step 1) and at most
+# 60 dual iterations per Newton iteration (measured up to 44), dissipating
+# by friction.
 ddc_add_run_test(ironing_3d_friction RANKS 2 FIXTURE
   ARGS ${PROJECT_SOURCE_DIR}/examples/ironing_3d.xml --set "Contact/Pairs/Die on slab/Friction Coefficient=0.3"
     --set "Boundary Conditions/Die press/Value Y=-1.0" --output-dir ${DDC_RUNS}/ironing_3d_friction

@@ -168,8 +168,9 @@ Teuchos::RCP<const Teuchos::ParameterList> ContactOptions::getValidParameters() 
   pl->set("Initial Contact State", "Automatic",
           "Active set at the start of each step: In Contact (every slave node with a master segment within "
           "the search radius starts active, as in the paper) or Previous Step (the converged active set of "
-          "the previous step). Automatic: In Contact in a quasi-static analysis, Previous Step in a dynamic "
-          "one, whose time steps change the active set little (doc/user-guide.md, \"Contact in dynamics\").",
+          "the previous step). Automatic: In Contact in a quasi-static analysis (with friction: in a step "
+          "that starts with no slave node active, Previous Step otherwise), Previous Step in a dynamic one, "
+          "whose time steps change the active set little (doc/user-guide.md, \"Contact in dynamics\").",
           enumValidator({"Automatic", "In Contact", "Previous Step"}, "Initial Contact State"));
   pl->set("Pairing Cycles", "Freeze",
           "Conventional formulation only (the decomposed one keeps its pairing over each step anyway): what "
@@ -270,6 +271,11 @@ ContactOptions ContactOptions::fromParameters(Teuchos::ParameterList& list, cons
   if (o.searchRadius == 0.0) o.searchRadius = h;
   const double tol = list.get<double>("Penetration Tolerance");
   o.penetrationTolerance = tol * h;
+  // With friction, Automatic starts a step from the previous active set
+  // once there is one: reactivating every paired node costs the Newton
+  // iterations to release them again, about half of each step's
+  // (doc/user-guide.md, "The active set at the start of a step").
+  o.inContactOnlyWhenNoneActive = list.get<std::string>("Initial Contact State") == "Automatic" && o.frictional();
   return o;
 }
 

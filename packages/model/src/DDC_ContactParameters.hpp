@@ -40,6 +40,12 @@ struct ContactOptions {
   /// with the active set of the previous step. "Automatic" gives true here;
   /// a dynamic Analysis sets it false.
   bool initialInContact = true;
+  /// With initialInContact: only when no slave node is active (the first
+  /// step, or once the bodies have separated); otherwise the step starts
+  /// from the previous step's active set. "Automatic" in a quasi-static run
+  /// with friction (doc/user-guide.md, "The active set at the start of a
+  /// step").
+  bool inContactOnlyWhenNoneActive = false;
   double searchRadius = 0.0;          ///< absolute (automatic: h, the file comment)
   double length = 1.0;                ///< h, the mean master facet size (the file comment)
   double penetrationTolerance = 0.0;  ///< absolute: activate when g_N < -tol (the parameter times h)

@@ -2,6 +2,7 @@
 
 #include <Teuchos_CommHelpers.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -143,13 +144,21 @@ void StepLoop::run() {
   for (StepObserver* o : observers_) o->finished(*this);
 }
 
+bool StepLoop::startsInContact() const {
+  const ContactOptions& o = model_->contactOptions();
+  if (!o.initialInContact) return false;
+  if (!o.inContactOnlyWhenNoneActive) return true;
+  const auto& slots = model_->contactSlots();  // replicated: the same answer on every rank
+  return std::none_of(slots.begin(), slots.end(), [](const ContactSlot& s) { return s.active; });
+}
+
 bool StepLoop::attempt(const StepProposal& p, StepRecord& rec) {
   Attempts& att = *attempts_;
   // The contact state at the step's start (a repeat with the geometry of
   // the step's end keeps the one saved before it).
   if (model_->hasContact() && !att.repeating) att.startSlots = model_->contactSlots();
   att.repeating = false;
-  if (model_->hasContact() && model_->contactOptions().initialInContact) model_->activateAllPaired();
+  if (model_->hasContact() && startsInContact()) model_->activateAllPaired();
   if (dynamics_) dynamics_->beginStep(*model_, p.from, p.size, *state_.fint);
   Activity activity("solving step " + std::to_string(p.step) + " (" + settings_.factorName + " " +
                     std::to_string(p.from) + " -> " + std::to_string(p.to) + ", " +

@@ -125,6 +125,9 @@ class StepLoop {
   void contactWarnings();
   /// Solve proposal `p`; true if Newton converged into trial_.
   bool attempt(const StepProposal& p, StepRecord& rec);
+  /// Whether a step starts with every paired slave node active
+  /// (Contact/Initial Contact State; ContactOptions::inContactOnlyWhenNoneActive).
+  bool startsInContact() const;
   /// Newton failed on `p`: back to its start, a smaller step or give up.
   void newtonFailed(const StepProposal& p, const StepRecord& rec);
   /// The converged attempt's record and the contact state at convergence.
