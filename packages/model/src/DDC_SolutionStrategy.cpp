@@ -215,28 +215,8 @@ class FetiDpStrategy : public SolutionStrategy {
       c.push_back(bv[lmLids_[i]]);
     }
     const ContactComponent& contact = *model_->contact();
-    for (size_t i = 0; i < lmLids_.size(); ++i) {
-      if (rows_[i].multiplier != 0) continue;
-      const int k = rows_[i].slot, nt = contact.numMultipliers(k) - 1;
-      bool slips = false;
-      for (int a = 1; a <= nt; ++a) slips |= rowKind(i + a) == RowKind::Slip;
-      if (!slips) continue;
-      std::vector<double> b;
-      std::vector<char> held;
-      std::vector<LO> rows;
-      for (int a = 1; a <= nt; ++a) {
-        b.push_back(bv[lmLids_[i + a]]);
-        held.push_back(rowKind(i + a) != RowKind::Slip);
-        rows.push_back(LO(i + a));
-      }
-      const SlipRowsInDual sd = slipRowsInDual(contact.slipLinearisation(k), b, held, LO(i), rows);
-      for (int a = 0; a < nt; ++a) {
-        active[i + 1 + a] = sd.active[a];
-        c[i + 1 + a] = sd.active[a] ? sd.rhs[a] : 0.0;
-        known_[i + 1 + a] = sd.known[a];
-      }
-      coupled.insert(coupled.end(), sd.coupled.begin(), sd.coupled.end());
-    }
+    for (size_t i = 0; i < lmLids_.size(); ++i)
+      if (rows_[i].multiplier == 0) coupleSlipRows(i, bv, active, c, coupled);
     auto slip = model_->createVector();
     {
       auto sv = slip->getDataNonConst();
@@ -248,6 +228,34 @@ class FetiDpStrategy : public SolutionStrategy {
     if (contact.frictional()) model_->subtractContactRowForces(rowEntries_, *slip, *b_);
     feti_->setConstraintState(active, c);
     if (contact.frictional()) feti_->setConstraintCoupling(coupled);
+  }
+
+  /// A slipping pair's tangential rows, its normal row at i: their flags,
+  /// right-hand sides, known multiplier parts (known_) and couplings
+  /// (slipRowsInDual(), doc/feti-dp.md "Friction rows"). Other pairs are
+  /// left as rowKind() made them.
+  void coupleSlipRows(size_t i, const Teuchos::ArrayRCP<double>& bv, std::vector<char>& active,
+                      std::vector<double>& c, std::vector<CoupledRow>& coupled) {
+    const ContactComponent& contact = *model_->contact();
+    const int k = rows_[i].slot, nt = contact.numMultipliers(k) - 1;
+    bool slips = false;
+    for (int a = 1; a <= nt; ++a) slips |= rowKind(i + a) == RowKind::Slip;
+    if (!slips) return;
+    std::vector<double> b;
+    std::vector<char> held;
+    std::vector<LO> rows;
+    for (int a = 1; a <= nt; ++a) {
+      b.push_back(bv[lmLids_[i + a]]);
+      held.push_back(rowKind(i + a) != RowKind::Slip);
+      rows.push_back(LO(i + a));
+    }
+    const SlipRowsInDual sd = slipRowsInDual(contact.slipLinearisation(k), b, held, LO(i), rows);
+    for (int a = 0; a < nt; ++a) {
+      active[i + 1 + a] = sd.active[a];
+      c[i + 1 + a] = sd.active[a] ? sd.rhs[a] : 0.0;
+      known_[i + 1 + a] = sd.known[a];
+    }
+    coupled.insert(coupled.end(), sd.coupled.begin(), sd.coupled.end());
   }
 
   AssemblyResult assemble(const Vector& u, double lambda, Vector& r, const Vector* prescribedStep) override {
