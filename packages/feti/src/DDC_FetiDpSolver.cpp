@@ -107,7 +107,8 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
     belos.set("Solver Type", std::string("CG"),
               "Belos solver for F lambda = d (Belos::SolverFactory names): CG (symmetric tangents, the "
               "preconditioner applied as Belos left preconditioner), GMRES (nonsymmetric), MINRES (symmetric "
-              "indefinite F).",
+              "indefinite F). A solve whose coupled rows make F nonsymmetric (slipping frictional contact "
+              "pairs, doc/feti-dp.md 'Coupled rows') uses GMRES whatever is chosen.",
               enumValidator(belosSolverNames(), "Solver Type"));
     belos.set("Convergence Tolerance", 1e-10,
               "Relative residual ||d - F lambda|| / ||d|| at which Belos stops (its implicit residual).",
