@@ -71,27 +71,31 @@ friction_table() {
   echo
 }
 
+# The 'Push' condition of the Cattaneo and Mindlin decks turned into a
+# prescribed x displacement of the top (every body held by its own supports,
+# as FETI-DP needs), and FETI-DP on SUBDOMAINS METIS subdomains.
+slid_by() {
+  SLID=(--set "Boundary Conditions/Push/Type=Displacement" --set "Boundary Conditions/Push/Components=X"
+        --set "Boundary Conditions/Push/Value X=$1" --set "Boundary Conditions/Push/Traction X=0")
+}
+FETI_METIS_N=(--set "Solver/Strategy=FETI-DP" --set "Partition/Method=METIS"
+              --set "Partition/Number of Subdomains=$SUBDOMAINS")
+
 for case in $CASES; do
   case $case in
     cattaneo)
-      FETI_CATTANEO=(--set "Solver/Strategy=FETI-DP" --set "Partition/Method=METIS"
-                     --set "Partition/Number of Subdomains=$SUBDOMAINS")
+      slid_by 0.0025
       friction_table "Cattaneo's cylinder slid after the press (FETI-DP on METIS $SUBDOMAINS)" \
-        examples/cattaneo_2d.xml 6 "Cylinder on block" FETI_CATTANEO \
-        --set "Boundary Conditions/Push/Type=Displacement" --set "Boundary Conditions/Push/Components=X" \
-        --set "Boundary Conditions/Push/Value X=0.0025" --set "Boundary Conditions/Push/Traction X=0" ;;
+        examples/cattaneo_2d.xml 6 "Cylinder on block" FETI_METIS_N "${SLID[@]}" ;;
     hertz3)
       FETI_HERTZ=(--set "Solver/Strategy=FETI-DP" --set "Partition/Method=METIS")
       friction_table "Hertz sphere at Refinement 3 (FETI-DP on METIS, default subdomains)" \
         examples/hertz_sphere.xml 4 "Sphere on block" FETI_HERTZ \
         --set "Mesh/Bodies/Sphere/Sphere Octant/Refinement=3" --set "Mesh/Bodies/Block/Box/Refinement=3" ;;
     mindlin)
-      FETI_MINDLIN=(--set "Solver/Strategy=FETI-DP" --set "Partition/Method=METIS"
-                    --set "Partition/Number of Subdomains=$SUBDOMAINS")
+      slid_by 0.0015
       friction_table "Mindlin's sphere slid after the press (FETI-DP on METIS $SUBDOMAINS)" \
-        examples/mindlin_sphere.xml 2 "Sphere on block" FETI_MINDLIN \
-        --set "Boundary Conditions/Push/Type=Displacement" --set "Boundary Conditions/Push/Components=X" \
-        --set "Boundary Conditions/Push/Value X=0.0015" --set "Boundary Conditions/Push/Traction X=0" ;;
+        examples/mindlin_sphere.xml 2 "Sphere on block" FETI_METIS_N "${SLID[@]}" ;;
     *) echo "contact_friction.sh: unknown case '$case' in CASES (cattaneo, hertz3, mindlin)" >&2; exit 2 ;;
   esac
 done
