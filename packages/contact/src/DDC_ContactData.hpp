@@ -76,9 +76,17 @@ struct ContactSlot {
   /// The tangential contact force on the slave node, −Σ λ_t,α τ_α (zero
   /// when inactive or frictionless).
   Eigen::Vector3d tangentialForce() const {
-    return active ? Eigen::Vector3d(-tangential[0] * tangent[0] - tangential[1] * tangent[1])
-                  : Eigen::Vector3d::Zero();
+    if (!active) return Eigen::Vector3d::Zero();
+    if (hasSlaveTangentialForce) return slaveTangentialForce;
+    return Eigen::Vector3d(-tangential[0] * tangent[0] - tangential[1] * tangent[1]);
   }
+  /// The conventional element's tangential force on the slave node, from
+  /// its residual (ContactPairing::consistentTangentialForce()): −λ_t·∂u_t/∂x_s,
+  /// which differs from −Σ λ_t,α τ_α by the derivatives of the basis and of
+  /// the projection along the slip. The decomposed element's basis is
+  /// frozen, so its force is −Σ λ_t,α τ_α exactly.
+  Eigen::Vector3d slaveTangentialForce = Eigen::Vector3d::Zero();
+  bool hasSlaveTangentialForce = false;  ///< slaveTangentialForce is set (the conventional element)
   /// The state for output: Open when inactive, else `friction` (an active
   /// slot of a frictionless pair slips).
   FrictionState contactState() const {

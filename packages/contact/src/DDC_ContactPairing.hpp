@@ -142,6 +142,16 @@ class ContactPairing {
   /// forceStick: a frictional pair's tangential rows as in stick (its slip parts).
   void evaluate(int k, SurfaceContactRole role, const Field& f, bool forceActive, unsigned what, ElementResult& er,
                 std::vector<GO>& dofs, bool forceStick = false) const;
+  struct SlotValues;
+  /// evaluate() at given values (`dofs` as evaluate() sets them).
+  void evaluateAt(int k, SurfaceContactRole role, const SlotValues& values, bool forceActive, unsigned what,
+                  ElementResult& er, const std::vector<GO>& dofs, bool forceStick = false) const;
+  /// The slave node and/or the master facet's nodes of slot k, as the element of `role` orders them.
+  std::vector<int> elementNodes(int k, SurfaceContactRole role) const;
+  /// The conventional element's tangential force on the slave node of
+  /// frictional slot k (the slave rows of its residual less the normal
+  /// force), from the surface values of gatherSurface().
+  Eigen::Vector3d consistentTangentialForce(int k, const std::vector<double>& surfaceValues, size_t lambdaAt) const;
   void appendMultipliers(int k, std::vector<GO>& dofs) const;
   /// A tangential row that holds nothing the supports and the gap row do not
   /// (on prescribed DOFs only, or redundant on a symmetry plane): its

@@ -39,6 +39,14 @@ struct ContactPairing::Field {
   }
 };
 
+/// What an element of a slot reads (ContactPairing::evaluateAt()): the
+/// displacements of its nodes now and at the step start (node order of
+/// elementNodes(), dim columns) and the slot's multipliers.
+struct ContactPairing::SlotValues {
+  Eigen::MatrixXd u, u0;
+  std::array<double, 3> lambda{{0.0, 0.0, 0.0}};
+};
+
 void ContactPairing::requirePaired(const char* what) const {
   if (!pairedOnce_)
     throw std::logic_error(std::string("ContactComponent::") + what +
@@ -130,39 +138,53 @@ ContactPairing::Field ContactPairing::gatherField(const Vector& u, const Vector*
   return f;
 }
 
+std::vector<int> ContactPairing::elementNodes(int k, SurfaceContactRole role) const {
+  const ContactSlot& s = slots_[k];
+  std::vector<int> nodes;
+  if (role != SurfaceContactRole::Master) nodes.push_back(s.slaveNode);
+  if (role != SurfaceContactRole::Slave) nodes.insert(nodes.end(), s.master.begin(), s.master.begin() + s.numMaster);
+  return nodes;
+}
+
 void ContactPairing::evaluate(int k, SurfaceContactRole role, const Field& f, bool forceActive, unsigned what,
                               ElementResult& er, std::vector<GO>& dofs, bool forceStick) const {
   // The slave counterpart on [u_s, λ], the master counterpart on
   // [u_1..u_m, λ], the conventional element on [u_s, u_1..u_m, λ].
   const int dim = topo_.dim();
-  const ContactSlot& s = slots_[k];
   dofs = role == SurfaceContactRole::Slave ? slaveSideDofs(k) : role == SurfaceContactRole::Master ? masterSideDofs(k)
                                                                                                     : slotDofs(k);
+  const int nn = int(elementNodes(k, role).size());
+  SlotValues v;
+  v.u.resize(nn, dim);
+  v.u0.resize(nn, dim);
+  for (int i = 0; i < nn; ++i)
+    for (int c = 0; c < dim; ++c) v.u(i, c) = f.at(dofs[dim * i + c]), v.u0(i, c) = f.atStart(dofs[dim * i + c]);
+  for (int m = 0; m < topo_.numMultipliers(k); ++m) v.lambda[m] = f.multiplier(k, m);
+  evaluateAt(k, role, v, forceActive, what, er, dofs, forceStick);
+}
+
+void ContactPairing::evaluateAt(int k, SurfaceContactRole role, const SlotValues& v, bool forceActive, unsigned what,
+                                ElementResult& er, const std::vector<GO>& dofs, bool forceStick) const {
+  const int dim = topo_.dim();
+  const ContactSlot& s = slots_[k];
   ContactPairState state = s.state;
   state.active = s.active || forceActive;
-  state.multiplier = f.multiplier(k);
-  std::vector<int> nodes;
-  if (role != SurfaceContactRole::Master) nodes.push_back(s.slaveNode);
-  if (role != SurfaceContactRole::Slave) nodes.insert(nodes.end(), s.master.begin(), s.master.begin() + s.numMaster);
+  state.multiplier = v.lambda[0];
+  const std::vector<int> nodes = elementNodes(k, role);
   const int nn = int(nodes.size());
-  Eigen::MatrixXd X(nn, dim), ue(nn, dim);
-  for (int i = 0; i < nn; ++i) {
-    X.row(i) = topo_.referencePosition(nodes[i]).head(dim).transpose();
-    for (int c = 0; c < dim; ++c) ue(i, c) = f.at(dofs[dim * i + c]);
-  }
+  Eigen::MatrixXd X(nn, dim);
+  for (int i = 0; i < nn; ++i) X.row(i) = topo_.referencePosition(nodes[i]).head(dim).transpose();
   const Pair& pair = topo_.pair(s.pair);
   if (pair.friction > 0.0) {
     FrictionPairState& fr = state.friction;
     fr.coefficient = pair.friction;
     fr.stiffness = pair.frictionStiffness;
     fr.stick = forceStick || s.friction != FrictionState::Slip;
-    for (int c = 1; c < dim; ++c) fr.tangential[c - 1] = f.multiplier(k, c);
+    for (int c = 1; c < dim; ++c) fr.tangential[c - 1] = v.lambda[c];
     fr.slip = s.tangentialSlip;
-    fr.stepStart.resize(nn, dim);
-    for (int i = 0; i < nn; ++i)
-      for (int c = 0; c < dim; ++c) fr.stepStart(i, c) = f.atStart(dofs[dim * i + c]);
+    fr.stepStart = v.u0;
   }
-  topo_.surfaceElement(role, topo_.pair(s.pair).masterType).computeSurfaceContact(X, ue, s.frozen, state, what, er);
+  topo_.surfaceElement(role, pair.masterType).computeSurfaceContact(X, v.u, s.frozen, state, what, er);
   if (state.friction.frictional() && state.active) restrainHeldSlip(k, role, dofs, state, er);
 }
 
@@ -347,8 +369,39 @@ void ContactPairing::refreshSlotGeometry(const std::vector<double>& v) {
                                                 position(s.slaveNode).head(topo_.dim()));
     s.normal = pr.normal;
     s.gap = pr.gap;
-    if (nm > 1) refreshSlip(s, pr.xi, position);
+    if (nm > 1) {
+      refreshSlip(s, pr.xi, position);
+      s.slaveTangentialForce = consistentTangentialForce(int(k), v, at - size_t(nm));
+      s.hasSlaveTangentialForce = true;
+    }
   }
+}
+
+Eigen::Vector3d ContactPairing::consistentTangentialForce(int k, const std::vector<double>& v, size_t lambdaAt) const {
+  // The slave feels −(its rows of the residual), λ_n n + λ_t·∂u_t/∂x_s
+  // (∂g_N/∂x_s = n at the closest point): its tangential part holds the
+  // derivative of the basis and of the projection along the slip, which
+  // λ_t τ leaves out, so that the slave forces sum to the load the surface
+  // transmits (doc/contact.md, "Friction").
+  const ContactSlot& s = slots_[k];
+  const int dim = topo_.dim(), nm = topo_.numMultipliers(k);
+  SlotValues values;
+  for (int m = 0; m < nm; ++m) values.lambda[m] = v[lambdaAt + size_t(m)];
+  if (values.lambda[0] == 0.0 && values.lambda[1] == 0.0 && values.lambda[2] == 0.0) return Eigen::Vector3d::Zero();
+  const std::vector<int> nodes = elementNodes(k, SurfaceContactRole::Conventional);
+  const int nn = int(nodes.size());
+  values.u.resize(nn, dim);
+  values.u0 = Eigen::MatrixXd::Zero(nn, dim);
+  for (int i = 0; i < nn; ++i) {
+    const Eigen::Vector3d X = topo_.referencePosition(nodes[i]);
+    values.u.row(i) = (currentPosition(nodes[i], v) - X).head(dim).transpose();
+    if (!stepStartSurface_.empty()) values.u0.row(i) = (currentPosition(nodes[i], stepStartSurface_) - X).head(dim).transpose();
+  }
+  ElementResult er;
+  evaluateAt(k, SurfaceContactRole::Conventional, values, true, kResidual, er, slotDofs(k));
+  Eigen::Vector3d f = Eigen::Vector3d::Zero();
+  for (int c = 0; c < dim; ++c) f[c] = -er.residual[c] + values.lambda[0] * s.normal[c];
+  return f;
 }
 
 void ContactPairing::refreshSlip(ContactSlot& s, const std::array<double, 2>& xi, const Position& position) const {
