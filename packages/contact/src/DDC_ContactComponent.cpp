@@ -107,10 +107,6 @@ FrictionRows ContactComponent::slipLinearisation(int k) const {
   return frictionRows(topology_->dim() - 1, s.tangentialSlip.data(), s.state.multiplier, s.tangential.data(), f);
 }
 
-double ContactComponent::frictionStiffness(int k) const {
-  return topology_->pair(topology_->slots()[k].pair).frictionStiffness;
-}
-
 std::vector<GO> ContactComponent::slotDofs(int k) const { return pairing_->slotDofs(k); }
 
 std::vector<GO> ContactComponent::slaveSideDofs(int k) const { return pairing_->slaveSideDofs(k); }

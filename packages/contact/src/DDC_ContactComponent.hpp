@@ -227,8 +227,6 @@ class ContactComponent {
   int numMultipliers(int k) const;
   /// Whether some pair has friction.
   bool frictional() const;
-  /// c_t of slot k's pair (ContactPairSurfaces::frictionStiffness; 0 without friction).
-  double frictionStiffness(int k) const;
   /// Host DOF ids of the DOFs of the conventional element of slot k
   /// ([u_s, u_1, ..., u_m, λ]; [λ] when unpaired) and of the decomposed
   /// counterparts ([u_s, λ] / [u_1, ..., u_m, λ]); λ stands for all the

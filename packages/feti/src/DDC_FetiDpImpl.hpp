@@ -234,7 +234,9 @@ struct RowCoupling {
   std::vector<double> compliance;    ///< E's diagonal per owned LM LID (empty: none)
   std::vector<double> scale;         ///< D per owned LM LID (empty: 1)
   bool symmetric = true;             ///< T = Gᵀ on every rank
-  bool any() const { return !listedT.empty(); }
+  /// Whether this rank's rows differ from P (a local question: the
+  /// coupling's operations are local to the rank that owns the rows).
+  bool any() const { return !columns.empty() || !rowsOfG.empty() || !compliance.empty(); }
 };
 
 /// B~ and its weighted B_D: the compatibility rows (one per pair of
