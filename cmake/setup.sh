@@ -16,7 +16,7 @@ case "$mode" in example|test|build) ;; *) echo "usage: $0 example|test|build" >&
 packages=(
   build-essential cmake pkg-config
   openmpi-bin libopenmpi-dev
-  trilinos-all-dev libptscotch-dev      # Trilinos 13.2 (its CMake config needs PT-Scotch)
+  trilinos-all-dev libptscotch-dev      # Trilinos 13.2 (its CMake config needs PT-Scotch); PT-Scotch partitions in parallel
   libmumps-dev libmetis-dev libeigen3-dev
   libsuitesparse-dev                    # CHOLMOD (FETI-DP local solver)
   libopenblas0-serial libopenblas-dev   # 2.7x faster MUMPS than reference BLAS

@@ -28,6 +28,7 @@
 #include <thread>
 #include <vector>
 
+#include "DDC_MpiSession.hpp"
 #include "DDC_Analysis.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_InputDeck.hpp"
@@ -382,6 +383,7 @@ std::string kokkosAllocation(const std::string& text) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ddc::MpiSession mpi(&argc, &argv);  // MPI_THREAD_MULTIPLE (PT-Scotch), before Tpetra
   Tpetra::ScopeGuard scope(&argc, &argv);
   // Before the first collective (Teuchos::MpiComm's constructor has one).
   if (!startupHandshake(MPI_COMM_WORLD)) return 1;

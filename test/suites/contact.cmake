@@ -393,9 +393,11 @@ endforeach()
 # mesh): the conventional element solved monolithically, and the decomposed
 # element under FETI-DP with one subdomain per body (1 and 2 ranks), 8 METIS
 # subdomains on 3 ranks and 32 on 2 ranks (that partition cuts the contact
-# zone: the active slave nodes lie in 3 subdomains, doc/contact.md), each
-# FETI-DP run = the Monolithic solve of the same element (energy 1e-6, same
-# active sets and Newton iterations).
+# zone: the active slave nodes lie in 3 subdomains, doc/contact.md), and 8
+# subdomains partitioned in parallel by PT-Scotch on 3 ranks (another
+# partition, the same answer: doc/partitioning.md), each FETI-DP run = the
+# Monolithic solve of the same element (energy 1e-6, same active sets and
+# Newton iterations).
 set(HERTZ ${PROJECT_SOURCE_DIR}/examples/hertz_sphere.xml)
 set(HERTZ_TOLERANCE 0.05)
 set(HERTZ_COLUMNS strain_energy load_factor contact_force_z)
@@ -420,7 +422,8 @@ hertz_check(hertz_sphere_decomposed_Monolithic)
 set(HERTZ_PART_bybody)
 set(HERTZ_PART_metis8 --set "Partition/Method=METIS" --set "Partition/Number of Subdomains=8")
 set(HERTZ_PART_metis32 --set "Partition/Method=METIS" --set "Partition/Number of Subdomains=32")
-foreach(case bybody_np1 bybody_np2 metis8_np3 metis32_np2)
+set(HERTZ_PART_ptscotch8 --set "Partition/Method=PT-Scotch" --set "Partition/Number of Subdomains=8")
+foreach(case bybody_np1 bybody_np2 metis8_np3 metis32_np2 ptscotch8_np3)
   string(REGEX MATCH "^[a-z0-9]+" part ${case})
   string(REGEX MATCH "[0-9]+$" np ${case})
   set(name hertz_sphere_decomposed_FETI-DP_${case})

@@ -6,7 +6,10 @@
 
 #include <Tpetra_Core.hpp>
 
+#include "DDC_MpiSession.hpp"
+
 int main(int argc, char** argv) {
+  ddc::MpiSession mpi(&argc, &argv);  // MPI_THREAD_MULTIPLE (PT-Scotch), before Tpetra
   Tpetra::ScopeGuard scope(&argc, &argv);
   ::testing::InitGoogleTest(&argc, argv);
   int rank = 0;

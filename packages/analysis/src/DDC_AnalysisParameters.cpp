@@ -237,18 +237,21 @@ Teuchos::RCP<PL> solverValidParameters() {
 Teuchos::RCP<PL> partitionValidParameters() {
   auto pl = Teuchos::rcp(new PL("Partition"));
   pl->set("Number of Subdomains", 0,
-          "Number of subdomains; 0: automatic, i.e. with Solver/Strategy = FETI-DP and Method = METIS about one "
+          "Number of subdomains; 0: automatic, i.e. with Solver/Strategy = FETI-DP and Method = METIS or PT-Scotch about one "
           "per 'Subdomain Size' DOFs (at least one per MPI rank), otherwise one per MPI rank.",
           atLeast(0));
   pl->set("Subdomain Size", 0,
-          "Target DOFs per subdomain of the automatic count (Number of Subdomains = 0, FETI-DP, METIS); 0: "
+          "Target DOFs per subdomain of the automatic count (Number of Subdomains = 0, FETI-DP, METIS or PT-Scotch); 0: "
           "the measured optimum of this machine, 1650 in 3-D and 3200 in 2-D (doc/performance.md).",
           atLeast(0));
   pl->set("Method", "METIS",
-          "METIS: METIS_PartMeshDual over all bodies. By Body: each body one subdomain. Box Grid: a regular "
-          "grid of boxes over the mesh's bounding box (Box Grid X x Box Grid Y (x Box Grid Z in 3-D) "
-          "subdomains, by element centroid). Element Map File: one subdomain id per element, read from a file.",
-          enumValidator({"METIS", "By Body", "Box Grid", "Element Map File"}, "Method"));
+          "METIS: METIS_PartMeshDual over all bodies, on every rank. PT-Scotch: the dual graph built and "
+          "partitioned in parallel, each rank a share of the elements (SCOTCH_dgraphPart; the partition "
+          "depends on the number of ranks; doc/partitioning.md). By Body: each body one subdomain. Box Grid: "
+          "a regular grid of boxes over the mesh's bounding box (Box Grid X x Box Grid Y (x Box Grid Z in "
+          "3-D) subdomains, by element centroid). Element Map File: one subdomain id per element, read from "
+          "a file.",
+          enumValidator({"METIS", "PT-Scotch", "By Body", "Box Grid", "Element Map File"}, "Method"));
   pl->set("Box Grid X", 2, "Box Grid: number of boxes along x.", greaterThan(0));
   pl->set("Box Grid Y", 2, "Box Grid: number of boxes along y.", greaterThan(0));
   pl->set("Box Grid Z", 1, "Box Grid: number of boxes along z (3-D meshes only).", greaterThan(0));

@@ -14,6 +14,7 @@
 #include "DDC_Gmsh.hpp"
 #include "DDC_InputDeck.hpp"
 #include "DDC_MeshGenerators.hpp"
+#include "DDC_ParallelPartition.hpp"
 #include "DDC_Parameters.hpp"
 
 namespace ddc {
@@ -114,8 +115,11 @@ std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const Elemen
 
 namespace {
 
+/// METIS or PT-Scotch: a partition of the dual graph into any count.
+bool isGraphPartitioner(const std::string& method) { return method == "METIS" || method == "PT-Scotch"; }
+
 int automaticSubdomainCount(const Mesh& mesh, const PL& partition, const std::string& strategy, int ranks) {
-  if (strategy != "FETI-DP" || partition.get<std::string>("Method") != "METIS") return ranks;
+  if (strategy != "FETI-DP" || !isGraphPartitioner(partition.get<std::string>("Method"))) return ranks;
   // Measured on block_3d at 421k DOFs (1650 DOFs per subdomain against 840
   // and 3300) and the 2-D elastic block at 822k (doc/performance.md): local
   // factorisations grow faster than linearly in the subdomain size, the
@@ -244,8 +248,10 @@ void requireSupportedBodies(const Mesh& mesh, const BoundaryConditions& bcs, con
   }
 }
 
-Partition partitionModel(const Mesh& mesh, const PL& part, const std::string& strategy, int ranks,
+Partition partitionModel(const Mesh& mesh, const PL& part, const std::string& strategy, MPI_Comm comm,
                          const std::string& baseDirectory) {
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
   int nsub = part.get<int>("Number of Subdomains");
   if (nsub == 0) nsub = automaticSubdomainCount(mesh, part, strategy, ranks);
   Partition partition;
@@ -271,8 +277,8 @@ Partition partitionModel(const Mesh& mesh, const PL& part, const std::string& st
     requireCount(partition.numSubdomains);
   } else {
     Activity activity("partitioning " + std::to_string(mesh.numElements()) + " elements into " +
-                      std::to_string(nsub) + " subdomains (METIS)");
-    partition = partitionMetis(mesh, nsub);
+                      std::to_string(nsub) + " subdomains (" + method + ")");
+    partition = method == "PT-Scotch" ? partitionPtScotch(mesh, nsub, comm) : partitionMetis(mesh, nsub);
   }
   DDC_INPUT_REQUIRE(partition.numSubdomains >= ranks,
                     "'Partition/Number of Subdomains' (" << partition.numSubdomains
@@ -281,9 +287,21 @@ Partition partitionModel(const Mesh& mesh, const PL& part, const std::string& st
   return partition;
 }
 
+std::string partitionSummary(const Partition& partition, const std::string& method) {
+  std::vector<long> count(partition.numSubdomains, 0);
+  for (int s : partition.elementSubdomain) ++count[s];
+  const long largest = count.empty() ? 0 : *std::max_element(count.begin(), count.end());
+  const double mean = partition.numSubdomains ? double(partition.elementSubdomain.size()) / partition.numSubdomains : 0.0;
+  std::ostringstream os;
+  os << "partition: " << partition.numSubdomains << " subdomains by " << method << ", edge cut "
+     << partition.edgeCut << " facets, largest subdomain " << largest << " elements (mean " << std::fixed
+     << std::setprecision(1) << mean << ")";
+  return os.str();
+}
+
 Partition balancedPartition(const Mesh& mesh, const PL& part, const std::string& strategy, int ranks) {
   Partition partition;
-  if (part.get<std::string>("Method") != "METIS") return partition;
+  if (!isGraphPartitioner(part.get<std::string>("Method"))) return partition;
   int nsub = part.get<int>("Number of Subdomains");
   if (nsub == 0) nsub = automaticSubdomainCount(mesh, part, strategy, ranks);
   const long ne = mesh.numElements();

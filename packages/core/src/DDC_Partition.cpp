@@ -24,20 +24,6 @@ constexpr const char* kParam = "Partition/Number of Subdomains";
 /// Fixed METIS seed: the same partition on every rank and every run.
 constexpr idx_t kMetisSeed = 42;
 
-/// Facet-neighbours of each element (elements sharing a side in 2-D, a face
-/// in 3-D).
-std::vector<std::vector<int>> edgeNeighbours(const Mesh& mesh) {
-  std::map<std::vector<int>, std::vector<int>> byFacet;
-  for (int e = 0; e < mesh.numElements(); ++e)
-    for (int f = 0; f < mesh.elementNumFacets(e); ++f) byFacet[mesh.facetKey(e, f)].push_back(e);
-  std::vector<std::vector<int>> nb(mesh.numElements());
-  for (const auto& kv : byFacet)
-    for (int a : kv.second)
-      for (int b : kv.second)
-        if (a != b) nb[a].push_back(b);
-  return nb;
-}
-
 /// Is the dual graph (elements adjacent through edges) connected?
 bool isConnected(const std::vector<std::vector<int>>& nb) {
   if (nb.empty()) return true;
@@ -58,9 +44,43 @@ bool isConnected(const std::vector<std::vector<int>>& nb) {
   return count == nb.size();
 }
 
-/// Give every empty subdomain one element taken from the currently largest
-/// subdomain: the element with the fewest neighbours in its own subdomain
-/// (lowest index on ties), so the donor stays as connected as possible.
+}  // namespace
+
+void requirePartitionable(int numSubdomains, int numElements) {
+  DDC_INPUT_REQUIRE(numSubdomains > 0, "'" << kParam << "' must be > 0, got " << numSubdomains);
+  DDC_INPUT_REQUIRE(numSubdomains <= numElements, "'" << kParam << "' (" << numSubdomains
+                                                      << ") exceeds the number of elements of the mesh ("
+                                                      << numElements << "); use fewer subdomains or refine the mesh");
+}
+
+int dualGraphCommonCorners(const Mesh& mesh) {
+  int ncommon = mesh.dim() == 2 ? 2 : 4;
+  for (int b = 0; b < mesh.numBodies(); ++b)
+    for (const auto& f : referenceCell(mesh.body(b).cellType).facets)
+      ncommon = std::min(ncommon, referenceCell(f.type).numCorners);
+  return ncommon;
+}
+
+std::vector<std::vector<int>> facetNeighbours(const Mesh& mesh) {
+  std::map<std::vector<int>, std::vector<int>> byFacet;
+  for (int e = 0; e < mesh.numElements(); ++e)
+    for (int f = 0; f < mesh.elementNumFacets(e); ++f) byFacet[mesh.facetKey(e, f)].push_back(e);
+  std::vector<std::vector<int>> nb(mesh.numElements());
+  for (const auto& kv : byFacet)
+    for (int a : kv.second)
+      for (int b : kv.second)
+        if (a != b) nb[a].push_back(b);
+  return nb;
+}
+
+long long edgeCut(const std::vector<std::vector<int>>& nb, const Partition& p) {
+  long long cut = 0;
+  for (size_t e = 0; e < nb.size(); ++e)
+    for (int f : nb[e])
+      if (static_cast<int>(e) < f && p.elementSubdomain[e] != p.elementSubdomain[f]) ++cut;
+  return cut;
+}
+
 void fillEmptySubdomains(const std::vector<std::vector<int>>& nb, Partition& p) {
   const int ne = static_cast<int>(p.elementSubdomain.size());
   std::vector<int> count(p.numSubdomains, 0);
@@ -85,14 +105,81 @@ void fillEmptySubdomains(const std::vector<std::vector<int>>& nb, Partition& p) 
   }
 }
 
+namespace {
+
+/// Pieces of each subdomain: piece[e] = a label shared by the elements of
+/// e's subdomain connected to e through facets of that subdomain.
+std::vector<int> subdomainPieces(const std::vector<std::vector<int>>& nb, const Partition& p,
+                                 std::vector<int>& pieceSize) {
+  const int ne = static_cast<int>(nb.size());
+  std::vector<int> piece(ne, -1), stack;
+  pieceSize.clear();
+  for (int e0 = 0; e0 < ne; ++e0) {
+    if (piece[e0] >= 0) continue;
+    const int label = static_cast<int>(pieceSize.size());
+    pieceSize.push_back(0);
+    piece[e0] = label;
+    stack.assign(1, e0);
+    while (!stack.empty()) {
+      const int e = stack.back();
+      stack.pop_back();
+      ++pieceSize[label];
+      for (int f : nb[e])
+        if (piece[f] < 0 && p.elementSubdomain[f] == p.elementSubdomain[e]) {
+          piece[f] = label;
+          stack.push_back(f);
+        }
+    }
+  }
+  return piece;
+}
+
+/// One pass of joinDetachedPieces(); true if a piece moved.
+bool joinPiecesOnce(const std::vector<std::vector<int>>& nb, Partition& p) {
+  std::vector<int> size;
+  const std::vector<int> piece = subdomainPieces(nb, p, size);
+  const int ne = static_cast<int>(nb.size());
+  std::vector<int> largest(p.numSubdomains, -1);  // the piece each subdomain keeps
+  for (int e = 0; e < ne; ++e) {
+    int& keep = largest[p.elementSubdomain[e]];
+    if (keep < 0 || size[piece[e]] > size[keep]) keep = piece[e];
+  }
+  std::vector<std::map<int, int>> contacts(size.size());  // piece -> neighbouring subdomain -> facets
+  for (int e = 0; e < ne; ++e) {
+    if (piece[e] == largest[p.elementSubdomain[e]]) continue;
+    for (int f : nb[e])
+      if (p.elementSubdomain[f] != p.elementSubdomain[e]) ++contacts[piece[e]][p.elementSubdomain[f]];
+  }
+  const double splinter = kMaxJoinedPieceShare * double(ne) / std::max(p.numSubdomains, 1);
+  std::vector<int> target(size.size(), -1);
+  for (size_t k = 0; k < size.size(); ++k) {
+    if (size[k] > splinter) continue;
+    int best = 0;
+    for (const auto& [s, facets] : contacts[k])  // ascending ids: the lowest wins ties
+      if (facets > best) {
+        best = facets;
+        target[k] = s;
+      }
+  }
+  bool moved = false;
+  for (int e = 0; e < ne; ++e)
+    if (target[piece[e]] >= 0) {
+      p.elementSubdomain[e] = target[piece[e]];
+      moved = true;
+    }
+  return moved;
+}
+
 }  // namespace
+
+void joinDetachedPieces(const std::vector<std::vector<int>>& nb, Partition& p) {
+  for (int pass = 0; pass < kMaxPieceJoinPasses && joinPiecesOnce(nb, p); ++pass) {
+  }
+}
 
 Partition partitionMetis(const Mesh& mesh, int numSubdomains) {
   const int ne = mesh.numElements();
-  DDC_INPUT_REQUIRE(numSubdomains > 0, "'" << kParam << "' must be > 0, got " << numSubdomains);
-  DDC_INPUT_REQUIRE(numSubdomains <= ne, "'" << kParam << "' (" << numSubdomains
-                                             << ") exceeds the number of elements of the mesh (" << ne
-                                             << "); use fewer subdomains or refine the mesh");
+  requirePartitionable(numSubdomains, ne);
   Partition p;
   p.numSubdomains = numSubdomains;
   p.elementSubdomain.assign(ne, 0);
@@ -105,10 +192,7 @@ Partition partitionMetis(const Mesh& mesh, int numSubdomains) {
   // smallest face of any body, so that every face counts).
   std::vector<idx_t> compact(mesh.numNodes(), -1);
   std::vector<idx_t> eptr(ne + 1, 0), eind;
-  idx_t nn = 0, ncommon = mesh.dim() == 2 ? 2 : 4;
-  for (int b = 0; b < mesh.numBodies(); ++b)
-    for (const auto& f : referenceCell(mesh.body(b).cellType).facets)
-      ncommon = std::min<idx_t>(ncommon, referenceCell(f.type).numCorners);
+  idx_t nn = 0, ncommon = dualGraphCommonCorners(mesh);
   for (int e = 0; e < ne; ++e) {
     const int* n = mesh.elementNodes(e);
     const int corners = referenceCell(mesh.elementType(e)).numCorners;
@@ -128,7 +212,7 @@ Partition partitionMetis(const Mesh& mesh, int numSubdomains) {
   // Contiguous subdomains keep FETI-DP's floating subdomains single pieces.
   // METIS fails (METIS_ERROR) when asked for them on a disconnected dual
   // graph (several bodies, or a body in pieces), so ask only when connected.
-  const auto nb = edgeNeighbours(mesh);
+  const auto nb = facetNeighbours(mesh);
   options[METIS_OPTION_CONTIG] = isConnected(nb) ? 1 : 0;
 
   idx_t metisNe = ne, nparts = numSubdomains, objval = 0;
@@ -146,6 +230,7 @@ Partition partitionMetis(const Mesh& mesh, int numSubdomains) {
     p.elementSubdomain[e] = static_cast<int>(epart[e]);
   }
   fillEmptySubdomains(nb, p);
+  p.edgeCut = edgeCut(nb, p);
   return p;
 }
 

@@ -18,6 +18,9 @@ namespace ddc {
 struct Partition {
   int numSubdomains = 0;
   std::vector<int> elementSubdomain;
+  /// Facets whose elements lie in different subdomains (edgeCut()), for the
+  /// graph partitioners (METIS, PT-Scotch); -1 where not computed.
+  long long edgeCut = -1;
 };
 
 /// Partition the elements with METIS_PartMeshDual (k-way, minimum edge cut)
@@ -41,6 +44,40 @@ struct Partition {
 ///         (messages name "Partition/Number of Subdomains").
 /// \throws SolverError if METIS reports an error.
 Partition partitionMetis(const Mesh& mesh, int numSubdomains);
+
+/// \throws InputError naming "Partition/Number of Subdomains" unless
+///         0 < numSubdomains <= numElements.
+void requirePartitionable(int numSubdomains, int numElements);
+
+/// The corner count two elements of `mesh` must share to be adjacent in its
+/// dual graph: 2 in 2-D (a side), in 3-D the corners of the smallest facet
+/// of any body (3 for a triangle, 4 for a quadrilateral).
+int dualGraphCommonCorners(const Mesh& mesh);
+
+/// The facet neighbours of each element (elements sharing a side in 2-D, a
+/// face in 3-D): the dual graph of a replicated mesh.
+std::vector<std::vector<int>> facetNeighbours(const Mesh& mesh);
+
+/// The edge cut of a partition: the number of facets (dual-graph edges)
+/// whose two elements lie in different subdomains.
+long long edgeCut(const std::vector<std::vector<int>>& neighbours, const Partition& p);
+
+/// Give every empty subdomain one element taken from the currently largest
+/// subdomain: the element with the fewest neighbours in its own subdomain
+/// (lowest index on ties), so the donor stays as connected as possible.
+void fillEmptySubdomains(const std::vector<std::vector<int>>& neighbours, Partition& p);
+
+/// Make subdomains single pieces where the mesh allows: every piece of a
+/// subdomain other than its largest that touches another subdomain and has
+/// at most kMaxJoinedPieceShare times the mean subdomain's elements (a
+/// splinter) joins the subdomain it shares most facets with (lowest id on
+/// ties). Larger pieces stay (a subdomain with a piece of each of two bodies,
+/// as METIS makes them too), and so do pieces that touch no other subdomain.
+/// Repeated while a piece moves, at most kMaxPieceJoinPasses times. The
+/// subdomain counts stay non-zero.
+void joinDetachedPieces(const std::vector<std::vector<int>>& neighbours, Partition& p);
+constexpr double kMaxJoinedPieceShare = 0.25;
+constexpr int kMaxPieceJoinPasses = 8;
 
 /// One subdomain per body: elementSubdomain[e] = mesh.elementBody(e).
 Partition partitionByBody(const Mesh& mesh);

@@ -1,0 +1,76 @@
+// Parallel element partitioning (doc/partitioning.md): the dual graph of a
+// distributed element list, built without any rank holding the whole mesh,
+// and its k-way partition by PT-Scotch (F. Pellegrini, C. Chevalier,
+// "PT-Scotch: a tool for efficient parallel graph ordering", Parallel
+// Computing 34 (2008) 318-331), the parallel counterpart of the serial
+// METIS partition (DDC_Partition.hpp).
+//
+// The dual graph is built the way ParMETIS_V3_Mesh2Dual builds it: every
+// (corner node, element) pair goes to the node's home rank, which sends each
+// element the elements it shares the node with; two elements are adjacent
+// when they share at least `ncommon` corners (a side in 2-D, a face in 3-D).
+// The records a rank sends grow with its own elements, never with the mesh.
+#pragma once
+
+#include <mpi.h>
+
+#include <vector>
+
+#include "DDC_Partition.hpp"
+
+namespace ddc {
+
+/// A graph whose vertices (elements) are spread over the ranks in contiguous
+/// ranges of global ids: rank r holds [firstVertex[r], firstVertex[r+1]).
+/// Adjacency of this rank's vertices in CSR form, by global id, each list
+/// sorted, without self-loops.
+struct DistributedGraph {
+  std::vector<long long> firstVertex;  ///< size ranks + 1
+  std::vector<long long> offsets;      ///< local vertex -> first entry of `neighbours`; size local + 1
+  std::vector<long long> neighbours;   ///< global vertex ids
+
+  long long numLocal() const { return static_cast<long long>(offsets.size()) - 1; }
+};
+
+/// The dual graph of this rank's elements: element l (global id
+/// firstVertex[rank] + l, ranges in rank order) has the corner nodes
+/// corners[cornerOffsets[l] .. cornerOffsets[l+1]) (global node ids, any
+/// numbering); it is adjacent to every element, on any rank, that shares at
+/// least `ncommon` of them. Collective.
+/// \throws std::invalid_argument (on every rank) if ncommon < 1, offsets are
+///         not a CSR offset array or a node id is negative.
+DistributedGraph distributedDualGraph(MPI_Comm comm, const std::vector<long long>& cornerOffsets,
+                                      const std::vector<long long>& corners, int ncommon);
+
+/// A k-way partition of `graph` into numParts parts with PT-Scotch's
+/// quality strategy and at most kPtScotchImbalance load imbalance: the part
+/// of each local vertex. Deterministic for a given graph and rank count
+/// (a Scotch context with its deterministic option and a fixed seed).
+/// Collective; needs MPI_THREAD_MULTIPLE on more than one rank
+/// (requirePtScotchThreadLevel()).
+/// \throws SolverError (on every rank) if PT-Scotch reports an error.
+std::vector<int> partitionGraphPtScotch(MPI_Comm comm, const DistributedGraph& graph, int numParts);
+
+/// Load imbalance PT-Scotch may leave: the largest part holds at most
+/// (1 + this) times the mean number of elements.
+constexpr double kPtScotchImbalance = 0.03;
+
+/// PT-Scotch's threads call MPI: on more than one rank it needs MPI's thread
+/// level (MPI_Query_thread) to be MPI_THREAD_MULTIPLE (ddc::MpiSession).
+/// \throws InputError naming 'Partition/Method' otherwise.
+void requirePtScotchThreadLevel(int ranks, int threadLevel);
+
+/// The partition of a (replicated) mesh by PT-Scotch: each rank builds the
+/// dual graph of an even, contiguous range of the elements, PT-Scotch
+/// partitions it in parallel, and the parts are gathered to every rank.
+/// Like partitionMetis(), every subdomain is then made non-empty and, when
+/// a piece of a subdomain touches another subdomain, connected (pieces other
+/// than a subdomain's largest join the neighbour they share most facets
+/// with). The same on every rank; it depends on the number of ranks.
+/// \param numSubdomains 1 gives all zeros without calling PT-Scotch.
+/// \throws InputError like partitionMetis(), and on more than one rank if
+///         MPI was not initialised with MPI_THREAD_MULTIPLE (ddc::MpiSession);
+///         SolverError from PT-Scotch.
+Partition partitionPtScotch(const Mesh& mesh, int numSubdomains, MPI_Comm comm);
+
+}  // namespace ddc
