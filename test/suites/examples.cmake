@@ -28,6 +28,20 @@ foreach(ex block_3d half_ring_arch_3d)
   endforeach()
 endforeach()
 
+# The distribution line (doc/user-guide.md "The distribution line"): with
+# METIS, one subdomain per rank, the busiest of P ranks assembles and owns at
+# most 1/P + 10 % of block_3d's 256 elements and 425 nodes (2 ranks: below
+# 60 %, 4 ranks: below 35 %).
+set(DISTRIBUTION_SHARE_np2 "5[0-9]\\.[0-9] %")
+set(DISTRIBUTION_SHARE_np4 "(2[5-9]|3[0-4])\\.[0-9] %")
+foreach(np 2 4)
+  ddc_add_run_test(distribution_line_block_3d_np${np} RANKS ${np}
+    ARGS ${PROJECT_SOURCE_DIR}/examples/block_3d.xml --set "Output/VTK=false"
+      --output-dir ${DDC_RUNS}/distribution_line_block_3d_np${np}
+    LABELS example
+    REGEX "distribution: the busiest rank assembles [0-9]+ of 256 elements \\(${DISTRIBUTION_SHARE_np${np}}\\), owns [0-9]+ of 425 nodes \\(${DISTRIBUTION_SHARE_np${np}}\\)")
+endforeach()
+
 # The bar impact (implicit dynamics with contact, the decomposed element
 # under FETI-DP): on 1, 2 and 3 ranks, each subdomain factorised once
 # (linear material, constant time step: the contact changes only constraint

@@ -7,6 +7,7 @@
 
 #include "DDC_CoincidentNodes.hpp"
 #include "DDC_ContactParameters.hpp"
+#include "DDC_Distribution.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_FaultSeam.hpp"
 #include "DDC_InputDeck.hpp"
@@ -53,6 +54,8 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
                             formatBytes(memoryEstimate_.total()) + " per rank";
   Activity activity("setting up the " + strategy_->name() + " solver (" + sizes + ")");
   strategy_->setUp(model_, [this](const std::string& line) { progress(line); });
+  progress(distributionLine(*comm_, *model_, rankShare(*model_, strategy_->coarseRowsOnThisRank()),
+                            memoryEstimate_.total()));
   params_ = params;
 }
 

@@ -114,6 +114,10 @@ class FetiDpStrategy : public SolutionStrategy {
 
   std::string name() const override { return "FETI-DP"; }
 
+  long long coarseRowsOnThisRank() const override {
+    return static_cast<long long>(feti_->primalMap()->getNodeNumElements());
+  }
+
   void setUp(std::shared_ptr<Model> model, const std::function<void(const std::string&)>& progress) override {
     model_ = std::move(model);
     progress_ = progress;

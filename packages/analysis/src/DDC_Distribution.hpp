@@ -1,0 +1,36 @@
+// The distribution line a run prints before its first step: how much of the
+// model the busiest rank assembles, owns and holds, and its estimated memory
+// (doc/user-guide.md, "The distribution line"). Each figure is the maximum
+// over the ranks, so one line on rank 0 says whether the work is balanced
+// and what every rank still holds whole.
+#pragma once
+
+#include <Teuchos_Comm.hpp>
+#include <string>
+
+namespace ddc {
+
+class Model;
+
+/// This rank's share of a model.
+struct RankShare {
+  long long elements = 0;    ///< elements it assembles (those of its subdomains)
+  long long nodes = 0;       ///< nodes whose DOFs it owns
+  long long slots = 0;       ///< contact slots it owns
+  long long coarseRows = 0;  ///< rows of the FETI-DP coarse problem it owns (0: none)
+};
+
+/// This rank's share of `model`, with `coarseRows` from the solution strategy.
+RankShare rankShare(const Model& model, long long coarseRows);
+
+/// "distribution: the busiest rank assembles 205 of 544 elements (37.7 %),
+/// owns 350 of 804 nodes (43.5 %), 78 of 217 contact slots (35.9 %), 131 of
+/// 200 coarse rows (65.5 %); every rank holds the whole mesh (544 elements,
+/// 804 nodes) and all 217 contact slots; estimated 13 MiB per rank" (the
+/// contact and coarse parts only when there are contact slots or a coarse
+/// problem; each count the largest over the ranks, perhaps of different
+/// ranks). Collective.
+std::string distributionLine(const Teuchos::Comm<int>& comm, const Model& model, const RankShare& mine,
+                             double estimatedBytesPerRank);
+
+}  // namespace ddc
