@@ -68,6 +68,35 @@ std::vector<std::vector<NodeElement>> nodeListsToOwners(std::vector<NodeElement>
   return send;
 }
 
+/// Phase 3 at an element's owner: element l is adjacent to every other
+/// element that appears in the lists of at least `ncommon` of its corner
+/// nodes (`lists`: sorted, unique (node, element) records).
+void adjacencyFromNodeLists(const std::vector<NodeElement>& lists, const std::vector<long long>& cornerOffsets,
+                            const std::vector<long long>& corners, long long first, int ncommon, DistributedGraph& g) {
+  const long long nLocal = static_cast<long long>(cornerOffsets.size()) - 1;
+  g.offsets.assign(nLocal + 1, 0);
+  std::vector<long long> candidates, nodes;
+  for (long long l = 0; l < nLocal; ++l) {
+    const long long self = first + l;
+    nodes.assign(corners.begin() + cornerOffsets[l], corners.begin() + cornerOffsets[l + 1]);
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    candidates.clear();
+    for (long long n : nodes)
+      for (auto it = std::lower_bound(lists.begin(), lists.end(), NodeElement{n, LLONG_MIN});
+           it != lists.end() && it->node == n; ++it)
+        if (it->element != self) candidates.push_back(it->element);
+    std::sort(candidates.begin(), candidates.end());
+    for (size_t i = 0; i < candidates.size();) {
+      size_t j = i;
+      while (j < candidates.size() && candidates[j] == candidates[i]) ++j;
+      if (static_cast<int>(j - i) >= ncommon) g.neighbours.push_back(candidates[i]);
+      i = j;
+    }
+    g.offsets[l + 1] = static_cast<long long>(g.neighbours.size());
+  }
+}
+
 }  // namespace
 
 DistributedGraph distributedDualGraph(MPI_Comm comm, const std::vector<long long>& cornerOffsets,
@@ -105,28 +134,7 @@ DistributedGraph distributedDualGraph(MPI_Comm comm, const std::vector<long long
               lists.end());
 
   // Phase 3: count the corners each local element shares with the others.
-  g.offsets.assign(nLocal + 1, 0);
-  std::vector<long long> candidates, nodes;
-  for (long long l = 0; l < nLocal; ++l) {
-    const long long self = first + l;
-    nodes.assign(corners.begin() + cornerOffsets[l], corners.begin() + cornerOffsets[l + 1]);
-    std::sort(nodes.begin(), nodes.end());
-    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-    candidates.clear();
-    for (long long n : nodes) {
-      auto lo = std::lower_bound(lists.begin(), lists.end(), NodeElement{n, LLONG_MIN});
-      for (; lo != lists.end() && lo->node == n; ++lo)
-        if (lo->element != self) candidates.push_back(lo->element);
-    }
-    std::sort(candidates.begin(), candidates.end());
-    for (size_t i = 0; i < candidates.size();) {
-      size_t j = i;
-      while (j < candidates.size() && candidates[j] == candidates[i]) ++j;
-      if (static_cast<int>(j - i) >= ncommon) g.neighbours.push_back(candidates[i]);
-      i = j;
-    }
-    g.offsets[l + 1] = static_cast<long long>(g.neighbours.size());
-  }
+  adjacencyFromNodeLists(lists, cornerOffsets, corners, first, ncommon, g);
   return g;
 }
 

@@ -63,10 +63,10 @@ void requirePtScotchThreadLevel(int ranks, int threadLevel);
 /// The partition of a (replicated) mesh by PT-Scotch: each rank builds the
 /// dual graph of an even, contiguous range of the elements, PT-Scotch
 /// partitions it in parallel, and the parts are gathered to every rank.
-/// Like partitionMetis(), every subdomain is then made non-empty and, when
-/// a piece of a subdomain touches another subdomain, connected (pieces other
-/// than a subdomain's largest join the neighbour they share most facets
-/// with). The same on every rank; it depends on the number of ranks.
+/// Then, like partitionMetis(), every subdomain is made non-empty, and
+/// splinters (joinDetachedPieces()) join the neighbour they share most
+/// facets with. The same on every rank and in every run on the same number
+/// of ranks; another rank count gives another partition.
 /// \param numSubdomains 1 gives all zeros without calling PT-Scotch.
 /// \throws InputError like partitionMetis(), and on more than one rank if
 ///         MPI was not initialised with MPI_THREAD_MULTIPLE (ddc::MpiSession);
