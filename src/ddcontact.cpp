@@ -28,11 +28,11 @@
 #include <thread>
 #include <vector>
 
-#include "DDC_MpiSession.hpp"
 #include "DDC_Analysis.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_InputDeck.hpp"
 #include "DDC_Memory.hpp"
+#include "DDC_MpiSession.hpp"
 #include "DDC_OutputDirectory.hpp"
 #include "DDC_Parameters.hpp"
 #include "DDC_ResultFile.hpp"

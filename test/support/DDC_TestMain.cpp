@@ -1,5 +1,6 @@
-// GoogleTest main for DDContact unit tests under MPI: initialises MPI and
-// Kokkos through Tpetra::ScopeGuard, prints results from rank 0 only, and
+// GoogleTest main for DDContact unit tests under MPI: initialises MPI with
+// MPI_THREAD_MULTIPLE (ddc::MpiSession, as ddcontact does) and Kokkos through
+// Tpetra::ScopeGuard, prints results from rank 0 only, and
 // makes the exit status the same on every rank (a failure anywhere fails all).
 #include <gtest/gtest.h>
 #include <mpi.h>

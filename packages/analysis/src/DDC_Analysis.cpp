@@ -101,7 +101,8 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
     if (balanced.numSubdomains >= ranks) requireMemory(*mesh, balanced, solver, contact);
   }
   Partition partition = partitionModel(*mesh, params.sublist("Partition"), strategy, rawComm(comm_), baseDirectory);
-  if (partition.edgeCut >= 0) progress(partitionSummary(partition, params.sublist("Partition").get<std::string>("Method")));
+  if (partition.edgeCut >= 0)
+    progress(partitionSummary(partition, params.sublist("Partition").get<std::string>("Method")));
   if (memoryCheck) requireMemory(*mesh, partition, solver, contact);
   else memoryEstimate_ = estimateMemory(*mesh, partition, ranks, solver, contact);
   strategy_ = makeSolutionStrategy(comm_, params.sublist("Solver"), contact);

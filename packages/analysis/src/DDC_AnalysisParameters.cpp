@@ -237,12 +237,12 @@ Teuchos::RCP<PL> solverValidParameters() {
 Teuchos::RCP<PL> partitionValidParameters() {
   auto pl = Teuchos::rcp(new PL("Partition"));
   pl->set("Number of Subdomains", 0,
-          "Number of subdomains; 0: automatic, i.e. with Solver/Strategy = FETI-DP and Method = METIS or PT-Scotch about one "
-          "per 'Subdomain Size' DOFs (at least one per MPI rank), otherwise one per MPI rank.",
+          "Number of subdomains; 0: automatic, i.e. with Solver/Strategy = FETI-DP and Method = METIS or "
+          "PT-Scotch about one per 'Subdomain Size' DOFs (at least one per MPI rank), otherwise one per MPI rank.",
           atLeast(0));
   pl->set("Subdomain Size", 0,
-          "Target DOFs per subdomain of the automatic count (Number of Subdomains = 0, FETI-DP, METIS or PT-Scotch); 0: "
-          "the measured optimum of this machine, 1650 in 3-D and 3200 in 2-D (doc/performance.md).",
+          "Target DOFs per subdomain of the automatic count (Number of Subdomains = 0, FETI-DP, METIS or "
+          "PT-Scotch); 0: the measured optimum of this machine, 1650 in 3-D and 3200 in 2-D (doc/performance.md).",
           atLeast(0));
   pl->set("Method", "METIS",
           "METIS: METIS_PartMeshDual over all bodies, on every rank. PT-Scotch: the dual graph built and "

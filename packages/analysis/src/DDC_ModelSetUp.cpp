@@ -291,7 +291,8 @@ std::string partitionSummary(const Partition& partition, const std::string& meth
   std::vector<long> count(partition.numSubdomains, 0);
   for (int s : partition.elementSubdomain) ++count[s];
   const long largest = count.empty() ? 0 : *std::max_element(count.begin(), count.end());
-  const double mean = partition.numSubdomains ? double(partition.elementSubdomain.size()) / partition.numSubdomains : 0.0;
+  const double mean =
+      partition.numSubdomains ? double(partition.elementSubdomain.size()) / partition.numSubdomains : 0.0;
   std::ostringstream os;
   os << "partition: " << partition.numSubdomains << " subdomains by " << method << ", edge cut "
      << partition.edgeCut << " facets, largest subdomain " << largest << " elements (mean " << std::fixed

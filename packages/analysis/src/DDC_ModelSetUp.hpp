@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Teuchos_Comm.hpp>
+#include <mpi.h>
 #include <Teuchos_ParameterList.hpp>
 #include <memory>
 #include <string>
@@ -16,8 +17,6 @@
 #include "DDC_ElementFactory.hpp"
 #include "DDC_Memory.hpp"
 #include "DDC_Mesh.hpp"
-#include <mpi.h>
-
 #include "DDC_Partition.hpp"
 
 namespace ddc {

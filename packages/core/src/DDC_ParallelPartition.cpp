@@ -59,7 +59,8 @@ std::vector<std::vector<NodeElement>> nodeListsToOwners(std::vector<NodeElement>
   for (size_t i = 0; i < atHome.size();) {
     size_t j = i;
     owners.clear();
-    for (; j < atHome.size() && atHome[j].node == atHome[i].node; ++j) owners.push_back(ownerOf(first, atHome[j].element));
+    for (; j < atHome.size() && atHome[j].node == atHome[i].node; ++j)
+      owners.push_back(ownerOf(first, atHome[j].element));
     std::sort(owners.begin(), owners.end());
     owners.erase(std::unique(owners.begin(), owners.end()), owners.end());
     for (int r : owners) send[r].insert(send[r].end(), atHome.begin() + i, atHome.begin() + j);

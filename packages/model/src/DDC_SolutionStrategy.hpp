@@ -71,12 +71,11 @@ class SolutionStrategy {
   /// (the inexact Newton forcing term of ddc::Analysis); ignored by a direct
   /// solve.
   virtual void setSolveTolerance(double tol) = 0;
-  /// A line for the end-of-run timing report (empty: none), from the
-  /// accumulated breakdown of solve() (max over ranks, collective).
   /// Rows of a coarse problem this rank owns after setUp() (FETI-DP's primal
   /// DOFs); 0 for a strategy without one. For the distribution line.
   virtual long long coarseRowsOnThisRank() const { return 0; }
-
+  /// A line for the end-of-run timing report (empty: none), from the
+  /// accumulated breakdown of solve() (max over ranks, collective).
   virtual std::string timingReport(const std::array<double, 6>& breakdown) const {
     (void)breakdown;
     return "";
