@@ -34,6 +34,7 @@
 // Decks are in-memory Teuchos::ParameterLists (the half-rings deck is read
 // from examples/). The measured numbers are printed on rank 0 for
 // doc/verification.md.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -703,6 +704,63 @@ TEST(ContactPairing, SlaveOnTheFreeEndOfTheMasterKeepsItsSegmentAgainstRoundOff)
   constexpr double kPastTheEnd = 0.05;  // a third of a master segment (1/7)
   EXPECT_TRUE(slide(kPastTheEnd)) << m.describeSlot(end);
   EXPECT_FALSE(m.contactSlots()[end].paired()) << m.describeSlot(end);
+}
+
+TEST(ContactPairing, AGeometryTheContactUpdateCannotEvaluateFailsOnEveryRank) {
+  // Inside Newton, an iterate far from the solution (a body sliding away in
+  // gross slip) may collapse a master segment under an active frictional
+  // slave node: its closest-point projection cannot converge. The active-set
+  // update must raise that on every rank, as an inadmissible deformation
+  // Newton fails the iteration on (and the step is bisected), not as an
+  // error that escapes on the ranks that met it while the others wait.
+  auto mesh = std::make_shared<ddc::Mesh>();
+  for (const auto& [name, y0] : {std::pair<const char*, double>{"Lower", 0.0}, {"Upper", 0.5}}) {
+    PL rect("Rectangle");
+    rect.set("Origin Y", y0);
+    rect.set("Length Y", 0.5);
+    rect.set("Elements X", 4);
+    rect.set("Elements Y", 2);
+    ddc::generateRectangle(*mesh, name, ddc::CellType::Quad4, rect, "Rectangle");
+  }
+  PL el("Element");
+  el.set("Type", std::string("Quad4"));
+  el.sublist("Material").set("Type", std::string("Neo-Hookean"));
+  std::vector<std::shared_ptr<const ddc::Element>> elements(
+      2, ddc::ElementFactory::withBuiltins().create(el, "Element"));
+  PL contact("Contact");
+  PL& pair = contact.sublist("Pairs").sublist("Interface");
+  pair.set("Slave", std::string("Upper/bottom"));
+  pair.set("Master", std::string("Lower/top"));
+  pair.set("Friction Coefficient", 0.3);
+  const auto options = ddc::ContactOptions::fromParameters(contact, *mesh, "Contact");
+  ddc::Model m(worldComm(), mesh, elements, ddc::partitionMetis(*mesh, worldComm()->getSize()),
+               ddc::BoundaryConditions{}, options);
+  auto u = m.createVector();
+  m.updatePairing(*u, /*global=*/true, /*freeze=*/true);
+  m.activateAllPaired();
+  m.beginContactStep(*u);
+  // Every slot in compression; the master segment of the slot at x = 0.5
+  // collapsed onto its first node.
+  int middle = -1;
+  for (size_t k = 0; k < m.contactSlots().size(); ++k) {
+    const ddc::ContactSlot& s = m.contactSlots()[k];
+    ASSERT_TRUE(s.paired() && s.active) << m.describeSlot(int(k));
+    if (m.mesh().coord(s.slaveNode)[0] == 0.5) middle = int(k);
+    if (u->getMap()->isNodeGlobalElement(m.multiplierDof(int(k)))) u->replaceGlobalValue(m.multiplierDof(int(k)), -1.0);
+  }
+  ASSERT_GE(middle, 0);
+  const ddc::ContactSlot& s = m.contactSlots()[middle];
+  for (int c = 0; c < 2; ++c) {
+    const ddc::GO dof = m.dof(s.master[1], c);
+    const double collapse = m.mesh().coord(s.master[0])[c] - m.mesh().coord(s.master[1])[c];
+    if (u->getMap()->isNodeGlobalElement(dof)) u->replaceGlobalValue(dof, collapse);
+  }
+  try {
+    m.updateActiveSet(*u);
+    ADD_FAILURE() << "no InadmissibleDeformation";
+  } catch (const ddc::InadmissibleDeformation& e) {
+    EXPECT_THAT(e.what(), testing::HasSubstr("closest-point projection did not converge")) << e.what();
+  }
 }
 
 /// The message of the InputError that constructing an Analysis of `deck`

@@ -684,7 +684,18 @@ bool Model::fullyPrescribed(int k) const { return contact_ && contact_->fullyPre
 
 std::vector<int> Model::updateActiveSet(const Vector& u) {
   if (!contact_) return {};  // no surface or multiplier maps exist
-  return contact_->updateActiveSet(u);
+  // A geometry the update cannot evaluate (a closest-point projection that
+  // does not converge, at an iterate far from the solution) is raised on
+  // every rank, so that all of them fail the iteration together.
+  std::vector<int> changed;
+  std::string failure;
+  try {
+    changed = contact_->updateActiveSet(u);
+  } catch (const InadmissibleDeformation& e) {
+    failure = e.what();
+  }
+  raiseCollectively<InadmissibleDeformation>(rawComm(*comm_), failure);
+  return changed;
 }
 
 void Model::restoreContactState(const std::vector<ContactSlot>& saved) {

@@ -246,7 +246,9 @@ class Model {
   /// ContactComponent::fullyPrescribed().
   bool fullyPrescribed(int k) const;
   /// ContactComponent::updateActiveSet() with the multipliers of u.
-  /// Without contact: nothing to do, returns no slots.
+  /// Without contact: nothing to do, returns no slots. Collective.
+  /// \throws InadmissibleDeformation on every rank when some rank meets a
+  ///         geometry it cannot evaluate
   std::vector<int> updateActiveSet(const Vector& u);
   /// ContactComponent::beginStep(): a step (Newton's increment) starts
   /// from u. Without contact: nothing to do.

@@ -132,11 +132,7 @@ bool Newton::solve(double lambda0, double lambda1, Vector& uStart, StepRecord& r
     if (!assemble(it, *u, lambda0, lambda1, *r, it == 0 ? dp.get() : nullptr, rec)) return false;
     i.rnorm = r->norm2();
     rec.residualHistory.push_back(i.rnorm);
-    if (!std::isfinite(i.rnorm)) {
-      rec.failure = nonFinite(model_, it, "residual", *r);
-      note_("    " + rec.failure);
-      return false;
-    }
+    if (!std::isfinite(i.rnorm)) return fail(nonFinite(model_, it, "residual", *r), rec);
     if (it == 0) r0 = i.rnorm;
     const bool residualOk = it > 0 && i.rnorm <= std::max(s.residualTolerance * r0, s.absoluteResidualTolerance);
     if (forcing_) setForcingTerm(it, i.rnorm, r0);
@@ -160,17 +156,9 @@ bool Newton::solve(double lambda0, double lambda1, Vector& uStart, StepRecord& r
     // Contact: follow the current configuration (conventional NTS), then
     // check the contact state on the multipliers (release in tension,
     // activate on penetration).
-    if (contact) {
-      if (conventional && !pairingFrozen_) i.pairingChanged = model_.updatePairing(*u, false, false, &i.repaired);
-      i.changed = model_.updateActiveSet(*u);
-      noteGrossSlip(it);
-    }
+    if (contact && !updateContact(*u, conventional, i, rec)) return false;
     printIteration(i);
-    if (!std::isfinite(i.energy)) {
-      rec.failure = nonFinite(model_, it, "correction", *du);
-      note_("    " + rec.failure);
-      return false;
-    }
+    if (!std::isfinite(i.energy)) return fail(nonFinite(model_, it, "correction", *du), rec);
     if (!contactSettled(i, rec)) {
       if (!rec.failure.empty()) return false;
       continue;  // the pairing was frozen: one more iteration
@@ -197,9 +185,7 @@ bool Newton::assemble(int it, const Vector& u, double lambda0, double lambda1, V
   try {
     assembled = strategy_.assemble(u, lambda1, r, dp);
   } catch (const InadmissibleDeformation& e) {
-    rec.failure = std::string("Newton iteration ") + std::to_string(it) + ": " + e.what();
-    note_("    " + rec.failure);
-    return false;
+    return fail(std::string("Newton iteration ") + std::to_string(it) + ": " + e.what(), rec);
   }
   // A rigid motion nothing restrains makes the tangent singular; a direct
   // solver may factorise it anyway and return a drift along it (the same
@@ -270,6 +256,26 @@ void Newton::printIteration(const Iteration& i) const {
   std::cout << line << std::endl;
 }
 
+bool Newton::updateContact(const Vector& u, bool conventional, Iteration& i, StepRecord& rec) {
+  // An iterate far from the solution (a body sliding away in gross slip,
+  // say) may hold a geometry the contact update cannot evaluate: a failed
+  // iteration, which the step controller bisects, as in assemble().
+  try {
+    if (conventional && !pairingFrozen_) i.pairingChanged = model_.updatePairing(u, false, false, &i.repaired);
+    i.changed = model_.updateActiveSet(u);
+  } catch (const InadmissibleDeformation& e) {
+    return fail(std::string("Newton iteration ") + std::to_string(i.it) + ", contact update: " + e.what(), rec);
+  }
+  noteGrossSlip(i.it);
+  return true;
+}
+
+bool Newton::fail(const std::string& why, StepRecord& rec) const {
+  rec.failure = grossSlip_.empty() ? why : grossSlip_ + "; then " + why;
+  note_("    " + rec.failure);
+  return false;
+}
+
 void Newton::noteGrossSlip(int it) {
   // Gross slip (doc/contact.md, "Friction"): every slave node in contact of
   // a frictional pair slips, so Coulomb friction holds the bodies along the
@@ -306,9 +312,7 @@ bool Newton::contactSettled(const Iteration& i, StepRecord& rec) {
     };
     list("pairs changing state", i.changed);
     list("slave nodes changing master segment", i.repaired);
-    rec.failure = os.str();
-    note_("    " + rec.failure);
-    return false;
+    return fail(os.str(), rec);
   }
   seen_.push_back(std::move(a));
   return true;

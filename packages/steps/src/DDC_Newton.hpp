@@ -79,10 +79,18 @@ class Newton {
   /// (Eisenstat-Walker), set on the strategy.
   void setForcingTerm(int it, double rnorm, double r0);
   void printIteration(const Iteration& i) const;
-  /// The contact checks after an update: true if the iteration may go on;
-  /// false with `record.failure` set when the active set cycles.
+  /// Follow the contact state to iterate `u`: the pairing (conventional
+  /// element), the active set and the gross slip. False, with the record's
+  /// failure, on a geometry the update cannot evaluate. Collective.
+  bool updateContact(const Vector& u, bool conventional, Iteration& i, StepRecord& record);
+  /// Set the record's failure to `why`, after the increment's gross slip
+  /// if there was one (the cause behind most failures that follow it), and
+  /// note it; returns false.
+  bool fail(const std::string& why, StepRecord& record) const;
   /// Record the first gross slip of the increment (grossSlip_).
   void noteGrossSlip(int it);
+  /// The contact checks after an update: true if the iteration may go on;
+  /// false with `record.failure` set when the active set cycles.
   bool contactSettled(const Iteration& i, StepRecord& record);
 
   Model& model_;
