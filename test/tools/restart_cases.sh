@@ -78,8 +78,9 @@
 #   wrong-source    --restart DIR.partial and --restart
 #                   DIR.partial/checkpoint.ddc: refused, naming DIR.
 #   bad-checkpoint  the stopped run's checkpoint.ddc replaced by a directory,
-#                   a link to /dev/zero, an 8 GiB sparse file read under a
-#                   4 GiB address-space limit: refused naming the file.
+#                   a link to /dev/zero, 8 GiB sparse files of version 1
+#                   (read whole) and 2 under a 4 GiB address-space limit:
+#                   refused naming the file.
 #   exodus-messages Output/Exodus switched on at the restart: a warning
 #                   naming the earlier run's missing results.e (no internal
 #                   file names); a full disk while the restart writes
@@ -461,6 +462,8 @@ bad-checkpoint)
   every_rank_failed "$work/device.log"
   expect_in "$work/device.log" "'.*stopped.partial/checkpoint.ddc' is not a regular file \(a link to a device" "a link to a device"
   rm "$checkpoint"
+  # Version 1 files are read whole on rank 0 and broadcast: refused by size.
+  printf 'DDContact checkpoint 1\n' >"$checkpoint"
   truncate -s 8G "$checkpoint"
   rm -rf "$work/status"
   mkdir -p "$work/status"
@@ -469,6 +472,17 @@ bad-checkpoint)
   every_rank_failed "$work/large.log"
   expect_in "$work/large.log" "the checkpoint '.*stopped.partial/checkpoint.ddc' is 8.0 GiB; reading it takes about 16 GiB per rank, more than the .* available" \
     "an 8 GiB checkpoint"
+  # Version 2: its head says what to read; zeros are refused without reading them.
+  printf 'DDContact checkpoint 2\n' >"$checkpoint"
+  truncate -s 8G "$checkpoint"
+  rm -rf "$work/status"
+  mkdir -p "$work/status"
+  prlimit --as=4294967296 mpirun --oversubscribe -np "$np" sh "$here/record_exit_status.sh" "$work/status" "$app" \
+    "$deck" "${extra[@]}" --restart "$work/stopped" >"$work/large2.log" 2>&1
+  every_rank_failed "$work/large2.log"
+  expect_in "$work/large2.log" \
+    "the checkpoint '.*stopped.partial/checkpoint.ddc' is corrupted or truncated \(8589934592 bytes\)" \
+    "an 8 GiB checkpoint of version 2"
   rm "$checkpoint"
   mv "$work/intact.ddc" "$checkpoint"
   [ "$(hashes "$work/stopped.partial")" = "$before" ] || fail "the stopped run's directory changed"

@@ -1,7 +1,8 @@
 // Checkpoint files (DDC_Checkpoint.hpp): sections round-trip bit for bit, a
-// distributed vector reads back on another number of ranks, and a file that
-// is not a checkpoint, truncated or corrupted is refused on every rank with
-// a message naming it. What a restart checks: contact slots round-trip
+// distributed vector reads back on another number of ranks, each rank writes
+// its own piece of it, a version 1 file still reads, and a file that is not
+// a checkpoint, truncated or corrupted (in any piece) is refused on every
+// rank with a message naming it. What a restart checks: contact slots round-trip
 // bit for bit (packSlots()), a deck may change only the parameters
 // restartChangeableParameters() names, the files a run read must be
 // unchanged, the final load factor not below the checkpoint's, and a
@@ -11,7 +12,9 @@
 
 #include <Tpetra_Core.hpp>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -22,6 +25,7 @@
 #include "DDC_Restart.hpp"
 #include "DDC_RunCheckpoint.hpp"
 #include "DDC_Error.hpp"
+#include "DDC_FileFingerprint.hpp"
 #include "DDC_MpiRecords.hpp"
 #include "DDC_TestErrors.hpp"
 
@@ -159,6 +163,91 @@ TEST(Checkpoint, AFailedWriteLeavesTheEarlierCheckpoint) {
   EXPECT_EQ(r.doubles("scalars").size(), 3u) << "the earlier checkpoint was replaced";
   if (world()->getRank() == 0) std::filesystem::remove(path + ".tmp");
   EXPECT_THROW(w.putDoubles("scalars", {2.0}), std::invalid_argument) << "a section given twice";
+}
+
+/// The vector table of the sample's section "u" (version 2): the entry
+/// count of each piece, read from the file's bytes.
+std::vector<std::uint64_t> pieceCounts(const std::string& bytes) {
+  const std::string magic = "DDContact checkpoint 2\n";
+  if (bytes.compare(0, magic.size(), magic) != 0) return {};
+  size_t at = magic.size() + 8;  // the section count
+  auto take = [&](size_t n) {
+    std::uint64_t v = 0;
+    std::memcpy(&v, bytes.data() + at, n);
+    at += n;
+    return v;
+  };
+  for (int k = 0; k < 3; ++k) {
+    const std::uint64_t nameLength = take(4);
+    const std::string name = bytes.substr(at, nameLength);
+    at += nameLength;
+    const std::uint64_t kind = take(1), length = take(8);
+    if (kind == 0) {
+      at += length;
+      continue;
+    }
+    std::vector<std::uint64_t> counts;
+    for (std::uint64_t p = 0; p < length; ++p) counts.push_back(take(8));
+    if (name == "u") return counts;
+  }
+  return {};
+}
+
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+TEST(Checkpoint, EachRankWritesItsOwnPiece) {
+  // No rank gathers a vector: the file holds one piece per writing rank,
+  // of that rank's 7 entries.
+  const std::string path = fileName("pieces");
+  writeSample(path);
+  const std::vector<std::uint64_t> counts = pieceCounts(fileBytes(path));
+  EXPECT_EQ(counts, std::vector<std::uint64_t>(size_t(world()->getSize()), 7u));
+}
+
+TEST(Checkpoint, ACorruptedPieceIsRefusedOnEveryRank) {
+  // A changed byte in the last entry of the last piece: only the rank
+  // reading that piece can see it; every rank refuses the file.
+  const std::string path = fileName("piece");
+  writeSample(path);
+  editFile(path, [](std::string& s) { s[s.size() - 8 - 3] ^= 0x01; });  // before the 8-byte trailer
+  EXPECT_THAT(ddc::test::inputErrorOf([&] { ddc::CheckpointReader(world(), path); }),
+              HasSubstr("the checkpoint '" + path + "' is corrupted or truncated"));
+}
+
+TEST(Checkpoint, AVersion1FileStillReads) {
+  // A checkpoint of the earlier format (one hash over the whole file, each
+  // vector one sorted section) reads back on any number of ranks.
+  const std::string path = fileName("version1");
+  const int n = 5;
+  if (world()->getRank() == 0) {
+    auto put = [](std::string& out, auto v) { out.append(reinterpret_cast<const char*>(&v), sizeof v); };
+    std::string out = "DDContact checkpoint 1\n";
+    put(out, std::uint64_t(2));
+    put(out, std::uint32_t(7));
+    out += "scalars";
+    put(out, std::uint64_t(8));
+    put(out, 0.25);
+    put(out, std::uint32_t(1));
+    out += "u";
+    put(out, std::uint64_t(16 * n));
+    for (int i = 0; i < n; ++i) put(out, (long long)(3 * i + 1)), put(out, valueOf(3 * i + 1));
+    put(out, ddc::fnv1a(out.data(), out.size()));
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << out;
+  }
+  world()->barrier();
+  ddc::CheckpointReader r(world(), path);
+  EXPECT_EQ(r.doubles("scalars"), std::vector<double>{0.25});
+  // Index 3 i + 1 on rank i % P.
+  std::vector<GO> gids;
+  for (int i = 0; i < n; ++i)
+    if (i % world()->getSize() == world()->getRank()) gids.push_back(GO(3 * i + 1));
+  ddc::Vector v(Teuchos::rcp(new ddc::Map(Tpetra::global_size_t(n), Teuchos::ArrayView<const GO>(gids), 0, world())));
+  r.vector("u", v);
+  auto d = v.getData();
+  for (size_t l = 0; l < v.getLocalLength(); ++l) EXPECT_EQ(d[l], valueOf(v.getMap()->getGlobalElement(ddc::LO(l))));
 }
 
 TEST(Checkpoint, ContactSlotsRoundTripBitForBit) {
