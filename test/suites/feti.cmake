@@ -92,6 +92,36 @@ ddc_add_run_test(feti_reports_coarse_size RANKS 1
   ARGS ${PROJECT_SOURCE_DIR}/examples/block_3d.xml --set "Solver/Strategy=FETI-DP"
     --set "Partition/Number of Subdomains=8" --set "Output/VTK=false" --output-dir ${DDC_RUNS}/feti_reports_coarse_size
   REGEX "FETI-DP: 8 subdomains, [1-9][0-9]* primal nodes, coarse problem of [1-9][0-9]* DOFs" LABELS feti)
+# 'Primal Constraints' = Automatic in 3-D (doc/feti-dp.md "In 3-D"): edge
+# averages below 512 subdomains, every subdomain-edge node primal and no
+# averages from 512 on, which is then the same run as 'Primal Constraints' =
+# Vertices; an explicit choice is kept (block_3d at Refinement 2, 2048
+# elements; at Refinement 3 for the explicit edges, which on 4-element
+# subdomains find no edge with an interior node to average).
+set(averages_off "Primal Constraints = Automatic, on 512 subdomains in 3-D: every subdomain-edge node primal, no \
+edge averages")
+foreach(c "511;Automatic;Automatic;[1-9][0-9]*;2" "512;Automatic;Automatic;0;2" "512;Vertices;Vertices;0;2"
+          "512;Edges;Vertices and Edges;[1-9][0-9]*;3")
+  list(GET c 0 count)
+  list(GET c 1 tag)
+  list(GET c 2 primal)
+  list(GET c 3 averages)
+  list(GET c 4 refinement)
+  set(regex "FETI-DP: ${count} subdomains, [1-9][0-9]* primal nodes, coarse problem of [1-9][0-9]* DOFs \\([0-9]+ at \
+primal nodes, ${averages} edge/face constraints\\)")
+  if(count EQUAL 512 AND tag STREQUAL "Automatic")
+    set(regex "${averages_off}.*${regex}")
+  endif()
+  ddc_add_run_test(feti_primal_${tag}_${count}_subdomains RANKS 2 FIXTURE
+    ARGS ${PROJECT_SOURCE_DIR}/examples/block_3d.xml --set "Mesh/Bodies/Block/Box/Refinement=${refinement}"
+      --set "Solver/Strategy=FETI-DP" --set "Partition/Number of Subdomains=${count}"
+      --set "Solver/FETI-DP/Primal Constraints=${primal}" --set "Output/VTK=false"
+      --output-dir ${DDC_RUNS}/feti_primal_${tag}_${count}_subdomains
+    FILES ${DDC_RUNS}/feti_primal_${tag}_${count}_subdomains/history.csv
+    REGEX "${regex}" LABELS feti)
+endforeach()
+ddc_compare_histories(feti_primal_automatic_is_vertices_from_512 feti_primal_Automatic_512_subdomains
+  feti_primal_Vertices_512_subdomains 1e-14 LABELS feti)
 # The automatic subdomain count ('Partition/Number of Subdomains' = 0,
 # doc/performance.md): block_3d at Refinement 2 has 2673 nodes (8019 DOFs
 # before the clamp), so about one subdomain per 1650 DOFs is 5 on 2 ranks;

@@ -479,6 +479,7 @@ struct FetiDpSolver::Impl {
   Context ctx;
   // configuration
   PrimalConstraints primalChoice = PrimalConstraints::VerticesAndEdges;
+  bool automaticPrimal = true;  ///< "Primal Constraints" = Automatic (setAutomaticPrimalConstraints())
   bool rotations = true;  ///< "Rotational Constraints"
   std::string belosType = "CG";
   bool belosGmresOnBreakdown = true;

@@ -73,7 +73,8 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
             enumValidator(scalingNames(), "Scaling"));
     pl->set("Primal Constraints", std::string("Automatic"),
             "Primal (coarse) constraints besides the caller's vertex DOFs: Automatic (Vertices and Edges, with "
-            "or without contact rows: measured in doc/performance.md), Vertices (none), Vertices and Edges "
+            "or without contact rows; ddcontact in 3-D with 512 or more subdomains: Vertices, whose coarse problem "
+            "grows less; measured in doc/performance.md), Vertices (none), Vertices and Edges "
             "(plus the average of each displacement component over each edge: in 2-D a subdomain-subdomain "
             "interface, in 3-D the interface DOFs shared by >= 3 subdomains), Vertices, Edges and Faces (plus "
             "the averages over the 3-D faces, DOFs shared by exactly 2 subdomains; in 2-D the same as Vertices "
@@ -182,8 +183,8 @@ FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramete
   }
   m.dual.singularityThreshold = params.get<double>("Local Singularity Threshold");
   m.dual.localSchur = params.get<bool>("Local Schur Complement");
-  const bool automaticPrimal = params.get<std::string>("Primal Constraints") == "Automatic";
-  m.primalChoice = automaticPrimal ? PrimalConstraints::VerticesAndEdges
+  m.automaticPrimal = params.get<std::string>("Primal Constraints") == "Automatic";
+  m.primalChoice = m.automaticPrimal ? PrimalConstraints::VerticesAndEdges
                                      : primalConstraintsFromName(params.get<std::string>("Primal Constraints"));
   m.rotations = params.get<bool>("Rotational Constraints");
   // Belos: the entries documented here are validated with their ranges;
@@ -661,6 +662,12 @@ Teuchos::RCP<const Map> FetiDpSolver::lmMap() const { return impl_->jump.lmMap; 
 Teuchos::RCP<const Map> FetiDpSolver::primalMap() const { return impl_->coarse.primalMap; }
 GO FetiDpSolver::numDualDofs() const { return impl_->jump.nDual; }
 GO FetiDpSolver::numEdgeFaceConstraints() const { return impl_->coarse.nEdgeFace; }
+
+void FetiDpSolver::setAutomaticPrimalConstraints(PrimalConstraints choice) {
+  if (impl_->automaticPrimal) impl_->primalChoice = choice;
+}
+
+PrimalConstraints FetiDpSolver::primalConstraints() const { return impl_->primalChoice; }
 
 Teuchos::RCP<Vector> FetiDpSolver::applyB(const std::vector<std::vector<double>>& field) const {
   Impl& m = *impl_;

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "DDC_DirectSolver.hpp"
+#include "DDC_FetiEdgeFaceConstraints.hpp"
 
 namespace ddc {
 
@@ -243,6 +244,13 @@ class FetiDpSolver {
   ///         inconsistent dim / component / coordinates with edge or face
   ///         constraints.
   void setTopology(std::vector<FetiSubdomain> local, Teuchos::RCP<const Map> ownedMap);
+
+  /// What "Primal Constraints" = Automatic stands for (Vertices and Edges
+  /// unless set here): the caller, which chooses the primal vertices, knows
+  /// the partition. An explicit choice is kept. Before setTopology().
+  void setAutomaticPrimalConstraints(PrimalConstraints choice);
+  /// The primal constraints in use ("Automatic" resolved).
+  PrimalConstraints primalConstraints() const;
 
   /// Collective. After the caller updated the K values: factorise every
   /// K_rr^s, compute Phi^s = K_rr^{-1} K_rPi (one multi-RHS solve) and
