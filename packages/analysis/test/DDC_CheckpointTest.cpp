@@ -217,6 +217,26 @@ TEST(Checkpoint, ACorruptedPieceIsRefusedOnEveryRank) {
               HasSubstr("the checkpoint '" + path + "' is corrupted or truncated"));
 }
 
+TEST(Checkpoint, ACorruptedLengthIsRefusedBeforeAllocatingIt) {
+  // The first section's name length set to 4 GiB - 1 (and later a vector
+  // table of 2^60 pieces): refused as corrupted, without allocating it.
+  const std::string path = fileName("length");
+  writeSample(path);
+  editFile(path, [](std::string& s) { std::memset(&s[23 + 8], 0xff, 4); });
+  EXPECT_THAT(ddc::test::inputErrorOf([&] { ddc::CheckpointReader(world(), path); }),
+              HasSubstr("the checkpoint '" + path + "' is corrupted or truncated"));
+  writeSample(path);
+  editFile(path, [](std::string& s) {
+    // The section "u": its name length (u32 1), its name, kind 1, the pieces.
+    const size_t u = s.find(std::string("\x01\0\0\0u\x01", 6));
+    ASSERT_NE(u, std::string::npos);
+    const std::uint64_t pieces = std::uint64_t(1) << 60;
+    std::memcpy(&s[u + 6], &pieces, 8);
+  });
+  EXPECT_THAT(ddc::test::inputErrorOf([&] { ddc::CheckpointReader(world(), path); }),
+              HasSubstr("the checkpoint '" + path + "' is corrupted or truncated"));
+}
+
 TEST(Checkpoint, AVersion1FileStillReads) {
   // A checkpoint of the earlier format (one hash over the whole file, each
   // vector one sorted section) reads back on any number of ranks.

@@ -367,8 +367,12 @@ std::string CheckpointReader::readHead2(double size, std::map<std::string, Vecto
   std::uint64_t at = kMagic2.size();
   const std::uint64_t fileSize = std::uint64_t(size);
   bool ok = true;
+  // Lengths are checked against what is left of the file before anything
+  // is allocated for them (a corrupted length is no reason to run out of
+  // memory).
+  auto fits = [&](std::uint64_t n) { return n <= fileSize - std::min(fileSize, at); };
   auto read = [&](void* to, std::uint64_t n) {
-    ok = ok && n <= fileSize - std::min(fileSize, at);
+    ok = ok && fits(n);
     if (!ok) return false;
     in.seekg(std::streamoff(at));
     in.read(static_cast<char*>(to), std::streamsize(n));
@@ -382,19 +386,21 @@ std::string CheckpointReader::readHead2(double size, std::map<std::string, Vecto
     std::uint32_t nameLength = 0;
     std::uint8_t kind = 0;
     std::string name;
-    if (!read(&nameLength, sizeof nameLength)) break;
-    name.resize(std::min<std::uint64_t>(nameLength, fileSize));
+    if (!read(&nameLength, sizeof nameLength) || !(ok = fits(nameLength))) break;
+    name.resize(nameLength);
     if (!read(&name[0], nameLength) || !read(&kind, sizeof kind)) break;
     std::uint64_t length = 0;
     if (!read(&length, sizeof length)) break;
     if (kind == kBytesSection) {
-      std::string payload(size_t(std::min(length, fileSize)), '\0');
+      if (!(ok = fits(length))) break;
+      std::string payload(size_t(length), '\0');
       if (read(&payload[0], length)) sections_[name] = std::move(payload);
       continue;
     }
-    ok = kind == kVectorSection && length <= fileSize;  // one piece per writing rank
+    // One piece per writing rank: a count and a hash each.
+    if (!(ok = kind == kVectorSection && length <= (fileSize - std::min(fileSize, at)) / 16)) break;
     VectorTable t;
-    t.counts.resize(size_t(ok ? length : 0));
+    t.counts.resize(size_t(length));
     t.hashes.resize(t.counts.size());
     if (!read(t.counts.data(), 8 * length) || !read(t.hashes.data(), 8 * length)) break;
     t.dataStart = at;
