@@ -646,14 +646,19 @@ TEST(DecomposedWithoutPairs, ContactCallsOnAModelWithoutPairsDoNothing) {
   EXPECT_EQ(m.ownedMap()->getGlobalNumElements(), static_cast<size_t>(2 * mesh->numNodes())) << "no multiplier DOF";
 }
 
-TEST(ContactPairing, SlaveOnTheFreeEndOfTheMasterKeepsItsSegmentAgainstRoundOff) {
-  // Two blocks of one width: the slave end node (x = 1) sits on the free end
-  // of the master surface. A displacement of round-off size past that end
-  // must not unpair it inside Newton (it did, on two ranks under load, and
-  // the active-set check reported a cycle with no pair changing state); a
-  // real slide past the end, beyond the hysteresis, must.
+/// Two blocks of unit width and 2 rows of Quad4 (Neo-Hookean): "Lower" (y in
+/// [0, 0.5], `nxLower` columns) under "Upper" (y in [0.5, 1], `nxUpper`
+/// columns), and the contact pair "Interface" = Upper/bottom on Lower/top
+/// (with a friction coefficient if `friction` > 0).
+struct StackedBlocks {
+  std::shared_ptr<ddc::Mesh> mesh;
+  std::vector<std::shared_ptr<const ddc::Element>> elements;
+  ddc::ContactOptions options;
+};
+StackedBlocks stackedBlocks(int nxLower, int nxUpper, double friction = 0.0) {
   auto mesh = std::make_shared<ddc::Mesh>();
-  for (const auto& [name, y0, nx] : {std::tuple<const char*, double, int>{"Lower", 0.0, 7}, {"Upper", 0.5, 10}}) {
+  for (const auto& [name, y0, nx] :
+       {std::tuple<const char*, double, int>{"Lower", 0.0, nxLower}, {"Upper", 0.5, nxUpper}}) {
     PL rect("Rectangle");
     rect.set("Origin Y", y0);
     rect.set("Length Y", 0.5);
@@ -670,7 +675,17 @@ TEST(ContactPairing, SlaveOnTheFreeEndOfTheMasterKeepsItsSegmentAgainstRoundOff)
   PL& pair = contact.sublist("Pairs").sublist("Interface");
   pair.set("Slave", std::string("Upper/bottom"));
   pair.set("Master", std::string("Lower/top"));
-  const auto options = ddc::ContactOptions::fromParameters(contact, *mesh, "Contact");
+  if (friction > 0.0) pair.set("Friction Coefficient", friction);
+  return {mesh, elements, ddc::ContactOptions::fromParameters(contact, *mesh, "Contact")};
+}
+
+TEST(ContactPairing, SlaveOnTheFreeEndOfTheMasterKeepsItsSegmentAgainstRoundOff) {
+  // Two blocks of one width: the slave end node (x = 1) sits on the free end
+  // of the master surface. A displacement of round-off size past that end
+  // must not unpair it inside Newton (it did, on two ranks under load, and
+  // the active-set check reported a cycle with no pair changing state); a
+  // real slide past the end, beyond the hysteresis, must.
+  const auto [mesh, elements, options] = stackedBlocks(7, 10);
   auto factory = ddc::ElementFactory::withBuiltins();
   ddc::registerContactElements(factory);
   PL nts;
@@ -713,26 +728,7 @@ TEST(ContactPairing, AGeometryTheContactUpdateCannotEvaluateFailsOnEveryRank) {
   // update must raise that on every rank, as an inadmissible deformation
   // Newton fails the iteration on (and the step is bisected), not as an
   // error that escapes on the ranks that met it while the others wait.
-  auto mesh = std::make_shared<ddc::Mesh>();
-  for (const auto& [name, y0] : {std::pair<const char*, double>{"Lower", 0.0}, {"Upper", 0.5}}) {
-    PL rect("Rectangle");
-    rect.set("Origin Y", y0);
-    rect.set("Length Y", 0.5);
-    rect.set("Elements X", 4);
-    rect.set("Elements Y", 2);
-    ddc::generateRectangle(*mesh, name, ddc::CellType::Quad4, rect, "Rectangle");
-  }
-  PL el("Element");
-  el.set("Type", std::string("Quad4"));
-  el.sublist("Material").set("Type", std::string("Neo-Hookean"));
-  std::vector<std::shared_ptr<const ddc::Element>> elements(
-      2, ddc::ElementFactory::withBuiltins().create(el, "Element"));
-  PL contact("Contact");
-  PL& pair = contact.sublist("Pairs").sublist("Interface");
-  pair.set("Slave", std::string("Upper/bottom"));
-  pair.set("Master", std::string("Lower/top"));
-  pair.set("Friction Coefficient", 0.3);
-  const auto options = ddc::ContactOptions::fromParameters(contact, *mesh, "Contact");
+  const auto [mesh, elements, options] = stackedBlocks(4, 4, /*friction=*/0.3);
   ddc::Model m(worldComm(), mesh, elements, ddc::partitionMetis(*mesh, worldComm()->getSize()),
                ddc::BoundaryConditions{}, options);
   auto u = m.createVector();
