@@ -97,12 +97,30 @@ void CheckpointWriter::putVector(const std::string& name, const Vector& v) {
 }
 
 std::vector<CheckpointWriter::Segment> CheckpointWriter::layout(std::vector<std::string>& heads) const {
-  // Rank 0 composes everything but the entries (`heads`) and the hash; every
-  // rank learns where its pieces go from rank 0's layout (the sections of
-  // bytes are the same on every rank, and rank 0's are written).
+  // Rank 0 composes everything but the entries (`heads`); every rank learns
+  // where its pieces go from rank 0's layout (the sections of bytes are the
+  // same on every rank, and rank 0's are written).
   const int rank = comm_->getRank();
   std::vector<Segment> segments;
   std::vector<std::uint64_t> dataStart, headAt;
+  if (rank == 0) composeHeads(heads, headAt, dataStart);
+  size_t vectors = 0;
+  for (const Section& s : sections_) vectors += s.piece != nullptr;
+  dataStart.resize(vectors);
+  MPI_Bcast(dataStart.data(), int(vectors), MPI_UINT64_T, 0, rawComm(*comm_));
+  for (size_t k = 0; k < heads.size(); ++k) segments.push_back({headAt[k], heads[k]});
+  size_t k = 0;
+  for (const Section& s : sections_) {
+    if (!s.piece) continue;
+    std::uint64_t offset = dataStart[k++];
+    for (int r = 0; r < rank; ++r) offset += s.piece->counts[size_t(r)] * sizeof(Entry);
+    if (!s.piece->bytes.empty()) segments.push_back({offset, s.piece->bytes});
+  }
+  return segments;
+}
+
+void CheckpointWriter::composeHeads(std::vector<std::string>& heads, std::vector<std::uint64_t>& headAt,
+                                    std::vector<std::uint64_t>& dataStart) const {
   std::string head = kMagic2;
   append<std::uint64_t>(head, sections_.size());
   std::uint64_t at = 0, hash = fnv1a(nullptr, 0);
@@ -132,17 +150,6 @@ std::vector<CheckpointWriter::Segment> CheckpointWriter::layout(std::vector<std:
   }
   append<std::uint64_t>(head, fnv1a(head.data(), head.size(), hash));
   flushHead();
-  if (rank == 0)
-    for (size_t k = 0; k < heads.size(); ++k) segments.push_back({headAt[k], heads[k]});
-  MPI_Bcast(dataStart.data(), int(dataStart.size()), MPI_UINT64_T, 0, rawComm(*comm_));
-  size_t k = 0;
-  for (const Section& s : sections_) {
-    if (!s.piece) continue;
-    std::uint64_t offset = dataStart[k++];
-    for (int r = 0; r < rank; ++r) offset += s.piece->counts[size_t(r)] * sizeof(Entry);
-    if (!s.piece->bytes.empty()) segments.push_back({offset, s.piece->bytes});
-  }
-  return segments;
 }
 
 std::string CheckpointWriter::writeSegments(const std::string& tmp, const std::string& path,

@@ -76,6 +76,10 @@ class CheckpointWriter {
   /// What this rank writes where (collective): rank 0 everything but the
   /// entries (kept in `heads`), every rank its pieces.
   std::vector<Segment> layout(std::vector<std::string>& heads) const;
+  /// Rank 0: the file's bytes but the entries, in runs (`heads`, at
+  /// `headAt`) ending with the hash, and where each vector's entries begin.
+  void composeHeads(std::vector<std::string>& heads, std::vector<std::uint64_t>& headAt,
+                    std::vector<std::uint64_t>& dataStart) const;
   /// Write the segments into `tmp` (MPI-IO; fault injection matches `path`);
   /// the first error on any rank, "" if none (collective).
   std::string writeSegments(const std::string& tmp, const std::string& path,
