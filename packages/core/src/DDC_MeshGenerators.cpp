@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -59,8 +60,9 @@ struct Grid {
 /// its corners (Quad9, Hex20, Hex27, Tet10), else 1.
 int pointsPerCell(CellType t) { return numCellNodes(t) == referenceCell(t).numCorners ? 1 : 2; }
 
-/// The corners of every cell of `g` as grid points, in the corner order of
-/// cell type `t`, cells in grid order. A quadrilateral or hexahedron fills one
+/// Calls `visit` with the corners of every cell of `g` as grid points, in the
+/// corner order of cell type `t`, cells in grid order (one cell at a time: a
+/// list of all cells would cost a fine grid's generator tens of MB). A quadrilateral or hexahedron fills one
 /// grid cell; tetrahedra split each grid cell into the six tetrahedra of the
 /// Kuhn (Freudenthal) triangulation, one per path 000 -> 111 along the edges
 /// of the cube, i.e. one per ordering of the three axes. All of them share
@@ -74,10 +76,10 @@ int pointsPerCell(CellType t) { return numCellNodes(t) == referenceCell(t).numCo
 /// orientation, so that the cells are positive in space): quadrilaterals and
 /// hexahedra then swap the roles of index directions 0 and 1, tetrahedra swap
 /// two corners.
-std::vector<std::vector<Index>> gridCells(const Grid& g, CellType t, bool reversed) {
+void forEachGridCell(const Grid& g, CellType t, bool reversed,
+                     const std::function<void(const std::vector<Index>&)>& visit) {
   const ReferenceCell& ref = referenceCell(t);
   DDC_CHECK(ref.dim == g.dim && (!ref.simplex || g.dim == 3), "grid of dimension " << g.dim << " for " << ref.name);
-  std::vector<std::vector<Index>> cells;
   static const std::array<Index, 6> orders = {{{{0, 1, 2}}, {{0, 2, 1}}, {{1, 0, 2}}, {{1, 2, 0}}, {{2, 0, 1}}, {{2, 1, 0}}}};
   static const std::array<int, 6> orderSign = {{1, -1, -1, 1, 1, -1}};
   for (int k = 0; k < (g.dim == 3 ? g.n[2] : 1); ++k)
@@ -94,7 +96,7 @@ std::vector<std::vector<Index>> gridCells(const Grid& g, CellType t, bool revers
             }
             corners.push_back(p);
           }
-          cells.push_back(corners);
+          visit(corners);
           continue;
         }
         for (int o = 0; o < 6; ++o) {
@@ -105,10 +107,9 @@ std::vector<std::vector<Index>> gridCells(const Grid& g, CellType t, bool revers
             w[s][orders[o][s - 1]] += g.m;
           }
           if ((orderSign[o] > 0) == reversed) std::swap(w[1], w[2]);
-          cells.push_back(w);
+          visit(w);
         }
       }
-  return cells;
 }
 
 /// The grid point of every node of a cell from its corners: the node's
@@ -187,14 +188,10 @@ std::vector<int> addStructuredBody(Mesh& mesh, int body, const Grid& g, CellType
                                    const std::vector<Point>& x, const std::vector<std::string>& sideNames) {
   DDC_CHECK(static_cast<int>(sideNames.size()) == 2 * g.dim, "one side name per grid side");
   const ReferenceCell& ref = referenceCell(type);
-  const auto cells = gridCells(g, type, reversed);
-  std::vector<std::vector<Index>> cellPoints;
-  cellPoints.reserve(cells.size());
   std::vector<int> node(g.numPoints(), -1);
-  for (const auto& c : cells) {
-    cellPoints.push_back(cellNodePoints(type, c));
-    for (const Index& p : cellPoints.back()) node[g.index(p)] = 0;
-  }
+  forEachGridCell(g, type, reversed, [&](const std::vector<Index>& corners) {
+    for (const Index& p : cellNodePoints(type, corners)) node[g.index(p)] = 0;
+  });
   std::vector<int> all;
   for (std::size_t k = 0; k < node.size(); ++k)
     if (node[k] == 0) {
@@ -203,8 +200,9 @@ std::vector<int> addStructuredBody(Mesh& mesh, int body, const Grid& g, CellType
     }
   std::vector<std::vector<Segment>> sides(sideNames.size());
   std::vector<int> nodes(ref.numNodes);
-  for (std::size_t c = 0; c < cells.size(); ++c) {
-    for (int i = 0; i < ref.numNodes; ++i) nodes[i] = node[g.index(cellPoints[c][i])];
+  forEachGridCell(g, type, reversed, [&](const std::vector<Index>& corners) {
+    const std::vector<Index> points = cellNodePoints(type, corners);
+    for (int i = 0; i < ref.numNodes; ++i) nodes[i] = node[g.index(points[i])];
     const int e = mesh.addElement(nodes.data());
     for (int f = 0; f < static_cast<int>(ref.facets.size()); ++f) {
       const ReferenceFacet& facet = ref.facets[f];
@@ -212,12 +210,11 @@ std::vector<int> addStructuredBody(Mesh& mesh, int body, const Grid& g, CellType
         const int d = static_cast<int>(side / 2);
         const int at = side % 2 == 0 ? 0 : g.points(d) - 1;
         bool on = true;
-        for (int k = 0; k < referenceCell(facet.type).numCorners; ++k)
-          on = on && cells[c][facet.nodes[k]][d] == at;
+        for (int k = 0; k < referenceCell(facet.type).numCorners; ++k) on = on && corners[facet.nodes[k]][d] == at;
         if (on) sides[side].push_back(mesh.makeSegment(e, f));
       }
     }
-  }
+  });
   // Grid sides of the same name make one side set (3-D only: the Sphere
   // Octant's curved surface is three grid sides), in order of first mention.
   for (std::size_t side = 0; side < sides.size(); ++side) {
@@ -258,7 +255,7 @@ double axisCoordinate(double origin, double length, int p, int np) {
 /// point with k odd indices (so the quadratic cell equals the bilinear /
 /// trilinear map of its corners); for tetrahedra at the midpoint of the
 /// tetrahedron edge through it, which runs from the vertex below to the
-/// vertex above in every odd index (gridCells: Kuhn edges are monotone).
+/// vertex above in every odd index (forEachGridCell: Kuhn edges are monotone).
 std::vector<Point> boxPoints(const Grid& g, const Point& origin, const Point& length, double distortion,
                              bool simplexCells) {
   std::vector<Point> x(g.numPoints(), Point{0, 0, 0});

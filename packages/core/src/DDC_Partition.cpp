@@ -11,7 +11,9 @@
 #include <metis.h>
 
 #include <algorithm>
+#include <array>
 #include <map>
+#include <numeric>
 #include <utility>
 
 #include "DDC_Error.hpp"
@@ -25,7 +27,7 @@ constexpr const char* kParam = "Partition/Number of Subdomains";
 constexpr idx_t kMetisSeed = 42;
 
 /// Is the dual graph (elements adjacent through edges) connected?
-bool isConnected(const std::vector<std::vector<int>>& nb) {
+bool isConnected(const FacetGraph& nb) {
   if (nb.empty()) return true;
   std::vector<char> seen(nb.size(), 0);
   std::vector<int> stack{0};
@@ -61,19 +63,63 @@ int dualGraphCommonCorners(const Mesh& mesh) {
   return ncommon;
 }
 
-std::vector<std::vector<int>> facetNeighbours(const Mesh& mesh) {
-  std::map<std::vector<int>, std::vector<int>> byFacet;
-  for (int e = 0; e < mesh.numElements(); ++e)
-    for (int f = 0; f < mesh.elementNumFacets(e); ++f) byFacet[mesh.facetKey(e, f)].push_back(e);
-  std::vector<std::vector<int>> nb(mesh.numElements());
-  for (const auto& kv : byFacet)
-    for (int a : kv.second)
-      for (int b : kv.second)
-        if (a != b) nb[a].push_back(b);
-  return nb;
+FacetGraph facetNeighbours(const Mesh& mesh) {
+  // Every element facet as (sorted corner ids, element), sorted: the copies
+  // of a facet become neighbours. Flat records, 20 bytes each, and rows in
+  // one array: a map keyed by corner vectors and a vector per element cost
+  // about 230 bytes per facet, 0.7 GB on a 1.26M-element box, which the
+  // allocator then kept (doc/performance.md, "Memory at set-up").
+  struct FacetRecord {
+    std::array<int, 4> corners;  ///< ascending, -1 after the last
+    int element;
+  };
+  const int ne = mesh.numElements();
+  size_t numFacets = 0;
+  for (int e = 0; e < ne; ++e) numFacets += referenceCell(mesh.elementType(e)).facets.size();
+  std::vector<FacetRecord> records;
+  records.reserve(numFacets);
+  for (int e = 0; e < ne; ++e) {
+    const auto& cell = referenceCell(mesh.elementType(e));
+    const int* en = mesh.elementNodes(e);
+    for (const auto& facet : cell.facets) {
+      FacetRecord r{{{-1, -1, -1, -1}}, e};
+      const int nc = referenceCell(facet.type).numCorners;
+      DDC_CHECK(nc <= 4, "a facet with " << nc << " corners");
+      for (int i = 0; i < nc; ++i) r.corners[i] = en[facet.nodes[i]];
+      std::sort(r.corners.begin(), r.corners.begin() + nc);
+      records.push_back(r);
+    }
+  }
+  std::sort(records.begin(), records.end(), [](const FacetRecord& a, const FacetRecord& b) {
+    return a.corners != b.corners ? a.corners < b.corners : a.element < b.element;
+  });
+  // Two passes over the groups of equal corners: count, then fill.
+  std::vector<size_t> offset(size_t(ne) + 1, 0);
+  std::vector<int> neighbours;
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<size_t> next(offset.begin(), offset.end() - 1);
+    for (size_t i = 0; i < records.size();) {
+      size_t j = i;
+      while (j < records.size() && records[j].corners == records[i].corners) ++j;
+      for (size_t a = i; a < j; ++a)
+        for (size_t b = i; b < j; ++b) {
+          if (a == b) continue;
+          if (pass == 0)
+            ++offset[records[a].element + 1];
+          else
+            neighbours[next[records[a].element]++] = records[b].element;
+        }
+      i = j;
+    }
+    if (pass == 0) {
+      std::partial_sum(offset.begin(), offset.end(), offset.begin());
+      neighbours.resize(offset.back());
+    }
+  }
+  return FacetGraph(std::move(offset), std::move(neighbours));
 }
 
-long long edgeCut(const std::vector<std::vector<int>>& nb, const Partition& p) {
+long long edgeCut(const FacetGraph& nb, const Partition& p) {
   long long cut = 0;
   for (size_t e = 0; e < nb.size(); ++e)
     for (int f : nb[e])
@@ -81,7 +127,7 @@ long long edgeCut(const std::vector<std::vector<int>>& nb, const Partition& p) {
   return cut;
 }
 
-void fillEmptySubdomains(const std::vector<std::vector<int>>& nb, Partition& p) {
+void fillEmptySubdomains(const FacetGraph& nb, Partition& p) {
   const int ne = static_cast<int>(p.elementSubdomain.size());
   std::vector<int> count(p.numSubdomains, 0);
   for (int s : p.elementSubdomain) ++count[s];
@@ -109,7 +155,7 @@ namespace {
 
 /// Pieces of each subdomain: piece[e] = a label shared by the elements of
 /// e's subdomain connected to e through facets of that subdomain.
-std::vector<int> subdomainPieces(const std::vector<std::vector<int>>& nb, const Partition& p,
+std::vector<int> subdomainPieces(const FacetGraph& nb, const Partition& p,
                                  std::vector<int>& pieceSize) {
   const int ne = static_cast<int>(nb.size());
   std::vector<int> piece(ne, -1), stack;
@@ -135,7 +181,7 @@ std::vector<int> subdomainPieces(const std::vector<std::vector<int>>& nb, const 
 }
 
 /// One pass of joinDetachedPieces(); true if a piece moved.
-bool joinPiecesOnce(const std::vector<std::vector<int>>& nb, Partition& p) {
+bool joinPiecesOnce(const FacetGraph& nb, Partition& p) {
   std::vector<int> size;
   const std::vector<int> piece = subdomainPieces(nb, p, size);
   const int ne = static_cast<int>(nb.size());
@@ -172,7 +218,7 @@ bool joinPiecesOnce(const std::vector<std::vector<int>>& nb, Partition& p) {
 
 }  // namespace
 
-void joinDetachedPieces(const std::vector<std::vector<int>>& nb, Partition& p) {
+void joinDetachedPieces(const FacetGraph& nb, Partition& p) {
   for (int pass = 0; pass < kMaxPieceJoinPasses && joinPiecesOnce(nb, p); ++pass) {
   }
 }

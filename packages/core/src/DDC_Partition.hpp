@@ -6,7 +6,9 @@
 // is replicated (doc/architecture.md).
 #pragma once
 
+#include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "DDC_Mesh.hpp"
@@ -54,18 +56,43 @@ void requirePartitionable(int numSubdomains, int numElements);
 /// of any body (3 for a triangle, 4 for a quadrilateral).
 int dualGraphCommonCorners(const Mesh& mesh);
 
+/// The dual graph of a mesh in compressed rows: row e holds the elements
+/// that share a facet with element e. Used as a list of rows: size(),
+/// nb[e].size(), `for (int f : nb[e])`.
+class FacetGraph {
+ public:
+  /// The neighbours of one element.
+  struct Row {
+    const int* first;
+    const int* last;
+    const int* begin() const { return first; }
+    const int* end() const { return last; }
+    size_t size() const { return static_cast<size_t>(last - first); }
+  };
+  FacetGraph(std::vector<size_t> offset, std::vector<int> neighbours)
+      : offset_(std::move(offset)), neighbours_(std::move(neighbours)) {}
+  size_t size() const { return offset_.size() - 1; }
+  bool empty() const { return size() == 0; }
+  Row operator[](size_t e) const { return Row{neighbours_.data() + offset_[e], neighbours_.data() + offset_[e + 1]}; }
+
+ private:
+  std::vector<size_t> offset_;  ///< size() + 1
+  std::vector<int> neighbours_;
+};
+
 /// The facet neighbours of each element (elements sharing a side in 2-D, a
-/// face in 3-D): the dual graph of a replicated mesh.
-std::vector<std::vector<int>> facetNeighbours(const Mesh& mesh);
+/// face in 3-D): the dual graph of a replicated mesh, neighbours in the order
+/// of the shared facets' sorted corner ids.
+FacetGraph facetNeighbours(const Mesh& mesh);
 
 /// The edge cut of a partition: the number of facets (dual-graph edges)
 /// whose two elements lie in different subdomains.
-long long edgeCut(const std::vector<std::vector<int>>& neighbours, const Partition& p);
+long long edgeCut(const FacetGraph& neighbours, const Partition& p);
 
 /// Give every empty subdomain one element taken from the currently largest
 /// subdomain: the element with the fewest neighbours in its own subdomain
 /// (lowest index on ties), so the donor stays as connected as possible.
-void fillEmptySubdomains(const std::vector<std::vector<int>>& neighbours, Partition& p);
+void fillEmptySubdomains(const FacetGraph& neighbours, Partition& p);
 
 /// Make subdomains single pieces where the mesh allows: every piece of a
 /// subdomain other than its largest that touches another subdomain and has
@@ -75,7 +102,7 @@ void fillEmptySubdomains(const std::vector<std::vector<int>>& neighbours, Partit
 /// as METIS makes them too), and so do pieces that touch no other subdomain.
 /// Repeated while a piece moves, at most kMaxPieceJoinPasses times. The
 /// subdomain counts stay non-zero.
-void joinDetachedPieces(const std::vector<std::vector<int>>& neighbours, Partition& p);
+void joinDetachedPieces(const FacetGraph& neighbours, Partition& p);
 constexpr double kMaxJoinedPieceShare = 0.25;
 constexpr int kMaxPieceJoinPasses = 8;
 

@@ -10,7 +10,6 @@
 #include <memory>
 #include <set>
 #include <cmath>
-#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -311,98 +310,6 @@ void Model::elementDofs(int e, std::vector<GO>& dofs) const {
   dofs.resize(d * nn);
   for (int i = 0; i < nn; ++i)
     for (int c = 0; c < d; ++c) dofs[d * i + c] = dof(mesh_->elementNodes(e)[i], c);
-}
-
-void Model::buildTopology() {
-  const Mesh& mesh = *mesh_;
-  const GO first = ownedMap_->getMinGlobalIndex();
-  const size_t numOwned = ownedMap_->getNodeNumElements();
-  std::vector<GO> dofs;
-
-  // Owned graph: rows of owned DOFs with the columns of every element and
-  // contact slot touching them (the whole mesh and all pairs are known on
-  // every rank, so no communication is needed).
-  std::vector<std::vector<GO>> rows(numOwned);
-  auto addOwned = [&](const std::vector<GO>& d) {
-    for (GO r : d)
-      if (r >= first && r < first + static_cast<GO>(numOwned)) {
-        auto& row = rows[r - first];
-        row.insert(row.end(), d.begin(), d.end());
-      }
-  };
-  for (int e = 0; e < mesh.numElements(); ++e) {
-    elementDofs(e, dofs);
-    addOwned(dofs);
-  }
-  if (contact_)
-    for (int k = 0; k < static_cast<int>(contact_->slots().size()); ++k) addOwned(contact_->slotDofs(k));
-  Teuchos::Array<size_t> nnz(numOwned);
-  for (size_t r = 0; r < numOwned; ++r) {
-    std::sort(rows[r].begin(), rows[r].end());
-    rows[r].erase(std::unique(rows[r].begin(), rows[r].end()), rows[r].end());
-    nnz[r] = rows[r].size();
-  }
-  auto owned = Teuchos::rcp(new CrsGraph(ownedMap_, nnz()));
-  for (size_t r = 0; r < numOwned; ++r) owned->insertGlobalIndices(first + r, Teuchos::ArrayView<const GO>(rows[r]));
-  owned->fillComplete(ownedMap_, ownedMap_);
-  ownedGraph_ = owned;
-  rows.clear();
-
-  // Overlap map: owned DOFs first, then the ghosts of local elements and slots.
-  std::vector<GO> ghosts;
-  auto addGhosts = [&](const std::vector<GO>& d) {
-    for (GO g : d)
-      if (g < first || g >= first + static_cast<GO>(numOwned)) ghosts.push_back(g);
-  };
-  for (int e : localElements_) {
-    elementDofs(e, dofs);
-    addGhosts(dofs);
-  }
-  if (contact_) {
-    for (int k : contact_->ownedSlots())
-      addGhosts(decomposed_ && contact_->slots()[k].paired() ? contact_->slaveSideDofs(k) : contact_->slotDofs(k));
-    for (int k : contact_->localMasterSlots()) addGhosts(contact_->masterSideDofs(k));
-  }
-  std::sort(ghosts.begin(), ghosts.end());
-  ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
-  std::vector<GO> gids(numOwned);
-  std::iota(gids.begin(), gids.end(), first);
-  gids.insert(gids.end(), ghosts.begin(), ghosts.end());
-  overlapMap_ = Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
-                                     Teuchos::ArrayView<const GO>(gids), 0, comm_));
-  importer_ = Teuchos::rcp(new Tpetra::Import<LO, GO, Node>(ownedMap_, overlapMap_));
-  exporter_ = Teuchos::rcp(new Tpetra::Export<LO, GO, Node>(overlapMap_, ownedMap_));
-
-  // Overlap graph: entries of local elements and slots only, columns indexed
-  // by the overlap map so element DOF lists are local column indices.
-  const size_t numOv = overlapMap_->getNodeNumElements();
-  std::vector<std::vector<LO>> ovRows(numOv);
-  std::vector<LO> l;
-  auto addLocal = [&](const std::vector<GO>& d) {
-    l.resize(d.size());
-    for (size_t i = 0; i < d.size(); ++i) l[i] = overlapMap_->getLocalElement(d[i]);
-    for (LO r : l) ovRows[r].insert(ovRows[r].end(), l.begin(), l.end());
-  };
-  for (int e : localElements_) {
-    elementDofs(e, dofs);
-    addLocal(dofs);
-  }
-  if (contact_) {
-    for (int k : contact_->ownedSlots())
-      addLocal(decomposed_ && contact_->slots()[k].paired() ? contact_->slaveSideDofs(k) : contact_->slotDofs(k));
-    for (int k : contact_->localMasterSlots()) addLocal(contact_->masterSideDofs(k));
-  }
-  Teuchos::Array<size_t> ovnnz(numOv);
-  for (size_t r = 0; r < numOv; ++r) {
-    std::sort(ovRows[r].begin(), ovRows[r].end());
-    ovRows[r].erase(std::unique(ovRows[r].begin(), ovRows[r].end()), ovRows[r].end());
-    ovnnz[r] = ovRows[r].size();
-  }
-  auto ov = Teuchos::rcp(new CrsGraph(overlapMap_, overlapMap_, ovnnz()));
-  for (size_t r = 0; r < numOv; ++r) ov->insertLocalIndices(r, Teuchos::ArrayView<const LO>(ovRows[r]));
-  ov->fillComplete(ownedMap_, ownedMap_);
-  overlapGraph_ = ov;
-  ++topologyVersion_;
 }
 
 void Model::assembleTractions() {

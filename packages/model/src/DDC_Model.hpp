@@ -320,7 +320,11 @@ class Model {
   void buildContact(ContactComponent::SurfaceElementSource surfaceElements);
   void buildDofNumbering();
   void buildConstraints();
+  /// The sparsity patterns (DDC_ModelTopology.cpp): the owned graph, then
+  /// the overlap map, its import/export and the overlap graph.
   void buildTopology();
+  void buildOwnedGraph();
+  void buildOverlapGraph();
   void assembleTractions();
   /// The nodal forces of the tractions `which` (indices in bcs_.tractions)
   /// at s = 1, owned map.

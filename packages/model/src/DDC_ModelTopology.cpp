@@ -1,0 +1,218 @@
+// The model's sparsity patterns (Model::buildTopology): the owned graph, the
+// overlap map and the overlap graph.
+//
+// The columns of a node's DOF rows are the DOFs of the nodes it shares an
+// element with, the same for each of its dim() rows; the patterns are built
+// from those node neighbours, in compressed rows, and expanded one row at a
+// time into the graph. Collecting the element DOF lists per DOF row instead
+// (each row receiving every element's whole list, then sorted and made
+// unique) held about 1.5 kB per owned DOF in 3-D at once, 18 times the node
+// neighbours: about 0.7 GB per rank on block_3d at 3.9M DOFs on 8 ranks, the
+// run's set-up peak (doc/performance.md, "Memory at set-up").
+#include <Tpetra_Export.hpp>
+#include <Tpetra_Import.hpp>
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <type_traits>
+
+#include "DDC_Model.hpp"
+
+namespace ddc {
+
+namespace {
+
+/// For each of `numRows` nodes (node n's row is row[n], -1: none), the nodes
+/// it shares one of `elements` with, itself included, sorted and unique.
+struct NodeNeighbours {
+  std::vector<size_t> offset;  ///< numRows + 1
+  std::vector<int> nodes;
+
+  NodeNeighbours(const Mesh& mesh, const std::vector<int>& elements, const std::vector<int>& row, int numRows)
+      : offset(size_t(numRows) + 1, 0) {
+    for (int e : elements) {
+      const int nn = mesh.elementNumNodes(e);
+      const int* en = mesh.elementNodes(e);
+      for (int i = 0; i < nn; ++i)
+        if (row[en[i]] >= 0) offset[row[en[i]] + 1] += nn;
+    }
+    std::partial_sum(offset.begin(), offset.end(), offset.begin());
+    nodes.resize(offset.back());
+    std::vector<size_t> next(offset.begin(), offset.end() - 1);
+    for (int e : elements) {
+      const int nn = mesh.elementNumNodes(e);
+      const int* en = mesh.elementNodes(e);
+      for (int i = 0; i < nn; ++i) {
+        if (row[en[i]] < 0) continue;
+        std::copy(en, en + nn, nodes.begin() + next[row[en[i]]]);
+        next[row[en[i]]] += nn;
+      }
+    }
+    // Sort and make each row unique, compacting the rows as they shrink.
+    size_t out = 0, begin = 0;
+    for (int r = 0; r < numRows; ++r) {
+      const size_t end = offset[r + 1];
+      std::sort(nodes.begin() + begin, nodes.begin() + end);
+      const size_t count = std::unique(nodes.begin() + begin, nodes.begin() + end) - (nodes.begin() + begin);
+      if (out != begin) std::copy(nodes.begin() + begin, nodes.begin() + begin + count, nodes.begin() + out);
+      offset[r] = out;
+      out += count;
+      begin = end;
+    }
+    offset[numRows] = out;
+    nodes.resize(out);
+  }
+  const int* begin(int r) const { return nodes.data() + offset[r]; }
+  const int* end(int r) const { return nodes.data() + offset[r + 1]; }
+};
+
+/// The columns rows get from contact slots, by row (surface rows only).
+/// Index: global ids (owned graph) or the overlap map's local ids (overlap
+/// graph).
+template <class Index>
+using ExtraColumns = std::map<Index, std::vector<Index>>;
+
+/// Each index of `dofs` couples with all of them (a contact slot's DOFs).
+template <class Index>
+void addCoupled(const std::vector<Index>& dofs, ExtraColumns<Index>& extra) {
+  for (Index r : dofs) extra[r].insert(extra[r].end(), dofs.begin(), dofs.end());
+}
+
+/// A fill-complete graph on `rows` (columns: `cols`, or none for global
+/// indices) whose row r holds the sorted, unique columns `columns(r, v)`
+/// puts in v: called twice per row, once to count and once to insert, so
+/// that no more than one row's columns exist at a time.
+template <class Index, class Columns>
+Teuchos::RCP<CrsGraph> rowByRowGraph(const Teuchos::RCP<const Map>& rows, const Teuchos::RCP<const Map>& cols,
+                                     const Teuchos::RCP<const Map>& domainRange, const Columns& columns) {
+  const size_t numRows = rows->getNodeNumElements();
+  Teuchos::Array<size_t> nnz(numRows);
+  std::vector<Index> v;
+  for (size_t r = 0; r < numRows; ++r) {
+    columns(r, v);
+    nnz[r] = v.size();
+  }
+  auto graph = cols.is_null() ? Teuchos::rcp(new CrsGraph(rows, nnz())) : Teuchos::rcp(new CrsGraph(rows, cols, nnz()));
+  for (size_t r = 0; r < numRows; ++r) {
+    columns(r, v);
+    if constexpr (std::is_same<Index, GO>::value)
+      graph->insertGlobalIndices(rows->getGlobalElement(LO(r)), Teuchos::ArrayView<const GO>(v));
+    else
+      graph->insertLocalIndices(LO(r), Teuchos::ArrayView<const LO>(v));
+  }
+  graph->fillComplete(domainRange, domainRange);
+  return graph;
+}
+
+template <class Index>
+void sortUnique(std::vector<Index>& v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
+
+}  // namespace
+
+void Model::buildTopology() {
+  buildOwnedGraph();
+  buildOverlapGraph();
+  ++topologyVersion_;
+}
+
+void Model::buildOwnedGraph() {
+  // Rows of owned DOFs with the columns of every element and contact slot
+  // touching them (the whole mesh and all pairs are known on every rank, so
+  // no communication is needed). Owned node i (in DOF order) has the rows
+  // first + d i + c.
+  const Mesh& mesh = *mesh_;
+  const int d = mesh.dim(), me = comm_->getRank();
+  const GO first = ownedMap_->getMinGlobalIndex();
+  std::vector<int> row(mesh.numNodes(), -1);
+  int numOwnedNodes = 0;
+  for (int n = 0; n < mesh.numNodes(); ++n)
+    if (nodeOwner_[n] == me) row[n] = int((nodeDof_[n] - first) / d), ++numOwnedNodes;
+  std::vector<int> all(mesh.numElements());
+  std::iota(all.begin(), all.end(), 0);
+  const NodeNeighbours nb(mesh, all, row, numOwnedNodes);
+  std::vector<int>().swap(all);
+  ExtraColumns<GO> extra;
+  if (contact_)
+    for (int k = 0; k < static_cast<int>(contact_->slots().size()); ++k) addCoupled(contact_->slotDofs(k), extra);
+  auto columns = [&](size_t r, std::vector<GO>& cols) {
+    cols.clear();
+    const GO g = first + GO(r);
+    const int n = dofEntity_[g];
+    if (n >= 0)
+      for (const int* m = nb.begin(row[n]); m != nb.end(row[n]); ++m)
+        for (int c = 0; c < d; ++c) cols.push_back(dof(*m, c));
+    const auto it = extra.find(g);
+    if (it != extra.end()) cols.insert(cols.end(), it->second.begin(), it->second.end());
+    sortUnique(cols);
+  };
+  ownedGraph_ = rowByRowGraph<GO>(ownedMap_, Teuchos::null, ownedMap_, columns);
+}
+
+void Model::buildOverlapGraph() {
+  // The overlap map: owned DOFs first, then the ghosts of local elements and
+  // slots. The local nodes (those of local elements) get rows in node order.
+  const Mesh& mesh = *mesh_;
+  const int d = mesh.dim(), me = comm_->getRank();
+  const GO first = ownedMap_->getMinGlobalIndex();
+  const size_t numOwned = ownedMap_->getNodeNumElements();
+  std::vector<int> row(mesh.numNodes(), -1);
+  std::vector<GO> ghosts;
+  auto addGhosts = [&](const std::vector<GO>& dofs) {
+    for (GO g : dofs)
+      if (g < first || g >= first + static_cast<GO>(numOwned)) ghosts.push_back(g);
+  };
+  for (int e : localElements_)
+    for (int i = 0; i < mesh.elementNumNodes(e); ++i) row[mesh.elementNodes(e)[i]] = 0;
+  int numLocalNodes = 0;
+  for (int n = 0; n < mesh.numNodes(); ++n) {
+    if (row[n] < 0) continue;
+    row[n] = numLocalNodes++;
+    if (nodeOwner_[n] != me)
+      for (int c = 0; c < d; ++c) ghosts.push_back(dof(n, c));
+  }
+  // The DOFs each local contact slot couples (global ids).
+  std::vector<std::vector<GO>> slotLists;
+  if (contact_) {
+    for (int k : contact_->ownedSlots())
+      slotLists.push_back(decomposed_ && contact_->slots()[k].paired() ? contact_->slaveSideDofs(k)
+                                                                        : contact_->slotDofs(k));
+    for (int k : contact_->localMasterSlots()) slotLists.push_back(contact_->masterSideDofs(k));
+  }
+  for (const auto& list : slotLists) addGhosts(list);
+  sortUnique(ghosts);
+  std::vector<GO> gids(numOwned);
+  std::iota(gids.begin(), gids.end(), first);
+  gids.insert(gids.end(), ghosts.begin(), ghosts.end());
+  std::vector<GO>().swap(ghosts);
+  overlapMap_ = Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                     Teuchos::ArrayView<const GO>(gids), 0, comm_));
+  importer_ = Teuchos::rcp(new Tpetra::Import<LO, GO, Node>(ownedMap_, overlapMap_));
+  exporter_ = Teuchos::rcp(new Tpetra::Export<LO, GO, Node>(overlapMap_, ownedMap_));
+
+  // The overlap graph: entries of local elements and slots only, columns
+  // indexed by the overlap map so element DOF lists are local column indices.
+  const NodeNeighbours nb(mesh, localElements_, row, numLocalNodes);
+  ExtraColumns<LO> extra;
+  for (const auto& list : slotLists) {
+    std::vector<LO> l(list.size());
+    for (size_t i = 0; i < list.size(); ++i) l[i] = overlapMap_->getLocalElement(list[i]);
+    addCoupled(l, extra);
+  }
+  std::vector<std::vector<GO>>().swap(slotLists);
+  auto columns = [&](size_t r, std::vector<LO>& cols) {
+    cols.clear();
+    const int n = dofEntity_[gids[r]];
+    if (n >= 0 && row[n] >= 0)
+      for (const int* m = nb.begin(row[n]); m != nb.end(row[n]); ++m)
+        for (int c = 0; c < d; ++c) cols.push_back(overlapMap_->getLocalElement(dof(*m, c)));
+    const auto it = extra.find(LO(r));
+    if (it != extra.end()) cols.insert(cols.end(), it->second.begin(), it->second.end());
+    sortUnique(cols);
+  };
+  overlapGraph_ = rowByRowGraph<LO>(overlapMap_, overlapMap_, ownedMap_, columns);
+}
+
+}  // namespace ddc
