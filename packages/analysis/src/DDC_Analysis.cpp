@@ -71,12 +71,12 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
       "refine less, run on more ranks or hosts, or set 'Solver/Memory Check' = false to run anyway";
   memoryBudget_ = MemoryBudget();
   PL& meshParams = params.sublist("Mesh");
-  auto mesh = buildMesh(meshParams, factory_, baseDirectory, &memory, memoryHint);
+  auto mesh = buildMesh(meshParams, factory_, baseDirectory, &memory, memoryHint, rawComm(comm_));
   auto elements = makeBodyElements(*mesh, meshParams, factory_);
   // Nearly incompressible materials lock: said at the start and with a
   // Newton failure, where it is the likely cause (with the other caveats).
   caveats_ = nearlyIncompressibleBodies(*mesh, meshParams);
-  requireAdmissibleElements(*mesh, elements);
+  requireAdmissibleElements(*mesh, elements, rawComm(comm_));
   auto bcs = BoundaryConditions::fromParameters(params.sublist("Boundary Conditions"), *mesh, "Boundary Conditions");
   // The integrators' terms of the previous step take the external force as
   // the time times Model::externalForce(): a traction's Load Curve is static.

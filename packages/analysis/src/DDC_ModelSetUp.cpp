@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include "DDC_AnalysisParameters.hpp"
 #include "DDC_Error.hpp"
@@ -14,6 +15,7 @@
 #include "DDC_Gmsh.hpp"
 #include "DDC_InputDeck.hpp"
 #include "DDC_MeshGenerators.hpp"
+#include "DDC_MpiRecords.hpp"
 #include "DDC_ParallelPartition.hpp"
 #include "DDC_Parameters.hpp"
 
@@ -28,11 +30,34 @@ constexpr double kNearlyIncompressible = 0.49;
 /// The range of a body's extent and coordinates buildMesh() accepts.
 constexpr double kMinBodyExtent = 1e-100;
 constexpr double kMaxCoordinate = Mesh::kMaxCoordinate;
+
+/// This rank's even share [first, last) of `count` items in rank order: the
+/// lowest rank that finds an error has the lowest item.
+std::pair<int, int> evenShare(int count, MPI_Comm comm) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  return {int(static_cast<long long>(count) * rank / size), int(static_cast<long long>(count) * (rank + 1) / size)};
+}
+
+/// check(first, last) on this rank's even share of `count` items; the
+/// InputError of the lowest rank that throws one is thrown on every rank.
+template <class Check>
+void checkShareCollectively(int count, MPI_Comm comm, const Check& check) {
+  const auto [first, last] = evenShare(count, comm);
+  std::string error;
+  try {
+    check(first, last);
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  raiseCollectively<InputError>(comm, error);
+}
 }  // namespace
 
 std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const ElementFactory& factory,
                                 const std::string& baseDirectory, const MemoryLimit* budget,
-                                const std::string& budgetHint) {
+                                const std::string& budgetHint, MPI_Comm comm) {
   PL validMesh("Mesh");
   validMesh.sublist("Bodies");
   validateLevel(meshParams, validMesh, "Mesh");
@@ -109,7 +134,8 @@ std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const Elemen
                           << kMaxCoordinate << " (lengths this far from 1 under- or overflow in the element "
                              "arithmetic): choose other length units");
   }
-  mesh->check();
+  mesh->checkConnectivity();
+  checkShareCollectively(mesh->numElements(), comm, [&](int first, int last) { mesh->checkShapes(first, last); });
   return mesh;
 }
 
@@ -165,9 +191,14 @@ std::string nearlyIncompressibleBodies(const Mesh& mesh, const PL& meshParams) {
   return text;
 }
 
-void requireAdmissibleElements(const Mesh& mesh, const std::vector<std::shared_ptr<const Element>>& elements) {
+namespace {
+
+/// Elements [first, last) of `mesh` (the inverted or degenerate ones by the
+/// element's own Jacobian).
+void requireAdmissibleShare(const Mesh& mesh, const std::vector<std::shared_ptr<const Element>>& elements, int first,
+                            int last) {
   const int d = mesh.dim();
-  for (int e = 0; e < mesh.numElements(); ++e) {
+  for (int e = first; e < last; ++e) {
     const int nn = mesh.elementNumNodes(e);
     Eigen::MatrixXd X(nn, d);
     for (int i = 0; i < nn; ++i)
@@ -181,6 +212,14 @@ void requireAdmissibleElements(const Mesh& mesh, const std::vector<std::shared_p
                                                   << ", first node at (" << mesh.coordText(mesh.elementNodes(e)[0])
                                                   << ")");
   }
+}
+
+}  // namespace
+
+void requireAdmissibleElements(const Mesh& mesh, const std::vector<std::shared_ptr<const Element>>& elements,
+                               MPI_Comm comm) {
+  checkShareCollectively(mesh.numElements(), comm,
+                         [&](int first, int last) { requireAdmissibleShare(mesh, elements, first, last); });
 }
 
 namespace {

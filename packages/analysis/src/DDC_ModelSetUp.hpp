@@ -26,9 +26,12 @@ namespace ddc {
 /// \param budget if given, the memory a rank may use for the replicated mesh
 ///        (Mesh::setMemoryBudget(): generators refuse a body that does not fit)
 /// \param budgetHint what the user can do about it, for that message
+/// \param comm the ranks that share the per-element checks (Mesh::checkShapes):
+///        each checks an even share, and an error found on any of them is
+///        thrown on all (that of the lowest element); collective over comm
 std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const ElementFactory& factory,
                                 const std::string& baseDirectory, const MemoryLimit* budget = nullptr,
-                                const std::string& budgetHint = "");
+                                const std::string& budgetHint = "", MPI_Comm comm = MPI_COMM_SELF);
 
 /// One element evaluator per body (index = body index), from
 /// Mesh/Bodies/<body>/Element.
@@ -40,10 +43,12 @@ std::vector<std::shared_ptr<const Element>> makeBodyElements(const Mesh& mesh, T
 /// (no mixed u-p formulation), so they lock.
 std::string nearlyIncompressibleBodies(const Mesh& mesh, const Teuchos::ParameterList& meshParams);
 
-/// Refuse inverted or degenerate elements (every rank holds the mesh, so
-/// every rank reaches the same verdict).
-/// \throws InputError naming the element, its body and its first node
-void requireAdmissibleElements(const Mesh& mesh, const std::vector<std::shared_ptr<const Element>>& elements);
+/// Refuse inverted or degenerate elements. The ranks of `comm` check an even
+/// share of the elements each; collective over comm.
+/// \throws InputError on every rank, naming the lowest such element, its
+///         body and its first node
+void requireAdmissibleElements(const Mesh& mesh, const std::vector<std::shared_ptr<const Element>>& elements,
+                               MPI_Comm comm = MPI_COMM_SELF);
 
 /// Refuse a quasi-static model with a body that its prescribed
 /// displacements do not hold and no contact pair joins to another body, and

@@ -134,6 +134,11 @@ std::vector<std::string> Mesh::sideSetNames() const {
 }
 
 void Mesh::check() const {
+  checkConnectivity();
+  checkShapes(0, numElements());
+}
+
+void Mesh::checkConnectivity() const {
   std::vector<char> used(numNodes(), 0);
   for (int b = 0; b < numBodies(); ++b) {
     const Body& body = bodies_[b];
@@ -146,22 +151,28 @@ void Mesh::check() const {
                                            << en[i] << " outside the body");
         used[en[i]] = 1;
       }
-      if (dim_ == 3) {
-        std::array<std::array<double, 3>, 8> corners;
-        for (int i = 0; i < referenceCell(body.cellType).numCorners; ++i) corners[i] = coords_[en[i]];
-        const CornerJacobian j = cornerJacobian(body.cellType, corners.data());
-        DDC_INPUT_REQUIRE(j.verdict == CornerJacobian::Verdict::Valid,
-                          "mesh: element " << e << " of body '" << body.name << "' (" << cellTypeName(body.cellType)
-                                           << ", first node " << en[0] << " at (" << coords_[en[0]][0] << ", "
-                                           << coords_[en[0]][1] << ", " << coords_[en[0]][2] << ")) is "
-                                           << describeCornerJacobian(body.cellType, j));
-      }
     }
   }
   for (int n = 0; n < numNodes(); ++n)
     DDC_INPUT_REQUIRE(used[n], "mesh: node " << n << " at (" << coords_[n][0] << ", " << coords_[n][1]
                                             << (dim_ == 3 ? ", " + std::to_string(coords_[n][2]) : std::string())
                                             << ") belongs to no element");
+}
+
+void Mesh::checkShapes(int first, int last) const {
+  if (dim_ != 3) return;
+  for (int e = std::max(first, 0); e < std::min(last, numElements()); ++e) {
+    const Body& body = bodies_[elemBody_[e]];
+    const int* en = elementNodes(e);
+    std::array<std::array<double, 3>, 8> corners;
+    for (int i = 0; i < referenceCell(body.cellType).numCorners; ++i) corners[i] = coords_[en[i]];
+    const CornerJacobian j = cornerJacobian(body.cellType, corners.data());
+    DDC_INPUT_REQUIRE(j.verdict == CornerJacobian::Verdict::Valid,
+                      "mesh: element " << e << " of body '" << body.name << "' (" << cellTypeName(body.cellType)
+                                       << ", first node " << en[0] << " at (" << coords_[en[0]][0] << ", "
+                                       << coords_[en[0]][1] << ", " << coords_[en[0]][2] << ")) is "
+                                       << describeCornerJacobian(body.cellType, j));
+  }
 }
 
 std::string Mesh::coordText(int n) const {
@@ -191,9 +202,9 @@ void Mesh::setMemoryBudget(double bytes, std::string source, std::string hint) {
 void Mesh::requireRoom(double nodes, double elements, int nodesPerElement, const std::string& path) const {
   if (memoryBudget_ < 0.0) return;
   const double have = replicatedBytes(numNodes(), numElements(), 27);
-  // The generator's grid of points and cell lists exist while it runs.
-  const double need = have + replicatedBytes(nodes, elements, nodesPerElement) + 28.0 * nodes +
-                      12.0 * nodesPerElement * elements;
+  // The generator's grid of points (coordinates and node numbers, 28 B a
+  // point) exists while it runs; its cells are visited one at a time.
+  const double need = have + replicatedBytes(nodes, elements, nodesPerElement) + 28.0 * nodes;
   DDC_INPUT_REQUIRE(need <= memoryBudget_,
                     "'" << path << "': the mesh would have " << std::llround(nodes) << " nodes and "
                         << std::llround(elements) << " elements, about " << formatBytes(need) << " on every rank (each rank holds the whole "

@@ -72,9 +72,9 @@ class Mesh {
   /// Generators check against this before they allocate (default: none).
   /// \param hint what the user can do, appended to the message
   void setMemoryBudget(double bytes, std::string source, std::string hint);
-  /// 	hrows InputError naming `path`, the sizes, the estimate and the budget
+  /// \throws InputError naming `path`, the sizes, the estimate and the budget
   ///         if the mesh so far plus a body of `nodes` nodes and `elements`
-  ///         elements (and the generator's transient copies) would not fit.
+  ///         elements (and the generator's grid of points) would not fit.
   void requireRoom(double nodes, double elements, int nodesPerElement, const std::string& path) const;
   ///@}
 
@@ -119,8 +119,15 @@ class Mesh {
   /// element is inverted or degenerate by cornerJacobian(); the message names
   /// the body, the element and where det J fails. 2-D elements are checked
   /// by the Analysis with the element's own Jacobian (which also sees Quad9
-  /// mid-side nodes) and are not repeated here.
+  /// mid-side nodes) and are not repeated here. checkConnectivity(), then
+  /// checkShapes() of every element.
   void check() const;
+  /// The part of check() that needs the whole mesh: every body has elements,
+  /// references only its own nodes and uses every one of them.
+  void checkConnectivity() const;
+  /// The part of check() element by element, for the elements [first, last)
+  /// (3-D: cornerJacobian(); nothing in 2-D), so that ranks can share it.
+  void checkShapes(int first, int last) const;
 
  private:
   int dim_ = 0;
