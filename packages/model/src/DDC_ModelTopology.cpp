@@ -71,10 +71,12 @@ struct NodeNeighbours {
 template <class Index>
 using ExtraColumns = std::map<Index, std::vector<Index>>;
 
-/// Each index of `dofs` couples with all of them (a contact slot's DOFs).
-template <class Index>
-void addCoupled(const std::vector<Index>& dofs, ExtraColumns<Index>& extra) {
-  for (Index r : dofs) extra[r].insert(extra[r].end(), dofs.begin(), dofs.end());
+/// Each index of `dofs` couples with all of them (a contact slot's DOFs);
+/// kept for the rows `keep(r)` accepts (those of the graph being built).
+template <class Index, class Keep>
+void addCoupled(const std::vector<Index>& dofs, ExtraColumns<Index>& extra, const Keep& keep) {
+  for (Index r : dofs)
+    if (keep(r)) extra[r].insert(extra[r].end(), dofs.begin(), dofs.end());
 }
 
 /// A fill-complete graph on `rows` and `cols` whose row r holds the local
@@ -134,9 +136,11 @@ void Model::buildOwnedGraph() {
   std::iota(all.begin(), all.end(), 0);
   const NodeNeighbours nb(mesh, all, row, numOwnedNodes);
   std::vector<int>().swap(all);
+  const size_t numOwned = ownedMap_->getNodeNumElements();
+  const auto owned = [&](GO g) { return g >= first && g < first + GO(numOwned); };
   ExtraColumns<GO> extra;
   if (contact_)
-    for (int k = 0; k < static_cast<int>(contact_->slots().size()); ++k) addCoupled(contact_->slotDofs(k), extra);
+    for (int k = 0; k < static_cast<int>(contact_->slots().size()); ++k) addCoupled(contact_->slotDofs(k), extra, owned);
   auto globalColumns = [&](size_t r, std::vector<GO>& cols) {
     cols.clear();
     const GO g = first + GO(r);
@@ -151,8 +155,6 @@ void Model::buildOwnedGraph() {
   // row holds its own), then the others sorted by owning rank and id — by
   // id, as every rank owns one contiguous range in rank order. With one
   // rank it is the owned map itself.
-  const size_t numOwned = ownedMap_->getNodeNumElements();
-  const auto owned = [&](GO g) { return g >= first && g < first + GO(numOwned); };
   std::vector<GO> remote, cols;
   for (size_t r = 0; r < numOwned; ++r) {
     globalColumns(r, cols);
@@ -228,7 +230,7 @@ void Model::buildOverlapGraph() {
   for (const auto& list : slotLists) {
     std::vector<LO> l(list.size());
     for (size_t i = 0; i < list.size(); ++i) l[i] = overlapMap_->getLocalElement(list[i]);
-    addCoupled(l, extra);
+    addCoupled(l, extra, [](LO) { return true; });
   }
   std::vector<std::vector<GO>>().swap(slotLists);
   // A local node's d DOFs are consecutive in the overlap map.
