@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <array>
-#include <functional>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <random>
 #include <sstream>
@@ -62,9 +62,9 @@ int pointsPerCell(CellType t) { return numCellNodes(t) == referenceCell(t).numCo
 
 /// Calls `visit` with the corners of every cell of `g` as grid points, in the
 /// corner order of cell type `t`, cells in grid order (one cell at a time: a
-/// list of all cells would cost a fine grid's generator tens of MB). A quadrilateral or hexahedron fills one
-/// grid cell; tetrahedra split each grid cell into the six tetrahedra of the
-/// Kuhn (Freudenthal) triangulation, one per path 000 -> 111 along the edges
+/// list of all cells would cost a fine grid's generator tens of MB). A
+/// quadrilateral or hexahedron fills one grid cell; tetrahedra split each
+/// grid cell into the six tetrahedra of the Kuhn (Freudenthal) triangulation, one per path 000 -> 111 along the edges
 /// of the cube, i.e. one per ordering of the three axes. All of them share
 /// the main diagonal and every face of the cube is cut along the diagonal
 /// from its lowest to its highest corner, so the face splits of two

@@ -140,7 +140,8 @@ void Model::buildOwnedGraph() {
   const auto owned = [&](GO g) { return g >= first && g < first + GO(numOwned); };
   ExtraColumns<GO> extra;
   if (contact_)
-    for (int k = 0; k < static_cast<int>(contact_->slots().size()); ++k) addCoupled(contact_->slotDofs(k), extra, owned);
+    for (int k = 0; k < static_cast<int>(contact_->slots().size()); ++k)
+      addCoupled(contact_->slotDofs(k), extra, owned);
   auto globalColumns = [&](size_t r, std::vector<GO>& cols) {
     cols.clear();
     const GO g = first + GO(r);
