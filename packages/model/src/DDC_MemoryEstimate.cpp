@@ -19,12 +19,14 @@ namespace {
 // (~70 MiB); the tables in doc/user-guide.md, "Memory", printed by
 // test/benchmark/memory_estimate.sh.
 
-/// Bytes per stored matrix entry: the owned matrix, its overlap copy used in
-/// assembly, their graphs (measured with Belos-MueLu: 21 B).
-constexpr double kMatrixBytesPerEntry = 21.0;
-/// Belos-MueLu / Belos-FROSch: matrix plus hierarchy / subdomain matrices
-/// (measured 48 B on 1 rank to 70 B on 16 ranks with block_3d).
-constexpr double kIterativeBytesPerEntry = 56.0;
+/// Bytes per stored matrix entry: the owned matrix and its graph (8 B value,
+/// 4 B column index; the rows other ranks own are assembled in a buffer of
+/// the interface rows only). Assembling into a whole overlap copy first
+/// took 21 B (measured with Belos-MueLu).
+constexpr double kMatrixBytesPerEntry = 12.0;
+/// Belos-MueLu / Belos-FROSch: hierarchy / subdomain matrices beyond the
+/// matrix (measured 27 B on 1 rank to 49 B on 16 ranks with block_3d).
+constexpr double kIterativeBytesPerEntry = 35.0;
 /// METIS's dual graph and work arrays, built on every rank from the whole
 /// mesh, per element corner (measured 37 B: 37 MiB for 131,072 Hex8).
 constexpr double kPartitionBytesPerCorner = 37.0;
@@ -136,7 +138,7 @@ MemoryEstimate estimateMemory(const Mesh& mesh, const Partition& partition, int 
         linear && linear->isParameter("Type") ? linear->get<std::string>("Type") : std::string("MUMPS");
     est.matrix = kMatrixBytesPerEntry * entries / ranks;
     if (type == "Belos-MueLu" || type == "Belos-FROSch") {
-      est.solver = (kIterativeBytesPerEntry - kMatrixBytesPerEntry) * entries / ranks;
+      est.solver = kIterativeBytesPerEntry * entries / ranks;
       std::snprintf(what, sizeof what, "%s preconditioner", type.c_str());
     } else if (type == "Amesos2") {
       // Gathered to rank 0 and factorised there (KLU2 fills about twice as

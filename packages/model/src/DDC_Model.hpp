@@ -321,10 +321,10 @@ class Model {
   void buildDofNumbering();
   void buildConstraints();
   /// The sparsity patterns (DDC_ModelTopology.cpp): the owned graph, then
-  /// the overlap map, its import/export and the overlap graph.
+  /// the overlap map, its import/export and the ghost graph.
   void buildTopology();
   void buildOwnedGraph();
-  void buildOverlapGraph();
+  void buildGhostGraph();
   void assembleTractions();
   /// The nodal forces of the tractions `which` (indices in bcs_.tractions)
   /// at s = 1, owned map.
@@ -369,8 +369,18 @@ class Model {
   std::vector<char> constrained_;
   std::vector<std::pair<int, int>> constraintSource_;
   Teuchos::RCP<const Map> ownedMap_, overlapMap_;
-  Teuchos::RCP<const CrsGraph> ownedGraph_, overlapGraph_;
-  mutable Teuchos::RCP<CrsMatrix> overlapMatrix_;  ///< assembly buffer on overlapGraph_, reused
+  Teuchos::RCP<const CrsGraph> ownedGraph_;
+  /// The rows of the overlap map other ranks own (its LIDs from the number
+  /// of owned DOFs on), their pattern (columns: overlap LIDs), the assembly
+  /// buffer on it (reused while the pattern lasts) and the export that adds
+  /// it into the owners' rows of the tangent.
+  Teuchos::RCP<const Map> ghostRowMap_;
+  Teuchos::RCP<const CrsGraph> ghostGraph_;
+  mutable Teuchos::RCP<CrsMatrix> ghostMatrix_;
+  Teuchos::RCP<const Tpetra::Export<LO, GO, Node>> ghostExporter_;
+  /// Overlap LID -> column LID of the owned graph (invalid for a DOF no
+  /// owned row couples with): owned rows are assembled in place.
+  std::vector<LO> ownedColumn_;
   Teuchos::RCP<const Tpetra::Export<LO, GO, Node>> exporter_;
   Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> importer_;
   Teuchos::RCP<Vector> fext_;

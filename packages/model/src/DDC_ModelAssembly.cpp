@@ -1,9 +1,13 @@
 // Model::assemble(): one pass over this rank's elements and the contact
-// component's contributions, into overlap structures exported to the owned
-// layout. The passes of one call share their buffers in Model::Assembly.
+// component's contributions, into overlap vectors exported to the owned
+// layout and, for the tangent, into its owned rows in place and a ghost-row
+// matrix exported to the rows' owners. The passes of one call share their
+// buffers in Model::Assembly.
 #include "DDC_Model.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
+#include <stdexcept>
+#include <string>
 
 #include "DDC_Error.hpp"
 #include "DDC_MpiRecords.hpp"
@@ -35,6 +39,9 @@ class Model::Assembly {
   void addToSubdomain(int e, const ElementResult& er);
   /// Contact row entries of one contribution for the rigid-motion check.
   void addContactRow(const std::vector<GO>& d, const ElementResult& r);
+  /// Zero the tangent's values and the ghost rows' (kept between calls,
+  /// same graph until the topology changes) for summing into them.
+  void beginTangent();
   void exportResidual(double lambda);
   void exportTangent();
 
@@ -44,7 +51,10 @@ class Model::Assembly {
   Teuchos::RCP<Vector> uov_, aov_, vov_, dpov_, fov_, rov_;
   Teuchos::ArrayRCP<const double> ud_, ad_, vd_, dp_;
   Teuchos::ArrayRCP<double> fd_, rd_;
-  CrsMatrix* Kov_ = nullptr;
+  CrsMatrix* K_ = nullptr;       // the tangent: owned rows, summed in place
+  CrsMatrix* Kghost_ = nullptr;  // the rows other ranks own (Model::ghostMatrix_)
+  LO numOwned_ = 0;
+  std::vector<LO> kcols_;  // one contribution's columns in the tangent's column map
   unsigned what_ = kEnergy;
   RigidMotionCheck* rigid_ = nullptr;
   std::vector<LO> lids_;
@@ -75,16 +85,8 @@ Model::Assembly::Assembly(const Model& model, const Vector& u, const AssemblyReq
     rov_ = Teuchos::rcp(new Vector(m_.overlapMap_));
     rd_ = rov_->getDataNonConst();
   }
-  // The overlap matrix is kept between calls (same graph until the topology
-  // changes): refill it instead of allocating its values every iteration.
-  if (req_.tangent) {
-    if (m_.overlapMatrix_.is_null() || m_.overlapMatrix_->getCrsGraph() != m_.overlapGraph_)
-      m_.overlapMatrix_ = Teuchos::rcp(new CrsMatrix(m_.overlapGraph_));
-    else
-      m_.overlapMatrix_->resumeFill();
-    Kov_ = m_.overlapMatrix_.get();
-    Kov_->setAllToScalar(0.0);
-  }
+  numOwned_ = LO(m_.ownedMap_->getNodeNumElements());
+  if (req_.tangent) beginTangent();
   if (req_.fint || req_.residual) what_ |= kResidual;
   if (req_.tangent || req_.prescribedStep || req_.subdomains) what_ |= kTangent;
   // Stiffness-proportional damping needs the element tangents for C v.
@@ -139,9 +141,22 @@ void Model::Assembly::scatter(ElementResult& er) {
         er.tangent.col(a).setZero();
       }
     Ke_ = er.tangent;  // row-major copy: host elements need not be symmetric
-    for (int a = 0; a < n; ++a)
-      Kov_->sumIntoLocalValues(lids_[a], Teuchos::ArrayView<const LO>(lids_.data(), n),
-                               Teuchos::ArrayView<const double>(Ke_.data() + a * n, n));
+    kcols_.resize(n);
+    for (int b = 0; b < n; ++b) kcols_[b] = m_.ownedColumn_[lids_[b]];
+    for (int a = 0; a < n; ++a) {
+      const Teuchos::ArrayView<const double> values(Ke_.data() + a * n, n);
+      const LO summed = lids_[a] < numOwned_
+                            ? K_->sumIntoLocalValues(lids_[a], Teuchos::ArrayView<const LO>(kcols_), values)
+                            : Kghost_->sumIntoLocalValues(lids_[a] - numOwned_,
+                                                          Teuchos::ArrayView<const LO>(lids_.data(), n), values);
+      // Tpetra skips an entry outside the pattern without a word; the
+      // patterns are built from the same elements and slots, so that is a
+      // defect here, never an input error.
+      if (summed != n)
+        throw std::logic_error("Model::assemble: DOF " +
+                               std::to_string(m_.overlapMap_->getGlobalElement(lids_[a])) +
+                               ": a contribution outside the matrix pattern");
+    }
   }
 }
 
@@ -333,19 +348,30 @@ void Model::Assembly::exportResidual(double lambda) {
   }
 }
 
+void Model::Assembly::beginTangent() {
+  K_ = req_.tangent;
+  if (K_->getCrsGraph().get() != m_.ownedGraph_.get())
+    throw std::logic_error("Model::assemble: the tangent was not made by createMatrix() for the current "
+                           "sparsity pattern (topologyVersion())");
+  K_->resumeFill();
+  K_->setAllToScalar(0.0);
+  if (m_.ghostMatrix_.is_null() || m_.ghostMatrix_->getCrsGraph().get() != m_.ghostGraph_.get())
+    m_.ghostMatrix_ = Teuchos::rcp(new CrsMatrix(m_.ghostGraph_));
+  else
+    m_.ghostMatrix_->resumeFill();
+  Kghost_ = m_.ghostMatrix_.get();
+  Kghost_->setAllToScalar(0.0);
+}
+
 void Model::Assembly::exportTangent() {
   const GO first = m_.ownedMap_->getMinGlobalIndex();
-  const size_t numOwned = m_.ownedMap_->getNodeNumElements();
-  CrsMatrix& K = *req_.tangent;
-  Kov_->fillComplete(m_.ownedMap_, m_.ownedMap_);
-  K.resumeFill();
-  K.setAllToScalar(0.0);
-  K.doExport(*Kov_, *m_.exporter_, Tpetra::ADD);
-  for (size_t l = 0; l < numOwned; ++l) {
-    const GO g = first + l;
-    if (m_.constrained_[g]) K.replaceGlobalValues(g, Teuchos::tuple<GO>(g), Teuchos::tuple<double>(1.0));
-  }
-  K.fillComplete(m_.ownedMap_, m_.ownedMap_);
+  Kghost_->fillComplete(m_.ownedMap_, m_.ownedMap_);
+  K_->doExport(*Kghost_, *m_.ghostExporter_, Tpetra::ADD);
+  // A prescribed DOF's row and column are the identity's (its element
+  // entries were dropped in scatter()); an owned DOF's column LID is its row LID.
+  for (LO l = 0; l < numOwned_; ++l)
+    if (m_.constrained_[first + l]) K_->replaceLocalValues(l, Teuchos::tuple<LO>(l), Teuchos::tuple<double>(1.0));
+  K_->fillComplete(m_.ownedMap_, m_.ownedMap_);
 }
 
 AssemblyResult Model::assemble(const Vector& u, double lambda, const AssemblyRequest& request) const {

@@ -1,5 +1,5 @@
 // The model's sparsity patterns (Model::buildTopology): the owned graph, the
-// overlap map and the overlap graph.
+// overlap map and the ghost graph (the overlap rows other ranks own).
 //
 // The columns of a node's DOF rows are the DOFs of the nodes it shares an
 // element with, the same for each of its dim() rows; the patterns are built
@@ -116,7 +116,7 @@ void sortUnique(std::vector<Index>& v) {
 
 void Model::buildTopology() {
   buildOwnedGraph();
-  buildOverlapGraph();
+  buildGhostGraph();
   ++topologyVersion_;
 }
 
@@ -183,9 +183,11 @@ void Model::buildOwnedGraph() {
   ownedGraph_ = compressedRowGraph(ownedMap_, colMap, ownedMap_, columns);
 }
 
-void Model::buildOverlapGraph() {
+void Model::buildGhostGraph() {
   // The overlap map: owned DOFs first, then the ghosts of local elements and
-  // slots. The local nodes (those of local elements) get rows in node order.
+  // slots (so an owned DOF has the same LID in the overlap map, the owned
+  // map and the owned graph's column map). The local nodes (those of local
+  // elements) get rows in node order.
   const Mesh& mesh = *mesh_;
   const int d = mesh.dim(), me = comm_->getRank();
   const GO first = ownedMap_->getMinGlobalIndex();
@@ -224,21 +226,25 @@ void Model::buildOverlapGraph() {
   importer_ = Teuchos::rcp(new Tpetra::Import<LO, GO, Node>(ownedMap_, overlapMap_));
   exporter_ = Teuchos::rcp(new Tpetra::Export<LO, GO, Node>(overlapMap_, ownedMap_));
 
-  // The overlap graph: entries of local elements and slots only, columns
-  // indexed by the overlap map so element DOF lists are local column indices.
+  // The ghost graph: rows of the overlap map past the owned DOFs (the
+  // ghosts), with the entries local elements and slots give them; columns
+  // indexed by the overlap map, so element DOF lists are its column indices.
+  // Owned rows are assembled into the tangent itself (ownedColumn_), so no
+  // rank keeps a second copy of its rows of the matrix.
   const NodeNeighbours nb(mesh, localElements_, row, numLocalNodes);
   ExtraColumns<LO> extra;
   for (const auto& list : slotLists) {
     std::vector<LO> l(list.size());
     for (size_t i = 0; i < list.size(); ++i) l[i] = overlapMap_->getLocalElement(list[i]);
-    addCoupled(l, extra, [](LO) { return true; });
+    addCoupled(l, extra, [&](LO r) { return r >= LO(numOwned); });
   }
   std::vector<std::vector<GO>>().swap(slotLists);
   // A local node's d DOFs are consecutive in the overlap map.
   std::vector<LO> nodeLid(numLocalNodes);
   for (int n = 0; n < mesh.numNodes(); ++n)
     if (row[n] >= 0) nodeLid[row[n]] = overlapMap_->getLocalElement(dof(n, 0));
-  auto columns = [&](size_t r, std::vector<LO>& cols) {
+  auto columns = [&](size_t ghost, std::vector<LO>& cols) {
+    const size_t r = numOwned + ghost;
     cols.clear();
     const int n = dofEntity_[gids[r]];
     if (n >= 0 && row[n] >= 0)
@@ -248,7 +254,15 @@ void Model::buildOverlapGraph() {
     if (it != extra.end()) cols.insert(cols.end(), it->second.begin(), it->second.end());
     sortUnique(cols);
   };
-  overlapGraph_ = compressedRowGraph(overlapMap_, overlapMap_, ownedMap_, columns);
+  ghostRowMap_ = Teuchos::rcp(new Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                      Teuchos::ArrayView<const GO>(gids.data() + numOwned, gids.size() - numOwned),
+                                      0, comm_));
+  ghostGraph_ = compressedRowGraph(ghostRowMap_, overlapMap_, ownedMap_, columns);
+  ghostExporter_ = Teuchos::rcp(new Tpetra::Export<LO, GO, Node>(ghostRowMap_, ownedMap_));
+  // Overlap LID -> the owned graph's column LID (owned DOFs keep theirs).
+  const Map& colMap = *ownedGraph_->getColMap();
+  ownedColumn_.resize(gids.size());
+  for (size_t l = 0; l < gids.size(); ++l) ownedColumn_[l] = l < numOwned ? LO(l) : colMap.getLocalElement(gids[l]);
 }
 
 }  // namespace ddc

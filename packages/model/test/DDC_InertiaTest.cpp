@@ -5,7 +5,8 @@
 //    consistent and HRZ-lumped;
 //  - assembling with Inertia{a, c, w} adds w M a to the residual (free DOFs
 //    only, fint unchanged) and c M to the tangent: (K_c − K_0) v = c M v;
-//  - a model whose body has no density refuses, on every rank.
+//  - a model whose body has no density refuses, on every rank;
+//  - a tangent not made by Model::createMatrix() is refused.
 #include <gtest/gtest.h>
 
 #include <Teuchos_CommHelpers.hpp>
@@ -164,6 +165,29 @@ TEST_P(Inertia, ABodyWithoutDensityIsRefusedOnEveryRank) {
   ASSERT_FALSE(m->bodiesWithoutMass().empty());
   auto v = m->createVector();
   EXPECT_THROW(m->kineticEnergy(*v), std::logic_error);
+}
+
+// The owned rows of the tangent are summed in place by the local indices of
+// the model's own pattern, so a matrix of another pattern would be filled
+// wrongly: it is refused (on every rank, before any communication).
+TEST_P(Inertia, ATangentOfAnotherPatternIsRefused) {
+  double V = 0.0;
+  auto m = makeModel(GetParam(), kRho, V);
+  auto diagonal = Teuchos::rcp(new ddc::CrsGraph(m->ownedMap(), 1));
+  for (size_t l = 0; l < m->ownedMap()->getNodeNumElements(); ++l) {
+    const ddc::GO g = m->ownedMap()->getGlobalElement(ddc::LO(l));
+    diagonal->insertGlobalIndices(g, Teuchos::tuple<ddc::GO>(g));
+  }
+  diagonal->fillComplete();
+  ddc::CrsMatrix K(diagonal);
+  K.fillComplete();
+  auto u = m->createVector();
+  ddc::AssemblyRequest request;
+  request.tangent = &K;
+  EXPECT_THROW(m->assemble(*u, 0.0, request), std::logic_error);
+  const auto own = m->createMatrix();
+  request.tangent = own.get();
+  EXPECT_NO_THROW(m->assemble(*u, 0.0, request));
 }
 
 INSTANTIATE_TEST_SUITE_P(Dimensions, Inertia, testing::Values(2, 3),
