@@ -48,6 +48,9 @@ Teuchos::ParameterList defaultMueLuList() {
           "the estimate is multiplied by this (Ifpack2's default: 1.1): an underestimate makes the "
           "preconditioner indefinite");
   }
+  p.set("transpose: use implicit", true,
+        "the restriction R = P^T is applied as a transpose product of P instead of being stored: less memory "
+        "at the same iterations (doc/performance.md, \"The matrix assembled in place\")");
   p.set("coarse: max size", 1000, "stop coarsening below this many rows");
   p.set("coarse: type", std::string("KLU2"),
         "exact coarse solve; correct in parallel only because repartitioning moves the coarse level to one "
