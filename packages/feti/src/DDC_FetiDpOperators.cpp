@@ -112,7 +112,7 @@ void DualOperator::applyKtildeInv(const std::vector<Subdomain>& subs, CoarseProb
         tLocalSolve += MPI_Wtime() - t0;
       } else {
         gp = lp.fp;
-        for (const Triplet& t : lp.KPr) gp[t.i] -= t.v * lp.xr[t.j];
+        addTriplets(lp.KPr, -1.0, lp.xr.data(), gp.data());
       }
       for (LO p = 0; p < s.np; ++p) g[coarse.sub[ls].ovLid[p]] += gp[p];
     }

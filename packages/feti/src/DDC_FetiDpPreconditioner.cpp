@@ -120,18 +120,18 @@ void Preconditioner::apply(const std::vector<Subdomain>& subs, const JumpOperato
       std::fill(b.vd.begin(), b.vd.end(), 0.0);
       rw.BDd.addTransposed(l.getRawPtr(), 1.0, b.vd.data());
       std::fill(b.wd.begin(), b.wd.end(), 0.0);
-      for (const Triplet& t : b.KDD) b.wd[t.i] += t.v * b.vd[t.j];
+      addTriplets(b.KDD, 1.0, b.vd.data(), b.wd.data());
       if (b.solver) {
         const double t1 = MPI_Wtime();
         b.vi.assign(s.ni, 0.0);
-        for (const Triplet& t : b.KID) b.vi[t.i] += t.v * b.vd[t.j];
+        addTriplets(b.KID, 1.0, b.vd.data(), b.vi.data());
         {
           auto in = b.iB->getDataNonConst(0);
           std::copy(b.vi.begin(), b.vi.end(), in.begin());
         }
         b.solver->solve(*b.iB, *b.iX);
         auto out = b.iX->getData(0);
-        for (const Triplet& t : b.KDI) b.wd[t.i] -= t.v * out[t.j];
+        addTriplets(b.KDI, -1.0, out.getRawPtr(), b.wd.data());
         tDirichletSolve += MPI_Wtime() - t1;
       }
       rw.BDd.add(b.wd.data(), yOv.data());
