@@ -17,7 +17,7 @@ namespace ddc {
 struct ContactOptions;
 
 /// What the estimate may miss: the largest measured/estimated ratio of the
-/// runs in doc/user-guide.md, "Memory" (1.20, block_3d Hex8 with MUMPS at
+/// runs in doc/user-guide.md, "Memory" (1.16, block_3d Hex8 with MUMPS at
 /// 56k DOFs on 2 ranks), rounded up. A run is refused when its estimate times this
 /// exceeds what its host offers.
 constexpr double kMemoryEstimateMargin = 1.25;
