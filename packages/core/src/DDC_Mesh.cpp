@@ -183,13 +183,15 @@ std::string Mesh::coordText(int n) const {
 }
 
 double Mesh::replicatedBytes(double nodes, double elements, int nodesPerElement) {
-  // Per node: coordinates (24 B), node sets, the analysis's owner, first
-  // DOF, per-DOF flags, sources and entities (~100 B in 3-D), the rigid-
-  // motion body index; per element: connectivity, offsets, body, partition,
-  // and the element graph METIS partitions. Counted from those arrays with
-  // room for their overheads, not measured on its own: in the runs of
-  // doc/user-guide.md, "Memory" it is 2 % (Hex8) to 14 % (Quad4) of the
-  // estimate.
+  // Per node: coordinates (24 B), node sets, the analysis's owner and first
+  // DOF, a prescribed bit per DOF, the rigid-motion body index; per
+  // element: connectivity, offsets, body, partition, and the element graph
+  // METIS partitions. Counted from those arrays with room for their
+  // overheads when the model also held a condition, an entity and a flag
+  // for every DOF (~40 B per node more than now, doc/performance.md "Memory
+  // at set-up"); kept as an upper bound, not measured on its own: in the
+  // runs of doc/user-guide.md, "Memory" it is 2 % (Hex8) to 14 % (Quad4) of
+  // the estimate.
   return 200.0 * nodes + (64.0 + 24.0 * nodesPerElement) * elements;
 }
 

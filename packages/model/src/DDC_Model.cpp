@@ -258,12 +258,16 @@ void Model::buildDofNumbering() {
     lmDof_[k] = next[contact_->slotOwner(static_cast<int>(k))];
     next[contact_->slotOwner(static_cast<int>(k))] += nm;
   }
-  dofEntity_.assign(numGlobalDofs_, 0);
+  // The owned part of overlapEntity_ (the overlap map lists the owned DOFs
+  // first; buildGhostGraph() adds the others).
+  overlapEntity_.assign(static_cast<size_t>(count[me]), 0);
   for (int n = 0; n < mesh.numNodes(); ++n)
-    for (int c = 0; c < d; ++c) dofEntity_[nodeDof_[n] + c] = n;
+    if (nodeOwner_[n] == me)
+      for (int c = 0; c < d; ++c) overlapEntity_[nodeDof_[n] - offset[me] + c] = n;
   for (size_t k = 0; k < numSlots; ++k)
-    for (int c = 0; c < contact_->numMultipliers(static_cast<int>(k)); ++c)
-      dofEntity_[lmDof_[k] + c] = -1 - static_cast<int>(k);
+    if (contact_->slotOwner(static_cast<int>(k)) == me)
+      for (int c = 0; c < contact_->numMultipliers(static_cast<int>(k)); ++c)
+        overlapEntity_[lmDof_[k] - offset[me] + c] = -1 - static_cast<int>(k);
   // One row per multiplier: slot k's c-th at k * maxMultipliers + c.
   rigidRowsPerSlot_ = maxMultipliers;
   rigidCheck_ = std::make_unique<RigidMotionCheck>(mesh, static_cast<int>(numSlots) * maxMultipliers);
@@ -271,38 +275,65 @@ void Model::buildDofNumbering() {
 }
 
 void Model::buildConstraints() {
+  // Every rank marks every prescribed DOF (one bit each); the owner of a DOF
+  // records which condition prescribes it and checks that two conditions on
+  // it (e.g. at the shared corner of two fixed edges) agree.
   const Mesh& mesh = *mesh_;
-  constrained_.assign(numGlobalDofs_, 0);
-  constraintSource_.assign(numGlobalDofs_, {-1, -1});
+  const int me = comm_->getRank();
+  const GO first = ownedMap_->getMinGlobalIndex();
+  constrained_.assign(static_cast<size_t>(numGlobalDofs_), false);
+  constraintSource_.assign(ownedMap_->getNodeNumElements(), {-1, -1});
+  std::string conflict;
   for (int b = 0; b < static_cast<int>(bcs_.displacements.size()); ++b) {
     const auto& bc = bcs_.displacements[b];
     for (int n : mesh.nodeSet(bc.setName))
       for (int c = 0; c < mesh.dim(); ++c) {
         if (!bc.fix[c]) continue;
         const GO g = dof(n, c);
-        auto& src = constraintSource_[g];
-        if (src.first >= 0) {
-          // Two conditions on one DOF must agree (e.g. shared corner of two fixed edges).
-          const auto& other = bcs_.displacements[src.first];
-          const auto& X = mesh.coord(n);
-          // Sampled at 0.5, 1 and every load-curve point of either.
-          std::vector<double> samples = {0.5, 1.0};
-          for (const auto* d : {&other, &bc})
-            for (const auto& pt : d->curve) samples.push_back(pt[0]);
-          for (double lam : samples) {
-            const double a = other.prescribed(c, X, lam), v = bc.prescribed(c, X, lam);
-            DDC_INPUT_REQUIRE(std::abs(a - v) <= 1e-12 * (1.0 + std::abs(a) + std::abs(v)),
-                              "boundary conditions '" << other.name << "' and '" << bc.name
-                                                      << "' prescribe different " << "xyz"[c]
-                                                      << " displacements at node " << n << " ("
-                                                      << mesh.coordText(n) << ")");
-          }
-          continue;
+        constrained_[static_cast<size_t>(g)] = true;
+        if (nodeOwner_[n] != me) continue;
+        auto& src = constraintSource_[static_cast<size_t>(g - first)];
+        if (src.first < 0) {
+          src = {b, n};
+        } else if (conflict.empty()) {
+          conflict = prescriptionConflict(bcs_.displacements[src.first], bc, n, c);
         }
-        src = {b, n};
-        constrained_[g] = 1;
       }
   }
+  raiseCollectively<InputError>(rawComm(*comm_), conflict);
+}
+
+std::string Model::prescriptionConflict(const DisplacementCondition& a, const DisplacementCondition& b, int n,
+                                        int c) const {
+  // Sampled at 0.5, 1 and every load-curve point of either.
+  const auto& X = mesh_->coord(n);
+  std::vector<double> samples = {0.5, 1.0};
+  for (const auto* d : {&a, &b})
+    for (const auto& pt : d->curve) samples.push_back(pt[0]);
+  for (double lam : samples) {
+    const double u = a.prescribed(c, X, lam), v = b.prescribed(c, X, lam);
+    if (std::abs(u - v) > 1e-12 * (1.0 + std::abs(u) + std::abs(v))) {
+      std::ostringstream os;
+      os << "boundary conditions '" << a.name << "' and '" << b.name << "' prescribe different " << "xyz"[c]
+         << " displacements at node " << n << " (" << mesh_->coordText(n) << ")";
+      return os.str();
+    }
+  }
+  return "";
+}
+
+GO Model::partitionFreeDof(GO g) const {
+  const GO d = mesh_->dim();
+  const int e = entityAt(overlapMap_->getLocalElement(g), g);
+  if (e >= 0) return GO(e) * d + (g - nodeDof_[e]);
+  const int k = -1 - e;
+  return GO(mesh_->numNodes()) * d + lmFreeOffset_[k] + (g - lmDof_[k]);
+}
+
+int Model::entityAt(LO l, GO g) const {
+  if (l == Teuchos::OrdinalTraits<LO>::invalid() || static_cast<size_t>(l) >= overlapEntity_.size())
+    throw std::logic_error("Model: DOF " + std::to_string(g) + " is not one of this rank's DOFs");
+  return overlapEntity_[static_cast<size_t>(l)];
 }
 
 void Model::elementDofs(int e, std::vector<GO>& dofs) const {
@@ -390,7 +421,7 @@ void Model::applyPrescribed(double lambda, Vector& u) const {
   auto d = u.getDataNonConst();
   const GO first = ownedMap_->getMinGlobalIndex();
   for (size_t l = 0; l < ownedMap_->getNodeNumElements(); ++l) {
-    const auto& src = constraintSource_[first + l];
+    const auto& src = constraintSource_[l];
     if (src.first < 0) continue;
     const int c = static_cast<int>((first + l) - nodeDof_[src.second]);
     d[l] = bcs_.displacements[src.first].prescribed(c, mesh_->coord(src.second), lambda);
@@ -402,7 +433,7 @@ void Model::prescribedIncrement(double lambda0, double lambda, Vector& du) const
   auto d = du.getDataNonConst();
   const GO first = ownedMap_->getMinGlobalIndex();
   for (size_t l = 0; l < ownedMap_->getNodeNumElements(); ++l) {
-    const auto& src = constraintSource_[first + l];
+    const auto& src = constraintSource_[l];
     if (src.first < 0) continue;
     const auto& bc = bcs_.displacements[src.first];
     const int c = static_cast<int>((first + l) - nodeDof_[src.second]);

@@ -9,6 +9,7 @@
 #include <Teuchos_Comm.hpp>
 #include <array>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -131,14 +132,11 @@ class Model {
   /// numNodes·dim + m for the multipliers, m counting them slot by slot
   /// (slot k's c-th: the slots before it have m multipliers; without
   /// friction m = k).
-  GO partitionFreeDof(GO g) const {
-    const int e = dofEntity_[g];
-    const GO d = mesh_->dim();
-    if (e >= 0) return GO(e) * d + (g - nodeDof_[e]);
-    const int k = -1 - e;
-    return GO(mesh_->numNodes()) * d + lmFreeOffset_[k] + (g - lmDof_[k]);
-  }
-  bool isConstrained(GO g) const { return constrained_[g] != 0; }
+  /// \throws std::logic_error if g is not a DOF of this rank's overlap map
+  GO partitionFreeDof(GO g) const;
+  /// Whether global DOF g is prescribed (any DOF of the model: the FETI-DP
+  /// primal selection asks about every subdomain's nodes).
+  bool isConstrained(GO g) const { return constrained_[static_cast<size_t>(g)]; }
 
   Teuchos::RCP<Vector> createVector() const;
   /// A matrix with the current sparsity pattern (changes with the pairing:
@@ -320,6 +318,10 @@ class Model {
   void buildContact(ContactComponent::SurfaceElementSource surfaceElements);
   void buildDofNumbering();
   void buildConstraints();
+  /// "" if displacement conditions `a` and `b` prescribe the same component
+  /// c at node n, else the message saying that they do not.
+  std::string prescriptionConflict(const DisplacementCondition& a, const DisplacementCondition& b, int n,
+                                   int c) const;
   /// The sparsity patterns (DDC_ModelTopology.cpp): the owned graph, then
   /// the overlap map, its import/export and the ghost graph.
   void buildTopology();
@@ -362,11 +364,24 @@ class Model {
   std::vector<GO> lmDof_;    ///< DOF of each contact slot's first multiplier (λ_n; λ_t follow it)
   std::vector<GO> lmFreeOffset_;  ///< multipliers of the slots before slot k (partitionFreeDof())
   int rigidRowsPerSlot_ = 1;  ///< rows of the rigid-motion check per slot (its most multipliers)
-  /// Per global DOF: its node (≥ 0), or −1 − k for the multiplier of slot k.
-  std::vector<int> dofEntity_;
+  /// Per DOF of the overlap map (by LID; the owned DOFs first): its node
+  /// (≥ 0), or −1 − k for a multiplier of slot k. Only this rank's DOFs:
+  /// a per-DOF array of the whole model on every rank would not shrink
+  /// with the ranks (doc/performance.md, "Memory at set-up").
+  std::vector<int> overlapEntity_;
+  /// overlapEntity_ of overlap LID l; throws std::logic_error for an
+  /// invalid LID (a DOF this rank does not have).
+  int entityAt(LO l, GO g) const;
+  /// overlapEntity_ of the overlap map's ghosts (`gids`: its GIDs; `row`:
+  /// ≥ 0 for the nodes of local elements), after the owned part.
+  void setGhostEntities(const std::vector<GO>& gids, const std::vector<int>& row);
+  static constexpr int kUnresolvedEntity = std::numeric_limits<int>::min();
   mutable std::unique_ptr<RigidMotionCheck> rigidCheck_;  ///< see AssemblyResult::freeMotions
   GO numGlobalDofs_ = 0;
-  std::vector<char> constrained_;
+  /// One bit per global DOF: prescribed (isConstrained()).
+  std::vector<bool> constrained_;
+  /// Per owned DOF (owned LID): the displacement condition prescribing it
+  /// (index in bcs_.displacements) and its node; {-1, -1} if free.
   std::vector<std::pair<int, int>> constraintSource_;
   Teuchos::RCP<const Map> ownedMap_, overlapMap_;
   Teuchos::RCP<const CrsGraph> ownedGraph_;

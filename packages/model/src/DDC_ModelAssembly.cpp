@@ -59,6 +59,7 @@ class Model::Assembly {
   RigidMotionCheck* rigid_ = nullptr;
   std::vector<LO> lids_;
   std::vector<char> con_;
+  std::vector<int> entities_;  ///< addContactRow(): the node or slot of each DOF of the row
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> Ke_;
   std::vector<LO> cols_;  // subdomain scatter buffers, reused across elements
   std::vector<double> vals_;
@@ -238,22 +239,25 @@ void Model::Assembly::elements() {
 }
 
 void Model::Assembly::addContactRow(const std::vector<GO>& d, const ElementResult& r) {
+  // (lids_ holds the overlap LIDs of d.)
   // The multipliers' rows of the tangent are the contact rows C_k: the
   // normal row always (an inactive one is empty), a frictional pair's
   // tangential rows only while it sticks (a slipping pair does not hold the
   // bodies along the surface).
   if (!rigid_) return;
   const int n = static_cast<int>(d.size());
+  entities_.resize(d.size());
+  for (int a = 0; a < n; ++a) entities_[a] = m_.entityAt(lids_[a], d[a]);
   int first = n;
-  while (first > 0 && m_.dofEntity_[d[first - 1]] < 0) --first;
+  while (first > 0 && entities_[first - 1] < 0) --first;
   if (first == 0 || first == n) return;
-  const int k = -1 - m_.dofEntity_[d[first]];
+  const int k = -1 - entities_[first];
   const bool sticks = m_.contact_->slots()[k].friction == FrictionState::Stick;
   for (int c = 0; c < n - first; ++c) {
     if (c > 0 && !sticks) break;
     const int row = first + c;
     for (int a = 0; a < first; ++a) {
-      const int node = m_.dofEntity_[d[a]];
+      const int node = entities_[a];
       if (r.tangent(row, a) != 0.0)
         rigid_->addRowEntry(k * m_.rigidRowsPerSlot_ + c, node, static_cast<int>(d[a] - m_.nodeDof_[node]),
                             position(node), r.tangent(row, a));
@@ -303,7 +307,7 @@ AssemblyResult Model::Assembly::finish(double lambda) {
   if (rigid_) {
     for (size_t l = 0; l < numOwned; ++l) {
       const GO g = first + static_cast<GO>(l);
-      const int n = m_.dofEntity_[g];
+      const int n = m_.overlapEntity_[l];
       if (m_.constrained_[g] && n >= 0) rigid_->addPrescribed(n, static_cast<int>(g - m_.nodeDof_[n]), position(n));
     }
     result.freeMotions = rigid_->freeMotions(*m_.comm_);

@@ -145,7 +145,7 @@ void Model::buildOwnedGraph() {
   auto globalColumns = [&](size_t r, std::vector<GO>& cols) {
     cols.clear();
     const GO g = first + GO(r);
-    const int n = dofEntity_[g];
+    const int n = overlapEntity_[r];
     if (n >= 0)
       for (const int* m = nb.begin(row[n]); m != nb.end(row[n]); ++m)
         for (int c = 0; c < d; ++c) cols.push_back(dof(*m, c));
@@ -243,10 +243,11 @@ void Model::buildGhostGraph() {
   std::vector<LO> nodeLid(numLocalNodes);
   for (int n = 0; n < mesh.numNodes(); ++n)
     if (row[n] >= 0) nodeLid[row[n]] = overlapMap_->getLocalElement(dof(n, 0));
+  setGhostEntities(gids, row);
   auto columns = [&](size_t ghost, std::vector<LO>& cols) {
     const size_t r = numOwned + ghost;
     cols.clear();
-    const int n = dofEntity_[gids[r]];
+    const int n = overlapEntity_[r];
     if (n >= 0 && row[n] >= 0)
       for (const int* m = nb.begin(row[n]); m != nb.end(row[n]); ++m)
         for (int c = 0; c < d; ++c) cols.push_back(nodeLid[row[*m]] + c);
@@ -263,6 +264,38 @@ void Model::buildGhostGraph() {
   const Map& colMap = *ownedGraph_->getColMap();
   ownedColumn_.resize(gids.size());
   for (size_t l = 0; l < gids.size(); ++l) ownedColumn_[l] = l < numOwned ? LO(l) : colMap.getLocalElement(gids[l]);
+}
+
+void Model::setGhostEntities(const std::vector<GO>& gids, const std::vector<int>& row) {
+  // The ghosts of local nodes from the nodes; those of contact slots (nodes
+  // of other ranks' elements, multipliers of slots other ranks own) by a
+  // search over the nodes and slots, which only contact needs.
+  const int d = mesh_->dim();
+  const size_t numOwned = ownedMap_->getNodeNumElements();
+  overlapEntity_.resize(numOwned);
+  overlapEntity_.resize(gids.size(), kUnresolvedEntity);
+  for (int n = 0; n < mesh_->numNodes(); ++n) {
+    if (row[n] < 0 || nodeOwner_[n] == comm_->getRank()) continue;
+    const LO l = overlapMap_->getLocalElement(dof(n, 0));
+    for (int c = 0; c < d; ++c) overlapEntity_[static_cast<size_t>(l) + c] = n;
+  }
+  std::vector<std::pair<GO, size_t>> unresolved;
+  for (size_t l = numOwned; l < gids.size(); ++l)
+    if (overlapEntity_[l] == kUnresolvedEntity) unresolved.emplace_back(gids[l], l);
+  if (unresolved.empty()) return;
+  std::sort(unresolved.begin(), unresolved.end());
+  auto resolve = [&](GO g, int entity) {
+    const auto it = std::lower_bound(unresolved.begin(), unresolved.end(), std::make_pair(g, size_t(0)));
+    if (it != unresolved.end() && it->first == g) overlapEntity_[it->second] = entity;
+  };
+  for (int n = 0; n < mesh_->numNodes(); ++n)
+    for (int c = 0; c < d; ++c) resolve(dof(n, c), n);
+  for (size_t k = 0; k < lmDof_.size(); ++k)
+    for (int c = 0; c < contact_->numMultipliers(static_cast<int>(k)); ++c)
+      resolve(lmDof_[k] + c, -1 - static_cast<int>(k));
+  for (size_t l = numOwned; l < gids.size(); ++l)
+    if (overlapEntity_[l] == kUnresolvedEntity)
+      throw std::logic_error("Model: overlap DOF " + std::to_string(gids[l]) + " is neither a node's nor a multiplier's");
 }
 
 }  // namespace ddc
