@@ -325,8 +325,12 @@ class Model {
   /// The sparsity patterns (DDC_ModelTopology.cpp): the owned graph, then
   /// the overlap map, its import/export and the ghost graph.
   void buildTopology();
-  void buildOwnedGraph();
-  void buildGhostGraph();
+  /// The nodes of this rank's elements and their neighbours
+  /// (DDC_ModelTopology.cpp). Collective.
+  struct LocalNodes;
+  std::unique_ptr<LocalNodes> localNodes() const;
+  void buildOwnedGraph(const LocalNodes& local);
+  void buildGhostGraph(const LocalNodes& local);
   void assembleTractions();
   /// The nodal forces of the tractions `which` (indices in bcs_.tractions)
   /// at s = 1, owned map.

@@ -4,7 +4,9 @@
 // The columns of a node's DOF rows are the DOFs of the nodes it shares an
 // element with, the same for each of its dim() rows; the patterns are built
 // from those node neighbours, in compressed rows, and expanded one row at a
-// time into the graph. Collecting the element DOF lists per DOF row instead
+// time into the graph. A rank reads only its own elements: the neighbours
+// other ranks' elements give the nodes it owns are sent by those ranks
+// (Model::localNodes()). Collecting the element DOF lists per DOF row instead
 // (each row receiving every element's whole list, then sorted and made
 // unique) held about 1.5 kB per owned DOF in 3-D at once, 18 times the node
 // neighbours: about 0.7 GB per rank on block_3d at 3.9M DOFs on 8 ranks, the
@@ -13,21 +15,33 @@
 #include <Tpetra_Import.hpp>
 #include <algorithm>
 #include <map>
+#include <memory>
 #include <numeric>
 
+#include "DDC_Error.hpp"
 #include "DDC_Model.hpp"
+#include "DDC_MpiRecords.hpp"
 
 namespace ddc {
 
 namespace {
 
+/// A node and a node it shares an element with (global node ids).
+struct NodePair {
+  int node, neighbour;
+  bool operator<(const NodePair& o) const { return node < o.node || (node == o.node && neighbour < o.neighbour); }
+  bool operator==(const NodePair& o) const { return node == o.node && neighbour == o.neighbour; }
+};
+
 /// For each of `numRows` nodes (node n's row is row[n], -1: none), the nodes
-/// it shares one of `elements` with, itself included, sorted and unique.
+/// it shares one of `elements` with, itself included, and the neighbours
+/// `extra` gives it, sorted and unique.
 struct NodeNeighbours {
   std::vector<size_t> offset;  ///< numRows + 1
   std::vector<int> nodes;
 
-  NodeNeighbours(const Mesh& mesh, const std::vector<int>& elements, const std::vector<int>& row, int numRows)
+  NodeNeighbours(const Mesh& mesh, const std::vector<int>& elements, const std::vector<int>& row, int numRows,
+                 const std::vector<NodePair>& extra)
       : offset(size_t(numRows) + 1, 0) {
     for (int e : elements) {
       const int nn = mesh.elementNumNodes(e);
@@ -35,6 +49,7 @@ struct NodeNeighbours {
       for (int i = 0; i < nn; ++i)
         if (row[en[i]] >= 0) offset[row[en[i]] + 1] += nn;
     }
+    for (const NodePair& p : extra) ++offset[row[p.node] + 1];
     std::partial_sum(offset.begin(), offset.end(), offset.begin());
     nodes.resize(offset.back());
     std::vector<size_t> next(offset.begin(), offset.end() - 1);
@@ -47,6 +62,7 @@ struct NodeNeighbours {
         next[row[en[i]]] += nn;
       }
     }
+    for (const NodePair& p : extra) nodes[next[row[p.node]]++] = p.neighbour;
     // Sort and make each row unique, compacting the rows as they shrink.
     size_t out = 0, begin = 0;
     for (int r = 0; r < numRows; ++r) {
@@ -114,28 +130,60 @@ void sortUnique(std::vector<Index>& v) {
 
 }  // namespace
 
+/// The nodes of this rank's elements (row[n] >= 0, in node order) and their
+/// neighbours: for a node of another rank, those of this rank's elements;
+/// for an owned node, also those of the other ranks' elements that touch
+/// it, which those ranks send (so no rank reads another's elements).
+struct Model::LocalNodes {
+  std::vector<int> row;
+  int numRows = 0;
+  NodeNeighbours neighbours;
+};
+
+std::unique_ptr<Model::LocalNodes> Model::localNodes() const {
+  const Mesh& mesh = *mesh_;
+  const int me = comm_->getRank();
+  std::vector<int> row(mesh.numNodes(), -1);
+  for (int e : localElements_)
+    for (int i = 0; i < mesh.elementNumNodes(e); ++i) row[mesh.elementNodes(e)[i]] = 0;
+  int numRows = 0;
+  for (int n = 0; n < mesh.numNodes(); ++n)
+    if (row[n] >= 0) row[n] = numRows++;
+  // What this rank's elements give the nodes other ranks own, to the owners.
+  std::vector<std::vector<NodePair>> send(comm_->getSize());
+  for (int e : localElements_) {
+    const int nn = mesh.elementNumNodes(e);
+    const int* en = mesh.elementNodes(e);
+    for (int i = 0; i < nn; ++i)
+      if (nodeOwner_[en[i]] != me)
+        for (int j = 0; j < nn; ++j) send[nodeOwner_[en[i]]].push_back({en[i], en[j]});
+  }
+  for (auto& v : send) sortUnique(v);
+  const std::vector<NodePair> received = exchangeRecords(rawComm(*comm_), send);
+  std::vector<std::vector<NodePair>>().swap(send);
+  for (const NodePair& p : received)
+    DDC_CHECK(nodeOwner_[p.node] == me && row[p.node] >= 0,
+              "node " << p.node << " received as owned by rank " << me << ", which has no element of it");
+  return std::unique_ptr<LocalNodes>(
+      new LocalNodes{row, numRows, NodeNeighbours(mesh, localElements_, row, numRows, received)});
+}
+
 void Model::buildTopology() {
-  buildOwnedGraph();
-  buildGhostGraph();
+  const std::unique_ptr<LocalNodes> local = localNodes();
+  buildOwnedGraph(*local);
+  buildGhostGraph(*local);
   ++topologyVersion_;
 }
 
-void Model::buildOwnedGraph() {
+void Model::buildOwnedGraph(const LocalNodes& local) {
   // Rows of owned DOFs with the columns of every element and contact slot
-  // touching them (the whole mesh and all pairs are known on every rank, so
-  // no communication is needed). Owned node i (in DOF order) has the rows
-  // first + d i + c.
-  const Mesh& mesh = *mesh_;
-  const int d = mesh.dim(), me = comm_->getRank();
+  // touching them: the elements' from the owned nodes' neighbours (other
+  // ranks' elements included, localNodes()), the slots' from the slots
+  // (all pairs are known on every rank).
+  const int d = mesh_->dim();
   const GO first = ownedMap_->getMinGlobalIndex();
-  std::vector<int> row(mesh.numNodes(), -1);
-  int numOwnedNodes = 0;
-  for (int n = 0; n < mesh.numNodes(); ++n)
-    if (nodeOwner_[n] == me) row[n] = int((nodeDof_[n] - first) / d), ++numOwnedNodes;
-  std::vector<int> all(mesh.numElements());
-  std::iota(all.begin(), all.end(), 0);
-  const NodeNeighbours nb(mesh, all, row, numOwnedNodes);
-  std::vector<int>().swap(all);
+  const std::vector<int>& row = local.row;
+  const NodeNeighbours& nb = local.neighbours;
   const size_t numOwned = ownedMap_->getNodeNumElements();
   const auto owned = [&](GO g) { return g >= first && g < first + GO(numOwned); };
   ExtraColumns<GO> extra;
@@ -183,30 +231,24 @@ void Model::buildOwnedGraph() {
   ownedGraph_ = compressedRowGraph(ownedMap_, colMap, ownedMap_, columns);
 }
 
-void Model::buildGhostGraph() {
+void Model::buildGhostGraph(const LocalNodes& local) {
   // The overlap map: owned DOFs first, then the ghosts of local elements and
   // slots (so an owned DOF has the same LID in the overlap map, the owned
-  // map and the owned graph's column map). The local nodes (those of local
-  // elements) get rows in node order.
+  // map and the owned graph's column map).
   const Mesh& mesh = *mesh_;
   const int d = mesh.dim(), me = comm_->getRank();
   const GO first = ownedMap_->getMinGlobalIndex();
   const size_t numOwned = ownedMap_->getNodeNumElements();
-  std::vector<int> row(mesh.numNodes(), -1);
+  const std::vector<int>& row = local.row;
+  const int numLocalNodes = local.numRows;
   std::vector<GO> ghosts;
   auto addGhosts = [&](const std::vector<GO>& dofs) {
     for (GO g : dofs)
       if (g < first || g >= first + static_cast<GO>(numOwned)) ghosts.push_back(g);
   };
-  for (int e : localElements_)
-    for (int i = 0; i < mesh.elementNumNodes(e); ++i) row[mesh.elementNodes(e)[i]] = 0;
-  int numLocalNodes = 0;
-  for (int n = 0; n < mesh.numNodes(); ++n) {
-    if (row[n] < 0) continue;
-    row[n] = numLocalNodes++;
-    if (nodeOwner_[n] != me)
+  for (int n = 0; n < mesh.numNodes(); ++n)
+    if (row[n] >= 0 && nodeOwner_[n] != me)
       for (int c = 0; c < d; ++c) ghosts.push_back(dof(n, c));
-  }
   // The DOFs each local contact slot couples (global ids).
   std::vector<std::vector<GO>> slotLists;
   if (contact_) {
@@ -231,7 +273,9 @@ void Model::buildGhostGraph() {
   // indexed by the overlap map, so element DOF lists are its column indices.
   // Owned rows are assembled into the tangent itself (ownedColumn_), so no
   // rank keeps a second copy of its rows of the matrix.
-  const NodeNeighbours nb(mesh, localElements_, row, numLocalNodes);
+  // A ghost row holds only what this rank's elements give it: the
+  // neighbours the owners received are in their rows, not here.
+  const NodeNeighbours& nb = local.neighbours;
   ExtraColumns<LO> extra;
   for (const auto& list : slotLists) {
     std::vector<LO> l(list.size());
