@@ -17,6 +17,7 @@
 #include <map>
 #include <memory>
 #include <numeric>
+#include <utility>
 
 #include "DDC_Error.hpp"
 #include "DDC_Model.hpp"
@@ -164,8 +165,8 @@ std::unique_ptr<Model::LocalNodes> Model::localNodes() const {
   for (const NodePair& p : received)
     DDC_CHECK(nodeOwner_[p.node] == me && row[p.node] >= 0,
               "node " << p.node << " received as owned by rank " << me << ", which has no element of it");
-  return std::unique_ptr<LocalNodes>(
-      new LocalNodes{row, numRows, NodeNeighbours(mesh, localElements_, row, numRows, received)});
+  NodeNeighbours neighbours(mesh, localElements_, row, numRows, received);
+  return std::unique_ptr<LocalNodes>(new LocalNodes{std::move(row), numRows, std::move(neighbours)});
 }
 
 void Model::buildTopology() {
