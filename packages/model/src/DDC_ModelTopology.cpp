@@ -314,7 +314,7 @@ void Model::buildGhostGraph(const LocalNodes& local) {
 void Model::setGhostEntities(const std::vector<GO>& gids, const std::vector<int>& row) {
   // The ghosts of local nodes from the nodes; those of contact slots (nodes
   // of other ranks' elements, multipliers of slots other ranks own) by a
-  // search over the nodes and slots, which only contact needs.
+  // search over the contact surfaces' nodes and the slots.
   const int d = mesh_->dim();
   const size_t numOwned = ownedMap_->getNodeNumElements();
   overlapEntity_.resize(numOwned);
@@ -333,7 +333,8 @@ void Model::setGhostEntities(const std::vector<GO>& gids, const std::vector<int>
     const auto it = std::lower_bound(unresolved.begin(), unresolved.end(), std::make_pair(g, size_t(0)));
     if (it != unresolved.end() && it->first == g) overlapEntity_[it->second] = entity;
   };
-  for (int n = 0; n < mesh_->numNodes(); ++n)
+  DDC_CHECK(contact_, "overlap DOFs that are not local nodes' without contact");
+  for (int n : contact_->surfaceNodes())
     for (int c = 0; c < d; ++c) resolve(dof(n, c), n);
   for (size_t k = 0; k < lmDof_.size(); ++k)
     for (int c = 0; c < contact_->numMultipliers(static_cast<int>(k)); ++c)
