@@ -377,8 +377,9 @@ class Model {
   /// invalid LID (a DOF this rank does not have).
   int entityAt(LO l, GO g) const;
   /// overlapEntity_ of the overlap map's ghosts (`gids`: its GIDs; `row`:
-  /// ≥ 0 for the nodes of local elements), after the owned part.
-  void setGhostEntities(const std::vector<GO>& gids, const std::vector<int>& row);
+  /// ≥ 0 for the nodes of local elements; `nodeLid`: by row, the overlap
+  /// LID of the node's first DOF), after the owned part.
+  void setGhostEntities(const std::vector<GO>& gids, const std::vector<int>& row, const std::vector<LO>& nodeLid);
   static constexpr int kUnresolvedEntity = std::numeric_limits<int>::min();
   mutable std::unique_ptr<RigidMotionCheck> rigidCheck_;  ///< see AssemblyResult::freeMotions
   GO numGlobalDofs_ = 0;

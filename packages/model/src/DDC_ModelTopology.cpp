@@ -288,7 +288,7 @@ void Model::buildGhostGraph(const LocalNodes& local) {
   std::vector<LO> nodeLid(numLocalNodes);
   for (int n = 0; n < mesh.numNodes(); ++n)
     if (row[n] >= 0) nodeLid[row[n]] = overlapMap_->getLocalElement(dof(n, 0));
-  setGhostEntities(gids, row);
+  setGhostEntities(gids, row, nodeLid);
   auto columns = [&](size_t ghost, std::vector<LO>& cols) {
     const size_t r = numOwned + ghost;
     cols.clear();
@@ -311,7 +311,8 @@ void Model::buildGhostGraph(const LocalNodes& local) {
   for (size_t l = 0; l < gids.size(); ++l) ownedColumn_[l] = l < numOwned ? LO(l) : colMap.getLocalElement(gids[l]);
 }
 
-void Model::setGhostEntities(const std::vector<GO>& gids, const std::vector<int>& row) {
+void Model::setGhostEntities(const std::vector<GO>& gids, const std::vector<int>& row,
+                             const std::vector<LO>& nodeLid) {
   // The ghosts of local nodes from the nodes; those of contact slots (nodes
   // of other ranks' elements, multipliers of slots other ranks own) by a
   // search over the contact surfaces' nodes and the slots.
@@ -321,8 +322,7 @@ void Model::setGhostEntities(const std::vector<GO>& gids, const std::vector<int>
   overlapEntity_.resize(gids.size(), kUnresolvedEntity);
   for (int n = 0; n < mesh_->numNodes(); ++n) {
     if (row[n] < 0 || nodeOwner_[n] == comm_->getRank()) continue;
-    const LO l = overlapMap_->getLocalElement(dof(n, 0));
-    for (int c = 0; c < d; ++c) overlapEntity_[static_cast<size_t>(l) + c] = n;
+    for (int c = 0; c < d; ++c) overlapEntity_[static_cast<size_t>(nodeLid[row[n]]) + c] = n;
   }
   std::vector<std::pair<GO, size_t>> unresolved;
   for (size_t l = numOwned; l < gids.size(); ++l)
