@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "DDC_Error.hpp"
 
@@ -173,6 +174,77 @@ void Mesh::checkShapes(int first, int last) const {
                                        << coords_[en[0]][1] << ", " << coords_[en[0]][2] << ")) is "
                                        << describeCornerJacobian(body.cellType, j));
   }
+}
+
+Mesh Mesh::part(const std::vector<int>& elements) const {
+  for (size_t i = 0; i < elements.size(); ++i)
+    if (elements[i] < 0 || elements[i] >= numElements() || (i > 0 && elements[i] <= elements[i - 1]))
+      throw std::invalid_argument("Mesh::part: element " + std::to_string(elements[i]) + " at position " +
+                                  std::to_string(i) + " is outside the mesh or not ascending");
+  // Local index of each node of the chosen elements, in node (= id) order.
+  std::vector<int> local(numNodes(), -1);
+  for (int e : elements)
+    for (int i = 0; i < elementNumNodes(e); ++i) local[elementNodes(e)[i]] = 0;
+  Mesh p;
+  p.dim_ = dim_;
+  p.isPart_ = true;
+  p.globalNodes_ = numGlobalNodes();
+  p.globalElements_ = numGlobalElements();
+  p.memoryBudget_ = memoryBudget_;
+  p.budgetSource_ = budgetSource_;
+  p.budgetHint_ = budgetHint_;
+  for (const Body& b : bodies_) {
+    Body q = b;
+    q.firstNode = q.numNodes = q.firstElement = q.numElements = 0;
+    p.bodies_.push_back(q);
+  }
+  // Bodies are contiguous ranges of nodes and elements, so walking both in
+  // order fills each body's range before the next one's.
+  for (int body = 0, n = 0; n < numNodes(); ++n) {
+    if (local[n] < 0) continue;
+    while (n >= bodies_[body].firstNode + bodies_[body].numNodes) p.bodies_[++body].firstNode = p.numNodes();
+    local[n] = p.numNodes();
+    p.coords_.push_back(coords_[n]);
+    p.nodeId_.push_back(nodeId(n));
+    p.bodies_[body].numNodes++;
+  }
+  for (size_t b = 1; b < bodies_.size(); ++b)
+    if (p.bodies_[b].numNodes == 0) p.bodies_[b].firstNode = p.bodies_[b - 1].firstNode + p.bodies_[b - 1].numNodes;
+  std::vector<int> localElement(numElements(), -1);
+  for (int e : elements) {
+    const int b = elemBody_[e];
+    if (p.bodies_[b].numElements == 0) p.bodies_[b].firstElement = p.numElements();
+    localElement[e] = p.numElements();
+    for (int i = 0; i < elementNumNodes(e); ++i) p.elemNodes_.push_back(local[elementNodes(e)[i]]);
+    p.elemOffset_.push_back(static_cast<int>(p.elemNodes_.size()));
+    p.elemBody_.push_back(b);
+    p.elementId_.push_back(elementId(e));
+    p.bodies_[b].numElements++;
+  }
+  for (size_t b = 0; b < bodies_.size(); ++b)
+    if (p.bodies_[b].numElements == 0)
+      p.bodies_[b].firstElement = b == 0 ? 0 : p.bodies_[b - 1].firstElement + p.bodies_[b - 1].numElements;
+  for (const auto& [name, nodes] : nodeSets_) {
+    auto& set = p.nodeSets_[name];
+    for (int n : nodes)
+      if (local[n] >= 0) set.push_back(local[n]);
+  }
+  for (const auto& [name, segments] : sideSets_) {
+    auto& set = p.sideSets_[name];
+    for (Segment s : segments) {
+      if (localElement[s.element] < 0) continue;
+      s.element = localElement[s.element];
+      for (int i = 0; i < s.numNodes; ++i) s.nodes[i] = local[s.nodes[i]];
+      set.push_back(s);
+    }
+  }
+  return p;
+}
+
+int Mesh::localNode(GlobalId id) const {
+  if (!isPart_) return id >= 0 && id < numNodes() ? static_cast<int>(id) : -1;
+  const auto it = std::lower_bound(nodeId_.begin(), nodeId_.end(), id);
+  return it != nodeId_.end() && *it == id ? static_cast<int>(it - nodeId_.begin()) : -1;
 }
 
 std::string Mesh::coordText(int n) const {

@@ -33,12 +33,22 @@ struct Body {
   int firstElement = 0, numElements = 0;
 };
 
-/// A replicated mesh of one dimension (2 or 3, set by its first body's cell
-/// type; bodies of another dimension are refused). Bodies do not share nodes. Set names are qualified
-/// by the body: "Upper Ring/outer". Each side set also defines a node set of
-/// the same name (the nodes of its segments).
+/// A mesh of one dimension (2 or 3, set by its first body's cell type;
+/// bodies of another dimension are refused). Bodies do not share nodes. Set
+/// names are qualified by the body: "Upper Ring/outer". Each side set also
+/// defines a node set of the same name (the nodes of its segments).
+///
+/// A mesh is either whole (what the generators and readers build: every
+/// node's and element's id is its index) or a part of a whole mesh (part()):
+/// some of its elements and their nodes, numbered from 0, each with its id
+/// in the whole mesh beside it, the way a rank holds its share of a
+/// distributed mesh (doc/architecture.md, "What a distributed mesh has to
+/// change").
 class Mesh {
  public:
+  /// An id in the whole mesh (part()).
+  using GlobalId = long long;
+
   /// Start a new body; nodes and elements added afterwards belong to it.
   /// Throws InputError if a body has this name already, `cellType` is not an
   /// element cell type, or its dimension differs from the other bodies'.
@@ -61,6 +71,32 @@ class Mesh {
   /// The corner nodes of facet `f` of element `e`, sorted: equal for the two
   /// elements that share the facet.
   std::vector<int> facetKey(int e, int f) const;
+
+  /// \name A part of a whole mesh
+  ///@{
+  /// The part made of `elements` (indices in this mesh, ascending, no
+  /// repeats) and their nodes. Its elements keep that order and its nodes
+  /// are in the order of their ids, so each body's nodes and elements stay
+  /// contiguous and every body is kept (with no elements if none is
+  /// chosen). Node sets keep the nodes the part holds, side sets the
+  /// segments of its elements; ids are this mesh's ids, so a part of a part
+  /// keeps the whole mesh's.
+  /// \throws std::invalid_argument if `elements` is not ascending or holds
+  ///         an index outside this mesh
+  Mesh part(const std::vector<int>& elements) const;
+  /// Whether this mesh is a part of a larger one (made by part()).
+  bool isPart() const { return isPart_; }
+  /// The id of node n in the whole mesh (n itself in a whole mesh).
+  GlobalId nodeId(int n) const { return isPart_ ? nodeId_[n] : n; }
+  /// The id of element e in the whole mesh (e itself in a whole mesh).
+  GlobalId elementId(int e) const { return isPart_ ? elementId_[e] : e; }
+  /// Nodes and elements of the whole mesh.
+  GlobalId numGlobalNodes() const { return isPart_ ? globalNodes_ : numNodes(); }
+  GlobalId numGlobalElements() const { return isPart_ ? globalElements_ : numElements(); }
+  /// The index of the node whose id in the whole mesh is `id`; −1 if this
+  /// mesh does not hold it.
+  int localNode(GlobalId id) const;
+  ///@}
 
   /// \name Memory budget of the replicated mesh (doc/user-guide.md, "Memory")
   /// Every rank holds the whole mesh and the analysis keeps per-node and
@@ -138,6 +174,9 @@ class Mesh {
   std::vector<int> elemNodes_;
   std::map<std::string, std::vector<int>> nodeSets_;
   std::map<std::string, std::vector<Segment>> sideSets_;
+  bool isPart_ = false;
+  std::vector<GlobalId> nodeId_, elementId_;  ///< a part's ids in the whole mesh (ascending)
+  GlobalId globalNodes_ = 0, globalElements_ = 0;
   double memoryBudget_ = -1.0;  ///< < 0: none
   std::string budgetSource_, budgetHint_;
 };

@@ -179,3 +179,70 @@ TEST(Mesh, InvariantChecksStayOnInEveryBuildType) {
     EXPECT_THAT(e.what(), HasSubstr("check '!bodies_.empty()' failed: addNode before beginBody"));
   }
 }
+
+TEST(Mesh, PartKeepsIdsBodiesAndSets) {
+  // Body A: two Quad4 side by side (nodes 0-5, elements 0-1); body B: one
+  // Quad4 (nodes 6-9, element 2).
+  Mesh m;
+  m.beginBody("A", CellType::Quad4);
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 3; ++i) m.addNode(i, j);
+  const int e0[4] = {0, 1, 4, 3}, e1[4] = {1, 2, 5, 4};
+  m.addElement(e0);
+  m.addElement(e1);
+  m.addSideSet(0, "bottom", {m.makeSegment(0, 0), m.makeSegment(1, 0)});
+  m.addNodeSet(0, "left", {0, 3});
+  addSquare(m, "B", 5.0);
+  EXPECT_FALSE(m.isPart());
+  EXPECT_EQ(m.nodeId(7), 7);
+  EXPECT_EQ(m.localNode(7), 7);
+  EXPECT_EQ(m.localNode(10), -1);
+
+  const Mesh p = m.part({1, 2});
+  EXPECT_TRUE(p.isPart());
+  EXPECT_EQ(p.numGlobalNodes(), 10);
+  EXPECT_EQ(p.numGlobalElements(), 3);
+  ASSERT_EQ(p.numNodes(), 8);  // 1, 2, 4, 5 of A and all of B
+  ASSERT_EQ(p.numElements(), 2);
+  const std::vector<long long> ids = {1, 2, 4, 5, 6, 7, 8, 9};
+  for (int n = 0; n < p.numNodes(); ++n) {
+    EXPECT_EQ(p.nodeId(n), ids[n]);
+    EXPECT_EQ(p.localNode(ids[n]), n);
+    EXPECT_EQ(p.coord(n), m.coord(static_cast<int>(ids[n])));
+  }
+  EXPECT_EQ(p.localNode(0), -1);
+  EXPECT_EQ(p.elementId(0), 1);
+  EXPECT_EQ(p.elementId(1), 2);
+  EXPECT_EQ(p.body(0).firstNode, 0);
+  EXPECT_EQ(p.body(0).numNodes, 4);
+  EXPECT_EQ(p.body(1).firstNode, 4);
+  EXPECT_EQ(p.body(1).numNodes, 4);
+  EXPECT_EQ(p.body(0).firstElement, 0);
+  EXPECT_EQ(p.body(1).firstElement, 1);
+  EXPECT_EQ(p.elementBody(1), 1);
+  // Connectivity in local numbers: element 1 of the whole mesh is {1, 2, 5, 4}.
+  EXPECT_THAT(std::vector<int>(p.elementNodes(0), p.elementNodes(0) + 4), ::testing::ElementsAre(0, 1, 3, 2));
+  EXPECT_NO_THROW(p.checkConnectivity());
+  // Sets restricted to what the part holds, in local numbers.
+  EXPECT_TRUE(p.nodeSet("A/left").empty());
+  EXPECT_THAT(p.nodeSet("A/bottom"), ::testing::ElementsAre(0, 1));  // nodes 1 and 2
+  ASSERT_EQ(p.sideSet("A/bottom").size(), 1u);
+  EXPECT_EQ(p.sideSet("A/bottom")[0].element, 0);
+  EXPECT_EQ(p.sideSet("A/bottom")[0].nodes[0], 0);
+  EXPECT_EQ(p.sideSet("A/bottom")[0].nodes[1], 1);
+
+  // A part of a part keeps the whole mesh's ids; a body with no element
+  // chosen stays, empty.
+  const Mesh q = p.part({1});
+  EXPECT_EQ(q.numNodes(), 4);
+  EXPECT_EQ(q.nodeId(0), 6);
+  EXPECT_EQ(q.elementId(0), 2);
+  EXPECT_EQ(q.numGlobalNodes(), 10);
+  EXPECT_EQ(q.body(0).numElements, 0);
+  EXPECT_EQ(q.body(0).numNodes, 0);
+  EXPECT_EQ(q.body(1).firstNode, 0);
+  EXPECT_EQ(q.body(1).firstElement, 0);
+
+  EXPECT_THROW(m.part({2, 1}), std::invalid_argument);
+  EXPECT_THROW(m.part({3}), std::invalid_argument);
+}
