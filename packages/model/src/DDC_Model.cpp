@@ -8,8 +8,10 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <numeric>
 #include <set>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 #include <stdexcept>
 
@@ -80,6 +82,13 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
   subdomainRank_ = subdomainOwnerRank(partition_.numSubdomains, comm_->getSize());
   for (int e = 0; e < mesh_->numElements(); ++e)
     if (subdomainRank_[partition_.elementSubdomain[e]] == comm_->getRank()) localElements_.push_back(e);
+  if (mesh_->isPart()) {
+    // A part of a mesh (Mesh::part()) is this rank's elements and nodes.
+    DDC_CHECK(static_cast<int>(localElements_.size()) == mesh_->numElements(),
+              "Model: the part of the mesh on rank " << comm_->getRank() << " holds elements of other ranks");
+    if (contactOptions_.enabled())
+      throw std::logic_error("Model: contact on a part of a mesh (Mesh::part()) is not supported yet");
+  }
 
   computeNodeOwners();
   if (contactOptions_.enabled()) buildContact(std::move(surfaceElements));
@@ -218,6 +227,10 @@ Model::~Model() = default;
 
 void Model::computeNodeOwners() {
   const Mesh& mesh = *mesh_;
+  if (mesh.isPart()) {
+    computePartNodeOwners();
+    return;
+  }
   nodeOwner_.assign(mesh.numNodes(), comm_->getSize());
   for (int e = 0; e < mesh.numElements(); ++e) {
     const int r = subdomainRank_[partition_.elementSubdomain[e]];
@@ -228,25 +241,91 @@ void Model::computeNodeOwners() {
   }
 }
 
-void Model::buildDofNumbering() {
+void Model::computePartNodeOwners() {
+  // The owner of a node is the lowest rank that holds it. Each node id has
+  // a directory rank (ids split evenly over the ranks), which learns who
+  // holds the node and tells them the lowest.
+  const Mesh& mesh = *mesh_;
+  const int nranks = comm_->getSize(), me = comm_->getRank();
+  const Mesh::GlobalId numIds = std::max<Mesh::GlobalId>(mesh.numGlobalNodes(), 1);
+  struct Holder {
+    Mesh::GlobalId node;
+    int rank;
+  };
+  std::vector<std::vector<Holder>> send(nranks);
+  for (int n = 0; n < mesh.numNodes(); ++n)
+    send[static_cast<int>(mesh.nodeId(n) * nranks / numIds)].push_back({mesh.nodeId(n), me});
+  std::vector<Holder> held = exchangeRecords(rawComm(*comm_), send);
+  std::sort(held.begin(), held.end(),
+            [](const Holder& a, const Holder& b) { return a.node < b.node || (a.node == b.node && a.rank < b.rank); });
+  for (auto& v : send) v.clear();
+  for (size_t i = 0, j = 0; i < held.size(); i = j) {
+    for (j = i; j < held.size() && held[j].node == held[i].node; ++j)
+      send[held[j].rank].push_back({held[i].node, held[i].rank});
+  }
+  std::vector<Holder>().swap(held);
+  nodeOwner_.assign(mesh.numNodes(), nranks);
+  for (const Holder& h : exchangeRecords(rawComm(*comm_), send)) nodeOwner_[mesh.localNode(h.node)] = h.rank;
+  for (int n = 0; n < mesh.numNodes(); ++n)
+    DDC_CHECK(nodeOwner_[n] < nranks, "Model: node " << mesh.nodeId(n) << " got no owner");
+}
+
+std::vector<GO> Model::numberNodeDofs(std::vector<GO>& count) {
   const Mesh& mesh = *mesh_;
   const int nranks = comm_->getSize(), me = comm_->getRank();
   const size_t numSlots = contact_ ? contact_->slots().size() : 0;
-  // Per rank: its nodes' DOFs, then its multipliers; ranks in order.
-  std::vector<GO> count(nranks, 0);
   const int d = mesh.dim();
-  for (int n = 0; n < mesh.numNodes(); ++n) count[nodeOwner_[n]] += d;
-  for (size_t k = 0; k < numSlots; ++k)
-    count[contact_->slotOwner(static_cast<int>(k))] += contact_->numMultipliers(static_cast<int>(k));
+  // Per rank: its nodes' DOFs, then its multipliers; ranks in order, a
+  // rank's nodes in the order of their ids.
+  count.assign(nranks, 0);
+  if (mesh.isPart()) {
+    GO mine = 0;
+    for (int n = 0; n < mesh.numNodes(); ++n) mine += nodeOwner_[n] == me ? d : 0;
+    Teuchos::gatherAll<int, GO>(*comm_, 1, &mine, nranks, count.data());
+  } else {
+    for (int n = 0; n < mesh.numNodes(); ++n) count[nodeOwner_[n]] += d;
+    for (size_t k = 0; k < numSlots; ++k)
+      count[contact_->slotOwner(static_cast<int>(k))] += contact_->numMultipliers(static_cast<int>(k));
+  }
   std::vector<GO> offset(nranks + 1, 0);
   for (int r = 0; r < nranks; ++r) offset[r + 1] = offset[r] + count[r];
   numGlobalDofs_ = offset[nranks];
   std::vector<GO> next(offset.begin(), offset.end() - 1);
   nodeDof_.assign(mesh.numNodes(), -1);
   for (int n = 0; n < mesh.numNodes(); ++n) {
+    if (mesh.isPart() && nodeOwner_[n] != me) continue;
     nodeDof_[n] = next[nodeOwner_[n]];
     next[nodeOwner_[n]] += d;
   }
+  if (mesh.isPart()) {
+    // The DOFs of the nodes other ranks own, from their owners.
+    struct Request {
+      Mesh::GlobalId node;
+      GO dof;  ///< the requesting rank in the request, the first DOF in the answer
+    };
+    std::vector<std::vector<Request>> send(nranks);
+    for (int n = 0; n < mesh.numNodes(); ++n)
+      if (nodeOwner_[n] != me) send[nodeOwner_[n]].push_back({mesh.nodeId(n), me});
+    const std::vector<Request> asked = exchangeRecords(rawComm(*comm_), send);
+    for (auto& v : send) v.clear();
+    for (const Request& q : asked) {
+      const int n = mesh.localNode(q.node);
+      DDC_CHECK(n >= 0 && nodeOwner_[n] == me, "Model: rank " << me << " asked for node " << q.node << " it does not own");
+      send[static_cast<int>(q.dof)].push_back({q.node, nodeDof_[n]});
+    }
+    for (const Request& a : exchangeRecords(rawComm(*comm_), send)) nodeDof_[mesh.localNode(a.node)] = a.dof;
+  }
+  return next;
+}
+
+void Model::buildDofNumbering() {
+  const Mesh& mesh = *mesh_;
+  const int me = comm_->getRank();
+  const size_t numSlots = contact_ ? contact_->slots().size() : 0;
+  const int d = mesh.dim();
+  std::vector<GO> count;
+  std::vector<GO> next = numberNodeDofs(count);
+  const GO myFirst = std::accumulate(count.begin(), count.begin() + me, GO(0));
   // A slot's multipliers are consecutive: λ_n, then λ_t (frictional pairs).
   lmDof_.assign(numSlots, -1);
   lmFreeOffset_.assign(numSlots, 0);
@@ -263,14 +342,15 @@ void Model::buildDofNumbering() {
   overlapEntity_.assign(static_cast<size_t>(count[me]), 0);
   for (int n = 0; n < mesh.numNodes(); ++n)
     if (nodeOwner_[n] == me)
-      for (int c = 0; c < d; ++c) overlapEntity_[nodeDof_[n] - offset[me] + c] = n;
+      for (int c = 0; c < d; ++c) overlapEntity_[nodeDof_[n] - myFirst + c] = n;
   for (size_t k = 0; k < numSlots; ++k)
     if (contact_->slotOwner(static_cast<int>(k)) == me)
       for (int c = 0; c < contact_->numMultipliers(static_cast<int>(k)); ++c)
-        overlapEntity_[lmDof_[k] - offset[me] + c] = -1 - static_cast<int>(k);
+        overlapEntity_[lmDof_[k] - myFirst + c] = -1 - static_cast<int>(k);
   // One row per multiplier: slot k's c-th at k * maxMultipliers + c.
   rigidRowsPerSlot_ = maxMultipliers;
-  rigidCheck_ = std::make_unique<RigidMotionCheck>(mesh, static_cast<int>(numSlots) * maxMultipliers);
+  rigidCheck_ = std::make_unique<RigidMotionCheck>(mesh, static_cast<int>(numSlots) * maxMultipliers, comm_.get(),
+                                                   [this, me](int n) { return nodeOwner_[n] == me; });
   ownedMap_ = Teuchos::rcp(new Map(numGlobalDofs_, static_cast<size_t>(count[me]), 0, comm_));
 }
 
@@ -301,6 +381,18 @@ void Model::buildConstraints() {
       }
   }
   raiseCollectively<InputError>(rawComm(*comm_), conflict);
+  if (mesh.isPart()) shareConstrainedBits();
+}
+
+void Model::shareConstrainedBits() {
+  // A part marks the DOFs of its own nodes; every rank answers
+  // isConstrained() for any DOF, so the bits are OR-ed over the ranks.
+  constexpr size_t kBits = 64;
+  std::vector<std::uint64_t> words((constrained_.size() + kBits - 1) / kBits, 0), all(words.size(), 0);
+  for (size_t g = 0; g < constrained_.size(); ++g)
+    if (constrained_[g]) words[g / kBits] |= std::uint64_t(1) << (g % kBits);
+  MPI_Allreduce(words.data(), all.data(), static_cast<int>(words.size()), MPI_UINT64_T, MPI_BOR, rawComm(*comm_));
+  for (size_t g = 0; g < constrained_.size(); ++g) constrained_[g] = (all[g / kBits] >> (g % kBits)) & 1;
 }
 
 std::string Model::prescriptionConflict(const DisplacementCondition& a, const DisplacementCondition& b, int n,
@@ -315,7 +407,7 @@ std::string Model::prescriptionConflict(const DisplacementCondition& a, const Di
     if (std::abs(u - v) > 1e-12 * (1.0 + std::abs(u) + std::abs(v))) {
       std::ostringstream os;
       os << "boundary conditions '" << a.name << "' and '" << b.name << "' prescribe different " << "xyz"[c]
-         << " displacements at node " << n << " (" << mesh_->coordText(n) << ")";
+         << " displacements at node " << mesh_->nodeId(n) << " (" << mesh_->coordText(n) << ")";
       return os.str();
     }
   }
@@ -325,9 +417,9 @@ std::string Model::prescriptionConflict(const DisplacementCondition& a, const Di
 GO Model::partitionFreeDof(GO g) const {
   const GO d = mesh_->dim();
   const int e = entityAt(overlapMap_->getLocalElement(g), g);
-  if (e >= 0) return GO(e) * d + (g - nodeDof_[e]);
+  if (e >= 0) return GO(mesh_->nodeId(e)) * d + (g - nodeDof_[e]);
   const int k = -1 - e;
-  return GO(mesh_->numNodes()) * d + lmFreeOffset_[k] + (g - lmDof_[k]);
+  return GO(mesh_->numGlobalNodes()) * d + lmFreeOffset_[k] + (g - lmDof_[k]);
 }
 
 int Model::entityAt(LO l, GO g) const {
@@ -751,11 +843,17 @@ std::string Model::describeNonFinite(const Vector& v) const {
     what = os.str();
   }
 
+  // A whole mesh and its DOF numbering are on every rank: each names the
+  // same place. A part holds only its own nodes: the DOF's owner names it.
+  if (!mesh_->isPart()) return placeOf(at, bad == at, what);
+  return firstErrorOnAnyRank(*comm_, ownedMap_->isNodeGlobalElement(at) ? placeOf(at, bad == at, what) : "");
+}
+
+std::string Model::placeOf(GO at, bool nonFinite, const std::string& what) const {
   std::ostringstream os;
-  // The mesh and the DOF numbering are replicated: every rank names the same place.
   for (size_t k = 0; k < lmDof_.size(); ++k)
     if (lmDof_[k] == at) {
-      os << (bad == at ? what + " at the contact multiplier of " : what + ", at the contact multiplier of ")
+      os << (nonFinite ? what + " at the contact multiplier of " : what + ", at the contact multiplier of ")
          << describeSlot(static_cast<int>(k));
       return os.str();
     }
@@ -767,13 +865,13 @@ std::string Model::describeNonFinite(const Vector& v) const {
     os << what << " at DOF " << at;
     return os.str();
   }
-  os << what << (bad == at ? " at " : ", at ") << "u_" << "xyz"[component] << " of node " << node << " ("
+  os << what << (nonFinite ? " at " : ", at ") << "u_" << "xyz"[component] << " of node " << mesh_->nodeId(node) << " ("
      << mesh_->coordText(node) << ")";
   for (int e = 0; e < mesh_->numElements(); ++e) {
     const int* nodes = mesh_->elementNodes(e);
     if (std::find(nodes, nodes + mesh_->elementNumNodes(e), node) == nodes + mesh_->elementNumNodes(e)) continue;
     const int b = mesh_->elementBody(e);
-    os << ", in element " << e << " of body '" << mesh_->body(b).name << "'";
+    os << ", in element " << mesh_->elementId(e) << " of body '" << mesh_->body(b).name << "'";
     if (const auto* ce = dynamic_cast<const ContinuumElement*>(elements_[b].get())) {
       const Material& m = ce->material();
       // Extreme: beyond 1e100 or below 1e-100 (energies and tangents carry

@@ -306,6 +306,10 @@ class Model {
   class Assembly;
   friend class Assembly;
   void computeNodeOwners();
+  /// describeNonFinite()'s place of DOF `at` (a node's component, with its
+  /// element and material, or a slot's multiplier) after `what` ("NaN",
+  /// ...); `nonFinite`: `at` holds the non-finite entry (else the largest).
+  std::string placeOf(GO at, bool nonFinite, const std::string& what) const;
   /// c_t of a frictional pair (DDC_Friction.hpp), from its bodies' materials.
   double frictionStiffness(const ContactPairDefinition& def) const;
   /// c_t over E h^(dim−2): with the whole stiffness of a facet-sized piece
@@ -316,8 +320,17 @@ class Model {
   /// 1 and 0.1 in doc/contact.md, "Friction"; 2-D the same within 5 %).
   static constexpr double kFrictionStiffnessFactor = 0.1;
   void buildContact(ContactComponent::SurfaceElementSource surfaceElements);
+  /// computeNodeOwners() on a part of a mesh: by a directory of node ids.
+  /// Collective.
+  void computePartNodeOwners();
+  /// nodeDof_ and numGlobalDofs_; `count`: each rank's owned DOFs (node
+  /// DOFs and multipliers). \returns per rank the next free DOF after its
+  /// nodes' (its first multiplier). Collective.
+  std::vector<GO> numberNodeDofs(std::vector<GO>& count);
   void buildDofNumbering();
   void buildConstraints();
+  /// A part of a mesh: OR constrained_ over the ranks. Collective.
+  void shareConstrainedBits();
   /// "" if displacement conditions `a` and `b` prescribe the same component
   /// c at node n, else the message saying that they do not.
   std::string prescriptionConflict(const DisplacementCondition& a, const DisplacementCondition& b, int n,

@@ -27,22 +27,26 @@ namespace ddc {
 
 namespace {
 
-/// A node and a node it shares an element with (global node ids).
+/// A node (its id in the whole mesh) and the first DOF of a node it shares
+/// an element with: what a rank's elements give a node another rank owns.
+/// The DOF, not the node, so that the owner need not hold the neighbour.
 struct NodePair {
-  int node, neighbour;
+  Mesh::GlobalId node;
+  GO neighbour;
   bool operator<(const NodePair& o) const { return node < o.node || (node == o.node && neighbour < o.neighbour); }
   bool operator==(const NodePair& o) const { return node == o.node && neighbour == o.neighbour; }
 };
 
-/// For each of `numRows` nodes (node n's row is row[n], -1: none), the nodes
-/// it shares one of `elements` with, itself included, and the neighbours
-/// `extra` gives it, sorted and unique.
+/// For each of `numRows` nodes (node n's row is row[n], -1: none), the first
+/// DOFs (`firstDof`) of the nodes it shares one of `elements` with, itself
+/// included, and those `extra` gives it (by row), sorted and unique.
 struct NodeNeighbours {
   std::vector<size_t> offset;  ///< numRows + 1
-  std::vector<int> nodes;
+  std::vector<GO> dofs;
 
+  template <class FirstDof>
   NodeNeighbours(const Mesh& mesh, const std::vector<int>& elements, const std::vector<int>& row, int numRows,
-                 const std::vector<NodePair>& extra)
+                 const std::vector<std::pair<int, GO>>& extra, const FirstDof& firstDof)
       : offset(size_t(numRows) + 1, 0) {
     for (int e : elements) {
       const int nn = mesh.elementNumNodes(e);
@@ -50,36 +54,35 @@ struct NodeNeighbours {
       for (int i = 0; i < nn; ++i)
         if (row[en[i]] >= 0) offset[row[en[i]] + 1] += nn;
     }
-    for (const NodePair& p : extra) ++offset[row[p.node] + 1];
+    for (const auto& p : extra) ++offset[p.first + 1];
     std::partial_sum(offset.begin(), offset.end(), offset.begin());
-    nodes.resize(offset.back());
+    dofs.resize(offset.back());
     std::vector<size_t> next(offset.begin(), offset.end() - 1);
     for (int e : elements) {
       const int nn = mesh.elementNumNodes(e);
       const int* en = mesh.elementNodes(e);
       for (int i = 0; i < nn; ++i) {
         if (row[en[i]] < 0) continue;
-        std::copy(en, en + nn, nodes.begin() + next[row[en[i]]]);
-        next[row[en[i]]] += nn;
+        for (int j = 0; j < nn; ++j) dofs[next[row[en[i]]]++] = firstDof(en[j]);
       }
     }
-    for (const NodePair& p : extra) nodes[next[row[p.node]]++] = p.neighbour;
+    for (const auto& p : extra) dofs[next[p.first]++] = p.second;
     // Sort and make each row unique, compacting the rows as they shrink.
     size_t out = 0, begin = 0;
     for (int r = 0; r < numRows; ++r) {
       const size_t end = offset[r + 1];
-      std::sort(nodes.begin() + begin, nodes.begin() + end);
-      const size_t count = std::unique(nodes.begin() + begin, nodes.begin() + end) - (nodes.begin() + begin);
-      if (out != begin) std::copy(nodes.begin() + begin, nodes.begin() + begin + count, nodes.begin() + out);
+      std::sort(dofs.begin() + begin, dofs.begin() + end);
+      const size_t count = std::unique(dofs.begin() + begin, dofs.begin() + end) - (dofs.begin() + begin);
+      if (out != begin) std::copy(dofs.begin() + begin, dofs.begin() + begin + count, dofs.begin() + out);
       offset[r] = out;
       out += count;
       begin = end;
     }
     offset[numRows] = out;
-    nodes.resize(out);
+    dofs.resize(out);
   }
-  const int* begin(int r) const { return nodes.data() + offset[r]; }
-  const int* end(int r) const { return nodes.data() + offset[r + 1]; }
+  const GO* begin(int r) const { return dofs.data() + offset[r]; }
+  const GO* end(int r) const { return dofs.data() + offset[r + 1]; }
 };
 
 /// The columns rows get from contact slots, by row (surface rows only).
@@ -157,15 +160,19 @@ std::unique_ptr<Model::LocalNodes> Model::localNodes() const {
     const int* en = mesh.elementNodes(e);
     for (int i = 0; i < nn; ++i)
       if (nodeOwner_[en[i]] != me)
-        for (int j = 0; j < nn; ++j) send[nodeOwner_[en[i]]].push_back({en[i], en[j]});
+        for (int j = 0; j < nn; ++j) send[nodeOwner_[en[i]]].push_back({mesh.nodeId(en[i]), dof(en[j], 0)});
   }
   for (auto& v : send) sortUnique(v);
   const std::vector<NodePair> received = exchangeRecords(rawComm(*comm_), send);
   std::vector<std::vector<NodePair>>().swap(send);
-  for (const NodePair& p : received)
-    DDC_CHECK(nodeOwner_[p.node] == me && row[p.node] >= 0,
-              "node " << p.node << " received as owned by rank " << me << ", which has no element of it");
-  NodeNeighbours neighbours(mesh, localElements_, row, numRows, received);
+  std::vector<std::pair<int, GO>> extra(received.size());
+  for (size_t i = 0; i < received.size(); ++i) {
+    const int n = mesh.localNode(received[i].node);
+    DDC_CHECK(n >= 0 && nodeOwner_[n] == me && row[n] >= 0,
+              "node " << received[i].node << " received as owned by rank " << me << ", which has no element of it");
+    extra[i] = {row[n], received[i].neighbour};
+  }
+  NodeNeighbours neighbours(mesh, localElements_, row, numRows, extra, [this](int n) { return dof(n, 0); });
   return std::unique_ptr<LocalNodes>(new LocalNodes{std::move(row), numRows, std::move(neighbours)});
 }
 
@@ -196,8 +203,8 @@ void Model::buildOwnedGraph(const LocalNodes& local) {
     const GO g = first + GO(r);
     const int n = overlapEntity_[r];
     if (n >= 0)
-      for (const int* m = nb.begin(row[n]); m != nb.end(row[n]); ++m)
-        for (int c = 0; c < d; ++c) cols.push_back(dof(*m, c));
+      for (const GO* m = nb.begin(row[n]); m != nb.end(row[n]); ++m)
+        for (int c = 0; c < d; ++c) cols.push_back(*m + c);
     const auto it = extra.find(g);
     if (it != extra.end()) cols.insert(cols.end(), it->second.begin(), it->second.end());
   };
@@ -294,8 +301,10 @@ void Model::buildGhostGraph(const LocalNodes& local) {
     cols.clear();
     const int n = overlapEntity_[r];
     if (n >= 0 && row[n] >= 0)
-      for (const int* m = nb.begin(row[n]); m != nb.end(row[n]); ++m)
-        for (int c = 0; c < d; ++c) cols.push_back(nodeLid[row[*m]] + c);
+      for (const GO* m = nb.begin(row[n]); m != nb.end(row[n]); ++m) {
+        const LO first = overlapMap_->getLocalElement(*m);
+        for (int c = 0; c < d; ++c) cols.push_back(first + c);
+      }
     const auto it = extra.find(LO(r));
     if (it != extra.end()) cols.insert(cols.end(), it->second.begin(), it->second.end());
     sortUnique(cols);

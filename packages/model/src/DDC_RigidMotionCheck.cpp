@@ -1,5 +1,7 @@
 #include "DDC_RigidMotionCheck.hpp"
 
+#include "DDC_Error.hpp"
+
 #include <Teuchos_CommHelpers.hpp>
 #include <algorithm>
 #include <cmath>
@@ -43,24 +45,42 @@ std::string pointText(Eigen::Vector3d p, double scale, int dim) {
 
 }  // namespace
 
-RigidMotionCheck::RigidMotionCheck(const Mesh& mesh, int numSlots)
+RigidMotionCheck::RigidMotionCheck(const Mesh& mesh, int numSlots, const Teuchos::Comm<int>* comm,
+                                   const std::function<bool(int)>& counted)
     : dim_(mesh.dim()), modesPerBody_(mesh.dim() == 2 ? 3 : 6), numBodies_(mesh.numBodies()), numSlots_(numSlots) {
+  DDC_CHECK(!mesh.isPart() || (comm && counted), "RigidMotionCheck: a part of a mesh needs its ranks");
   nodeBody_.assign(mesh.numNodes(), -1);
+  // Per body: the sum of its nodes' positions and their number, then the
+  // largest distance from the centroid; over the ranks for a part.
+  std::vector<double> sums(4 * size_t(numBodies_), 0.0), radii(numBodies_, 0.0);
   for (int b = 0; b < numBodies_; ++b) {
     const Body& body = mesh.body(b);
     bodyNames_.push_back(body.name);
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
     for (int n = body.firstNode; n < body.firstNode + body.numNodes; ++n) {
       nodeBody_[n] = b;
-      c += Eigen::Vector3d(mesh.coord(n).data());
+      if (mesh.isPart() && !counted(n)) continue;
+      for (int c = 0; c < 3; ++c) sums[4 * size_t(b) + c] += mesh.coord(n)[c];
+      sums[4 * size_t(b) + 3] += 1.0;
     }
-    if (body.numNodes > 0) c /= body.numNodes;
-    double rho = 0.0;
-    for (int n = body.firstNode; n < body.firstNode + body.numNodes; ++n)
-      rho = std::max(rho, (Eigen::Vector3d(mesh.coord(n).data()) - c).norm());
-    centre_.push_back(c);
-    radius_.push_back(rho > 0.0 ? rho : 1.0);
   }
+  if (mesh.isPart()) {
+    std::vector<double> local = sums;
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, static_cast<int>(sums.size()), local.data(), sums.data());
+  }
+  for (int b = 0; b < numBodies_; ++b) {
+    const Body& body = mesh.body(b);
+    const double count = sums[4 * size_t(b) + 3];
+    Eigen::Vector3d c(sums[4 * size_t(b)], sums[4 * size_t(b) + 1], sums[4 * size_t(b) + 2]);
+    if (count > 0) c /= count;
+    for (int n = body.firstNode; n < body.firstNode + body.numNodes; ++n)
+      radii[b] = std::max(radii[b], (Eigen::Vector3d(mesh.coord(n).data()) - c).norm());
+    centre_.push_back(c);
+  }
+  if (mesh.isPart()) {
+    std::vector<double> local = radii;
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, numBodies_, local.data(), radii.data());
+  }
+  for (int b = 0; b < numBodies_; ++b) radius_.push_back(radii[b] > 0.0 ? radii[b] : 1.0);
   reset();
 }
 

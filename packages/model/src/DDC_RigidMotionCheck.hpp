@@ -29,6 +29,7 @@
 #include <Eigen/Dense>
 #include <Teuchos_Comm.hpp>
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -46,7 +47,13 @@ class RigidMotionCheck {
 
   /// \param numSlots contact constraint rows of the model (one per multiplier
   ///        slot), 0 without contact
-  RigidMotionCheck(const Mesh& mesh, int numSlots);
+  /// \param comm, counted for a part of a mesh (Mesh::isPart()): the
+  ///        ranks that hold the other parts, and which nodes of this part
+  ///        this rank counts (each node of the whole mesh on one rank), so
+  ///        that every rank takes the whole bodies' centroids and sizes;
+  ///        unused for a whole mesh
+  RigidMotionCheck(const Mesh& mesh, int numSlots, const Teuchos::Comm<int>* comm = nullptr,
+                   const std::function<bool(int)>& counted = {});
 
   /// Forget the restraints (call before an assembly).
   void reset();
