@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "DDC_Error.hpp"
+#include "DDC_MpiRecords.hpp"
 
 namespace ddc {
 
@@ -237,6 +238,140 @@ Mesh Mesh::part(const std::vector<int>& elements) const {
       for (int i = 0; i < s.numNodes; ++i) s.nodes[i] = local[s.nodes[i]];
       set.push_back(s);
     }
+  }
+  return p;
+}
+
+namespace {
+
+/// A node sent with an element: its id and coordinates.
+struct NodeRecord {
+  Mesh::GlobalId id;
+  std::array<double, 3> x;
+};
+
+/// A node in a node set, or an element side in a side set (the sets by
+/// their index in the sorted names, the same on every rank).
+struct SetRecord {
+  int set, side;
+  Mesh::GlobalId entity;
+};
+
+}  // namespace
+
+Mesh Mesh::migrated(MPI_Comm comm, const std::vector<int>& destination) const {
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  if (static_cast<int>(destination.size()) != numElements())
+    throw std::invalid_argument("Mesh::migrated: " + std::to_string(destination.size()) + " destinations for " +
+                                std::to_string(numElements()) + " elements");
+  for (int r : destination)
+    if (r < 0 || r >= ranks) throw std::invalid_argument("Mesh::migrated: destination rank " + std::to_string(r));
+  // Elements as [id, body, node ids...], by destination.
+  std::vector<std::vector<GlobalId>> elementsTo(ranks);
+  std::vector<std::pair<int, int>> nodeTo;  // (node, destination) of every element sent
+  for (int e = 0; e < numElements(); ++e) {
+    auto& out = elementsTo[destination[e]];
+    out.push_back(elementId(e));
+    out.push_back(elemBody_[e]);
+    for (int i = 0; i < elementNumNodes(e); ++i) {
+      out.push_back(nodeId(elementNodes(e)[i]));
+      nodeTo.emplace_back(elementNodes(e)[i], destination[e]);
+    }
+  }
+  std::sort(nodeTo.begin(), nodeTo.end());
+  nodeTo.erase(std::unique(nodeTo.begin(), nodeTo.end()), nodeTo.end());
+  std::vector<std::vector<NodeRecord>> nodesTo(ranks);
+  for (const auto& [n, r] : nodeTo) nodesTo[r].push_back({nodeId(n), coords_[n]});
+  // Set memberships go where the node or the element goes.
+  std::vector<std::vector<SetRecord>> setsTo(ranks);
+  const std::vector<std::string> nodeNames = nodeSetNames(), sideNames = sideSetNames();
+  for (size_t k = 0; k < nodeNames.size(); ++k)
+    for (int n : nodeSets_.at(nodeNames[k])) {
+      auto it = std::lower_bound(nodeTo.begin(), nodeTo.end(), std::make_pair(n, -1));
+      for (; it != nodeTo.end() && it->first == n; ++it) setsTo[it->second].push_back({int(k), -1, nodeId(n)});
+    }
+  for (size_t k = 0; k < sideNames.size(); ++k)
+    for (const Segment& seg : sideSets_.at(sideNames[k]))
+      setsTo[destination[seg.element]].push_back({int(k), seg.localSide, elementId(seg.element)});
+  std::vector<std::pair<int, int>>().swap(nodeTo);
+  const std::vector<GlobalId> elements = exchangeRecords(comm, elementsTo);
+  std::vector<std::vector<GlobalId>>().swap(elementsTo);
+  std::vector<NodeRecord> nodes = exchangeRecords(comm, nodesTo);
+  std::vector<std::vector<NodeRecord>>().swap(nodesTo);
+  std::vector<SetRecord> sets = exchangeRecords(comm, setsTo);
+  std::vector<std::vector<SetRecord>>().swap(setsTo);
+
+  Mesh p;
+  p.dim_ = dim_;
+  p.isPart_ = true;
+  p.globalNodes_ = numGlobalNodes();
+  p.globalElements_ = numGlobalElements();
+  p.memoryBudget_ = memoryBudget_;
+  p.budgetSource_ = budgetSource_;
+  p.budgetHint_ = budgetHint_;
+  for (const Body& b : bodies_) {
+    Body q = b;
+    q.firstNode = q.numNodes = q.firstElement = q.numElements = 0;
+    p.bodies_.push_back(q);
+  }
+  // The received elements in id order: (id, position of its record).
+  std::vector<std::pair<GlobalId, size_t>> order;
+  for (size_t at = 0; at < elements.size();) {
+    order.emplace_back(elements[at], at);
+    at += 2 + size_t(numCellNodes(bodies_.at(size_t(elements[at + 1])).cellType));
+  }
+  std::sort(order.begin(), order.end());
+  for (size_t i = 1; i < order.size(); ++i)
+    DDC_CHECK(order[i].first != order[i - 1].first, "Mesh::migrated: element " << order[i].first << " sent twice");
+  // Nodes in id order (a node shared by elements of several senders comes
+  // from each); each takes the body of its elements.
+  std::sort(nodes.begin(), nodes.end(), [](const NodeRecord& a, const NodeRecord& b) { return a.id < b.id; });
+  nodes.erase(std::unique(nodes.begin(), nodes.end(), [](const NodeRecord& a, const NodeRecord& b) { return a.id == b.id; }),
+              nodes.end());
+  for (const NodeRecord& r : nodes) {
+    p.nodeId_.push_back(r.id);
+    p.coords_.push_back(r.x);
+  }
+  std::vector<int> nodeBody(nodes.size(), -1);
+  for (const auto& [id, at] : order) {
+    const int b = static_cast<int>(elements[at + 1]);
+    const int nn = numCellNodes(bodies_[b].cellType);
+    if (p.bodies_[b].numElements++ == 0) p.bodies_[b].firstElement = p.numElements();
+    for (int i = 0; i < nn; ++i) {
+      const int n = p.localNode(elements[at + 2 + i]);
+      DDC_CHECK(n >= 0, "Mesh::migrated: node " << elements[at + 2 + i] << " of element " << id << " not received");
+      p.elemNodes_.push_back(n);
+      nodeBody[n] = b;
+    }
+    p.elemOffset_.push_back(static_cast<int>(p.elemNodes_.size()));
+    p.elemBody_.push_back(b);
+    p.elementId_.push_back(id);
+  }
+  for (size_t n = 0; n < nodes.size(); ++n)
+    if (p.bodies_[nodeBody[n]].numNodes++ == 0) p.bodies_[nodeBody[n]].firstNode = static_cast<int>(n);
+  // Empty bodies start where the body before them ends.
+  for (size_t b = 1; b < p.bodies_.size(); ++b) {
+    Body& q = p.bodies_[b];
+    const Body& before = p.bodies_[b - 1];
+    if (q.numNodes == 0) q.firstNode = before.firstNode + before.numNodes;
+    if (q.numElements == 0) q.firstElement = before.firstElement + before.numElements;
+  }
+  // Sets by name (every name, even where this rank holds none of it).
+  for (const auto& name : nodeNames) p.nodeSets_[name];
+  for (const auto& name : sideNames) p.sideSets_[name];
+  std::sort(sets.begin(), sets.end(), [](const SetRecord& a, const SetRecord& b) {
+    return a.set != b.set ? a.set < b.set : a.entity != b.entity ? a.entity < b.entity : a.side < b.side;
+  });
+  for (const SetRecord& r : sets) {
+    if (r.side < 0) {
+      auto& set = p.nodeSets_[nodeNames[size_t(r.set)]];
+      const int n = p.localNode(r.entity);
+      if (set.empty() || set.back() != n) set.push_back(n);
+      continue;
+    }
+    const auto it = std::lower_bound(p.elementId_.begin(), p.elementId_.end(), r.entity);
+    p.sideSets_[sideNames[size_t(r.set)]].push_back(p.makeSegment(int(it - p.elementId_.begin()), r.side));
   }
   return p;
 }

@@ -1,6 +1,8 @@
 // Mesh of several bodies with named node sets and side sets, in 2-D or 3-D.
 #pragma once
 
+#include <mpi.h>
+
 #include <array>
 #include <cmath>
 #include <map>
@@ -84,6 +86,18 @@ class Mesh {
   /// \throws std::invalid_argument if `elements` is not ascending or holds
   ///         an index outside this mesh
   Mesh part(const std::vector<int>& elements) const;
+  /// The part of the whole mesh this rank holds after every rank has sent
+  /// each of its elements e to rank `destination[e]`, with the nodes and
+  /// set memberships that go with it: how a mesh built on one rank, or in
+  /// even ranges of elements, reaches the ranks of its subdomains.
+  /// Elements and nodes are in the order of their ids, side sets' segments
+  /// by element id and side (a 2-D side set is no longer one chain). Every
+  /// rank's mesh must be a part of the same whole (or the whole on one rank
+  /// and empty parts, part({}), on the others), no element on two ranks.
+  /// Collective on `comm`.
+  /// \throws std::invalid_argument if `destination` does not hold one rank
+  ///         of `comm` per element
+  Mesh migrated(MPI_Comm comm, const std::vector<int>& destination) const;
   /// Whether this mesh is a part of a larger one (made by part()).
   bool isPart() const { return isPart_; }
   /// The id of node n in the whole mesh (n itself in a whole mesh).

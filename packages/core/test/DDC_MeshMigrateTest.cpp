@@ -1,0 +1,148 @@
+// Mesh::migrated(): every rank sends its elements to the ranks of their
+// subdomains, with their nodes and set memberships, and each rank gets the
+// part of the whole mesh it would cut out itself (Mesh::part()), from a
+// whole mesh on rank 0 or from even ranges of elements on every rank. On
+// 1-3 ranks, a mesh of a Hex8 and a Hex20 body (two cell types, sets of
+// both kinds), METIS's subdomains spread over the ranks.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <numeric>
+#include <set>
+#include <stdexcept>
+#include <tuple>
+
+#include "DDC_MeshGenerators.hpp"
+#include "DDC_Partition.hpp"
+
+namespace {
+
+using PL = Teuchos::ParameterList;
+using ddc::Mesh;
+
+int rank() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+int size() {
+  int s = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &s);
+  return s;
+}
+
+Mesh twoBodies() {
+  Mesh mesh;
+  PL a("Box");
+  a.set("Elements X", 4);
+  a.set("Elements Y", 3);
+  a.set("Elements Z", 2);
+  ddc::generateBox(mesh, "Lower", ddc::CellType::Hex8, a, "Box");
+  PL b("Box");
+  b.set("Elements X", 2);
+  b.set("Elements Y", 2);
+  b.set("Elements Z", 1);
+  b.set("Origin Z", 2.5);
+  ddc::generateBox(mesh, "Upper", ddc::CellType::Hex20, b, "Box");
+  return mesh;
+}
+
+/// The rank of each element of `whole`: METIS's subdomains (twice as many
+/// as ranks) in contiguous blocks.
+std::vector<int> ranksOfElements(const Mesh& whole) {
+  const ddc::Partition p = ddc::partitionMetis(whole, 2 * size());
+  const std::vector<int> owner = ddc::subdomainOwnerRank(p.numSubdomains, size());
+  std::vector<int> r(whole.numElements());
+  for (int e = 0; e < whole.numElements(); ++e) r[e] = owner[p.elementSubdomain[e]];
+  return r;
+}
+
+/// Node and side sets by ids: (set, node id) and (set, element id, side).
+std::set<std::tuple<std::string, long long, int>> setsById(const Mesh& m) {
+  std::set<std::tuple<std::string, long long, int>> out;
+  for (const auto& name : m.nodeSetNames())
+    for (int n : m.nodeSet(name)) out.insert({name, m.nodeId(n), -1});
+  for (const auto& name : m.sideSetNames())
+    for (const auto& s : m.sideSet(name)) out.insert({name + " (sides)", m.elementId(s.element), s.localSide});
+  return out;
+}
+
+/// `got` is `want`: ids, coordinates, connectivity by id, bodies and sets.
+void expectSameParts(const Mesh& got, const Mesh& want) {
+  ASSERT_TRUE(got.isPart());
+  EXPECT_EQ(got.numGlobalNodes(), want.numGlobalNodes());
+  EXPECT_EQ(got.numGlobalElements(), want.numGlobalElements());
+  ASSERT_EQ(got.numNodes(), want.numNodes());
+  ASSERT_EQ(got.numElements(), want.numElements());
+  for (int n = 0; n < got.numNodes(); ++n) {
+    EXPECT_EQ(got.nodeId(n), want.nodeId(n));
+    EXPECT_EQ(got.coord(n), want.coord(n)) << "node " << got.nodeId(n);
+  }
+  for (int e = 0; e < got.numElements(); ++e) {
+    EXPECT_EQ(got.elementId(e), want.elementId(e));
+    EXPECT_EQ(got.elementBody(e), want.elementBody(e));
+    ASSERT_EQ(got.elementNumNodes(e), want.elementNumNodes(e));
+    for (int i = 0; i < got.elementNumNodes(e); ++i)
+      EXPECT_EQ(got.elementNodes(e)[i], want.elementNodes(e)[i]) << "element " << got.elementId(e);
+  }
+  for (int b = 0; b < got.numBodies(); ++b) {
+    EXPECT_EQ(got.body(b).firstNode, want.body(b).firstNode) << got.body(b).name;
+    EXPECT_EQ(got.body(b).numNodes, want.body(b).numNodes) << got.body(b).name;
+    EXPECT_EQ(got.body(b).firstElement, want.body(b).firstElement) << got.body(b).name;
+    EXPECT_EQ(got.body(b).numElements, want.body(b).numElements) << got.body(b).name;
+  }
+  EXPECT_EQ(got.nodeSetNames(), want.nodeSetNames());
+  EXPECT_EQ(got.sideSetNames(), want.sideSetNames());
+  EXPECT_EQ(setsById(got), setsById(want));
+}
+
+/// The elements of `whole` that go to this rank.
+std::vector<int> mine(const std::vector<int>& rankOf) {
+  std::vector<int> out;
+  for (int e = 0; e < static_cast<int>(rankOf.size()); ++e)
+    if (rankOf[e] == rank()) out.push_back(e);
+  return out;
+}
+
+TEST(MeshMigrate, FromAWholeMeshOnRankZero) {
+  const Mesh whole = twoBodies();
+  const std::vector<int> rankOf = ranksOfElements(whole);
+  // Rank 0 holds the whole mesh (as a part holding every element), the
+  // others nothing.
+  std::vector<int> held;
+  if (rank() == 0) held.resize(whole.numElements()), std::iota(held.begin(), held.end(), 0);
+  const Mesh source = whole.part(held);
+  std::vector<int> destination;
+  for (int e : held) destination.push_back(rankOf[e]);
+  expectSameParts(source.migrated(MPI_COMM_WORLD, destination), whole.part(mine(rankOf)));
+}
+
+TEST(MeshMigrate, FromEvenRangesOfElements) {
+  const Mesh whole = twoBodies();
+  const std::vector<int> rankOf = ranksOfElements(whole);
+  const int ne = whole.numElements();
+  std::vector<int> range;
+  for (int e = ne * rank() / size(); e < ne * (rank() + 1) / size(); ++e) range.push_back(e);
+  const Mesh source = whole.part(range);
+  std::vector<int> destination;
+  for (int e : range) destination.push_back(rankOf[e]);
+  const Mesh got = source.migrated(MPI_COMM_WORLD, destination);
+  expectSameParts(got, whole.part(mine(rankOf)));
+  // A part of a part migrates again: back to the ranges.
+  std::vector<int> back;
+  for (int e = 0; e < got.numElements(); ++e) {
+    int r = 0;  // the rank whose range [ne r / P, ne (r + 1) / P) holds the element
+    while (got.elementId(e) >= ne * (r + 1) / size()) ++r;
+    back.push_back(r);
+  }
+  expectSameParts(got.migrated(MPI_COMM_WORLD, back), source);
+}
+
+TEST(MeshMigrate, RefusesADestinationPerElementThatIsNot) {
+  const Mesh whole = twoBodies();
+  EXPECT_THROW(whole.migrated(MPI_COMM_WORLD, {0}), std::invalid_argument);
+  EXPECT_THROW(whole.migrated(MPI_COMM_WORLD, std::vector<int>(whole.numElements(), size())), std::invalid_argument);
+}
+
+}  // namespace
