@@ -24,12 +24,35 @@ namespace {
 /// the interface rows only). Assembling into a whole overlap copy first
 /// took 21 B (measured with Belos-MueLu).
 constexpr double kMatrixBytesPerEntry = 12.0;
-/// Belos-MueLu / Belos-FROSch: hierarchy / subdomain matrices beyond the
-/// matrix (measured 27 B on 1 rank to 49 B on 16 ranks with block_3d).
+/// Belos-FROSch: subdomain matrices beyond the matrix (measured with
+/// MueLu's hierarchy when it stored its restriction: 27 B on 1 rank to 49 B
+/// on 16 ranks with block_3d).
 constexpr double kIterativeBytesPerEntry = 35.0;
+/// Belos-MueLu: the hierarchy and the solve's vectors beyond the matrix, per
+/// entry of a rank's rows, kMueLuBytesPerEntry + kMueLuBytesPerGhostShare ·
+/// g with g the rank's ghost nodes over its owned nodes (the Galerkin
+/// products import the ghosts' rows of P). The slope is fitted to the
+/// solve's growth on the largest rank (block_3d, METIS): Refinement 8 on
+/// 1 / 2 / 4 / 8 / 16 ranks, g = 0 / 0.018 / 0.070 / 0.150 / 0.243, 23.8 /
+/// 27.7 / 31.6 / 40.8 / 49.3 B per entry; Refinement 17 on 8 ranks,
+/// g = 0.069, 31.9 B. The base is raised from 24 to 28 B for what the run
+/// holds besides (Belos's vectors, MueLu's coarse solver): with 24 B
+/// block_3d at Refinement 6 on 8 ranks measured 1.23 times the estimate.
+constexpr double kMueLuBytesPerEntry = 28.0;
+constexpr double kMueLuBytesPerGhostShare = 105.0;
 /// METIS's dual graph and work arrays, built on every rank from the whole
-/// mesh, per element corner (measured 37 B: 37 MiB for 131,072 Hex8).
+/// mesh, per element corner (measured 37 B: 37 MiB for 131,072 Hex8). Freed
+/// when the partition is made, before the model and the solver allocate.
 constexpr double kPartitionBytesPerCorner = 37.0;
+/// The whole mesh on every rank, by node and by element node: the peak of
+/// building it (coordinates and connectivity, their vectors' spare capacity,
+/// the generator's grid, the node sets) less an empty run's, measured on 1
+/// rank for block_3d at Refinement 8 / 12 / 17: 8 / 41 / 161 MiB, which
+/// these give as 17 / 58 / 168 MiB; what the model keeps per node (owner,
+/// first DOF) is within it.
+constexpr double kMeshBytesPerNode = 64.0;
+constexpr double kMeshBytesPerElement = 8.0;
+constexpr double kMeshBytesPerElementNode = 8.0;
 /// Per facet of a contact surface, held on every rank: its node list, the
 /// slots of its slave nodes and their packed copies, search boxes and DOF
 /// records (counted from those arrays, not measured: below the noise of
@@ -74,6 +97,37 @@ double partitionBytes(const Mesh& mesh, const Partition& partition) {
   return kPartitionBytesPerCorner * corners;
 }
 
+/// Per rank: its owned nodes (each node owned by the lowest rank among its
+/// elements', as in the Model) and the nodes of its elements that other
+/// ranks own (its ghosts), from the partition.
+struct RankNodes {
+  std::vector<double> owned, ghosts;
+};
+
+RankNodes rankNodes(const Mesh& mesh, const Partition& partition, int ranks) {
+  RankNodes out{std::vector<double>(ranks, 0.0), std::vector<double>(ranks, 0.0)};
+  if (partition.elementSubdomain.size() != size_t(mesh.numElements())) return out;
+  const std::vector<int> rankOf = subdomainOwnerRank(std::max(partition.numSubdomains, 1), ranks);
+  std::vector<int> owner(mesh.numNodes(), ranks);
+  for (int e = 0; e < mesh.numElements(); ++e)
+    for (int i = 0; i < mesh.elementNumNodes(e); ++i) {
+      int& o = owner[mesh.elementNodes(e)[i]];
+      o = std::min(o, rankOf[partition.elementSubdomain[e]]);
+    }
+  for (int o : owner)
+    if (o < ranks) out.owned[o] += 1.0;
+  std::vector<std::pair<int, int>> ghost;  // (node, rank) of a rank's element at a node it does not own
+  for (int e = 0; e < mesh.numElements(); ++e) {
+    const int r = rankOf[partition.elementSubdomain[e]];
+    for (int i = 0; i < mesh.elementNumNodes(e); ++i)
+      if (owner[mesh.elementNodes(e)[i]] != r) ghost.emplace_back(mesh.elementNodes(e)[i], r);
+  }
+  std::sort(ghost.begin(), ghost.end());
+  ghost.erase(std::unique(ghost.begin(), ghost.end()), ghost.end());
+  for (const auto& g : ghost) out.ghosts[g.second] += 1.0;
+  return out;
+}
+
 /// The contact surfaces on every rank.
 double contactBytes(const Mesh& mesh, const ContactOptions& contact) {
   double facets = 0.0;
@@ -98,17 +152,17 @@ MemoryEstimate estimateMemory(const Mesh& mesh, const Partition& partition, int 
   const int dim = mesh.dim();
   ranks = std::max(ranks, 1);
   // Per body: DOFs and matrix entries; the mesh by its own measure.
-  double dofs = 0.0, entries = 0.0;
-  int maxNodesPerElement = 1;
+  double dofs = 0.0, entries = 0.0, elementNodes = 0.0;
   for (int b = 0; b < mesh.numBodies(); ++b) {
     const Body& body = mesh.body(b);
     const double n = static_cast<double>(dim) * body.numNodes;
     dofs += n;
     entries += n * dim * couplingsPerNode(body.cellType);
-    maxNodesPerElement = std::max(maxNodesPerElement, numCellNodes(body.cellType));
+    elementNodes += static_cast<double>(body.numElements) * numCellNodes(body.cellType);
   }
-  est.mesh = Mesh::replicatedBytes(mesh.numNodes(), mesh.numElements(), maxNodesPerElement) +
-             partitionBytes(mesh, partition) + contactBytes(mesh, contact);
+  est.mesh = kMeshBytesPerNode * mesh.numNodes() + kMeshBytesPerElement * mesh.numElements() +
+             kMeshBytesPerElementNode * elementNodes + contactBytes(mesh, contact);
+  est.partition = partitionBytes(mesh, partition);
   const double rowEntries = dofs > 0 ? entries / dofs : 0.0;
   const std::string strategy = solver.get<std::string>("Strategy");
   char what[160];
@@ -126,7 +180,7 @@ MemoryEstimate estimateMemory(const Mesh& mesh, const Partition& partition, int 
       perRank[owner[s]] += 8.0 * kFetiFactorCopies * n * rowEntries * fill(n, dim);
       matrixPerRank[owner[s]] += kFetiBytesPerEntry * n * rowEntries;
     }
-    for (int r = 0; r < ranks; ++r) est.perRank.push_back(est.mesh + perRank[r] + matrixPerRank[r]);
+    for (int r = 0; r < ranks; ++r) est.perRank.push_back(est.atPeak(matrixPerRank[r], perRank[r]));
     const int worst = static_cast<int>(std::max_element(est.perRank.begin(), est.perRank.end()) - est.perRank.begin());
     est.solver = perRank[worst];
     est.matrix = matrixPerRank[worst];
@@ -137,7 +191,20 @@ MemoryEstimate estimateMemory(const Mesh& mesh, const Partition& partition, int 
     const std::string type =
         linear && linear->isParameter("Type") ? linear->get<std::string>("Type") : std::string("MUMPS");
     est.matrix = kMatrixBytesPerEntry * entries / ranks;
-    if (type == "Belos-MueLu" || type == "Belos-FROSch") {
+    if (type == "Belos-MueLu") {
+      // Per rank: its rows' entries, with the overhead of its ghosts.
+      const RankNodes nodes = rankNodes(mesh, partition, ranks);
+      const double entriesPerNode = mesh.numNodes() > 0 ? entries / mesh.numNodes() : 0.0;
+      double worst = -1.0;
+      for (int r = 0; r < ranks; ++r) {
+        const double e = nodes.owned[r] * entriesPerNode;
+        const double g = nodes.owned[r] > 0 ? nodes.ghosts[r] / nodes.owned[r] : 0.0;
+        const double matrix = kMatrixBytesPerEntry * e, hierarchy = (kMueLuBytesPerEntry + kMueLuBytesPerGhostShare * g) * e;
+        est.perRank.push_back(est.atPeak(matrix, hierarchy));
+        if (est.perRank.back() > worst) worst = est.perRank.back(), est.matrix = matrix, est.solver = hierarchy;
+      }
+      std::snprintf(what, sizeof what, "%s preconditioner", type.c_str());
+    } else if (type == "Belos-FROSch") {
       est.solver = kIterativeBytesPerEntry * entries / ranks;
       std::snprintf(what, sizeof what, "%s preconditioner", type.c_str());
     } else if (type == "Amesos2") {
@@ -145,8 +212,8 @@ MemoryEstimate estimateMemory(const Mesh& mesh, const Partition& partition, int 
       // much as a nested-dissection ordering).
       est.solver = 12.0 * entries + 2.0 * 8.0 * entries * fill(dofs, dim);
       std::snprintf(what, sizeof what, "KLU2 factors of %.3g DOFs on rank 0", dofs);
-      est.perRank.assign(ranks, est.mesh + est.matrix);
-      est.perRank[0] += est.solver;
+      est.perRank.assign(ranks, est.atPeak(est.matrix, 0.0));
+      est.perRank[0] = est.atPeak(est.matrix, est.solver);
     } else {
       est.solver = 8.0 * entries * fill(dofs, dim) / ranks;
       std::snprintf(what, sizeof what, "%s factors of %.3g DOFs", type.c_str(), dofs);
