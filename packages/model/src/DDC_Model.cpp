@@ -404,7 +404,10 @@ std::string Model::prescriptionConflict(const DisplacementCondition& a, const Di
     for (const auto& pt : d->curve) samples.push_back(pt[0]);
   for (double lam : samples) {
     const double u = a.prescribed(c, X, lam), v = b.prescribed(c, X, lam);
-    if (std::abs(u - v) > 1e-12 * (1.0 + std::abs(u) + std::abs(v))) {
+    // The same value computed by two conditions' formulas (an affine field
+    // and a fixed value, say) differs by round-off only.
+    constexpr double kAgreement = 1e-12;
+    if (std::abs(u - v) > kAgreement * (1.0 + std::abs(u) + std::abs(v))) {
       std::ostringstream os;
       os << "boundary conditions '" << a.name << "' and '" << b.name << "' prescribe different " << "xyz"[c]
          << " displacements at node " << mesh_->nodeId(n) << " (" << mesh_->coordText(n) << ")";
