@@ -177,15 +177,7 @@ void Mesh::checkShapes(int first, int last) const {
   }
 }
 
-Mesh Mesh::part(const std::vector<int>& elements) const {
-  for (size_t i = 0; i < elements.size(); ++i)
-    if (elements[i] < 0 || elements[i] >= numElements() || (i > 0 && elements[i] <= elements[i - 1]))
-      throw std::invalid_argument("Mesh::part: element " + std::to_string(elements[i]) + " at position " +
-                                  std::to_string(i) + " is outside the mesh or not ascending");
-  // Local index of each node of the chosen elements, in node (= id) order.
-  std::vector<int> local(numNodes(), -1);
-  for (int e : elements)
-    for (int i = 0; i < elementNumNodes(e); ++i) local[elementNodes(e)[i]] = 0;
+Mesh Mesh::emptyPart() const {
   Mesh p;
   p.dim_ = dim_;
   p.isPart_ = true;
@@ -199,6 +191,29 @@ Mesh Mesh::part(const std::vector<int>& elements) const {
     q.firstNode = q.numNodes = q.firstElement = q.numElements = 0;
     p.bodies_.push_back(q);
   }
+  return p;
+}
+
+void Mesh::placeEmptyBodies() {
+  for (size_t b = 0; b < bodies_.size(); ++b) {
+    Body& q = bodies_[b];
+    const int nodesBefore = b == 0 ? 0 : bodies_[b - 1].firstNode + bodies_[b - 1].numNodes;
+    const int elementsBefore = b == 0 ? 0 : bodies_[b - 1].firstElement + bodies_[b - 1].numElements;
+    if (q.numNodes == 0) q.firstNode = nodesBefore;
+    if (q.numElements == 0) q.firstElement = elementsBefore;
+  }
+}
+
+Mesh Mesh::part(const std::vector<int>& elements) const {
+  for (size_t i = 0; i < elements.size(); ++i)
+    if (elements[i] < 0 || elements[i] >= numElements() || (i > 0 && elements[i] <= elements[i - 1]))
+      throw std::invalid_argument("Mesh::part: element " + std::to_string(elements[i]) + " at position " +
+                                  std::to_string(i) + " is outside the mesh or not ascending");
+  // Local index of each node of the chosen elements, in node (= id) order.
+  std::vector<int> local(numNodes(), -1);
+  for (int e : elements)
+    for (int i = 0; i < elementNumNodes(e); ++i) local[elementNodes(e)[i]] = 0;
+  Mesh p = emptyPart();
   // Bodies are contiguous ranges of nodes and elements, so walking both in
   // order fills each body's range before the next one's.
   for (int body = 0, n = 0; n < numNodes(); ++n) {
@@ -209,8 +224,6 @@ Mesh Mesh::part(const std::vector<int>& elements) const {
     p.nodeId_.push_back(nodeId(n));
     p.bodies_[body].numNodes++;
   }
-  for (size_t b = 1; b < bodies_.size(); ++b)
-    if (p.bodies_[b].numNodes == 0) p.bodies_[b].firstNode = p.bodies_[b - 1].firstNode + p.bodies_[b - 1].numNodes;
   std::vector<int> localElement(numElements(), -1);
   for (int e : elements) {
     const int b = elemBody_[e];
@@ -222,9 +235,7 @@ Mesh Mesh::part(const std::vector<int>& elements) const {
     p.elementId_.push_back(elementId(e));
     p.bodies_[b].numElements++;
   }
-  for (size_t b = 0; b < bodies_.size(); ++b)
-    if (p.bodies_[b].numElements == 0)
-      p.bodies_[b].firstElement = b == 0 ? 0 : p.bodies_[b - 1].firstElement + p.bodies_[b - 1].numElements;
+  p.placeEmptyBodies();
   for (const auto& [name, nodes] : nodeSets_) {
     auto& set = p.nodeSets_[name];
     for (int n : nodes)
@@ -302,19 +313,7 @@ Mesh Mesh::migrated(MPI_Comm comm, const std::vector<int>& destination) const {
   std::vector<SetRecord> sets = exchangeRecords(comm, setsTo);
   std::vector<std::vector<SetRecord>>().swap(setsTo);
 
-  Mesh p;
-  p.dim_ = dim_;
-  p.isPart_ = true;
-  p.globalNodes_ = numGlobalNodes();
-  p.globalElements_ = numGlobalElements();
-  p.memoryBudget_ = memoryBudget_;
-  p.budgetSource_ = budgetSource_;
-  p.budgetHint_ = budgetHint_;
-  for (const Body& b : bodies_) {
-    Body q = b;
-    q.firstNode = q.numNodes = q.firstElement = q.numElements = 0;
-    p.bodies_.push_back(q);
-  }
+  Mesh p = emptyPart();
   // The received elements in id order: (id, position of its record).
   std::vector<std::pair<GlobalId, size_t>> order;
   for (size_t at = 0; at < elements.size();) {
@@ -350,13 +349,7 @@ Mesh Mesh::migrated(MPI_Comm comm, const std::vector<int>& destination) const {
   }
   for (size_t n = 0; n < nodes.size(); ++n)
     if (p.bodies_[nodeBody[n]].numNodes++ == 0) p.bodies_[nodeBody[n]].firstNode = static_cast<int>(n);
-  // Empty bodies start where the body before them ends.
-  for (size_t b = 1; b < p.bodies_.size(); ++b) {
-    Body& q = p.bodies_[b];
-    const Body& before = p.bodies_[b - 1];
-    if (q.numNodes == 0) q.firstNode = before.firstNode + before.numNodes;
-    if (q.numElements == 0) q.firstElement = before.firstElement + before.numElements;
-  }
+  p.placeEmptyBodies();
   // Sets by name (every name, even where this rank holds none of it).
   for (const auto& name : nodeNames) p.nodeSets_[name];
   for (const auto& name : sideNames) p.sideSets_[name];

@@ -180,6 +180,13 @@ class Mesh {
   void checkShapes(int first, int last) const;
 
  private:
+  /// A part with this mesh's dimension, whole sizes, budget and bodies,
+  /// holding nothing yet (part(), migrated()).
+  Mesh emptyPart() const;
+  /// A part's bodies without nodes or elements start where the body
+  /// before them ends.
+  void placeEmptyBodies();
+
   int dim_ = 0;
   std::vector<Body> bodies_;
   std::vector<std::array<double, 3>> coords_;
