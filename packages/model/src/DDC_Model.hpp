@@ -1,4 +1,5 @@
-// The discrete model: replicated mesh, element evaluators per body, element
+// The discrete model: the mesh (whole, or this rank's part of it without
+// contact), element evaluators per body, element
 // partition, distributed DOF numbering (nodes and contact multipliers),
 // boundary conditions, and assembly of the global residual and tangent (a
 // distributed Tpetra::CrsMatrix). Contact is a ContactComponent the model
@@ -97,7 +98,10 @@ struct AssemblyResult {
 };
 
 /// The discrete model shared by every strategy. Each rank holds the whole
-/// mesh and evaluates the elements of the subdomains it owns. Nodes are
+/// mesh, or without contact its part of it (Mesh::part(): its elements and
+/// their nodes, doc/architecture.md), and evaluates the elements of the
+/// subdomains it owns; on a part, node indices are the part's and the mesh's
+/// nodeId() names them across ranks. Nodes are
 /// owned by the lowest rank among the elements that touch them; a contact
 /// multiplier by the owner of its slave node. Each rank's owned DOFs (its
 /// nodes' DOFs, then its multipliers) form a contiguous range, so the owned
@@ -128,8 +132,9 @@ class Model {
   /// a frictional pair's λ_t).
   GO multiplierDof(int k, int c = 0) const { return lmDof_[k] + c; }
   /// The id of DOF g that does not depend on the partition or the number of
-  /// ranks (a checkpoint's): node·dim + component for a node's DOF,
-  /// numNodes·dim + m for the multipliers, m counting them slot by slot
+  /// ranks (a checkpoint's): node·dim + component for a node's DOF (the
+  /// node's id in the whole mesh), numGlobalNodes·dim + m for the
+  /// multipliers, m counting them slot by slot
   /// (slot k's c-th: the slots before it have m multipliers; without
   /// friction m = k).
   /// \throws std::logic_error if g is not a DOF of this rank's overlap map
