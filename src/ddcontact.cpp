@@ -218,8 +218,8 @@ int run(const std::vector<std::string>& args, const Teuchos::RCP<const Teuchos::
     analysis = std::make_unique<ddc::Analysis>(comm, *params, ddc::ElementFactory::withBuiltins(), base);
     if (comm->getRank() == 0) {
       const auto& m = analysis->model().mesh();
-      std::cout << "ddcontact: " << o.input << ": " << m.numBodies() << " bodies, " << m.numElements()
-                << " elements, " << m.dim() * m.numNodes() << " DOFs, "
+      std::cout << "ddcontact: " << o.input << ": " << m.numBodies() << " bodies, " << m.numGlobalElements()
+                << " elements, " << m.dim() * m.numGlobalNodes() << " DOFs, "
                 << analysis->model().partition().numSubdomains << " subdomains on " << comm->getSize()
                 << " ranks; estimated memory " << ddc::formatBytes(analysis->memoryEstimate().total()) << " per rank"
                 << std::endl;

@@ -42,6 +42,20 @@ foreach(np 2 4)
     REGEX "distribution: the busiest rank assembles [0-9]+ of 256 elements \\(${DISTRIBUTION_SHARE_np${np}}\\), owns [0-9]+ of 425 nodes \\(${DISTRIBUTION_SHARE_np${np}}\\)")
 endforeach()
 
+# Partition/Mesh On Every Rank = false: each rank keeps only its part of the
+# mesh. The busiest rank holds at most 1/P + 10 % of the elements, and owns
+# at most that of the nodes (the nodes beyond its halo); the run is the
+# whole-mesh run on as many ranks (same partition), to round-off.
+foreach(np 2 4)
+  ddc_add_run_test(distribution_line_block_3d_parts_np${np} RANKS ${np} FIXTURE
+    ARGS ${PROJECT_SOURCE_DIR}/examples/block_3d.xml --set "Partition/Mesh On Every Rank=false"
+      --output-dir ${DDC_RUNS}/distribution_line_block_3d_parts_np${np}
+    FILES ${DDC_RUNS}/distribution_line_block_3d_parts_np${np}/history.csv
+    LABELS example
+    REGEX "owns [0-9]+ of 425 nodes \\(${DISTRIBUTION_SHARE_np${np}}\\); the busiest rank holds [0-9]+ of 256 elements \\(${DISTRIBUTION_SHARE_np${np}}\\) and [0-9]+ of 425 nodes")
+endforeach()
+ddc_compare_histories(parts_equal_whole_block_3d_np2 example_block_3d_np2 distribution_line_block_3d_parts_np2 1e-12)
+
 # The bar impact (implicit dynamics with contact, the decomposed element
 # under FETI-DP): on 1, 2 and 3 ranks, each subdomain factorised once
 # (linear material, constant time step: the contact changes only constraint

@@ -41,6 +41,7 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
                          params.sublist("Contact").sublist("Pairs").numParams() > 0),
                     "parameter 'Output/Contact Nodes' is true, but the deck has no contact pairs "
                     "(Contact/Pairs): there are no contact nodes to write");
+  requireWholeMeshWhereNeeded(params);
   // Every rank reads the mesh and map files named in the parameters: a file
   // missing or different on some ranks must fail all ranks alike.
   inputFiles_ = requireSameFilesOnEveryRank(*comm_, namedInputFiles(params, baseDirectory));
@@ -48,8 +49,8 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
   unloaded_ = model_->createVector();
   if (dynamic_) dynamics_ = makeDynamics(params.sublist("Dynamics"), *model_, *strategy_);
   stepControl_ = stepControlSettings(params, dynamic_, model_->decomposedContact());
-  const std::string sizes = std::to_string(model_->mesh().numNodes()) + " nodes, " +
-                            std::to_string(model_->mesh().numElements()) + " elements, " +
+  const std::string sizes = std::to_string(model_->mesh().numGlobalNodes()) + " nodes, " +
+                            std::to_string(model_->mesh().numGlobalElements()) + " elements, " +
                             std::to_string(model_->partition().numSubdomains) + " subdomains; estimated " +
                             formatBytes(memoryEstimate_.total()) + " per rank";
   Activity activity("setting up the " + strategy_->name() + " solver (" + sizes + ")");
@@ -60,6 +61,46 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
 }
 
 Analysis::~Analysis() = default;
+
+namespace {
+
+/// 'Partition/Mesh On Every Rank' = false: `mesh` becomes this rank's part
+/// (Mesh::part(): the elements of its subdomains and their nodes) and
+/// `partition` its elements' subdomains; the whole mesh goes with the last
+/// reference to it.
+void keepOwnPart(std::shared_ptr<Mesh>& mesh, Partition& partition, int rank, int ranks) {
+  const std::vector<int> rankOf = subdomainOwnerRank(partition.numSubdomains, ranks);
+  std::vector<int> mine;
+  Partition own;
+  own.numSubdomains = partition.numSubdomains;
+  own.edgeCut = partition.edgeCut;
+  for (int e = 0; e < mesh->numElements(); ++e)
+    if (rankOf[partition.elementSubdomain[e]] == rank) {
+      mine.push_back(e);
+      own.elementSubdomain.push_back(partition.elementSubdomain[e]);
+    }
+  mesh = std::make_shared<Mesh>(mesh->part(mine));
+  partition = std::move(own);
+}
+
+}  // namespace
+
+void Analysis::requireWholeMeshWhereNeeded(const PL& params) {
+  // What still reads the whole mesh on every rank: the FETI-DP primal
+  // selection, the contact slots and surfaces, the Exodus II writer
+  // (doc/architecture.md, "What a distributed mesh has to change").
+  if (params.sublist("Partition").get<bool>("Mesh On Every Rank")) return;
+  std::string needs;
+  if (params.sublist("Solver").get<std::string>("Strategy") == "FETI-DP")
+    needs = "Solver/Strategy = FETI-DP (its primal nodes are selected over the whole mesh)";
+  else if (params.isSublist("Contact") && params.sublist("Contact").isSublist("Pairs") &&
+           params.sublist("Contact").sublist("Pairs").numParams() > 0)
+    needs = "contact pairs (Contact/Pairs: every rank holds every contact surface)";
+  else if (params.sublist("Output").get<bool>("Exodus"))
+    needs = "Output/Exodus = true (rank 0 writes the whole mesh)";
+  DDC_INPUT_REQUIRE(needs.empty(), "'Partition/Mesh On Every Rank' = false, but the run has "
+                                       << needs << ", which needs the whole mesh on every rank; set it to true");
+}
 
 void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& baseDirectory) {
   // Memory: what each rank may use, checked by the mesh generators before
@@ -120,6 +161,8 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
   Activity activity("building the model (" + std::to_string(mesh->numNodes()) + " nodes, " +
                     std::to_string(mesh->numElements()) + " elements, " + std::to_string(partition.numSubdomains) +
                     " subdomains; estimated " + formatBytes(memoryEstimate_.total()) + " per rank)");
+  if (!params.sublist("Partition").get<bool>("Mesh On Every Rank"))
+    keepOwnPart(mesh, partition, comm_->getRank(), ranks);
   model_ = std::make_shared<Model>(comm_, mesh, std::move(elements), std::move(partition), std::move(bcs),
                                    std::move(contact), surfaceElements);
 }

@@ -127,6 +127,9 @@ class Analysis {
 
  private:
   /// The model from the validated parameters (the constructor's work).
+  /// \throws InputError if 'Partition/Mesh On Every Rank' = false where
+  ///         the run needs the whole mesh on every rank
+  static void requireWholeMeshWhereNeeded(const Teuchos::ParameterList& params);
   void buildModel(Teuchos::ParameterList& params, const std::string& baseDirectory);
   /// Estimates the run's memory with `partition` (memoryEstimate_) and
   /// refuses the run when it does not fit with its margin

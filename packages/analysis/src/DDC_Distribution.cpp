@@ -32,23 +32,31 @@ RankShare rankShare(const Model& model, long long coarseRows) {
   for (int n = 0; n < model.mesh().numNodes(); ++n) s.nodes += owned.isNodeGlobalElement(model.dof(n, 0)) ? 1 : 0;
   if (model.hasContact()) s.slots = static_cast<long long>(model.contact()->ownedSlots().size());
   s.coarseRows = coarseRows;
+  s.heldElements = model.mesh().numElements();
+  s.heldNodes = model.mesh().numNodes();
   return s;
 }
 
 std::string distributionLine(const Teuchos::Comm<int>& comm, const Model& model, const RankShare& mine,
                              double estimatedBytesPerRank) {
-  const long long local[4] = {mine.elements, mine.nodes, mine.slots, mine.coarseRows};
-  long long most[4] = {0, 0, 0, 0}, total[4] = {0, 0, 0, 0};
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 4, local, most);
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 4, local, total);
-  const long long elements = model.mesh().numElements(), nodes = model.mesh().numNodes();
+  const long long local[6] = {mine.elements, mine.nodes, mine.slots, mine.coarseRows, mine.heldElements,
+                              mine.heldNodes};
+  long long most[6] = {0, 0, 0, 0, 0, 0}, total[6] = {0, 0, 0, 0, 0, 0};
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 6, local, most);
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 6, local, total);
+  const long long elements = model.mesh().numGlobalElements(), nodes = model.mesh().numGlobalNodes();
   const long long slots = model.hasContact() ? static_cast<long long>(model.contact()->slots().size()) : 0;
   std::ostringstream os;
   os << "distribution: the busiest rank assembles " << share(most[0], elements, "elements") << ", owns "
      << share(most[1], nodes, "nodes");
   if (slots > 0) os << ", " << share(most[2], slots, "contact slots");
   if (total[3] > 0) os << ", " << share(most[3], total[3], "coarse rows");
-  os << "; every rank holds the whole mesh (" << elements << " elements, " << nodes << " nodes)";
+  if (model.mesh().isPart())
+    os << "; the busiest rank holds " << share(most[4], elements, "elements") << " and "
+       << share(most[5], nodes, "nodes") << " of the mesh (its elements' nodes, those shared with other ranks "
+       << "included)";
+  else
+    os << "; every rank holds the whole mesh (" << elements << " elements, " << nodes << " nodes)";
   if (slots > 0) os << " and all " << slots << " contact slots";
   os << "; estimated " << formatBytes(estimatedBytesPerRank) << " per rank";
   return os.str();

@@ -18,6 +18,9 @@ struct RankShare {
   long long nodes = 0;       ///< nodes whose DOFs it owns
   long long slots = 0;       ///< contact slots it owns
   long long coarseRows = 0;  ///< rows of the FETI-DP coarse problem it owns (0: none)
+  /// Elements and nodes of the mesh it holds: the whole mesh, or with a
+  /// part of it (Mesh::part()) its elements and their nodes.
+  long long heldElements = 0, heldNodes = 0;
 };
 
 /// This rank's share of `model`, with `coarseRows` from the solution strategy.
@@ -29,7 +32,10 @@ RankShare rankShare(const Model& model, long long coarseRows);
 /// 804 nodes) and all 217 contact slots; estimated 13 MiB per rank" (the
 /// contact and coarse parts only when there are contact slots or a coarse
 /// problem; each count the largest over the ranks, perhaps of different
-/// ranks). Collective.
+/// ranks). On a part of a mesh (Partition/Mesh On Every Rank = false) the
+/// held part says "the busiest rank holds 205 of 544 elements (37.7 %) and
+/// 402 of 804 nodes (50.0 %) of the mesh (its elements' nodes, those shared
+/// with other ranks included)". Collective.
 std::string distributionLine(const Teuchos::Comm<int>& comm, const Model& model, const RankShare& mine,
                              double estimatedBytesPerRank);
 

@@ -210,7 +210,7 @@ std::unique_ptr<Dynamics> makeDynamics(PL& dyn, Model& model, SolutionStrategy& 
                                                   : MassLumping::Consistent;
   if (lumping == MassLumping::RowSum)
     for (int b = 0; b < mesh.numBodies(); ++b) {
-      const CellType t = mesh.elementType(mesh.body(b).firstElement);
+      const CellType t = mesh.body(b).cellType;
       DDC_INPUT_REQUIRE(t != CellType::Hex20 && t != CellType::Tet10,
                         "'Dynamics/Mass Matrix' = Row-Sum gives zero or negative masses at the corners of "
                             << cellTypeName(t) << " elements (body '" << mesh.body(b).name
