@@ -363,6 +363,19 @@ Partition partitionFromFile(const Mesh& mesh, const std::string& fileName) {
   return p;
 }
 
+std::vector<int> nodeOwnerRanks(const Mesh& mesh, const Partition& partition, int numRanks) {
+  const std::vector<int> rankOf = subdomainOwnerRank(partition.numSubdomains, numRanks);
+  std::vector<int> owner(mesh.numNodes(), numRanks);
+  for (int e = 0; e < mesh.numElements(); ++e) {
+    const int r = rankOf[partition.elementSubdomain[e]];
+    for (int i = 0; i < mesh.elementNumNodes(e); ++i) {
+      int& o = owner[mesh.elementNodes(e)[i]];
+      o = std::min(o, r);
+    }
+  }
+  return owner;
+}
+
 std::vector<int> subdomainOwnerRank(int numSubdomains, int numRanks) {
   DDC_INPUT_REQUIRE(numRanks >= 1, "number of MPI ranks must be >= 1, got " << numRanks);
   DDC_INPUT_REQUIRE(numSubdomains >= numRanks,

@@ -133,6 +133,11 @@ Partition partitionFromFile(const Mesh& mesh, const std::string& fileName);
 ///         "Partition/Number of Subdomains").
 std::vector<int> subdomainOwnerRank(int numSubdomains, int numRanks);
 
+/// Owner rank of each node of `mesh`: the lowest rank among the ranks
+/// (subdomainOwnerRank()) of the subdomains of its elements; numRanks for a
+/// node of no element. How the model owns a node's DOFs.
+std::vector<int> nodeOwnerRanks(const Mesh& mesh, const Partition& partition, int numRanks);
+
 /// Subdomains owned by `rank` under subdomainOwnerRank(), in increasing order.
 std::vector<int> subdomainsOfRank(int numSubdomains, int numRanks, int rank);
 

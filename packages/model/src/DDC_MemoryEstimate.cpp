@@ -97,9 +97,9 @@ double partitionBytes(const Mesh& mesh, const Partition& partition) {
   return kPartitionBytesPerCorner * corners;
 }
 
-/// Per rank: its owned nodes (each node owned by the lowest rank among its
-/// elements', as in the Model) and the nodes of its elements that other
-/// ranks own (its ghosts), from the partition.
+/// Per rank: its owned nodes (nodeOwnerRanks(), as in the Model) and the
+/// nodes of its elements that other ranks own (its ghosts), from the
+/// partition.
 struct RankNodes {
   std::vector<double> owned, ghosts;
 };
@@ -107,13 +107,8 @@ struct RankNodes {
 RankNodes rankNodes(const Mesh& mesh, const Partition& partition, int ranks) {
   RankNodes out{std::vector<double>(ranks, 0.0), std::vector<double>(ranks, 0.0)};
   if (partition.elementSubdomain.size() != size_t(mesh.numElements())) return out;
-  const std::vector<int> rankOf = subdomainOwnerRank(std::max(partition.numSubdomains, 1), ranks);
-  std::vector<int> owner(mesh.numNodes(), ranks);
-  for (int e = 0; e < mesh.numElements(); ++e)
-    for (int i = 0; i < mesh.elementNumNodes(e); ++i) {
-      int& o = owner[mesh.elementNodes(e)[i]];
-      o = std::min(o, rankOf[partition.elementSubdomain[e]]);
-    }
+  const std::vector<int> rankOf = subdomainOwnerRank(partition.numSubdomains, ranks);
+  const std::vector<int> owner = nodeOwnerRanks(mesh, partition, ranks);
   for (int o : owner)
     if (o < ranks) out.owned[o] += 1.0;
   std::vector<std::pair<int, int>> ghost;  // (node, rank) of a rank's element at a node it does not own

@@ -231,14 +231,7 @@ void Model::computeNodeOwners() {
     computePartNodeOwners();
     return;
   }
-  nodeOwner_.assign(mesh.numNodes(), comm_->getSize());
-  for (int e = 0; e < mesh.numElements(); ++e) {
-    const int r = subdomainRank_[partition_.elementSubdomain[e]];
-    for (int i = 0; i < mesh.elementNumNodes(e); ++i) {
-      int& o = nodeOwner_[mesh.elementNodes(e)[i]];
-      o = std::min(o, r);
-    }
-  }
+  nodeOwner_ = nodeOwnerRanks(mesh, partition_, comm_->getSize());
 }
 
 void Model::computePartNodeOwners() {
