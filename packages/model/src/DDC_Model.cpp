@@ -20,6 +20,7 @@
 #include "DDC_ContinuumElement.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_MpiRecords.hpp"
+#include "DDC_NodeDirectory.hpp"
 #include "DDC_ShapeFunctions.hpp"
 #include "DDC_Substructuring.hpp"
 
@@ -235,32 +236,8 @@ void Model::computeNodeOwners() {
 }
 
 void Model::computePartNodeOwners() {
-  // The owner of a node is the lowest rank that holds it. Each node id has
-  // a directory rank (ids split evenly over the ranks), which learns who
-  // holds the node and tells them the lowest.
-  const Mesh& mesh = *mesh_;
-  const int nranks = comm_->getSize(), me = comm_->getRank();
-  const Mesh::GlobalId numIds = std::max<Mesh::GlobalId>(mesh.numGlobalNodes(), 1);
-  struct Holder {
-    Mesh::GlobalId node;
-    int rank;
-  };
-  std::vector<std::vector<Holder>> send(nranks);
-  for (int n = 0; n < mesh.numNodes(); ++n)
-    send[static_cast<int>(mesh.nodeId(n) * nranks / numIds)].push_back({mesh.nodeId(n), me});
-  std::vector<Holder> held = exchangeRecords(rawComm(*comm_), send);
-  std::sort(held.begin(), held.end(),
-            [](const Holder& a, const Holder& b) { return a.node < b.node || (a.node == b.node && a.rank < b.rank); });
-  for (auto& v : send) v.clear();
-  for (size_t i = 0, j = 0; i < held.size(); i = j) {
-    for (j = i; j < held.size() && held[j].node == held[i].node; ++j)
-      send[held[j].rank].push_back({held[i].node, held[i].rank});
-  }
-  std::vector<Holder>().swap(held);
-  nodeOwner_.assign(mesh.numNodes(), nranks);
-  for (const Holder& h : exchangeRecords(rawComm(*comm_), send)) nodeOwner_[mesh.localNode(h.node)] = h.rank;
-  for (int n = 0; n < mesh.numNodes(); ++n)
-    DDC_CHECK(nodeOwner_[n] < nranks, "Model: node " << mesh.nodeId(n) << " got no owner");
+  // The owner of a node is the lowest rank that holds it.
+  nodeOwner_ = NodeDirectory(rawComm(*comm_), *mesh_).lowestHolder();
 }
 
 std::vector<GO> Model::numberNodeDofs(std::vector<GO>& count) {
