@@ -87,6 +87,28 @@ ddc_check_history(feti_default_3d_iterations feti_default_3d_Eisenstat-Walker CH
   LABELS feti)
 ddc_compare_histories(feti_default_3d_forcing_same_result feti_default_3d_Eisenstat-Walker feti_default_3d_Constant
   1e-8 COLUMNS strain_energy external_work newton_iterations LABELS feti)
+# FETI-DP on parts of the mesh ('Partition/Mesh On Every Rank' = false: each
+# rank selects the primal nodes of its subdomains with the holders of their
+# nodes, doc/feti-dp.md "Primal nodes"): the same run as on the whole mesh,
+# to round-off, with edge ends and shared faces (32 subdomains), with every
+# subdomain-edge node (512) and with a subdomain that rule 3 anchors (the
+# island: its report line comes from the rank that decides it).
+function(ddc_feti_on_parts whole deck)
+  cmake_parse_arguments(P "" "REGEX" "ARGS" ${ARGN})
+  ddc_add_run_test(feti_on_parts_${whole} RANKS 2 FIXTURE
+    ARGS ${deck} --set "Solver/Strategy=FETI-DP" ${P_ARGS} --set "Output/VTK=false"
+      --set "Partition/Mesh On Every Rank=false" --output-dir ${DDC_RUNS}/feti_on_parts_${whole}
+    FILES ${DDC_RUNS}/feti_on_parts_${whole}/history.csv LABELS feti REGEX "${P_REGEX}")
+  ddc_compare_histories(feti_on_parts_equal_whole_${whole} ${whole} feti_on_parts_${whole} 1e-12 LABELS feti)
+endfunction()
+ddc_feti_on_parts(feti_default_3d_Eisenstat-Walker ${PROJECT_SOURCE_DIR}/examples/block_3d.xml
+  ARGS --set "Mesh/Bodies/Block/Box/Refinement=3" --set "Partition/Number of Subdomains=32" REGEX "step +1/1")
+ddc_feti_on_parts(feti_primal_Automatic_512_subdomains ${PROJECT_SOURCE_DIR}/examples/block_3d.xml
+  ARGS --set "Mesh/Bodies/Block/Box/Refinement=2" --set "Partition/Number of Subdomains=512"
+  REGEX "no edge averages.*step +1/1")
+ddc_feti_on_parts(feti_island_FETI-DP_np2 ${DDC_INPUTS}/feti_island.xml
+  ARGS --set "Solver/FETI-DP/Belos/Convergence Tolerance=1e-12"
+  REGEX "FETI-DP: subdomain 1: 2 interface node\\(s\\) made primal.*step +1/1")
 # A FETI-DP run reports the size of its coarse problem (doc/feti-dp.md "In 3-D").
 ddc_add_run_test(feti_reports_coarse_size RANKS 1
   ARGS ${PROJECT_SOURCE_DIR}/examples/block_3d.xml --set "Solver/Strategy=FETI-DP"

@@ -86,15 +86,13 @@ void keepOwnPart(std::shared_ptr<Mesh>& mesh, Partition& partition, int rank, in
 }  // namespace
 
 void Analysis::requireWholeMeshWhereNeeded(const PL& params) {
-  // What still reads the whole mesh on every rank: the FETI-DP primal
-  // selection, the contact slots and surfaces, the Exodus II writer
-  // (doc/architecture.md, "What a distributed mesh has to change").
+  // What still reads the whole mesh on every rank: the contact slots and
+  // surfaces, the Exodus II writer (doc/architecture.md, "What a
+  // distributed mesh has to change").
   if (params.sublist("Partition").get<bool>("Mesh On Every Rank")) return;
   std::string needs;
-  if (params.sublist("Solver").get<std::string>("Strategy") == "FETI-DP")
-    needs = "Solver/Strategy = FETI-DP (its primal nodes are selected over the whole mesh)";
-  else if (params.isSublist("Contact") && params.sublist("Contact").isSublist("Pairs") &&
-           params.sublist("Contact").sublist("Pairs").numParams() > 0)
+  if (params.isSublist("Contact") && params.sublist("Contact").isSublist("Pairs") &&
+      params.sublist("Contact").sublist("Pairs").numParams() > 0)
     needs = "contact pairs (Contact/Pairs: every rank holds every contact surface)";
   else if (params.sublist("Output").get<bool>("Exodus"))
     needs = "Output/Exodus = true (rank 0 writes the whole mesh)";

@@ -261,7 +261,7 @@ Teuchos::RCP<PL> partitionValidParameters() {
   pl->set("Mesh On Every Rank", true,
           "true: every rank keeps the whole mesh through the run. false: once the mesh is partitioned each "
           "rank keeps only its elements and their nodes (doc/architecture.md, 'What a distributed mesh has "
-          "to change'), for Solver/Strategy = Monolithic without contact pairs and without Output/Exodus. "
+          "to change'), for runs without contact pairs and without Output/Exodus (Monolithic or FETI-DP). "
           "The mesh is still built whole on every rank first: this lowers what a rank holds during the "
           "solve, not the peak of the set-up.");
   return pl;

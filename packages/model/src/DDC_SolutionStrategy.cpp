@@ -181,7 +181,10 @@ class FetiDpStrategy : public SolutionStrategy {
     feti_->setTopology(std::move(fs), model_->ownedMap());
     // The size of the coarse problem (doc/feti-dp.md "In 3-D": it grows with
     // the number of subdomain-edge ends a METIS partition makes).
-    const long nodes = std::count(primal.begin(), primal.end(), char(1));
+    long ownPrimal = 0, nodes = 0;  // each primal node counted by the rank that owns it
+    for (int n = 0; n < mesh.numNodes(); ++n)
+      ownPrimal += primal[n] && model_->ownedMap()->isNodeGlobalElement(model_->dof(n, 0)) ? 1 : 0;
+    Teuchos::reduceAll<int, long>(*model_->comm(), Teuchos::REDUCE_SUM, ownPrimal, Teuchos::outArg(nodes));
     const GO coarse = GO(feti_->primalMap()->getGlobalNumElements()), edgeFace = feti_->numEdgeFaceConstraints();
     progress("FETI-DP: " + std::to_string(model_->partition().numSubdomains) + " subdomains, " +
              std::to_string(nodes) + " primal nodes, coarse problem of " + std::to_string(coarse) + " DOFs (" +

@@ -49,8 +49,11 @@ enum class VertexRule {
 ///     above give fewer, interface nodes of the subdomain are made primal
 ///     (the one farthest from the existing anchors, then the one farthest
 ///     from those).
+/// On a part of a mesh (Mesh::part(), each rank its subdomains' elements)
+/// the ranks agree through the holders of each node and decide in turns,
+/// and the selection is the one made on the whole mesh. Collective.
 /// \returns per mesh node 1 if primal. `report` receives one line per
-///          subdomain that needed rule 3.
+///          subdomain that needed rule 3 (every subdomain's, on every rank).
 /// \param massive the subdomain matrices are K^s + c M^s with c > 0
 ///        (dynamics): nonsingular, so a subdomain that rule 3 cannot anchor
 ///        is left floating (reported) instead of refused.
