@@ -113,6 +113,9 @@ class DirectSolverFactory {
     Creator create;
     Teuchos::RCP<const Teuchos::ParameterList> validParameters;  ///< without "Type"
     std::string description;
+    /// The back end factorises matrices on one process only (CHOLMOD): it
+    /// may be a FETI-DP Local Solver, not a solver of a distributed matrix.
+    bool oneProcess = false;
   };
 
   DirectSolverFactory() = default;
@@ -133,6 +136,10 @@ class DirectSolverFactory {
   /// \throws InputError for an unknown Type (naming where/Type and listing the
   ///         known types) or a misspelt / mistyped parameter (naming its path).
   std::unique_ptr<DirectSolver> create(Teuchos::ParameterList& params, const std::string& where) const;
+  /// \throws InputError naming where/Type when the chosen type factorises
+  ///         matrices on one process only (Entry::oneProcess) and the
+  ///         matrix it would solve is distributed over `processes` > 1.
+  void requireDistributable(const Teuchos::ParameterList& params, const std::string& where, int processes) const;
 
   /// The documented valid {Type, <one sublist per registered type>} list of
   /// this factory (default Type "MUMPS" if registered, else the first name).

@@ -53,7 +53,8 @@ DirectSolverFactory DirectSolverFactory::withBuiltins() {
                          },
                          CholmodSolver::getValidParameters(),
                          "SuiteSparse CHOLMOD: supernodal Cholesky LL^T of a symmetric positive definite matrix "
-                         "on one process, e.g. the FETI-DP Local Solver, falling back to MUMPS if indefinite"});
+                         "on one process, e.g. the FETI-DP Local Solver, falling back to MUMPS if indefinite",
+                         /*oneProcess=*/true});
   return f;
 }
 
@@ -61,6 +62,19 @@ DirectSolverFactory DirectSolverFactory::withIterativeSolvers() {
   DirectSolverFactory f = withBuiltins();
   addIterativeSolvers(f);
   return f;
+}
+
+void DirectSolverFactory::requireDistributable(const Teuchos::ParameterList& params, const std::string& where,
+                                               int processes) const {
+  const std::string type = params.isParameter("Type") ? params.get<std::string>("Type") : kDefaultType;
+  if (processes <= 1 || !entry(type, where).oneProcess) return;
+  std::vector<std::string> distributed;
+  for (const auto& kv : entries_)
+    if (!kv.second.oneProcess) distributed.push_back(kv.first);
+  DDC_THROW(InputError, "'" << joinPath(where, "Type") << "' = '" << type << "' factorises a matrix on one process, "
+                            << "but this one is distributed over the " << processes << " MPI ranks; use "
+                            << knownNames(distributed) << " here (" << type
+                            << " suits the FETI-DP 'Local Solver'), or run on one rank");
 }
 
 void DirectSolverFactory::add(const std::string& type, Entry entry) {

@@ -238,6 +238,7 @@ FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramete
   }
   m.factory.create(params.sublist("Local Solver"), joinPath(path, "Local Solver"));
   m.factory.create(params.sublist("Coarse Solver"), joinPath(path, "Coarse Solver"));
+  m.factory.requireDistributable(params.sublist("Coarse Solver"), joinPath(path, "Coarse Solver"), comm->getSize());
   m.localSolverParams = params.sublist("Local Solver");
   m.coarseSolverParams = params.sublist("Coarse Solver");
 }

@@ -417,6 +417,8 @@ std::unique_ptr<SolutionStrategy> makeSolutionStrategy(Teuchos::RCP<const Teucho
   DDC_INPUT_REQUIRE(!solver.isSublist("FETI-DP"), "sublist 'Solver/FETI-DP' does not apply to Solver/Strategy = Monolithic");
   requireNonsymmetricSolver(solver.sublist("Linear Solver"), contact);
   auto strategy = std::make_unique<MonolithicStrategy>(solver);
+  DirectSolverFactory::withIterativeSolvers().requireDistributable(solver.sublist("Linear Solver"),
+                                                                   "Solver/Linear Solver", comm->getSize());
   const std::string type = solver.sublist("Linear Solver").get<std::string>("Type");
   DDC_INPUT_REQUIRE(!contact.enabled() || type == "MUMPS" || type == "Amesos2",
                     "Solver/Linear Solver/Type = " << type << " cannot solve the saddle-point system of contact "
