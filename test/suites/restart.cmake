@@ -81,6 +81,9 @@ ddc_add_restart_test(restart_other_ranks_monolithic_np2_to_1 2 other-ranks:1 ${D
 # Dynamics (velocities and accelerations in the checkpoint) and Step Control
 # (the adaptive controller's state).
 ddc_add_restart_test(restart_sigterm_dynamics_np2 2 sigterm ${PROJECT_SOURCE_DIR}/examples/bar_impact.xml)
+# A checkpoint written on parts of the mesh continues with the whole mesh and
+# the other way round, on another rank count (dynamics, no contact).
+ddc_add_restart_test(restart_other_mode_np2_to_3 2 other-mode:3 ${PROJECT_SOURCE_DIR}/examples/bar_vibration.xml)
 ddc_add_restart_test(restart_sigterm_step_control_np2 2 sigterm
   ${PROJECT_SOURCE_DIR}/examples/two_half_rings_adaptive.xml)
 # Coulomb friction (the slots' stick/slip states, tangential bases and

@@ -30,6 +30,13 @@
 #                   another directory: history.csv equals the uninterrupted
 #                   NP-rank run's to 1e-10 (summation order only; the dual
 #                   iterations are not compared, they may differ by one).
+#   other-mode:M    a checkpoint written on parts of the mesh ('Partition/
+#                   Mesh On Every Rank' = false, NP ranks, sigterm@5)
+#                   continued with the whole mesh on every rank, and one
+#                   written with the whole mesh continued on parts, both on
+#                   M ranks into other directories: history.csv equals the
+#                   uninterrupted run's to 1e-10 (the deck must have no
+#                   contact pairs and no Exodus output).
 #   corrupted       the checkpoint with a flipped byte, then cut short, then
 #                   replaced by another file: every rank exits non-zero
 #                   naming the file, and the interrupted run's directory is
@@ -251,6 +258,24 @@ other-ranks:*)
     newton_iterations active_contacts contact_force_x contact_force_y contact_exchanges external_work ||
     fail "history.csv differs above 1e-10"
   [ -f "$work/stopped.partial/checkpoint.ddc" ] || fail "the stopped run's checkpoint is gone"
+  ;;
+other-mode:*)
+  ranks=${case_name#other-mode:}
+  reference
+  parts=(--set "Partition/Mesh On Every Rank=false")
+  for written in parts whole; do
+    if [ "$written" = parts ]; then stop_args=("${parts[@]}") go_args=(); else stop_args=() go_args=("${parts[@]}"); fi
+    DDCONTACT_FAULT_INJECTION=sigterm@5 run "$work/stopped-$written.log" "$np" "${stop_args[@]}" \
+      --output-dir "$work/stopped-$written"
+    every_rank_status "$work/stopped-$written.log" 143
+    run "$work/restart-$written.log" "$ranks" "${go_args[@]}" --restart "$work/stopped-$written" \
+      --output-dir "$work/continued-$written"
+    np=$ranks every_rank_succeeded "$work/restart-$written.log"
+    expect_in "$work/restart-$written.log" "restart: continuing after step 5 " "restart of the run on $written"
+    "$compare" "$ref/history.csv" "$work/continued-$written/history.csv" 1e-10 load_factor strain_energy \
+      newton_iterations external_work ||
+      fail "history.csv of the checkpoint written on $written differs above 1e-10"
+  done
   ;;
 corrupted)
   DDCONTACT_FAULT_INJECTION=sigterm@5 run "$work/stopped.log" "$np" --output-dir "$work/stopped"
