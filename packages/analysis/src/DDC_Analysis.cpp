@@ -65,22 +65,13 @@ Analysis::~Analysis() = default;
 namespace {
 
 /// 'Partition/Mesh On Every Rank' = false: `mesh` becomes this rank's part
-/// (Mesh::part(): the elements of its subdomains and their nodes) and
+/// (rankPart(): the elements of its subdomains and their nodes) and
 /// `partition` its elements' subdomains; the whole mesh goes with the last
 /// reference to it.
 void keepOwnPart(std::shared_ptr<Mesh>& mesh, Partition& partition, int rank, int ranks) {
-  const std::vector<int> rankOf = subdomainOwnerRank(partition.numSubdomains, ranks);
-  std::vector<int> mine;
-  Partition own;
-  own.numSubdomains = partition.numSubdomains;
-  own.edgeCut = partition.edgeCut;
-  for (int e = 0; e < mesh->numElements(); ++e)
-    if (rankOf[partition.elementSubdomain[e]] == rank) {
-      mine.push_back(e);
-      own.elementSubdomain.push_back(partition.elementSubdomain[e]);
-    }
-  mesh = std::make_shared<Mesh>(mesh->part(mine));
-  partition = std::move(own);
+  RankPart own = rankPart(*mesh, partition, rank, ranks);
+  mesh = std::make_shared<Mesh>(std::move(own.mesh));
+  partition = std::move(own.partition);
 }
 
 }  // namespace

@@ -389,6 +389,21 @@ std::vector<int> subdomainOwnerRank(int numSubdomains, int numRanks) {
   return owner;
 }
 
+RankPart rankPart(const Mesh& mesh, const Partition& partition, int rank, int numRanks) {
+  const std::vector<int> rankOf = subdomainOwnerRank(partition.numSubdomains, numRanks);
+  std::vector<int> mine;
+  RankPart out;
+  out.partition.numSubdomains = partition.numSubdomains;
+  out.partition.edgeCut = partition.edgeCut;
+  for (int e = 0; e < mesh.numElements(); ++e)
+    if (rankOf[partition.elementSubdomain[e]] == rank) {
+      mine.push_back(e);
+      out.partition.elementSubdomain.push_back(partition.elementSubdomain[e]);
+    }
+  out.mesh = mesh.part(mine);
+  return out;
+}
+
 std::vector<int> subdomainsOfRank(int numSubdomains, int numRanks, int rank) {
   const auto owner = subdomainOwnerRank(numSubdomains, numRanks);
   std::vector<int> mine;

@@ -141,4 +141,15 @@ std::vector<int> nodeOwnerRanks(const Mesh& mesh, const Partition& partition, in
 /// Subdomains owned by `rank` under subdomainOwnerRank(), in increasing order.
 std::vector<int> subdomainsOfRank(int numSubdomains, int numRanks, int rank);
 
+/// A rank's part of a mesh and the subdomains of its elements.
+struct RankPart {
+  Mesh mesh;
+  Partition partition;
+};
+
+/// The part of `mesh` that `rank` of `numRanks` holds under `partition`:
+/// the elements of the subdomains subdomainOwnerRank() gives it and their
+/// nodes (Mesh::part()), and those elements' subdomains.
+RankPart rankPart(const Mesh& mesh, const Partition& partition, int rank, int numRanks);
+
 }  // namespace ddc

@@ -133,6 +133,28 @@ TEST(Partition, Errors) {
   EXPECT_EQ(one.elementSubdomain, std::vector<int>(4, 0));
 }
 
+TEST(Partition, RankPartsHoldEachElementOnceWithItsSubdomain) {
+  // Five METIS subdomains of a 6 x 4 rectangle over two ranks (0-2 on rank
+  // 0, 3-4 on rank 1): each element in exactly one rank's part, with its
+  // subdomain, and only subdomains of that rank.
+  const Mesh m = rectangle(6, 4);
+  const ddc::Partition p = ddc::partitionMetis(m, 5);
+  std::vector<int> seen(m.numElements(), 0);
+  for (int rank = 0; rank < 2; ++rank) {
+    const ddc::RankPart own = ddc::rankPart(m, p, rank, 2);
+    ASSERT_TRUE(own.mesh.isPart());
+    ASSERT_EQ(own.partition.elementSubdomain.size(), size_t(own.mesh.numElements()));
+    EXPECT_EQ(own.partition.numSubdomains, 5);
+    for (int e = 0; e < own.mesh.numElements(); ++e) {
+      const auto id = own.mesh.elementId(e);
+      ++seen[id];
+      EXPECT_EQ(own.partition.elementSubdomain[e], p.elementSubdomain[id]);
+      EXPECT_EQ(ddc::subdomainOwnerRank(5, 2)[own.partition.elementSubdomain[e]], rank);
+    }
+  }
+  EXPECT_EQ(seen, std::vector<int>(m.numElements(), 1));
+}
+
 TEST(Partition, SubdomainOwnerRank) {
   EXPECT_EQ(ddc::subdomainOwnerRank(4, 4), (std::vector<int>{0, 1, 2, 3}));
   EXPECT_EQ(ddc::subdomainOwnerRank(5, 2), (std::vector<int>{0, 0, 0, 1, 1}));

@@ -72,23 +72,15 @@ TwoModels makeModels(bool fixLeft) {
   TwoModels m;
   m.whole = block();
   const ddc::Partition partition = ddc::partitionMetis(*m.whole, comm()->getSize());
-  const std::vector<int> rankOf = ddc::subdomainOwnerRank(partition.numSubdomains, comm()->getSize());
-  std::vector<int> mine;
-  ddc::Partition partOfPartition;
-  partOfPartition.numSubdomains = partition.numSubdomains;
-  for (int e = 0; e < m.whole->numElements(); ++e)
-    if (rankOf[partition.elementSubdomain[e]] == comm()->getRank()) {
-      mine.push_back(e);
-      partOfPartition.elementSubdomain.push_back(partition.elementSubdomain[e]);
-    }
-  m.part = std::make_shared<ddc::Mesh>(m.whole->part(mine));
+  ddc::RankPart own = ddc::rankPart(*m.whole, partition, comm()->getRank(), comm()->getSize());
+  m.part = std::make_shared<ddc::Mesh>(std::move(own.mesh));
   PL el("Element");
   el.set("Type", std::string("Hex8"));
   el.sublist("Material").set("Type", std::string("Neo-Hookean"));
   std::vector<std::shared_ptr<const ddc::Element>> elements = {
       ddc::ElementFactory::withBuiltins().create(el, "Element")};
   m.onWhole = std::make_unique<ddc::Model>(comm(), m.whole, elements, partition, pulled(fixLeft));
-  m.onPart = std::make_unique<ddc::Model>(comm(), m.part, elements, partOfPartition, pulled(fixLeft));
+  m.onPart = std::make_unique<ddc::Model>(comm(), m.part, elements, own.partition, pulled(fixLeft));
   return m;
 }
 

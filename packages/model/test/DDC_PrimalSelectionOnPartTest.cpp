@@ -98,23 +98,15 @@ TwoSelections models(std::shared_ptr<ddc::Mesh> whole, const ddc::Partition& par
                      const ddc::BoundaryConditions& bcs) {
   TwoSelections t;
   t.whole = std::move(whole);
-  const std::vector<int> rankOf = ddc::subdomainOwnerRank(partition.numSubdomains, comm()->getSize());
-  std::vector<int> mine;
-  ddc::Partition own;
-  own.numSubdomains = partition.numSubdomains;
-  for (int e = 0; e < t.whole->numElements(); ++e)
-    if (rankOf[partition.elementSubdomain[e]] == comm()->getRank()) {
-      mine.push_back(e);
-      own.elementSubdomain.push_back(partition.elementSubdomain[e]);
-    }
-  t.part = std::make_shared<ddc::Mesh>(t.whole->part(mine));
+  ddc::RankPart own = ddc::rankPart(*t.whole, partition, comm()->getRank(), comm()->getSize());
+  t.part = std::make_shared<ddc::Mesh>(std::move(own.mesh));
   PL el("Element");
   el.set("Type", std::string(t.whole->dim() == 3 ? "Hex8" : "Quad4"));
   el.sublist("Material").set("Type", std::string("Neo-Hookean"));
   std::vector<std::shared_ptr<const ddc::Element>> elements(
       size_t(t.whole->numBodies()), ddc::ElementFactory::withBuiltins().create(el, "Element"));
   t.modelOnWhole = std::make_unique<ddc::Model>(comm(), t.whole, elements, partition, bcs);
-  t.modelOnPart = std::make_unique<ddc::Model>(comm(), t.part, elements, own, bcs);
+  t.modelOnPart = std::make_unique<ddc::Model>(comm(), t.part, elements, own.partition, bcs);
   return t;
 }
 
