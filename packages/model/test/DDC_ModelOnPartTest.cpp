@@ -3,7 +3,8 @@
 // mesh, and the model must be the one it builds on the whole mesh: the
 // same node owners and DOF numbers (by node id), the same prescribed DOFs,
 // partition-free ids, residual and tangent, the same rigid motions left
-// free and the same place named for a non-finite entry. On 1-3 ranks of a
+// free and the same place named for a non-finite entry; contact pairs and
+// other ranks' elements on a part are refused. On 1-3 ranks of a
 // Hex8 block under METIS's partition (doc/architecture.md, "What a
 // distributed mesh has to change").
 #include <gmock/gmock.h>
@@ -12,6 +13,7 @@
 #include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_Core.hpp>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -179,6 +181,41 @@ TEST(ModelOnPart, SameFreeRigidMotionsAndSameNonFinitePlace) {
   const std::string onWhole = whole.describeNonFinite(*v), onPart = part.describeNonFinite(*w);
   EXPECT_THAT(onWhole, ::testing::HasSubstr("NaN at u_z of node "));
   EXPECT_EQ(onPart.substr(0, onPart.find(", in element")), onWhole.substr(0, onWhole.find(", in element")));
+}
+
+TEST(ModelOnPart, RefusesContactAndOtherRanksElements) {
+  // Contact on a part is not built yet (doc/architecture.md, "What a
+  // distributed mesh has to change", step 4): a host code that builds a
+  // Model on a part with contact pairs is told so on every rank.
+  const TwoModels m = makeModels(true);
+  const ddc::Partition partition = ddc::partitionMetis(*m.whole, comm()->getSize());
+  ddc::RankPart own = ddc::rankPart(*m.whole, partition, comm()->getRank(), comm()->getSize());
+  auto part = std::make_shared<ddc::Mesh>(std::move(own.mesh));
+  PL el("Element");
+  el.set("Type", std::string("Hex8"));
+  el.sublist("Material").set("Type", std::string("Neo-Hookean"));
+  std::vector<std::shared_ptr<const ddc::Element>> elements = {
+      ddc::ElementFactory::withBuiltins().create(el, "Element")};
+  ddc::ContactOptions contact;
+  contact.pairs.push_back({"Pair", "Block/left", "Block/right"});
+  auto refusal = [](const std::function<void()>& build) {
+    try {
+      build();
+    } catch (const std::logic_error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_THAT(refusal([&] { ddc::Model(comm(), part, elements, own.partition, pulled(true), contact); }),
+              ::testing::HasSubstr("contact on a part of a mesh (Mesh::part()) is not supported yet"));
+  // A part must hold this rank's elements only: every element on every
+  // rank is refused where there is more than one rank.
+  if (comm()->getSize() == 1) return;
+  std::vector<int> all(size_t(m.whole->numElements()));
+  for (int e = 0; e < m.whole->numElements(); ++e) all[size_t(e)] = e;
+  auto everything = std::make_shared<ddc::Mesh>(m.whole->part(all));
+  EXPECT_THAT(refusal([&] { ddc::Model(comm(), everything, elements, partition, pulled(true)); }),
+              ::testing::HasSubstr("holds elements of other ranks"));
 }
 
 }  // namespace
