@@ -45,6 +45,33 @@ int Mesh::addNode(double x, double y, double z) {
   return numNodes() - 1;
 }
 
+Mesh Mesh::startPart() {
+  Mesh p;
+  p.isPart_ = true;
+  return p;
+}
+
+int Mesh::addPartNode(GlobalId id, double x, double y, double z) {
+  DDC_CHECK(isPart_, "addPartNode on a whole mesh");
+  DDC_CHECK(nodeId_.empty() || id > nodeId_.back(), "addPartNode: id " << id << " after " << nodeId_.back());
+  nodeId_.push_back(id);
+  return addNode(x, y, z);
+}
+
+int Mesh::addPartElement(GlobalId id, const int* nodes) {
+  DDC_CHECK(isPart_, "addPartElement on a whole mesh");
+  DDC_CHECK(elementId_.empty() || id > elementId_.back(),
+            "addPartElement: id " << id << " after " << elementId_.back());
+  elementId_.push_back(id);
+  return addElement(nodes);
+}
+
+void Mesh::growWhole(GlobalId nodes, GlobalId elements) {
+  DDC_CHECK(isPart_ && nodes >= 0 && elements >= 0, "growWhole on a whole mesh or by a negative count");
+  globalNodes_ += nodes;
+  globalElements_ += elements;
+}
+
 int Mesh::addElement(const int* nodes) {
   DDC_CHECK(!bodies_.empty(), "addElement before beginBody");
   const int nn = numCellNodes(bodies_.back().cellType);

@@ -98,6 +98,19 @@ class Mesh {
   /// \throws std::invalid_argument if `destination` does not hold one rank
   ///         of `comm` per element
   Mesh migrated(MPI_Comm comm, const std::vector<int>& destination) const;
+  /// A part built piece by piece, as a generator does that makes only some
+  /// elements of a whole mesh (generateBox() with an ElementRange): no
+  /// bodies, nodes or elements yet, a whole mesh of none.
+  static Mesh startPart();
+  /// Add a node of the current body of a part (startPart()) with its id in
+  /// the whole mesh (ids ascending). Returns its index.
+  int addPartNode(GlobalId id, double x, double y, double z = 0.0);
+  /// Add an element of the current body of a part with its id in the whole
+  /// mesh (ids ascending); `nodes` are indices in the part. Returns its index.
+  int addPartElement(GlobalId id, const int* nodes);
+  /// The whole mesh of a part (startPart()) grows by `nodes` nodes and
+  /// `elements` elements: a body added in full to the whole.
+  void growWhole(GlobalId nodes, GlobalId elements);
   /// Whether this mesh is a part of a larger one (made by part()).
   bool isPart() const { return isPart_; }
   /// The id of node n in the whole mesh (n itself in a whole mesh).

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <map>
 #include <random>
 #include <sstream>
 #include <vector>
@@ -77,39 +78,48 @@ int pointsPerCell(CellType t) { return numCellNodes(t) == referenceCell(t).numCo
 /// hexahedra then swap the roles of index directions 0 and 1, tetrahedra swap
 /// two corners.
 void forEachGridCell(const Grid& g, CellType t, bool reversed,
+                     const std::function<void(const std::vector<Index>&)>& visit);
+
+/// Cells per grid cell: six tetrahedra, or one quadrilateral / hexahedron.
+int cellsPerGridCell(CellType t) { return referenceCell(t).simplex ? 6 : 1; }
+
+/// The corners of cell `o` (0 unless tetrahedra) of grid cell (i, j, k), as
+/// forEachGridCell() visits it.
+std::vector<Index> gridCellCorners(const Grid& g, CellType t, bool reversed, int i, int j, int k, int o) {
+  const ReferenceCell& ref = referenceCell(t);
+  static const std::array<Index, 6> orders = {{{{0, 1, 2}}, {{0, 2, 1}}, {{1, 0, 2}}, {{1, 2, 0}}, {{2, 0, 1}}, {{2, 1, 0}}}};
+  static const std::array<int, 6> orderSign = {{1, -1, -1, 1, 1, -1}};
+  const Index base{{g.m * i, g.m * j, g.m * k}};
+  if (!ref.simplex) {
+    std::vector<Index> corners;
+    for (int c = 0; c < ref.numCorners; ++c) {
+      Index p = base;
+      for (int d = 0; d < g.dim; ++d) {
+        const int axis = reversed && d < 2 ? 1 - d : d;
+        p[axis] += ref.nodes[c][d] > 0 ? g.m : 0;
+      }
+      corners.push_back(p);
+    }
+    return corners;
+  }
+  // det[w1 - w0, w2 - w0, w3 - w0] = det[e_o0, e_o1, e_o2] = orderSign.
+  std::vector<Index> w(4, base);
+  for (int s = 1; s <= 3; ++s) {
+    w[s] = w[s - 1];
+    w[s][orders[o][s - 1]] += g.m;
+  }
+  if ((orderSign[o] > 0) == reversed) std::swap(w[1], w[2]);
+  return w;
+}
+
+void forEachGridCell(const Grid& g, CellType t, bool reversed,
                      const std::function<void(const std::vector<Index>&)>& visit) {
   const ReferenceCell& ref = referenceCell(t);
   DDC_CHECK(ref.dim == g.dim && (!ref.simplex || g.dim == 3), "grid of dimension " << g.dim << " for " << ref.name);
-  static const std::array<Index, 6> orders = {{{{0, 1, 2}}, {{0, 2, 1}}, {{1, 0, 2}}, {{1, 2, 0}}, {{2, 0, 1}}, {{2, 1, 0}}}};
-  static const std::array<int, 6> orderSign = {{1, -1, -1, 1, 1, -1}};
   for (int k = 0; k < (g.dim == 3 ? g.n[2] : 1); ++k)
     for (int j = 0; j < g.n[1]; ++j)
-      for (int i = 0; i < g.n[0]; ++i) {
-        const Index base{{g.m * i, g.m * j, g.m * k}};
-        if (!ref.simplex) {
-          std::vector<Index> corners;
-          for (int c = 0; c < ref.numCorners; ++c) {
-            Index p = base;
-            for (int d = 0; d < g.dim; ++d) {
-              const int axis = reversed && d < 2 ? 1 - d : d;
-              p[axis] += ref.nodes[c][d] > 0 ? g.m : 0;
-            }
-            corners.push_back(p);
-          }
-          visit(corners);
-          continue;
-        }
-        for (int o = 0; o < 6; ++o) {
-          // det[w1 - w0, w2 - w0, w3 - w0] = det[e_o0, e_o1, e_o2] = orderSign.
-          std::vector<Index> w(4, base);
-          for (int s = 1; s <= 3; ++s) {
-            w[s] = w[s - 1];
-            w[s][orders[o][s - 1]] += g.m;
-          }
-          if ((orderSign[o] > 0) == reversed) std::swap(w[1], w[2]);
-          visit(w);
-        }
-      }
+      for (int i = 0; i < g.n[0]; ++i)
+        for (int o = 0; o < cellsPerGridCell(t); ++o) visit(gridCellCorners(g, t, reversed, i, j, k, o));
 }
 
 /// The grid point of every node of a cell from its corners: the node's
@@ -256,65 +266,105 @@ double axisCoordinate(double origin, double length, int p, int np) {
 /// trilinear map of its corners); for tetrahedra at the midpoint of the
 /// tetrahedron edge through it, which runs from the vertex below to the
 /// vertex above in every odd index (forEachGridCell: Kuhn edges are monotone).
+/// The radius of the vertices' random displacement.
+double distortionRadius(const Grid& g, const Point& length, double distortion) {
+  double hmin = std::numeric_limits<double>::max();
+  for (int d = 0; d < g.dim; ++d) hmin = std::min(hmin, length[d] / g.n[d]);
+  return distortion * hmin;
+}
+
+/// Vertex p (indices multiples of g.m) before its displacement, and whether
+/// it is interior (displaced).
+Point boxVertex(const Grid& g, const Point& origin, const Point& length, const Index& p, bool& interior) {
+  Point q{0, 0, 0};
+  interior = true;
+  for (int d = 0; d < g.dim; ++d) {
+    q[d] = axisCoordinate(origin[d], length[d], p[d], g.points(d));
+    interior = interior && p[d] > 0 && p[d] < g.points(d) - 1;
+  }
+  return q;
+}
+
+/// Move an interior vertex by the next draws of `gen` (2 in 2-D, 3 in 3-D).
+void displaceVertex(Point& q, int dim, double radius, std::mt19937& gen) {
+  if (dim == 2) {
+    // Uniform in the disc.
+    const double r = radius * std::sqrt(uniform01(gen));
+    const double phi = 2.0 * kPi * uniform01(gen);
+    q[0] += r * std::cos(phi);
+    q[1] += r * std::sin(phi);
+  } else {
+    // Uniform in the ball: radius ~ cbrt(u), direction uniform on the sphere.
+    const double r = radius * std::cbrt(uniform01(gen));
+    const double cosTheta = 2.0 * uniform01(gen) - 1.0;
+    const double phi = 2.0 * kPi * uniform01(gen);
+    const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
+    q[0] += r * sinTheta * std::cos(phi);
+    q[1] += r * sinTheta * std::sin(phi);
+    q[2] += r * cosTheta;
+  }
+}
+
+/// The vertices a point that is no vertex (an odd index, m = 2) is placed
+/// between: for tetrahedra the ends of the edge through it (below, above in
+/// every odd index), else the 2^k vertices around it in Gray-code order
+/// (00, 10, 11, 01 in 2-D: the order of the corners around a face).
+std::vector<Index> surroundingVertices(const Grid& g, const Index& p, bool simplexCells) {
+  std::vector<int> odd;
+  for (int d = 0; d < g.dim; ++d)
+    if (p[d] % 2 == 1) odd.push_back(d);
+  if (simplexCells) {
+    Index lo = p, hi = p;
+    for (int d : odd) {
+      --lo[d];
+      ++hi[d];
+    }
+    return {lo, hi};
+  }
+  const int k = static_cast<int>(odd.size());
+  std::vector<Index> out;
+  for (int i = 0; i < (1 << k); ++i) {
+    const int gray = i ^ (i >> 1);
+    Index v = p;
+    for (int j = 0; j < k; ++j) v[odd[j]] += (gray >> j) & 1 ? 1 : -1;
+    out.push_back(v);
+  }
+  return out;
+}
+
+/// A point that is no vertex from its surrounding vertices' coordinates:
+/// the midpoint of a tetrahedron edge, else their average.
+Point betweenVertices(const std::vector<Point>& around, bool simplexCells) {
+  Point q{0, 0, 0};
+  if (simplexCells) {
+    for (int i = 0; i < 3; ++i) q[i] = 0.5 * (around[0][i] + around[1][i]);
+    return q;
+  }
+  Point sum{0, 0, 0};
+  for (const Point& v : around)
+    for (int c = 0; c < 3; ++c) sum[c] += v[c];
+  for (int c = 0; c < 3; ++c) q[c] = sum[c] / static_cast<double>(around.size());
+  return q;
+}
+
 std::vector<Point> boxPoints(const Grid& g, const Point& origin, const Point& length, double distortion,
                              bool simplexCells) {
   std::vector<Point> x(g.numPoints(), Point{0, 0, 0});
-  double hmin = std::numeric_limits<double>::max();
-  for (int d = 0; d < g.dim; ++d) hmin = std::min(hmin, length[d] / g.n[d]);
-  const double radius = distortion * hmin;
+  const double radius = distortionRadius(g, length, distortion);
   std::mt19937 gen(kDistortionSeed);
   g.forEachPoint(g.m, [&](const Index& p) {
-    Point& q = x[g.index(p)];
     bool interior = true;
-    for (int d = 0; d < g.dim; ++d) {
-      q[d] = axisCoordinate(origin[d], length[d], p[d], g.points(d));
-      interior = interior && p[d] > 0 && p[d] < g.points(d) - 1;
-    }
-    if (!interior || radius <= 0.0) return;
-    if (g.dim == 2) {
-      // Uniform in the disc.
-      const double r = radius * std::sqrt(uniform01(gen));
-      const double phi = 2.0 * kPi * uniform01(gen);
-      q[0] += r * std::cos(phi);
-      q[1] += r * std::sin(phi);
-    } else {
-      // Uniform in the ball: radius ~ cbrt(u), direction uniform on the sphere.
-      const double r = radius * std::cbrt(uniform01(gen));
-      const double cosTheta = 2.0 * uniform01(gen) - 1.0;
-      const double phi = 2.0 * kPi * uniform01(gen);
-      const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
-      q[0] += r * sinTheta * std::cos(phi);
-      q[1] += r * sinTheta * std::sin(phi);
-      q[2] += r * cosTheta;
-    }
+    Point& q = x[g.index(p)] = boxVertex(g, origin, length, p, interior);
+    if (interior && radius > 0.0) displaceVertex(q, g.dim, radius, gen);
   });
   if (g.m == 1) return x;
   g.forEachPoint(1, [&](const Index& p) {
-    std::vector<int> odd;
-    for (int d = 0; d < g.dim; ++d)
-      if (p[d] % 2 == 1) odd.push_back(d);
-    if (odd.empty()) return;
-    Point& q = x[g.index(p)];
-    const int k = static_cast<int>(odd.size());
-    if (simplexCells) {
-      Index lo = p, hi = p;
-      for (int d : odd) {
-        --lo[d];
-        ++hi[d];
-      }
-      for (int i = 0; i < 3; ++i) q[i] = 0.5 * (x[g.index(lo)][i] + x[g.index(hi)][i]);
-      return;
-    }
-    // Sum the 2^k vertices in Gray-code order (00, 10, 11, 01 in 2-D: the
-    // order of the corners around a face), then scale.
-    Point sum{0, 0, 0};
-    for (int i = 0; i < (1 << k); ++i) {
-      const int gray = i ^ (i >> 1);
-      Index v = p;
-      for (int j = 0; j < k; ++j) v[odd[j]] += (gray >> j) & 1 ? 1 : -1;
-      for (int c = 0; c < 3; ++c) sum[c] += x[g.index(v)][c];
-    }
-    for (int c = 0; c < 3; ++c) q[c] = sum[c] / static_cast<double>(1 << k);
+    bool vertex = true;
+    for (int d = 0; d < g.dim; ++d) vertex = vertex && p[d] % 2 == 0;
+    if (vertex) return;
+    std::vector<Point> around;
+    for (const Index& v : surroundingVertices(g, p, simplexCells)) around.push_back(x[g.index(v)]);
+    x[g.index(p)] = betweenVertices(around, simplexCells);
   });
   return x;
 }
@@ -549,6 +599,218 @@ int generateBox(Mesh& mesh, const std::string& bodyName, CellType type, Teuchos:
       for (int a = 0; a < 2; ++a) {
         const std::string name = std::string(b ? "top" : "bottom") + (a ? " right" : " left") + (c ? " front" : " back");
         mesh.addNodeSet(body, name, {node[g.index({{a * (g.points(0) - 1), b * (g.points(1) - 1), c * (g.points(2) - 1)}})]});
+      }
+  return body;
+}
+
+// ------------------------------------------- Rectangle and Box by element range
+
+namespace {
+
+/// Whether grid point p is a node of cell type t: every point is, but the
+/// face and cell centres of Hex20 (two or three odd indices).
+bool isNodePoint(CellType t, const Index& p) {
+  if (t != CellType::Hex20) return true;
+  return (p[0] % 2) + (p[1] % 2) + (p[2] % 2) <= 1;
+}
+
+/// The number of node points before grid point p in grid order: the node
+/// number addStructuredBody() gives p (within its body). Past the last
+/// point (p = (0, 0, points(2))) it is the body's node count.
+long long nodePointsBefore(const Grid& g, CellType t, const Index& p) {
+  if (t != CellType::Hex20) return static_cast<long long>(g.index(p));
+  const long long P0 = g.points(0), P1 = g.points(1);
+  const long long E0 = (P0 + 1) / 2, E1 = (P1 + 1) / 2, O1 = P1 - E1;
+  const long long evenLayer = E1 * P0 + O1 * E0, oddLayer = E1 * E0;  // b even: all a or even a; b odd: even a or none
+  long long count = (p[2] + 1) / 2 * evenLayer + p[2] / 2 * oddLayer;
+  const bool evenC = p[2] % 2 == 0;
+  count += evenC ? (p[1] + 1) / 2 * P0 + p[1] / 2 * E0 : (p[1] + 1) / 2 * E0;
+  count += evenC && p[1] % 2 == 0 ? p[0] : (p[0] + 1) / 2;
+  return count;
+}
+
+/// The interior vertices before vertex p in the order boxPoints() draws
+/// their displacements (grid order, axis 0 fastest): those of the complete
+/// slabs of the slowest axis before p, then, if p is interior along it, of
+/// the rows before p within its slab, and so on.
+long long interiorVerticesBefore(const Grid& g, const Index& p) {
+  std::array<long long, 3> inside{{0, 0, 0}};  // interior vertices along each axis
+  for (int d = 0; d < g.dim; ++d) inside[d] = std::max(g.n[d] - 1, 0);
+  long long before = 0;
+  for (int d = g.dim - 1; d >= 0; --d) {
+    const long long at = p[d] / g.m;
+    long long perSlab = 1;
+    for (int e = 0; e < d; ++e) perSlab *= inside[e];
+    before += std::clamp(at - 1, 0LL, inside[d]) * perSlab;
+    if (at == 0 || at == g.n[d]) break;  // p's slab along d holds no interior vertex
+  }
+  return before;
+}
+
+/// The coordinates of the grid points `points` (grid indices, ascending) as
+/// boxPoints() gives them, without the others: each vertex they need is
+/// displaced by the draws boxPoints() makes for it, found by skipping the
+/// draws of the vertices before it.
+std::vector<Point> rangeBoxPoints(const Grid& g, const Point& origin, const Point& length, double distortion,
+                                  bool simplexCells, const std::vector<Index>& points) {
+  std::vector<Index> vertices;
+  auto isVertex = [&](const Index& p) {
+    for (int d = 0; d < g.dim; ++d)
+      if (p[d] % g.m != 0) return false;
+    return true;
+  };
+  for (const Index& p : points) {
+    if (isVertex(p)) vertices.push_back(p);
+    else
+      for (const Index& v : surroundingVertices(g, p, simplexCells)) vertices.push_back(v);
+  }
+  auto byIndex = [&](const Index& a, const Index& b) { return g.index(a) < g.index(b); };
+  std::sort(vertices.begin(), vertices.end(), byIndex);
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  const double radius = distortionRadius(g, length, distortion);
+  std::mt19937 gen(kDistortionSeed);
+  const long long drawsPerVertex = g.dim;  // displaceVertex(): 2 in 2-D, 3 in 3-D
+  long long drawn = 0;
+  std::vector<Point> at(vertices.size());
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    bool interior = true;
+    at[i] = boxVertex(g, origin, length, vertices[i], interior);
+    if (!interior || radius <= 0.0) continue;
+    const long long skip = interiorVerticesBefore(g, vertices[i]) * drawsPerVertex - drawn;
+    DDC_CHECK(skip >= 0, "vertex draws out of order");
+    gen.discard(static_cast<unsigned long long>(skip));
+    displaceVertex(at[i], g.dim, radius, gen);
+    drawn += skip + drawsPerVertex;
+  }
+  auto vertexAt = [&](const Index& v) {
+    return at[std::lower_bound(vertices.begin(), vertices.end(), v, byIndex) - vertices.begin()];
+  };
+  std::vector<Point> x;
+  for (const Index& p : points) {
+    if (isVertex(p)) {
+      x.push_back(vertexAt(p));
+      continue;
+    }
+    std::vector<Point> around;
+    for (const Index& v : surroundingVertices(g, p, simplexCells)) around.push_back(vertexAt(v));
+    x.push_back(betweenVertices(around, simplexCells));
+  }
+  return x;
+}
+
+/// addStructuredBody() for the elements of the body whose ids in the whole
+/// mesh lie in `range`, into the part `mesh` (Mesh::startPart()): the
+/// elements in grid order with their ids, their nodes in id order, the
+/// sets restricted to them as Mesh::part() restricts them (2-D side sets in
+/// their chain order: forward along the bottom and right sides, backward
+/// along the top and left ones), and the whole mesh grown by the body.
+/// \return the part's index of each node point it holds, by grid index.
+std::map<std::size_t, int> addStructuredBodyRange(Mesh& mesh, int body, const Grid& g, CellType type,
+                                                  const BoxGeometry& box, const ElementRange& range,
+                                                  const std::vector<std::string>& sideNames) {
+  const ReferenceCell& ref = referenceCell(type);
+  const int per = cellsPerGridCell(type);
+  const long long cells = static_cast<long long>(g.n[0]) * g.n[1] * (g.dim == 3 ? g.n[2] : 1);
+  const long long firstElement = mesh.numGlobalElements(), firstNode = mesh.numGlobalNodes();
+  const long long lo = std::clamp(range.first - firstElement, 0LL, cells * per);
+  const long long hi = std::clamp(range.last - firstElement, lo, cells * per);
+  // The corners of the chosen elements and their node points.
+  std::vector<std::vector<Index>> corners;
+  std::vector<Index> points;
+  for (long long le = lo; le < hi; ++le) {
+    const long long c = le / per;
+    const int i = static_cast<int>(c % g.n[0]), j = static_cast<int>(c / g.n[0] % g.n[1]);
+    const int k = static_cast<int>(c / (static_cast<long long>(g.n[0]) * g.n[1]));
+    corners.push_back(gridCellCorners(g, type, /*reversed=*/false, i, j, k, static_cast<int>(le % per)));
+    for (const Index& p : cellNodePoints(type, corners.back())) points.push_back(p);
+  }
+  auto byIndex = [&](const Index& a, const Index& b) { return g.index(a) < g.index(b); };
+  std::sort(points.begin(), points.end(), byIndex);
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  const std::vector<Point> x =
+      rangeBoxPoints(g, box.origin, box.length, box.distortion, ref.simplex, points);
+  std::map<std::size_t, int> node;
+  std::vector<int> all;
+  for (size_t q = 0; q < points.size(); ++q) {
+    const long long id = firstNode + nodePointsBefore(g, type, points[q]);
+    node[g.index(points[q])] = mesh.addPartNode(id, x[q][0], x[q][1], g.dim == 3 ? x[q][2] : 0.0);
+    all.push_back(node[g.index(points[q])]);
+  }
+  std::vector<std::vector<Segment>> sides(sideNames.size());
+  std::vector<int> nodes(ref.numNodes);
+  for (long long le = lo; le < hi; ++le) {
+    const std::vector<Index>& cc = corners[static_cast<size_t>(le - lo)];
+    const std::vector<Index> cellPoints = cellNodePoints(type, cc);
+    for (int i = 0; i < ref.numNodes; ++i) nodes[i] = node.at(g.index(cellPoints[i]));
+    const int e = mesh.addPartElement(firstElement + le, nodes.data());
+    for (int f = 0; f < static_cast<int>(ref.facets.size()); ++f)
+      for (std::size_t side = 0; side < sides.size(); ++side) {
+        const int d = static_cast<int>(side / 2);
+        const int at = side % 2 == 0 ? 0 : g.points(d) - 1;
+        bool on = true;
+        for (int k = 0; k < referenceCell(ref.facets[f].type).numCorners; ++k)
+          on = on && cc[ref.facets[f].nodes[k]][d] == at;
+        if (on) sides[side].push_back(mesh.makeSegment(e, f));
+      }
+  }
+  for (std::size_t side = 0; side < sides.size(); ++side) {
+    // The whole mesh's 2-D chains run counter-clockwise: backward in
+    // element order along the left (side 0) and top (side 3) sides.
+    if (g.dim == 2 && (side == 0 || side == 3)) std::reverse(sides[side].begin(), sides[side].end());
+    mesh.addSideSet(body, sideNames[side], std::move(sides[side]));
+    // Its node set holds every node on the side, also those of elements
+    // whose facets on it this part does not hold (a tetrahedron may touch a
+    // side at an edge or a corner).
+    const int d = static_cast<int>(side / 2), at = side % 2 == 0 ? 0 : g.points(d) - 1;
+    std::vector<int> onSide;
+    for (const Index& p : points)
+      if (p[d] == at) onSide.push_back(node.at(g.index(p)));
+    mesh.addNodeSet(body, sideNames[side], std::move(onSide));
+  }
+  mesh.addNodeSet(body, "all", std::move(all));
+  mesh.growWhole(nodePointsBefore(g, type, Index{{0, 0, g.points(2)}}), cells * per);
+  return node;
+}
+
+/// The part's index of the node at grid point p, or none (-1) as a set.
+std::vector<int> heldNode(const std::map<std::size_t, int>& node, std::size_t index) {
+  const auto it = node.find(index);
+  return it == node.end() ? std::vector<int>() : std::vector<int>{it->second};
+}
+
+}  // namespace
+
+int generateRectangle(Mesh& part, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
+                      const std::string& path, const ElementRange& range) {
+  DDC_CHECK(part.isPart(), "generateRectangle() by range into a whole mesh");
+  validateLevel(params, *RectangleGenerator::getValidParameters(), path);
+  const BoxGeometry box = readBox(params, type, 2, "Rectangle", path);
+  const Grid& g = box.grid;
+  const int body = part.beginBody(bodyName, type);
+  const auto node = addStructuredBodyRange(part, body, g, type, box, range, {"left", "right", "bottom", "top"});
+  const int na = g.points(0), nb = g.points(1);
+  part.addNodeSet(body, "bottom left", heldNode(node, g.index({{0, 0, 0}})));
+  part.addNodeSet(body, "bottom right", heldNode(node, g.index({{na - 1, 0, 0}})));
+  part.addNodeSet(body, "top left", heldNode(node, g.index({{0, nb - 1, 0}})));
+  part.addNodeSet(body, "top right", heldNode(node, g.index({{na - 1, nb - 1, 0}})));
+  return body;
+}
+
+int generateBox(Mesh& part, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
+                const std::string& path, const ElementRange& range) {
+  DDC_CHECK(part.isPart(), "generateBox() by range into a whole mesh");
+  validateLevel(params, *BoxGenerator::getValidParameters(), path);
+  const BoxGeometry box = readBox(params, type, 3, "Box", path);
+  const Grid& g = box.grid;
+  const int body = part.beginBody(bodyName, type);
+  const auto node =
+      addStructuredBodyRange(part, body, g, type, box, range, {"left", "right", "bottom", "top", "back", "front"});
+  for (int c = 0; c < 2; ++c)
+    for (int b = 0; b < 2; ++b)
+      for (int a = 0; a < 2; ++a) {
+        const std::string name = std::string(b ? "top" : "bottom") + (a ? " right" : " left") + (c ? " front" : " back");
+        part.addNodeSet(body, name,
+                        heldNode(node, g.index({{a * (g.points(0) - 1), b * (g.points(1) - 1), c * (g.points(2) - 1)}})));
       }
   return body;
 }

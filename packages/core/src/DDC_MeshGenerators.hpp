@@ -212,6 +212,22 @@ class SphereOctantGenerator {
 int generateRectangle(Mesh& mesh, const std::string& bodyName, CellType type,
                       Teuchos::ParameterList& params, const std::string& path);
 
+/// A half-open range [first, last) of element ids of a whole mesh.
+struct ElementRange {
+  long long first = 0, last = 0;
+};
+
+/// generateRectangle() making only the body's elements whose ids in the
+/// whole mesh lie in `range` (the body's ids follow those of the bodies
+/// before it, part.numGlobalElements() of them) and their nodes, into the
+/// part `part` (Mesh::startPart()): the mesh Mesh::part() would cut out of
+/// the whole mesh, without the whole mesh, its grid points or the
+/// displacements of other vertices (doc/architecture.md, "What a
+/// distributed mesh has to change"). The body is added even if the range
+/// holds none of its elements.
+int generateRectangle(Mesh& part, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
+                      const std::string& path, const ElementRange& range);
+
 /// Add an annular-sector body named `bodyName` to `mesh`.
 /// \param params validated against AnnularSectorGenerator::getValidParameters().
 /// \return the index of the new body.
@@ -230,6 +246,10 @@ int generateAnnularSector(Mesh& mesh, const std::string& bodyName, CellType type
 ///         duplicate body name.
 int generateBox(Mesh& mesh, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
                 const std::string& path);
+
+/// generateBox() by element range, as generateRectangle() by range.
+int generateBox(Mesh& part, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
+                const std::string& path, const ElementRange& range);
 
 /// Add a cylindrical-shell-sector body named `bodyName` to `mesh`.
 /// \param type Hex8, Hex20, Hex27, Tet4 or Tet10.
