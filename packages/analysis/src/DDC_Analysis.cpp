@@ -121,7 +121,7 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
     contact.initialInContact = false;  // Previous Step: a time step changes the active set little
   const std::string strategy = params.sublist("Solver").get<std::string>("Strategy");
   requireJoinedCoincidentNodes(*mesh, contact);
-  requireSupportedBodies(*mesh, bcs, contact, strategy == "FETI-DP", dynamic_);
+  requireSupportedBodies(*mesh, bcs, contact, strategy == "FETI-DP", dynamic_, rawComm(comm_));
   // A run too large even with evenly sized subdomains is refused before
   // METIS runs (it takes seconds on large meshes, on every rank).
   const int ranks = comm_->getSize();

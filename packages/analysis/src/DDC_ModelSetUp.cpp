@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 #include <iomanip>
+#include <limits>
+#include <memory>
 #include <set>
 #include <sstream>
 #include <utility>
@@ -16,6 +18,7 @@
 #include "DDC_InputDeck.hpp"
 #include "DDC_MeshGenerators.hpp"
 #include "DDC_MpiRecords.hpp"
+#include "DDC_NodeDirectory.hpp"
 #include "DDC_ParallelPartition.hpp"
 #include "DDC_Parameters.hpp"
 
@@ -224,25 +227,83 @@ void requireAdmissibleElements(const Mesh& mesh, const std::vector<std::shared_p
 
 namespace {
 
-/// Two distinct nodes hold a 2-D body's rotation; a 3-D body needs three
-/// not on one line (two leave the rotation about their line free).
-bool enoughSupportNodes(const Mesh& mesh, const std::set<int>& nodes) {
-  if (mesh.dim() == 2) return nodes.size() >= 2;
-  const Eigen::Vector3d a(mesh.coord(*nodes.begin()).data());
-  double far = 0.0, area = 0.0;
-  Eigen::Vector3d b = a;
-  for (int n : nodes) {
-    const Eigen::Vector3d x(mesh.coord(n).data());
-    if ((x - a).norm() > far) far = (x - a).norm(), b = x;
+/// What the prescribed displacements of one body hold: how many nodes,
+/// in which directions, and whether those nodes span more than a line.
+struct BodySupport {
+  long long nodes = 0;
+  std::array<bool, 3> fixed{{false, false, false}};
+  bool enoughNodes = false;
+};
+
+/// The support of each body from the nodes `held` (per body, node indices
+/// ascending) of this rank's mesh. On a part of a mesh (Mesh::isPart())
+/// the ranks' nodes are taken together (collective over `comm`), each node
+/// once, and the answer is the whole mesh's. Two distinct nodes hold a 2-D
+/// body's rotation; a 3-D body needs three not on one line (two leave the
+/// rotation about their line free): the node of lowest id a, the node b
+/// farthest from it (the lowest id on ties), and the largest area a node
+/// makes with them, relative to |b - a|^2.
+std::vector<BodySupport> bodySupports(const Mesh& mesh, const std::vector<std::set<int>>& held,
+                                      const std::vector<std::array<bool, 3>>& fixedDir, MPI_Comm comm) {
+  const bool parts = mesh.isPart();
+  auto allMin = [&](long long v) {
+    if (parts) MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_LONG_LONG, MPI_MIN, comm);
+    return v;
+  };
+  auto allMax = [&](double v) {
+    if (parts) MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_DOUBLE, MPI_MAX, comm);
+    return v;
+  };
+  // The coordinates of the node of id `id`, from the ranks that hold it.
+  auto coordOf = [&](long long id) {
+    std::array<double, 3> x{{-1e308, -1e308, -1e308}};
+    const int n = mesh.localNode(id);
+    if (n >= 0) x = mesh.coord(n);
+    if (parts) MPI_Allreduce(MPI_IN_PLACE, x.data(), 3, MPI_DOUBLE, MPI_MAX, comm);
+    return Eigen::Vector3d(x.data());
+  };
+  std::unique_ptr<NodeDirectory> directory;
+  if (parts) directory = std::make_unique<NodeDirectory>(comm, mesh);
+  int me = 0;
+  MPI_Comm_rank(comm, &me);
+  constexpr long long kNone = std::numeric_limits<long long>::max();
+  std::vector<BodySupport> out(held.size());
+  for (size_t b = 0; b < held.size(); ++b) {
+    BodySupport& sup = out[b];
+    long long count = 0;  // each node counted by its lowest holder
+    for (int n : held[b]) count += !parts || directory->lowestHolder()[n] == me ? 1 : 0;
+    std::array<int, 3> dirs{{fixedDir[b][0], fixedDir[b][1], fixedDir[b][2]}};
+    if (parts) {
+      MPI_Allreduce(MPI_IN_PLACE, &count, 1, MPI_LONG_LONG, MPI_SUM, comm);
+      MPI_Allreduce(MPI_IN_PLACE, dirs.data(), 3, MPI_INT, MPI_MAX, comm);
+    }
+    sup.nodes = count;
+    for (int c = 0; c < 3; ++c) sup.fixed[c] = dirs[c] != 0;
+    if (mesh.dim() == 2 || count < 3) {
+      sup.enoughNodes = count >= (mesh.dim() == 2 ? 2 : 3);
+      continue;
+    }
+    const Eigen::Vector3d a = coordOf(allMin(held[b].empty() ? kNone : mesh.nodeId(*held[b].begin())));
+    double far = 0.0;
+    long long farId = kNone;
+    for (int n : held[b]) {
+      const double d = (Eigen::Vector3d(mesh.coord(n).data()) - a).norm();
+      if (d > far) far = d, farId = mesh.nodeId(n);
+    }
+    const double farAll = allMax(far);
+    if (farAll == 0.0) continue;  // every node at one point
+    const Eigen::Vector3d bFar = coordOf(allMin(far == farAll ? farId : kNone));
+    double area = 0.0;
+    for (int n : held[b]) area = std::max(area, (bFar - a).cross(Eigen::Vector3d(mesh.coord(n).data()) - a).norm());
+    sup.enoughNodes = allMax(area) > 1e-12 * farAll * farAll;  // relative to the set's extent: not collinear
   }
-  for (int n : nodes) area = std::max(area, (b - a).cross(Eigen::Vector3d(mesh.coord(n).data()) - a).norm());
-  return nodes.size() >= 3 && area > 1e-12 * far * far;  // relative to the set's extent: not collinear
+  return out;
 }
 
 }  // namespace
 
 void requireSupportedBodies(const Mesh& mesh, const BoundaryConditions& bcs, const ContactOptions& contact,
-                            bool feti, bool dynamic) {
+                            bool feti, bool dynamic, MPI_Comm comm) {
   // In dynamics the mass holds every body (K + c M is nonsingular): a free
   // body is legal there.
   if (dynamic) return;
@@ -264,9 +325,10 @@ void requireSupportedBodies(const Mesh& mesh, const BoundaryConditions& bcs, con
       fixedNodes[b].insert(n);
       for (int c = 0; c < dim; ++c) fixedDir[b][c] = fixedDir[b][c] || d.fix[c];
     }
+  const std::vector<BodySupport> support = bodySupports(mesh, fixedNodes, fixedDir, comm);
   for (int b = 0; b < mesh.numBodies(); ++b) {
-    const bool supported = !fixedNodes[b].empty() && enoughSupportNodes(mesh, fixedNodes[b]) && fixedDir[b][0] &&
-                           fixedDir[b][1] && (dim == 2 || fixedDir[b][2]);
+    const BodySupport& s = support[b];
+    const bool supported = s.nodes > 0 && s.enoughNodes && s.fixed[0] && s.fixed[1] && (dim == 2 || s.fixed[2]);
     // FETI-DP: contact rows are dual constraints; they cannot remove the
     // rigid modes of K~ (the coarse problem would be singular).
     DDC_INPUT_REQUIRE(supported || !inContact[b] || !feti,

@@ -54,10 +54,12 @@ void requireAdmissibleElements(const Mesh& mesh, const std::vector<std::shared_p
 /// displacements do not hold and no contact pair joins to another body, and
 /// under FETI-DP a body held only by contact (the contact rows are dual and
 /// cannot remove the rigid modes of the subdomain problems). In dynamics
-/// the mass holds every body.
+/// the mass holds every body. On a part of a mesh (Mesh::isPart()) the
+/// ranks of `comm` take their nodes together and give the whole mesh's
+/// verdict on every rank (collective).
 /// \throws InputError naming the body and what it needs
 void requireSupportedBodies(const Mesh& mesh, const BoundaryConditions& bcs, const ContactOptions& contact,
-                            bool feti, bool dynamic);
+                            bool feti, bool dynamic, MPI_Comm comm = MPI_COMM_SELF);
 
 /// The partition of "Partition" (validated): METIS, PT-Scotch (in parallel
 /// over `comm`), By Body, Box Grid or an element map file (resolved against
