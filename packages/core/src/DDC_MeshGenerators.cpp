@@ -772,7 +772,8 @@ std::map<std::size_t, int> addStructuredBodyRange(Mesh& mesh, int body, const Gr
   return node;
 }
 
-/// The part's index of the node at grid point p, or none (-1) as a set.
+/// The part's index of the node at grid index `index` as a one-node set,
+/// or an empty set where the part does not hold that node.
 std::vector<int> heldNode(const std::map<std::size_t, int>& node, std::size_t index) {
   const auto it = node.find(index);
   return it == node.end() ? std::vector<int>() : std::vector<int>{it->second};
