@@ -1,5 +1,7 @@
 #include "DDC_Partition.hpp"
 
+#include "DDC_MpiRecords.hpp"
+
 #include <cstdlib>
 
 #include <cmath>
@@ -401,6 +403,38 @@ RankPart rankPart(const Mesh& mesh, const Partition& partition, int rank, int nu
       out.partition.elementSubdomain.push_back(partition.elementSubdomain[e]);
     }
   out.mesh = mesh.part(mine);
+  return out;
+}
+
+RankPart migratedRankPart(MPI_Comm comm, const Mesh& source, const Partition& sourcePartition) {
+  if (sourcePartition.elementSubdomain.size() != size_t(source.numElements()))
+    throw std::invalid_argument("migratedRankPart: " + std::to_string(sourcePartition.elementSubdomain.size()) +
+                                " subdomains for " + std::to_string(source.numElements()) + " elements");
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  const std::vector<int> rankOf = subdomainOwnerRank(sourcePartition.numSubdomains, ranks);
+  struct Assignment {
+    Mesh::GlobalId element;
+    int subdomain;
+  };
+  std::vector<int> destination(source.numElements());
+  std::vector<std::vector<Assignment>> send(ranks);
+  for (int e = 0; e < source.numElements(); ++e) {
+    const int s = sourcePartition.elementSubdomain[e];
+    destination[e] = rankOf.at(s);
+    send[destination[e]].push_back({source.elementId(e), s});
+  }
+  RankPart out;
+  out.mesh = source.migrated(comm, destination);
+  out.partition.numSubdomains = sourcePartition.numSubdomains;
+  out.partition.elementSubdomain.assign(out.mesh.numElements(), -1);
+  std::vector<Mesh::GlobalId> ids(out.mesh.numElements());
+  for (int e = 0; e < out.mesh.numElements(); ++e) ids[e] = out.mesh.elementId(e);
+  for (const Assignment& a : exchangeRecords(comm, send)) {
+    const auto it = std::lower_bound(ids.begin(), ids.end(), a.element);
+    DDC_CHECK(it != ids.end() && *it == a.element, "migratedRankPart: element " << a.element << " not received");
+    out.partition.elementSubdomain[it - ids.begin()] = a.subdomain;
+  }
   return out;
 }
 

@@ -152,4 +152,15 @@ struct RankPart {
 /// nodes (Mesh::part()), and those elements' subdomains.
 RankPart rankPart(const Mesh& mesh, const Partition& partition, int rank, int numRanks);
 
+/// rankPart() when no rank holds the whole mesh: every rank holds some
+/// elements (`source`, a part, e.g. an even range of element ids) and their
+/// subdomains (`sourcePartition`, one per element of `source`, the same
+/// numSubdomains on every rank); each element goes to the rank of its
+/// subdomain (Mesh::migrated()) with its subdomain. The result is the
+/// rankPart() of the whole mesh under the whole partition. The edge cut is
+/// not known here (-1). Collective on `comm`.
+/// \throws std::invalid_argument if `sourcePartition` does not hold one
+///         subdomain per element of `source`
+RankPart migratedRankPart(MPI_Comm comm, const Mesh& source, const Partition& sourcePartition);
+
 }  // namespace ddc

@@ -108,4 +108,28 @@ TEST(MeshMigrate, RefusesADestinationPerElementThatIsNot) {
   EXPECT_THROW(whole.migrated(MPI_COMM_WORLD, std::vector<int>(whole.numElements(), size())), std::invalid_argument);
 }
 
+TEST(MeshMigrate, RankPartFromEvenRangesWithTheirSubdomains) {
+  // Every rank holds an even range of elements and their subdomains, as a
+  // generator by range and a parallel partitioner leave them; each element
+  // goes to the rank of its subdomain with its subdomain: the rankPart() of
+  // the whole mesh under the whole partition.
+  const Mesh whole = twoBodies();
+  const ddc::Partition partition = ddc::partitionMetis(whole, 2 * size());
+  const int ne = whole.numElements();
+  std::vector<int> range;
+  ddc::Partition ofRange;
+  ofRange.numSubdomains = partition.numSubdomains;
+  for (int e = ne * rank() / size(); e < ne * (rank() + 1) / size(); ++e) {
+    range.push_back(e);
+    ofRange.elementSubdomain.push_back(partition.elementSubdomain[e]);
+  }
+  const ddc::RankPart got = ddc::migratedRankPart(MPI_COMM_WORLD, whole.part(range), ofRange);
+  const ddc::RankPart want = ddc::rankPart(whole, partition, rank(), size());
+  expectSameParts(got.mesh, want.mesh);
+  EXPECT_EQ(got.partition.numSubdomains, want.partition.numSubdomains);
+  EXPECT_EQ(got.partition.elementSubdomain, want.partition.elementSubdomain);
+  ofRange.elementSubdomain.push_back(0);  // one subdomain too many, on every rank
+  EXPECT_THROW(ddc::migratedRankPart(MPI_COMM_WORLD, whole.part(range), ofRange), std::invalid_argument);
+}
+
 }  // namespace
