@@ -198,6 +198,26 @@ void requirePtScotchThreadLevel(int ranks, int threadLevel) {
                     "(ddc::MpiSession) or use Method = METIS");
 }
 
+Partition partitionDistributedGraph(MPI_Comm comm, const DistributedGraph& graph, int numSubdomains) {
+  const long long ne = graph.firstVertex.back();
+  requirePartitionable(numSubdomains, static_cast<int>(std::min<long long>(ne, INT_MAX)));
+  Partition p;
+  p.numSubdomains = numSubdomains;
+  p.elementSubdomain.assign(graph.numLocal(), 0);
+  if (numSubdomains == 1) {
+    p.edgeCut = 0;
+    return p;
+  }
+  int level = MPI_THREAD_SINGLE;
+  MPI_Query_thread(&level);
+  requirePtScotchThreadLevel(sizeOf(comm), level);
+  p.elementSubdomain = partitionGraphPtScotch(comm, graph, numSubdomains);
+  fillEmptySubdomains(comm, graph, numSubdomains, p.elementSubdomain);
+  joinDetachedPieces(comm, graph, numSubdomains, p.elementSubdomain);
+  p.edgeCut = edgeCut(comm, graph, p.elementSubdomain);
+  return p;
+}
+
 Partition partitionPtScotch(const Mesh& mesh, int numSubdomains, MPI_Comm comm) {
   const int ne = mesh.numElements();
   requirePartitionable(numSubdomains, ne);
@@ -206,9 +226,6 @@ Partition partitionPtScotch(const Mesh& mesh, int numSubdomains, MPI_Comm comm) 
   p.elementSubdomain.assign(ne, 0);
   if (numSubdomains == 1) return p;
   const int rank = rankOf(comm), size = sizeOf(comm);
-  int level = MPI_THREAD_SINGLE;
-  MPI_Query_thread(&level);
-  requirePtScotchThreadLevel(size, level);
   const int begin = static_cast<int>(static_cast<long long>(ne) * rank / size);
   const int end = static_cast<int>(static_cast<long long>(ne) * (rank + 1) / size);
   std::vector<long long> offsets{0}, corners;
@@ -218,18 +235,15 @@ Partition partitionPtScotch(const Mesh& mesh, int numSubdomains, MPI_Comm comm) 
     offsets.push_back(static_cast<long long>(corners.size()));
   }
   const DistributedGraph graph = distributedDualGraph(comm, offsets, corners, dualGraphCommonCorners(mesh));
-  const std::vector<int> mine = partitionGraphPtScotch(comm, graph, numSubdomains);
+  const Partition mine = partitionDistributedGraph(comm, graph, numSubdomains);
   std::vector<int> counts(size), displs(size, 0);
-  const int n = static_cast<int>(mine.size());
+  const int n = static_cast<int>(mine.elementSubdomain.size());
   MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
   for (int r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
   int dummy = 0;
-  MPI_Allgatherv(mine.empty() ? &dummy : mine.data(), n, MPI_INT, p.elementSubdomain.data(), counts.data(),
-                 displs.data(), MPI_INT, comm);
-  const auto nb = facetNeighbours(mesh);
-  fillEmptySubdomains(nb, p);
-  joinDetachedPieces(nb, p);
-  p.edgeCut = edgeCut(nb, p);
+  MPI_Allgatherv(n == 0 ? &dummy : mine.elementSubdomain.data(), n, MPI_INT, p.elementSubdomain.data(),
+                 counts.data(), displs.data(), MPI_INT, comm);
+  p.edgeCut = mine.edgeCut;
   return p;
 }
 

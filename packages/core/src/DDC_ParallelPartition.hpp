@@ -60,12 +60,43 @@ constexpr double kPtScotchImbalance = 0.03;
 /// \throws InputError naming 'Partition/Method' otherwise.
 void requirePtScotchThreadLevel(int ranks, int threadLevel);
 
+/// fillEmptySubdomains() of DDC_Partition.hpp on a graph spread over the
+/// ranks: `parts` holds the subdomain of each local vertex of `graph`, in
+/// [0, numSubdomains), and every empty subdomain receives the vertex the
+/// serial rule chooses (of the largest subdomain, the one with the fewest
+/// neighbours inside it, lowest global id on ties). Collective; the result
+/// is the serial one on the gathered parts.
+/// \throws std::invalid_argument (on every rank) if `parts` does not hold one
+///         subdomain in range per local vertex.
+void fillEmptySubdomains(MPI_Comm comm, const DistributedGraph& graph, int numSubdomains, std::vector<int>& parts);
+
+/// joinDetachedPieces() of DDC_Partition.hpp on a graph spread over the
+/// ranks, with its rules and tie-breaks: a piece is found by spreading the
+/// lowest vertex id over the subdomain's edges and judged by the rank that
+/// holds that vertex. Collective; the result is the serial one on the
+/// gathered parts. \throws as fillEmptySubdomains().
+void joinDetachedPieces(MPI_Comm comm, const DistributedGraph& graph, int numSubdomains, std::vector<int>& parts);
+
+/// The edge cut of a partition of a graph spread over the ranks (edges
+/// whose two vertices lie in different subdomains), on every rank.
+/// Collective.
+long long edgeCut(MPI_Comm comm, const DistributedGraph& graph, const std::vector<int>& parts);
+
+/// The subdomain of each local vertex of `graph` by PT-Scotch
+/// (partitionGraphPtScotch()), every subdomain made non-empty and
+/// splinters joined to their neighbours as by partitionPtScotch(), with the
+/// edge cut; no rank holds more than its own vertices' subdomains.
+/// \param numSubdomains 1 gives all zeros without calling PT-Scotch.
+/// \throws InputError if numSubdomains is not in [1, vertices], and as
+///         partitionGraphPtScotch().
+Partition partitionDistributedGraph(MPI_Comm comm, const DistributedGraph& graph, int numSubdomains);
+
 /// The partition of a (replicated) mesh by PT-Scotch: each rank builds the
 /// dual graph of an even, contiguous range of the elements, PT-Scotch
-/// partitions it in parallel, and the parts are gathered to every rank.
-/// Then, like partitionMetis(), every subdomain is made non-empty, and
-/// splinters (joinDetachedPieces()) join the neighbour they share most
-/// facets with. The same on every rank and in every run on the same number
+/// partitions it in parallel (partitionDistributedGraph(): like
+/// partitionMetis(), every subdomain is made non-empty, and splinters
+/// (joinDetachedPieces()) join the neighbour they share most facets with),
+/// and the parts are gathered to every rank. The same on every rank and in every run on the same number
 /// of ranks; another rank count gives another partition.
 /// \param numSubdomains 1 gives all zeros without calling PT-Scotch.
 /// \throws InputError like partitionMetis(), and on more than one rank if

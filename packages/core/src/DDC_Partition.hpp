@@ -122,7 +122,7 @@ Partition partitionBoxGrid(const Mesh& mesh, int nx, int ny, int nz = 1);
 /// element in mesh element order (bodies in input order, elements as
 /// generated or read), '#' starts a comment. Subdomain ids must be 0..S-1
 /// with every id used. For reproducible tests and externally made partitions.
-/// 	hrows InputError naming the file and the problem (missing, too few or
+/// \throws InputError naming the file and the problem (missing, too few or
 ///         too many entries, a negative id, an unused id).
 Partition partitionFromFile(const Mesh& mesh, const std::string& fileName);
 

@@ -1,13 +1,15 @@
 // Parallel partitioning on 1-3 ranks: the distributed dual graph equals the
-// serial facet graph, and PT-Scotch's partition is valid, the same on every
+// serial facet graph, PT-Scotch's partition is valid, the same on every
 // rank, in one piece per subdomain and within kEdgeCutOverMetis of METIS's
-// edge cut.
+// edge cut, and the distributed clean-up (empty subdomains, detached
+// pieces, edge cut) gives the serial one's result.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <mpi.h>
 
 #include <algorithm>
 #include <numeric>
+#include <random>
 #include <stdexcept>
 
 #include "DDC_Error.hpp"
@@ -239,4 +241,94 @@ TEST(JoinDetachedPieces, MovesASplinterAndKeepsALargePiece) {
   ddc::joinDetachedPieces(nb, part);
   EXPECT_EQ(part.elementSubdomain, before);
   EXPECT_EQ(ddc::edgeCut(nb, part), 2);
+}
+
+namespace {
+
+/// The distributed clean-up of `whole` (the subdomain of every element,
+/// the same on every rank) on each rank's even share equals the serial
+/// clean-up of the whole, and so does the edge cut.
+void expectDistributedCleanUpIsTheSerialOne(const Mesh& m, const ddc::Partition& whole) {
+  std::vector<long long> offsets, corners;
+  std::vector<std::vector<long long>> expected;
+  long long first = 0;
+  localShare(m, offsets, corners, first, expected);
+  const auto g = ddc::distributedDualGraph(MPI_COMM_WORLD, offsets, corners, ddc::dualGraphCommonCorners(m));
+  std::vector<int> mine(whole.elementSubdomain.begin() + first,
+                        whole.elementSubdomain.begin() + first + g.numLocal());
+  ddc::Partition serial = whole;
+  const auto nb = ddc::facetNeighbours(m);
+  ddc::fillEmptySubdomains(nb, serial);
+  ddc::fillEmptySubdomains(MPI_COMM_WORLD, g, whole.numSubdomains, mine);
+  const std::vector<int> filled(serial.elementSubdomain.begin() + first,
+                                serial.elementSubdomain.begin() + first + g.numLocal());
+  EXPECT_EQ(mine, filled) << "after filling empty subdomains";
+  ddc::joinDetachedPieces(nb, serial);
+  ddc::joinDetachedPieces(MPI_COMM_WORLD, g, whole.numSubdomains, mine);
+  const std::vector<int> joined(serial.elementSubdomain.begin() + first,
+                                serial.elementSubdomain.begin() + first + g.numLocal());
+  EXPECT_EQ(mine, joined) << "after joining detached pieces";
+  EXPECT_EQ(ddc::edgeCut(MPI_COMM_WORLD, g, mine), ddc::edgeCut(nb, serial));
+}
+
+/// Slabs along x with a few elements (chosen by the seed, the same on
+/// every rank) moved to a random subdomain: splinters of every size, and
+/// subdomain `empty` (if >= 0) left without elements.
+ddc::Partition slabsWithSplinters(const Mesh& m, int numSubdomains, unsigned seed, int empty) {
+  ddc::Partition p;
+  p.numSubdomains = numSubdomains;
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> pick(0, numSubdomains - 1);
+  std::bernoulli_distribution flip(0.08);
+  double lo = 1e300, hi = -1e300;
+  for (int n = 0; n < m.numNodes(); ++n) lo = std::min(lo, m.coord(n)[0]), hi = std::max(hi, m.coord(n)[0]);
+  for (int e = 0; e < m.numElements(); ++e) {
+    const double x = m.coord(m.elementNodes(e)[0])[0];
+    int s = std::min(numSubdomains - 1, int((x - lo) / (hi - lo) * numSubdomains));
+    if (flip(rng)) s = pick(rng);
+    p.elementSubdomain.push_back(s);
+  }
+  for (int& s : p.elementSubdomain)
+    if (s == empty) s = (empty + 1) % numSubdomains;
+  return p;
+}
+
+}  // namespace
+
+TEST(DistributedCleanUp, SplintersOfAHexBox) {
+  const Mesh m = box(12, 4, 3);
+  for (unsigned seed : {1u, 2u, 3u}) expectDistributedCleanUpIsTheSerialOne(m, slabsWithSplinters(m, 6, seed, -1));
+}
+
+TEST(DistributedCleanUp, EmptySubdomainsAndSplintersOfTets) {
+  const Mesh m = box(4, 3, 3, CellType::Tet4);
+  for (unsigned seed : {4u, 5u}) expectDistributedCleanUpIsTheSerialOne(m, slabsWithSplinters(m, 5, seed, 2));
+  // Three empty subdomains filled in turn, each from the largest at the time.
+  ddc::Partition p = slabsWithSplinters(m, 7, 6u, -1);
+  for (int& s : p.elementSubdomain) s = s % 4;
+  expectDistributedCleanUpIsTheSerialOne(m, p);
+}
+
+TEST(DistributedCleanUp, TwoBodiesWithPiecesThatTouchNoOtherSubdomain) {
+  const Mesh m = twoRectangles(6, 4);
+  for (unsigned seed : {7u, 8u}) expectDistributedCleanUpIsTheSerialOne(m, slabsWithSplinters(m, 4, seed, -1));
+  // A random partition: many pieces, moves repeated over several passes.
+  ddc::Partition p;
+  p.numSubdomains = 3;
+  std::mt19937 rng(9u);
+  for (int e = 0; e < m.numElements(); ++e) p.elementSubdomain.push_back(int(rng() % 3));
+  expectDistributedCleanUpIsTheSerialOne(m, p);
+}
+
+TEST(DistributedCleanUp, PartsOfTheWrongLengthAreRefusedOnEveryRank) {
+  const Mesh m = box(4, 2, 2);
+  std::vector<long long> offsets, corners;
+  std::vector<std::vector<long long>> expected;
+  long long first = 0;
+  localShare(m, offsets, corners, first, expected);
+  const auto g = ddc::distributedDualGraph(MPI_COMM_WORLD, offsets, corners, 4);
+  std::vector<int> parts(g.numLocal() + (rank() == 0 ? 1 : 0), 0);
+  EXPECT_THROW(ddc::joinDetachedPieces(MPI_COMM_WORLD, g, 2, parts), std::invalid_argument);
+  std::vector<int> outOfRange(g.numLocal(), rank() == ranks() - 1 ? 5 : 0);
+  EXPECT_THROW(ddc::fillEmptySubdomains(MPI_COMM_WORLD, g, 2, outOfRange), std::invalid_argument);
 }
