@@ -163,6 +163,11 @@ std::vector<int> partitionGraphPtScotch(MPI_Comm comm, const DistributedGraph& g
   if (SCOTCH_contextOptionSetNum(&context, SCOTCH_OPTIONNUMDETERMINISTIC, 1) != 0 ||
       SCOTCH_contextOptionSetNum(&context, SCOTCH_OPTIONNUMRANDOMFIXEDSEED, 1) != 0)
     error = "SCOTCH_contextOptionSetNum failed";
+  // The context's own random generator from its initial seed: the shared one
+  // goes on from the previous call, which gave a second partition of the same
+  // graph in one process another result.
+  if (error.empty() && SCOTCH_contextRandomClone(&context) != 0) error = "SCOTCH_contextRandomClone failed";
+  if (error.empty()) SCOTCH_contextRandomReset(&context);
   // Collective calls: a failure on one rank fails them on all, so every
   // rank reaches the same branch.
   const bool builtOk = SCOTCH_dgraphInit(&built, comm) == 0;
@@ -218,6 +223,22 @@ Partition partitionDistributedGraph(MPI_Comm comm, const DistributedGraph& graph
   return p;
 }
 
+namespace {
+
+/// The corner nodes (ids in the whole mesh) of elements [begin, end) of
+/// `mesh` as a CSR list, for distributedDualGraph().
+void cornerLists(const Mesh& mesh, int begin, int end, std::vector<long long>& offsets, std::vector<long long>& corners) {
+  offsets.assign(1, 0);
+  corners.clear();
+  for (int e = begin; e < end; ++e) {
+    const int* n = mesh.elementNodes(e);
+    for (int k = 0; k < referenceCell(mesh.elementType(e)).numCorners; ++k) corners.push_back(mesh.nodeId(n[k]));
+    offsets.push_back(static_cast<long long>(corners.size()));
+  }
+}
+
+}  // namespace
+
 Partition partitionPtScotch(const Mesh& mesh, int numSubdomains, MPI_Comm comm) {
   const int ne = mesh.numElements();
   requirePartitionable(numSubdomains, ne);
@@ -228,12 +249,8 @@ Partition partitionPtScotch(const Mesh& mesh, int numSubdomains, MPI_Comm comm) 
   const int rank = rankOf(comm), size = sizeOf(comm);
   const int begin = static_cast<int>(static_cast<long long>(ne) * rank / size);
   const int end = static_cast<int>(static_cast<long long>(ne) * (rank + 1) / size);
-  std::vector<long long> offsets{0}, corners;
-  for (int e = begin; e < end; ++e) {
-    const int* n = mesh.elementNodes(e);
-    for (int k = 0; k < referenceCell(mesh.elementType(e)).numCorners; ++k) corners.push_back(n[k]);
-    offsets.push_back(static_cast<long long>(corners.size()));
-  }
+  std::vector<long long> offsets, corners;
+  cornerLists(mesh, begin, end, offsets, corners);
   const DistributedGraph graph = distributedDualGraph(comm, offsets, corners, dualGraphCommonCorners(mesh));
   const Partition mine = partitionDistributedGraph(comm, graph, numSubdomains);
   std::vector<int> counts(size), displs(size, 0);
@@ -244,6 +261,34 @@ Partition partitionPtScotch(const Mesh& mesh, int numSubdomains, MPI_Comm comm) 
   MPI_Allgatherv(n == 0 ? &dummy : mine.elementSubdomain.data(), n, MPI_INT, p.elementSubdomain.data(),
                  counts.data(), displs.data(), MPI_INT, comm);
   p.edgeCut = mine.edgeCut;
+  return p;
+}
+
+Partition partitionRangePtScotch(const Mesh& part, int numSubdomains, MPI_Comm comm) {
+  const int size = sizeOf(comm);
+  // The ranges must follow one another in rank order from id 0.
+  const long long first = part.numElements() ? part.elementId(0) : -1;
+  const bool contiguous = part.numElements() == 0 || part.elementId(part.numElements() - 1) - first + 1 == part.numElements();
+  std::vector<long long> firsts(size), counts(size);
+  const long long count = part.numElements();
+  MPI_Allgather(&first, 1, MPI_LONG_LONG, firsts.data(), 1, MPI_LONG_LONG, comm);
+  MPI_Allgather(&count, 1, MPI_LONG_LONG, counts.data(), 1, MPI_LONG_LONG, comm);
+  long long next = 0;
+  bool inOrder = true;
+  for (int r = 0; r < size; ++r) {
+    if (counts[r] > 0) inOrder = inOrder && firsts[r] == next;
+    next += counts[r];
+  }
+  if (anyRank(comm, !contiguous) || !inOrder || next != part.numGlobalElements())
+    throw std::invalid_argument("partitionRangePtScotch(): the ranks' elements are not ranges of ids in rank order "
+                                "that cover the whole mesh");
+  const int ne = static_cast<int>(std::min<long long>(part.numGlobalElements(), INT_MAX));
+  requirePartitionable(numSubdomains, ne);
+  std::vector<long long> offsets, corners;
+  cornerLists(part, 0, part.numElements(), offsets, corners);
+  const DistributedGraph graph = distributedDualGraph(comm, offsets, corners, dualGraphCommonCorners(part));
+  Partition p = partitionDistributedGraph(comm, graph, numSubdomains);
+  if (numSubdomains == 1) p.edgeCut = -1;  // as partitionPtScotch()
   return p;
 }
 

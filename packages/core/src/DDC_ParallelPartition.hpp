@@ -104,4 +104,15 @@ Partition partitionDistributedGraph(MPI_Comm comm, const DistributedGraph& graph
 ///         SolverError from PT-Scotch.
 Partition partitionPtScotch(const Mesh& mesh, int numSubdomains, MPI_Comm comm);
 
+/// partitionPtScotch() when no rank holds the whole mesh: each rank holds a
+/// part (Mesh::isPart()) whose elements are a contiguous range of ids, the
+/// ranges in rank order covering the whole mesh (generateBox() by an even
+/// ElementRange), and gets the subdomains of its own elements, cleaned up
+/// as partitionPtScotch() cleans them (the same subdomains, element for
+/// element, when the ranges are partitionPtScotch()'s even ones).
+/// Collective.
+/// \throws std::invalid_argument (on every rank) if the parts are not such
+///         ranges; as partitionPtScotch() otherwise.
+Partition partitionRangePtScotch(const Mesh& part, int numSubdomains, MPI_Comm comm);
+
 }  // namespace ddc

@@ -206,6 +206,14 @@ TEST(PartitionPtScotch, TwoBodiesEachInTheirOwnSubdomains) {
   EXPECT_EQ(std::accumulate(used.begin(), used.end(), 0), 4);
 }
 
+TEST(PartitionPtScotch, TheSamePartitionOnEveryCallInOneProcess) {
+  // Scotch's shared random generator went on from one call to the next.
+  const Mesh m = box(6, 3, 2, CellType::Tet4);
+  const ddc::Partition first = ddc::partitionPtScotch(m, 5, MPI_COMM_WORLD);
+  for (int call = 0; call < 2; ++call)
+    EXPECT_EQ(ddc::partitionPtScotch(m, 5, MPI_COMM_WORLD).elementSubdomain, first.elementSubdomain);
+}
+
 TEST(PartitionPtScotch, OneSubdomainAndErrors) {
   const Mesh m = box(2, 2, 2);
   const auto one = ddc::partitionPtScotch(m, 1, MPI_COMM_WORLD);
