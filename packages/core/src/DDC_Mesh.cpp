@@ -68,8 +68,11 @@ int Mesh::addPartElement(GlobalId id, const int* nodes) {
 
 void Mesh::growWhole(GlobalId nodes, GlobalId elements) {
   DDC_CHECK(isPart_ && nodes >= 0 && elements >= 0, "growWhole on a whole mesh or by a negative count");
+  DDC_CHECK(!bodies_.empty(), "growWhole before beginBody");
   globalNodes_ += nodes;
   globalElements_ += elements;
+  bodies_.back().wholeNodes += nodes;
+  bodies_.back().wholeElements += elements;
 }
 
 int Mesh::addElement(const int* nodes) {
@@ -171,19 +174,19 @@ void Mesh::checkConnectivity() const {
   std::vector<char> used(numNodes(), 0);
   for (int b = 0; b < numBodies(); ++b) {
     const Body& body = bodies_[b];
-    DDC_INPUT_REQUIRE(body.numElements > 0, "mesh: body '" << body.name << "' has no elements");
+    DDC_INPUT_REQUIRE(bodyGlobalElements(b) > 0, "mesh: body '" << body.name << "' has no elements");
     for (int e = body.firstElement; e < body.firstElement + body.numElements; ++e) {
       const int* en = elementNodes(e);
       for (int i = 0; i < elementNumNodes(e); ++i) {
         DDC_INPUT_REQUIRE(en[i] >= body.firstNode && en[i] < body.firstNode + body.numNodes,
-                          "mesh: element " << e << " of body '" << body.name << "' references node "
-                                           << en[i] << " outside the body");
+                          "mesh: element " << elementId(e) << " of body '" << body.name << "' references node "
+                                           << (isPart_ ? nodeId(en[i]) : en[i]) << " outside the body");
         used[en[i]] = 1;
       }
     }
   }
   for (int n = 0; n < numNodes(); ++n)
-    DDC_INPUT_REQUIRE(used[n], "mesh: node " << n << " at (" << coords_[n][0] << ", " << coords_[n][1]
+    DDC_INPUT_REQUIRE(used[n], "mesh: node " << nodeId(n) << " at (" << coords_[n][0] << ", " << coords_[n][1]
                                             << (dim_ == 3 ? ", " + std::to_string(coords_[n][2]) : std::string())
                                             << ") belongs to no element");
 }
@@ -197,8 +200,8 @@ void Mesh::checkShapes(int first, int last) const {
     for (int i = 0; i < referenceCell(body.cellType).numCorners; ++i) corners[i] = coords_[en[i]];
     const CornerJacobian j = cornerJacobian(body.cellType, corners.data());
     DDC_INPUT_REQUIRE(j.verdict == CornerJacobian::Verdict::Valid,
-                      "mesh: element " << e << " of body '" << body.name << "' (" << cellTypeName(body.cellType)
-                                       << ", first node " << en[0] << " at (" << coords_[en[0]][0] << ", "
+                      "mesh: element " << elementId(e) << " of body '" << body.name << "' ("
+                                       << cellTypeName(body.cellType) << ", first node " << nodeId(en[0]) << " at (" << coords_[en[0]][0] << ", "
                                        << coords_[en[0]][1] << ", " << coords_[en[0]][2] << ")) is "
                                        << describeCornerJacobian(body.cellType, j));
   }
@@ -213,8 +216,10 @@ Mesh Mesh::emptyPart() const {
   p.memoryBudget_ = memoryBudget_;
   p.budgetSource_ = budgetSource_;
   p.budgetHint_ = budgetHint_;
-  for (const Body& b : bodies_) {
-    Body q = b;
+  for (int body = 0; body < numBodies(); ++body) {
+    Body q = bodies_[body];
+    q.wholeNodes = bodyGlobalNodes(body);
+    q.wholeElements = bodyGlobalElements(body);
     q.firstNode = q.numNodes = q.firstElement = q.numElements = 0;
     p.bodies_.push_back(q);
   }
@@ -436,8 +441,10 @@ void Mesh::requireRoom(double nodes, double elements, int nodesPerElement, const
   const double need = have + replicatedBytes(nodes, elements, nodesPerElement) + 28.0 * nodes;
   DDC_INPUT_REQUIRE(need <= memoryBudget_,
                     "'" << path << "': the mesh would have " << std::llround(nodes) << " nodes and "
-                        << std::llround(elements) << " elements, about " << formatBytes(need) << " on every rank (each rank holds the whole "
-                        << "mesh), more than the " << formatBytes(memoryBudget_) << " available ("
+                        << std::llround(elements) << " elements, about " << formatBytes(need)
+                        << (isPart_ ? " on this rank (its share of the mesh)"
+                                    : " on every rank (each rank holds the whole mesh)")
+                        << ", more than the " << formatBytes(memoryBudget_) << " available ("
                         << budgetSource_ << ")" << (budgetHint_.empty() ? "" : "; " + budgetHint_));
 }
 

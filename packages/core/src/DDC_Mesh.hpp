@@ -33,6 +33,9 @@ struct Body {
   CellType cellType = CellType::Quad4;
   int firstNode = 0, numNodes = 0;
   int firstElement = 0, numElements = 0;
+  /// On a part of a mesh (Mesh::isPart()): the body's nodes and elements in
+  /// the whole mesh (Mesh::bodyGlobalNodes()); unused on a whole mesh.
+  long long wholeNodes = 0, wholeElements = 0;
 };
 
 /// A mesh of one dimension (2 or 3, set by its first body's cell type;
@@ -109,7 +112,7 @@ class Mesh {
   /// mesh (ids ascending); `nodes` are indices in the part. Returns its index.
   int addPartElement(GlobalId id, const int* nodes);
   /// The whole mesh of a part (startPart()) grows by `nodes` nodes and
-  /// `elements` elements: a body added in full to the whole.
+  /// `elements` elements: the current body, added in full to the whole.
   void growWhole(GlobalId nodes, GlobalId elements);
   /// Whether this mesh is a part of a larger one (made by part()).
   bool isPart() const { return isPart_; }
@@ -120,6 +123,9 @@ class Mesh {
   /// Nodes and elements of the whole mesh.
   GlobalId numGlobalNodes() const { return isPart_ ? globalNodes_ : numNodes(); }
   GlobalId numGlobalElements() const { return isPart_ ? globalElements_ : numElements(); }
+  /// Nodes and elements of body b in the whole mesh.
+  GlobalId bodyGlobalNodes(int b) const { return isPart_ ? bodies_[b].wholeNodes : bodies_[b].numNodes; }
+  GlobalId bodyGlobalElements(int b) const { return isPart_ ? bodies_[b].wholeElements : bodies_[b].numElements; }
   /// The index of the node whose id in the whole mesh is `id`; −1 if this
   /// mesh does not hold it.
   int localNode(GlobalId id) const;
@@ -137,7 +143,9 @@ class Mesh {
   void setMemoryBudget(double bytes, std::string source, std::string hint);
   /// \throws InputError naming `path`, the sizes, the estimate and the budget
   ///         if the mesh so far plus a body of `nodes` nodes and `elements`
-  ///         elements (and the generator's grid of points) would not fit.
+  ///         elements (and the generator's grid of points) would not fit;
+  ///         on a part, `nodes` and `elements` are the part's share of the
+  ///         body.
   void requireRoom(double nodes, double elements, int nodesPerElement, const std::string& path) const;
   ///@}
 
@@ -186,10 +194,13 @@ class Mesh {
   /// checkShapes() of every element.
   void check() const;
   /// The part of check() that needs the whole mesh: every body has elements,
-  /// references only its own nodes and uses every one of them.
+  /// references only its own nodes and uses every one of them. On a part,
+  /// every body has elements in the whole mesh and the part's elements and
+  /// nodes keep these rules; messages name ids in the whole mesh.
   void checkConnectivity() const;
   /// The part of check() element by element, for the elements [first, last)
   /// (3-D: cornerJacobian(); nothing in 2-D), so that ranks can share it.
+  /// Messages name the element and node by their ids in the whole mesh.
   void checkShapes(int first, int last) const;
 
  private:

@@ -707,13 +707,16 @@ std::vector<Point> rangeBoxPoints(const Grid& g, const Point& origin, const Poin
 /// \return the part's index of each node point it holds, by grid index.
 std::map<std::size_t, int> addStructuredBodyRange(Mesh& mesh, int body, const Grid& g, CellType type,
                                                   const BoxGeometry& box, const ElementRange& range,
-                                                  const std::vector<std::string>& sideNames) {
+                                                  const std::vector<std::string>& sideNames, const std::string& path) {
   const ReferenceCell& ref = referenceCell(type);
   const int per = cellsPerGridCell(type);
   const long long cells = static_cast<long long>(g.n[0]) * g.n[1] * (g.dim == 3 ? g.n[2] : 1);
   const long long firstElement = mesh.numGlobalElements(), firstNode = mesh.numGlobalNodes();
   const long long lo = std::clamp(range.first - firstElement, 0LL, cells * per);
   const long long hi = std::clamp(range.last - firstElement, lo, cells * per);
+  // The range's share of the body's points, before any is listed.
+  const double share = double(hi - lo) / double(cells * per);
+  mesh.requireRoom(share * static_cast<double>(g.numPoints()), double(hi - lo), numCellNodes(type), path);
   // The corners of the chosen elements and their node points.
   std::vector<std::vector<Index>> corners;
   std::vector<Index> points;
@@ -788,7 +791,8 @@ int generateRectangle(Mesh& part, const std::string& bodyName, CellType type, Te
   const BoxGeometry box = readBox(params, type, 2, "Rectangle", path);
   const Grid& g = box.grid;
   const int body = part.beginBody(bodyName, type);
-  const auto node = addStructuredBodyRange(part, body, g, type, box, range, {"left", "right", "bottom", "top"});
+  const auto node =
+      addStructuredBodyRange(part, body, g, type, box, range, {"left", "right", "bottom", "top"}, path);
   const int na = g.points(0), nb = g.points(1);
   part.addNodeSet(body, "bottom left", heldNode(node, g.index({{0, 0, 0}})));
   part.addNodeSet(body, "bottom right", heldNode(node, g.index({{na - 1, 0, 0}})));
@@ -805,7 +809,7 @@ int generateBox(Mesh& part, const std::string& bodyName, CellType type, Teuchos:
   const Grid& g = box.grid;
   const int body = part.beginBody(bodyName, type);
   const auto node =
-      addStructuredBodyRange(part, body, g, type, box, range, {"left", "right", "bottom", "top", "back", "front"});
+      addStructuredBodyRange(part, body, g, type, box, range, {"left", "right", "bottom", "top", "back", "front"}, path);
   for (int c = 0; c < 2; ++c)
     for (int b = 0; b < 2; ++b)
       for (int a = 0; a < 2; ++a) {
@@ -814,6 +818,15 @@ int generateBox(Mesh& part, const std::string& bodyName, CellType type, Teuchos:
                         heldNode(node, g.index({{a * (g.points(0) - 1), b * (g.points(1) - 1), c * (g.points(2) - 1)}})));
       }
   return body;
+}
+
+long long structuredElementCount(const std::string& generator, CellType type, Teuchos::ParameterList& params,
+                                 const std::string& path) {
+  DDC_CHECK(generator == "Rectangle" || generator == "Box", "structuredElementCount() of a " << generator);
+  const bool box3 = generator == "Box";
+  validateLevel(params, box3 ? *BoxGenerator::getValidParameters() : *RectangleGenerator::getValidParameters(), path);
+  const Grid g = readBox(params, type, box3 ? 3 : 2, generator, path).grid;
+  return static_cast<long long>(g.n[0]) * g.n[1] * (g.dim == 3 ? g.n[2] : 1) * cellsPerGridCell(type);
 }
 
 // ----------------------------------------------------------- Annular sector

@@ -228,6 +228,13 @@ struct ElementRange {
 int generateRectangle(Mesh& part, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
                       const std::string& path, const ElementRange& range);
 
+/// The number of elements generateRectangle() (`generator` "Rectangle") or
+/// generateBox() ("Box") makes of a body, from its parameters (validated
+/// and checked as those functions check them), without making any: what an
+/// even range of element ids over several bodies needs first.
+long long structuredElementCount(const std::string& generator, CellType type, Teuchos::ParameterList& params,
+                                 const std::string& path);
+
 /// Add an annular-sector body named `bodyName` to `mesh`.
 /// \param params validated against AnnularSectorGenerator::getValidParameters().
 /// \return the index of the new body.
