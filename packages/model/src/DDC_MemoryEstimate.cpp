@@ -1,12 +1,14 @@
 #include "DDC_MemoryEstimate.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <vector>
 
 #include "DDC_ContactParameters.hpp"
 #include "DDC_Memory.hpp"
+#include "DDC_NodeDirectory.hpp"
 #include "DDC_ReferenceCell.hpp"
 
 namespace ddc {
@@ -88,29 +90,49 @@ double fill(double n, int dim) {
   return std::max(1.0, dim == 3 ? kFill3D * std::cbrt(n) : kFill2D * std::log2(n));
 }
 
-/// METIS's graph on every rank (none for one subdomain).
-double partitionBytes(const Mesh& mesh, const Partition& partition) {
-  if (partition.numSubdomains <= 1) return 0.0;
+/// Element corners of the bodies of `mesh` (what a graph partitioner reads).
+double elementCorners(const Mesh& mesh) {
   double corners = 0.0;
   for (int b = 0; b < mesh.numBodies(); ++b)
     corners += static_cast<double>(mesh.body(b).numElements) * referenceCell(mesh.body(b).cellType).numCorners;
-  return kPartitionBytesPerCorner * corners;
+  return corners;
 }
 
-/// Per rank: its owned nodes (nodeOwnerRanks(), as in the Model) and the
-/// nodes of its elements that other ranks own (its ghosts), from the
-/// partition.
-struct RankNodes {
-  std::vector<double> owned, ghosts;
-};
+double elementNodes(const Mesh& mesh) {
+  double n = 0.0;
+  for (int b = 0; b < mesh.numBodies(); ++b)
+    n += static_cast<double>(mesh.body(b).numElements) * numCellNodes(mesh.body(b).cellType);
+  return n;
+}
 
-RankNodes rankNodes(const Mesh& mesh, const Partition& partition, int ranks) {
-  RankNodes out{std::vector<double>(ranks, 0.0), std::vector<double>(ranks, 0.0)};
-  if (partition.elementSubdomain.size() != size_t(mesh.numElements())) return out;
+/// The facets of the contact surfaces `mesh` holds.
+double contactFacets(const Mesh& mesh, const ContactOptions& contact) {
+  double facets = 0.0;
+  for (const auto& pair : contact.pairs)
+    for (const auto* set : {&pair.slaveSet, &pair.masterSet})
+      if (mesh.hasSideSet(*set)) facets += static_cast<double>(mesh.sideSet(*set).size());
+  return facets;
+}
+
+/// The whole bodies, from a whole mesh or a part.
+std::vector<ModelSize::BodySize> bodySizes(const Mesh& mesh) {
+  std::vector<ModelSize::BodySize> out;
+  for (int b = 0; b < mesh.numBodies(); ++b)
+    out.push_back({mesh.body(b).cellType, static_cast<double>(mesh.bodyGlobalNodes(b)),
+                   static_cast<double>(mesh.bodyGlobalElements(b))});
+  return out;
+}
+
+/// Per rank of a whole mesh: its owned nodes (nodeOwnerRanks(), as in the
+/// Model) and the nodes of its elements that other ranks own (its ghosts).
+void rankNodes(const Mesh& mesh, const Partition& partition, int ranks, ModelSize& size) {
+  size.ownedNodes.assign(ranks, 0.0);
+  size.ghostNodes.assign(ranks, 0.0);
+  if (partition.elementSubdomain.size() != size_t(mesh.numElements())) return;
   const std::vector<int> rankOf = subdomainOwnerRank(partition.numSubdomains, ranks);
   const std::vector<int> owner = nodeOwnerRanks(mesh, partition, ranks);
   for (int o : owner)
-    if (o < ranks) out.owned[o] += 1.0;
+    if (o < ranks) size.ownedNodes[o] += 1.0;
   std::vector<std::pair<int, int>> ghost;  // (node, rank) of a rank's element at a node it does not own
   for (int e = 0; e < mesh.numElements(); ++e) {
     const int r = rankOf[partition.elementSubdomain[e]];
@@ -119,59 +141,111 @@ RankNodes rankNodes(const Mesh& mesh, const Partition& partition, int ranks) {
   }
   std::sort(ghost.begin(), ghost.end());
   ghost.erase(std::unique(ghost.begin(), ghost.end()), ghost.end());
-  for (const auto& g : ghost) out.ghosts[g.second] += 1.0;
-  return out;
+  for (const auto& g : ghost) size.ghostNodes[g.second] += 1.0;
 }
 
-/// The contact surfaces on every rank.
-double contactBytes(const Mesh& mesh, const ContactOptions& contact) {
-  double facets = 0.0;
-  for (const auto& pair : contact.pairs)
-    for (const auto* set : {&pair.slaveSet, &pair.masterSet})
-      if (mesh.hasSideSet(*set)) facets += static_cast<double>(mesh.sideSet(*set).size());
-  return kContactBytesPerFacet * facets;
+/// Bytes of `size`'s mesh term on a rank.
+double meshBytes(const ModelSize& size) {
+  return kMeshBytesPerNode * size.meshNodes + kMeshBytesPerElement * size.meshElements +
+         kMeshBytesPerElementNode * size.meshElementNodes + kContactBytesPerFacet * size.contactFacets;
 }
 
 }  // namespace
 
 std::string MemoryEstimate::describe() const {
   std::ostringstream os;
-  os << "mesh " << formatBytes(mesh) << " on every rank, matrices " << formatBytes(matrix) << ", " << solverWhat
+  os << "mesh " << formatBytes(mesh) << (meshIsWhole ? " on every rank" : " on the largest rank's part")
+     << ", matrices " << formatBytes(matrix) << ", " << solverWhat
      << " " << formatBytes(solver);
   return os.str();
 }
 
-MemoryEstimate estimateMemory(const Mesh& mesh, const Partition& partition, int ranks,
-                              const Teuchos::ParameterList& solver, const ContactOptions& contact) {
+bool estimateReadsRankNodes(const Teuchos::ParameterList& solver) {
+  if (solver.get<std::string>("Strategy") == "FETI-DP" || !solver.isSublist("Linear Solver")) return false;
+  const Teuchos::ParameterList& linear = solver.sublist("Linear Solver");
+  return linear.isParameter("Type") && linear.get<std::string>("Type") == "Belos-MueLu";
+}
+
+ModelSize measureModel(const Mesh& mesh, const Partition& partition, int ranks, const ContactOptions& contact,
+                       bool withRankNodes) {
+  ModelSize size;
+  size.dim = mesh.dim();
+  size.bodies = bodySizes(mesh);
+  size.meshNodes = mesh.numNodes();
+  size.meshElements = mesh.numElements();
+  size.meshElementNodes = elementNodes(mesh);
+  size.contactFacets = contactFacets(mesh, contact);
+  size.partitionCorners = partition.numSubdomains > 1 ? elementCorners(mesh) : 0.0;
+  size.subdomainElements.assign(std::max(partition.numSubdomains, 1), 0.0);
+  for (int s : partition.elementSubdomain) size.subdomainElements[s] += 1.0;
+  if (withRankNodes) rankNodes(mesh, partition, std::max(ranks, 1), size);
+  return size;
+}
+
+ModelSize measureModelOnParts(MPI_Comm comm, const Mesh& part, const Partition& partition,
+                              const ContactOptions& contact, bool withRankNodes) {
+  ModelSize size;
+  size.meshIsWhole = false;
+  size.dim = part.dim();
+  size.bodies = bodySizes(part);
+  // The largest rank's part, term by term (each is a bound of that rank's).
+  std::array<double, 5> mine{{double(part.numNodes()), double(part.numElements()), elementNodes(part),
+                              contactFacets(part, contact),
+                              partition.numSubdomains > 1 ? elementCorners(part) : 0.0}};
+  MPI_Allreduce(MPI_IN_PLACE, mine.data(), 5, MPI_DOUBLE, MPI_MAX, comm);
+  size.meshNodes = mine[0];
+  size.meshElements = mine[1];
+  size.meshElementNodes = mine[2];
+  size.contactFacets = mine[3];
+  size.partitionCorners = mine[4];
+  size.subdomainElements.assign(std::max(partition.numSubdomains, 1), 0.0);
+  for (int s : partition.elementSubdomain) size.subdomainElements[s] += 1.0;
+  MPI_Allreduce(MPI_IN_PLACE, size.subdomainElements.data(), static_cast<int>(size.subdomainElements.size()),
+                MPI_DOUBLE, MPI_SUM, comm);
+  if (withRankNodes) {
+    int rank = 0, ranks = 1;
+    MPI_Comm_rank(comm, &rank);
+    MPI_Comm_size(comm, &ranks);
+    const NodeDirectory directory(comm, part);
+    double owned = 0.0;
+    for (int holder : directory.lowestHolder()) owned += holder == rank ? 1.0 : 0.0;
+    const double ghosts = part.numNodes() - owned;
+    size.ownedNodes.assign(ranks, 0.0);
+    size.ghostNodes.assign(ranks, 0.0);
+    MPI_Allgather(&owned, 1, MPI_DOUBLE, size.ownedNodes.data(), 1, MPI_DOUBLE, comm);
+    MPI_Allgather(&ghosts, 1, MPI_DOUBLE, size.ghostNodes.data(), 1, MPI_DOUBLE, comm);
+  }
+  return size;
+}
+
+MemoryEstimate estimateMemory(const ModelSize& size, int ranks, const Teuchos::ParameterList& solver) {
   MemoryEstimate est;
-  const int dim = mesh.dim();
+  const int dim = size.dim;
   ranks = std::max(ranks, 1);
-  // Per body: DOFs and matrix entries; the mesh by its own measure.
-  double dofs = 0.0, entries = 0.0, elementNodes = 0.0;
-  for (int b = 0; b < mesh.numBodies(); ++b) {
-    const Body& body = mesh.body(b);
-    const double n = static_cast<double>(dim) * body.numNodes;
+  // Per body: DOFs and matrix entries.
+  double dofs = 0.0, entries = 0.0, elements = 0.0, nodes = 0.0;
+  for (const ModelSize::BodySize& body : size.bodies) {
+    const double n = static_cast<double>(dim) * body.nodes;
     dofs += n;
     entries += n * dim * couplingsPerNode(body.cellType);
-    elementNodes += static_cast<double>(body.numElements) * numCellNodes(body.cellType);
+    elements += body.elements;
+    nodes += body.nodes;
   }
-  est.mesh = kMeshBytesPerNode * mesh.numNodes() + kMeshBytesPerElement * mesh.numElements() +
-             kMeshBytesPerElementNode * elementNodes + contactBytes(mesh, contact);
-  est.partition = partitionBytes(mesh, partition);
+  est.mesh = meshBytes(size);
+  est.meshIsWhole = size.meshIsWhole;
+  est.partition = kPartitionBytesPerCorner * size.partitionCorners;
   const double rowEntries = dofs > 0 ? entries / dofs : 0.0;
   const std::string strategy = solver.get<std::string>("Strategy");
   char what[160];
   if (strategy == "FETI-DP") {
     // Subdomain sizes from the partition (elements per subdomain x nodes per
     // element over the elements per node of the body type: ~ its DOFs).
-    const int S = std::max(partition.numSubdomains, 1);
-    std::vector<double> elems(S, 0.0);
-    for (int s : partition.elementSubdomain) elems[s] += 1.0;
-    const double dofsPerElement = mesh.numElements() > 0 ? dofs / mesh.numElements() : 0.0;
+    const int S = static_cast<int>(size.subdomainElements.size());
+    const double dofsPerElement = elements > 0 ? dofs / elements : 0.0;
     std::vector<int> owner = subdomainOwnerRank(S, ranks);
     std::vector<double> perRank(ranks, 0.0), matrixPerRank(ranks, 0.0);
     for (int s = 0; s < S; ++s) {
-      const double n = elems[s] * dofsPerElement;
+      const double n = size.subdomainElements[s] * dofsPerElement;
       perRank[owner[s]] += 8.0 * kFetiFactorCopies * n * rowEntries * fill(n, dim);
       matrixPerRank[owner[s]] += kFetiBytesPerEntry * n * rowEntries;
     }
@@ -188,12 +262,11 @@ MemoryEstimate estimateMemory(const Mesh& mesh, const Partition& partition, int 
     est.matrix = kMatrixBytesPerEntry * entries / ranks;
     if (type == "Belos-MueLu") {
       // Per rank: its rows' entries, with the overhead of its ghosts.
-      const RankNodes nodes = rankNodes(mesh, partition, ranks);
-      const double entriesPerNode = mesh.numNodes() > 0 ? entries / mesh.numNodes() : 0.0;
+      const double entriesPerNode = nodes > 0 ? entries / nodes : 0.0;
       double worst = -1.0;
-      for (int r = 0; r < ranks; ++r) {
-        const double e = nodes.owned[r] * entriesPerNode;
-        const double g = nodes.owned[r] > 0 ? nodes.ghosts[r] / nodes.owned[r] : 0.0;
+      for (int r = 0; r < ranks && r < static_cast<int>(size.ownedNodes.size()); ++r) {
+        const double e = size.ownedNodes[r] * entriesPerNode;
+        const double g = size.ownedNodes[r] > 0 ? size.ghostNodes[r] / size.ownedNodes[r] : 0.0;
         const double matrix = kMatrixBytesPerEntry * e, hierarchy = (kMueLuBytesPerEntry + kMueLuBytesPerGhostShare * g) * e;
         est.perRank.push_back(est.atPeak(matrix, hierarchy));
         if (est.perRank.back() > worst) worst = est.perRank.back(), est.matrix = matrix, est.solver = hierarchy;
@@ -217,6 +290,11 @@ MemoryEstimate estimateMemory(const Mesh& mesh, const Partition& partition, int 
   if (est.perRank.empty()) est.perRank.assign(ranks, est.total());
   est.solverWhat = what;
   return est;
+}
+
+MemoryEstimate estimateMemory(const Mesh& mesh, const Partition& partition, int ranks,
+                              const Teuchos::ParameterList& solver, const ContactOptions& contact) {
+  return estimateMemory(measureModel(mesh, partition, ranks, contact, estimateReadsRankNodes(solver)), ranks, solver);
 }
 
 }  // namespace ddc

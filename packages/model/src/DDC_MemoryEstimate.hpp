@@ -6,6 +6,8 @@
 #pragma once
 
 #include <Teuchos_ParameterList.hpp>
+#include <mpi.h>
+
 #include <string>
 #include <vector>
 
@@ -25,8 +27,10 @@ constexpr double kMemoryEstimateMargin = 1.25;
 
 /// Bytes on the most loaded rank, beyond what the process holds at start.
 struct MemoryEstimate {
-  /// What every rank holds whole: the mesh and the contact surfaces.
+  /// What every rank holds whole: the mesh and the contact surfaces (on
+  /// parts of a mesh, meshIsWhole false: the largest rank's part).
   double mesh = 0.0;
+  bool meshIsWhole = true;
   /// METIS's graph of the whole mesh on every rank while it partitions;
   /// freed before the matrices exist, so it counts only if it is more.
   double partition = 0.0;
@@ -45,8 +49,50 @@ struct MemoryEstimate {
   std::string describe() const;
 };
 
+/// What the estimate reads of a model: the whole mesh's bodies, what a rank
+/// holds of the mesh, the subdomain sizes and each rank's nodes.
+struct ModelSize {
+  struct BodySize {
+    CellType cellType = CellType::Quad4;
+    double nodes = 0.0, elements = 0.0;  ///< in the whole mesh
+  };
+  int dim = 2;
+  std::vector<BodySize> bodies;
+  /// What the largest rank holds of the mesh: nodes, elements, element
+  /// nodes, and the facets of the contact surfaces.
+  double meshNodes = 0.0, meshElements = 0.0, meshElementNodes = 0.0, contactFacets = 0.0;
+  /// Element corners in the partitioner's graph on the largest rank (0 for
+  /// one subdomain).
+  double partitionCorners = 0.0;
+  std::vector<double> subdomainElements;  ///< per subdomain
+  /// Per rank: its owned nodes and the nodes of its elements others own
+  /// (empty unless asked for: only Belos-MueLu reads them).
+  std::vector<double> ownedNodes, ghostNodes;
+  /// Whether every rank holds the whole mesh (else each its part).
+  bool meshIsWhole = true;
+};
+
+/// Whether the estimate for `solver` reads each rank's nodes.
+bool estimateReadsRankNodes(const Teuchos::ParameterList& solver);
+
+/// The size of a model on a whole mesh under `partition` on `ranks` ranks
+/// (node owners as nodeOwnerRanks()); the rank nodes only with
+/// `withRankNodes`.
+ModelSize measureModel(const Mesh& mesh, const Partition& partition, int ranks, const ContactOptions& contact,
+                       bool withRankNodes);
+
+/// The same from the ranks' parts of a mesh (Mesh::isPart()): each rank's
+/// elements with their subdomains, the mesh term that of the largest part,
+/// the partitioner's graph that of the largest rank (PT-Scotch holds each
+/// rank's share), a node owned by the lowest rank that holds it. Collective.
+ModelSize measureModelOnParts(MPI_Comm comm, const Mesh& part, const Partition& partition,
+                              const ContactOptions& contact, bool withRankNodes);
+
 /// \param solver the validated "Solver" list (Strategy, Linear Solver/Type)
 /// \param ranks the number of MPI ranks
+MemoryEstimate estimateMemory(const ModelSize& size, int ranks, const Teuchos::ParameterList& solver);
+
+/// estimateMemory() of measureModel().
 /// \param contact the validated contact pairs (their side sets are counted)
 MemoryEstimate estimateMemory(const Mesh& mesh, const Partition& partition, int ranks,
                               const Teuchos::ParameterList& solver, const ContactOptions& contact);
