@@ -56,6 +56,35 @@ foreach(np 2 4)
 endforeach()
 ddc_compare_histories(parts_equal_whole_block_3d_np2 example_block_3d_np2 distribution_line_block_3d_parts_np2 1e-12)
 
+# With Partition/Method = PT-Scotch as well, no rank builds the whole mesh:
+# each generates an even range of the elements, PT-Scotch partitions them in
+# parallel and each element moves to the rank of its subdomain. The busiest
+# rank holds at most 1/P + 10 % of the elements and owns that of the nodes;
+# the run is the whole-mesh PT-Scotch run on as many ranks (the same
+# partition) to round-off, and on 4 ranks the 1-rank run to the examples'
+# rank-independence tolerance; the 2-D elastic block likewise on 3 ranks.
+set(IN_RANGES --set "Partition/Method=PT-Scotch" --set "Partition/Mesh On Every Rank=false" --set "Output/VTK=false")
+ddc_add_run_test(ptscotch_whole_block_3d_np2 RANKS 2 FIXTURE
+  ARGS ${PROJECT_SOURCE_DIR}/examples/block_3d.xml --set "Partition/Method=PT-Scotch" --set "Output/VTK=false"
+    --output-dir ${DDC_RUNS}/ptscotch_whole_block_3d_np2
+  FILES ${DDC_RUNS}/ptscotch_whole_block_3d_np2/history.csv LABELS example REGEX "every rank holds the whole mesh")
+foreach(np 2 4)
+  ddc_add_run_test(mesh_in_ranges_block_3d_np${np} RANKS ${np} FIXTURE
+    ARGS ${PROJECT_SOURCE_DIR}/examples/block_3d.xml ${IN_RANGES} --output-dir ${DDC_RUNS}/mesh_in_ranges_block_3d_np${np}
+    FILES ${DDC_RUNS}/mesh_in_ranges_block_3d_np${np}/history.csv
+    LABELS example
+    REGEX "owns [0-9]+ of 425 nodes \\(${DISTRIBUTION_SHARE_np${np}}\\); the busiest rank holds [0-9]+ of 256 elements \\(${DISTRIBUTION_SHARE_np${np}}\\) and [0-9]+ of 425 nodes [^;]*; no rank held the whole mesh \\(built in ranges of elements\\)")
+endforeach()
+ddc_compare_histories(mesh_in_ranges_equal_whole_block_3d_np2 ptscotch_whole_block_3d_np2 mesh_in_ranges_block_3d_np2 1e-12)
+ddc_compare_histories(mesh_in_ranges_rank_independence_block_3d_np4 example_block_3d_np1 mesh_in_ranges_block_3d_np4 1e-10)
+ddc_add_run_test(mesh_in_ranges_elastic_block_np3 RANKS 3 FIXTURE
+  ARGS ${PROJECT_SOURCE_DIR}/examples/elastic_block.xml ${IN_RANGES}
+    --output-dir ${DDC_RUNS}/mesh_in_ranges_elastic_block_np3
+  FILES ${DDC_RUNS}/mesh_in_ranges_elastic_block_np3/history.csv LABELS example
+  REGEX "no rank held the whole mesh \\(built in ranges of elements\\)")
+ddc_compare_histories(mesh_in_ranges_rank_independence_elastic_block example_elastic_block_np1
+  mesh_in_ranges_elastic_block_np3 1e-10)
+
 # The bar impact (implicit dynamics with contact, the decomposed element
 # under FETI-DP): on 1, 2 and 3 ranks, each subdomain factorised once
 # (linear material, constant time step: the contact changes only constraint

@@ -109,6 +109,25 @@ ddc_feti_on_parts(feti_primal_Automatic_512_subdomains ${PROJECT_SOURCE_DIR}/exa
 ddc_feti_on_parts(feti_island_FETI-DP_np2 ${DDC_INPUTS}/feti_island.xml
   ARGS --set "Solver/FETI-DP/Belos/Convergence Tolerance=1e-12"
   REGEX "FETI-DP: subdomain 1: 2 interface node\\(s\\) made primal.*step +1/1")
+# FETI-DP on a mesh no rank holds whole (PT-Scotch, Mesh On Every Rank =
+# false: the bodies generated in ranges of elements): the whole-mesh
+# PT-Scotch run with the same partition, to round-off.
+foreach(mode whole ranges)
+  if(mode STREQUAL "ranges")
+    set(on_every_rank false)
+  else()
+    set(on_every_rank true)
+  endif()
+  ddc_add_run_test(feti_ptscotch_${mode}_block_3d RANKS 2 FIXTURE
+    ARGS ${PROJECT_SOURCE_DIR}/examples/block_3d.xml --set "Solver/Strategy=FETI-DP"
+      --set "Mesh/Bodies/Block/Box/Refinement=3" --set "Partition/Number of Subdomains=32"
+      --set "Partition/Method=PT-Scotch" --set "Partition/Mesh On Every Rank=${on_every_rank}" --set "Output/VTK=false"
+      --output-dir ${DDC_RUNS}/feti_ptscotch_${mode}_block_3d
+    FILES ${DDC_RUNS}/feti_ptscotch_${mode}_block_3d/history.csv LABELS feti REGEX "step +1/1")
+endforeach()
+ddc_compare_histories(feti_mesh_in_ranges_equal_whole feti_ptscotch_whole_block_3d feti_ptscotch_ranges_block_3d 1e-12
+  LABELS feti)
+
 # A FETI-DP run reports the size of its coarse problem (doc/feti-dp.md "In 3-D").
 ddc_add_run_test(feti_reports_coarse_size RANKS 1
   ARGS ${PROJECT_SOURCE_DIR}/examples/block_3d.xml --set "Solver/Strategy=FETI-DP"

@@ -84,6 +84,11 @@ ddc_add_restart_test(restart_sigterm_dynamics_np2 2 sigterm ${PROJECT_SOURCE_DIR
 # A checkpoint written on parts of the mesh continues with the whole mesh and
 # the other way round, on another rank count (dynamics, no contact).
 ddc_add_restart_test(restart_other_mode_np2_to_3 2 other-mode:3 ${PROJECT_SOURCE_DIR}/examples/bar_vibration.xml)
+# With PT-Scotch the parts are built in ranges of elements (no rank holds
+# the whole mesh): its checkpoint continues with the whole mesh, and the
+# other way round.
+ddc_add_restart_test(restart_other_mode_in_ranges_np2_to_3 2 other-mode:3
+  ${PROJECT_SOURCE_DIR}/examples/bar_vibration.xml ARGS --set "Partition/Method=PT-Scotch")
 ddc_add_restart_test(restart_sigterm_step_control_np2 2 sigterm
   ${PROJECT_SOURCE_DIR}/examples/two_half_rings_adaptive.xml)
 # Coulomb friction (the slots' stick/slip states, tangential bases and

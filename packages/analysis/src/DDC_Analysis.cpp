@@ -12,6 +12,7 @@
 #include "DDC_FaultSeam.hpp"
 #include "DDC_InputDeck.hpp"
 #include "DDC_Memory.hpp"
+#include "DDC_MeshInRanges.hpp"
 #include "DDC_OutputObservers.hpp"
 #include "DDC_Parameters.hpp"
 #include "DDC_RunCheckpoint.hpp"
@@ -56,7 +57,7 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
   Activity activity("setting up the " + strategy_->name() + " solver (" + sizes + ")");
   strategy_->setUp(model_, [this](const std::string& line) { progress(line); });
   progress(distributionLine(*comm_, *model_, rankShare(*model_, strategy_->coarseRowsOnThisRank()),
-                            memoryEstimate_.total()));
+                            memoryEstimate_.total(), meshInRanges_));
   params_ = params;
 }
 
@@ -101,7 +102,12 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
       "refine less, run on more ranks or hosts, or set 'Solver/Memory Check' = false to run anyway";
   memoryBudget_ = MemoryBudget();
   PL& meshParams = params.sublist("Mesh");
-  auto mesh = buildMesh(meshParams, factory_, baseDirectory, &memory, memoryHint, rawComm(comm_));
+  // Without the whole mesh on every rank, bodies the generators make by
+  // element range are made so (no rank holds the whole mesh); otherwise
+  // each rank builds the whole mesh and keeps its part after partitioning.
+  const bool inRanges = meshInRanges_ = meshBuiltInRanges(params);
+  auto mesh = inRanges ? buildMeshInRanges(meshParams, factory_, &memory, memoryHint, rawComm(comm_))
+                       : buildMesh(meshParams, factory_, baseDirectory, &memory, memoryHint, rawComm(comm_));
   auto elements = makeBodyElements(*mesh, meshParams, factory_);
   // Nearly incompressible materials lock: said at the start and with a
   // Newton failure, where it is the likely cause (with the other caveats).
@@ -120,7 +126,7 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
   if (dynamic_ && params.sublist("Contact").get<std::string>("Initial Contact State") == "Automatic")
     contact.initialInContact = false;  // Previous Step: a time step changes the active set little
   const std::string strategy = params.sublist("Solver").get<std::string>("Strategy");
-  requireJoinedCoincidentNodes(*mesh, contact);
+  requireJoinedCoincidentNodes(*mesh, contact, rawComm(comm_));
   requireSupportedBodies(*mesh, bcs, contact, strategy == "FETI-DP", dynamic_, rawComm(comm_));
   // A run too large even with evenly sized subdomains is refused before
   // METIS runs (it takes seconds on large meshes, on every rank).
@@ -132,9 +138,18 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
   }
   Partition partition = partitionModel(*mesh, params.sublist("Partition"), strategy, rawComm(comm_), baseDirectory);
   if (partition.edgeCut >= 0)
-    progress(partitionSummary(partition, params.sublist("Partition").get<std::string>("Method")));
+    progress(partitionSummary(*mesh, partition, params.sublist("Partition").get<std::string>("Method"),
+                              rawComm(comm_)));
+  if (inRanges) {
+    // Each element to the rank of its subdomain.
+    Activity activity("moving each element to the rank of its subdomain");
+    RankPart own = migratedRankPart(rawComm(comm_), *mesh, partition);
+    mesh = std::make_shared<Mesh>(std::move(own.mesh));
+    own.partition.edgeCut = partition.edgeCut;
+    partition = std::move(own.partition);
+  }
   if (memoryCheck) requireMemory(*mesh, partition, solver, contact);
-  else memoryEstimate_ = estimateMemory(*mesh, partition, ranks, solver, contact);
+  else memoryEstimate_ = estimate(*mesh, partition, solver, contact);
   strategy_ = makeSolutionStrategy(comm_, params.sublist("Solver"), contact);
   // The contact elements by role and facet type, from the factory (host
   // codes may replace them there).
@@ -150,7 +165,7 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
   Activity activity("building the model (" + std::to_string(mesh->numNodes()) + " nodes, " +
                     std::to_string(mesh->numElements()) + " elements, " + std::to_string(partition.numSubdomains) +
                     " subdomains; estimated " + formatBytes(memoryEstimate_.total()) + " per rank)");
-  if (!params.sublist("Partition").get<bool>("Mesh On Every Rank"))
+  if (!inRanges && !params.sublist("Partition").get<bool>("Mesh On Every Rank"))
     keepOwnPart(mesh, partition, comm_->getRank(), ranks);
   model_ = std::make_shared<Model>(comm_, mesh, std::move(elements), std::move(partition), std::move(bcs),
                                    std::move(contact), surfaceElements);
@@ -160,7 +175,7 @@ void Analysis::requireMemory(const Mesh& mesh, const Partition& partition, const
                              const ContactOptions& contact) {
   // The estimate with its margin against what the ranks of each host share
   // and what each process may map (doc/user-guide.md, "Memory").
-  memoryEstimate_ = estimateMemory(mesh, partition, comm_->getSize(), solver, contact);
+  memoryEstimate_ = estimate(mesh, partition, solver, contact);
   memoryBudget_ = memoryBudget(*comm_, memoryEstimate_.perRank.at(comm_->getRank()), kMemoryEstimateMargin);
   DDC_INPUT_REQUIRE(memoryBudget_.fits,
                     "the run needs an estimated "
@@ -170,6 +185,14 @@ void Analysis::requireMemory(const Mesh& mesh, const Partition& partition, const
                         << "): run fewer ranks per host or on more hosts, refine less, or choose a lighter solver "
                            "(FETI-DP, or Belos-MueLu instead of a direct solver); or set 'Solver/Memory Check' = "
                            "false to run anyway");
+}
+
+MemoryEstimate Analysis::estimate(const Mesh& mesh, const Partition& partition, const PL& solver,
+                                  const ContactOptions& contact) const {
+  if (!mesh.isPart()) return estimateMemory(mesh, partition, comm_->getSize(), solver, contact);
+  const ModelSize size =
+      measureModelOnParts(rawComm(comm_), mesh, partition, contact, estimateReadsRankNodes(solver));
+  return estimateMemory(size, comm_->getSize(), solver);
 }
 
 void Analysis::progress(const std::string& line) const {

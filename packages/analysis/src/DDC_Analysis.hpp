@@ -136,6 +136,10 @@ class Analysis {
   /// (ddc::memoryBudget(); sets memoryBudget_).
   void requireMemory(const Mesh& mesh, const Partition& partition, const Teuchos::ParameterList& solver,
                      const ContactOptions& contact);
+  /// The memory estimate of the run on `mesh` (a whole mesh, or this rank's
+  /// part: then collective) with `partition`.
+  MemoryEstimate estimate(const Mesh& mesh, const Partition& partition, const Teuchos::ParameterList& solver,
+                          const ContactOptions& contact) const;
   /// The step loop of one run, with its observers writing into `dir` (null: no files).
   void runSteps(OutputDirectory* dir);
   /// The analysis' own observers of a run into `dir` (null: no files), in
@@ -158,6 +162,8 @@ class Analysis {
   /// bodies.
   std::string caveats_;
   bool progressEnabled_ = true;
+  /// The mesh was built in ranges of elements (meshBuiltInRanges()): no rank held it whole.
+  bool meshInRanges_ = false;
   bool dynamic_ = false;  ///< Dynamics/Integrator is not None
   NewtonSettings newton_;
   Teuchos::RCP<Vector> unloaded_;                   ///< displacement() before a run

@@ -262,8 +262,10 @@ Teuchos::RCP<PL> partitionValidParameters() {
           "true: every rank keeps the whole mesh through the run. false: once the mesh is partitioned each "
           "rank keeps only its elements and their nodes (doc/architecture.md, 'What a distributed mesh has "
           "to change'), for runs without contact pairs and without Output/Exodus (Monolithic or FETI-DP). "
-          "The mesh is still built whole on every rank first: this lowers what a rank holds during the "
-          "solve, not the peak of the set-up.");
+          "With Method = PT-Scotch and every body from the Rectangle or Box generator no rank builds the "
+          "whole mesh (each generates a range of the elements, which then move to their subdomains' ranks); "
+          "otherwise each rank builds the whole mesh first and keeps its part, which lowers what a rank "
+          "holds during the solve, not the peak of the set-up.");
   return pl;
 }
 

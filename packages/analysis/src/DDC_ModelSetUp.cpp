@@ -43,11 +43,15 @@ std::pair<int, int> evenShare(int count, MPI_Comm comm) {
   return {int(static_cast<long long>(count) * rank / size), int(static_cast<long long>(count) * (rank + 1) / size)};
 }
 
-/// check(first, last) on this rank's even share of `count` items; the
-/// InputError of the lowest rank that throws one is thrown on every rank.
+/// check(first, last) on this rank's share of the elements of `mesh`: an
+/// even share of a whole mesh, all of a part's (Mesh::isPart()); the
+/// InputError of the lowest rank that throws one is thrown on every rank
+/// (on a whole mesh, or parts in ranges of ids in rank order, the error of
+/// the lowest element).
 template <class Check>
-void checkShareCollectively(int count, MPI_Comm comm, const Check& check) {
-  const auto [first, last] = evenShare(count, comm);
+void checkShareCollectively(const Mesh& mesh, MPI_Comm comm, const Check& check) {
+  const auto [first, last] =
+      mesh.isPart() ? std::pair<int, int>(0, mesh.numElements()) : evenShare(mesh.numElements(), comm);
   std::string error;
   try {
     check(first, last);
@@ -58,87 +62,107 @@ void checkShareCollectively(int count, MPI_Comm comm, const Check& check) {
 }
 }  // namespace
 
-std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const ElementFactory& factory,
-                                const std::string& baseDirectory, const MemoryLimit* budget,
-                                const std::string& budgetHint, MPI_Comm comm) {
+PL& validatedBodies(PL& meshParams) {
   PL validMesh("Mesh");
   validMesh.sublist("Bodies");
   validateLevel(meshParams, validMesh, "Mesh");
   DDC_INPUT_REQUIRE(meshParams.isSublist("Bodies") && meshParams.sublist("Bodies").numParams() > 0,
                     "sublist 'Mesh/Bodies' is required and must describe at least one body");
-  PL& bodies = meshParams.sublist("Bodies");
+  return meshParams.sublist("Bodies");
+}
+
+BodyInput readBody(PL& bodies, const std::string& name, const ElementFactory& factory, const PL& validBody) {
+  BodyInput in;
+  in.name = name;
+  in.path = "Mesh/Bodies/" + name;
+  const std::string& path = in.path;
+  DDC_INPUT_REQUIRE(bodies.isSublist(name), "'" << path << "' must be a sublist describing a body");
+  PL& body = bodies.sublist(name);
+  validateLevel(body, validBody, path);
+  in.generator = body.get<std::string>("Generator");
+  for (const auto& g : kMeshGenerators)
+    DDC_INPUT_REQUIRE(g == in.generator || !body.isSublist(g), "sublist '" << path << "/" << g
+                                                                           << "' does not apply: Generator is '"
+                                                                           << in.generator << "'");
+  DDC_INPUT_REQUIRE(body.isSublist("Element"), "sublist '" << path << "/Element' is required (Type, Material)");
+  PL& elem = body.sublist("Element");
+  DDC_INPUT_REQUIRE(elem.isParameter("Type"), "parameter '" << path << "/Element/Type' is required");
+  const auto& entry = factory.entry(elem.get<std::string>("Type"), path + "/Element");
+  DDC_INPUT_REQUIRE(!entry.contact, "'" << path << "/Element/Type' = '" << elem.get<std::string>("Type")
+                                        << "' is a contact element (the contact component makes those for "
+                                           "Contact/Pairs); a body needs one of "
+                                        << quotedNames(factory.bodyNames(), "(none registered)"));
+  // The mesh cell type of the element: the one of its dimension and node count.
+  const auto& cells = elementCellTypes();
+  const auto cellIt = std::find_if(cells.begin(), cells.end(), [&](CellType c) {
+    return cellDimension(c) == entry.dim && numCellNodes(c) == entry.numNodes;
+  });
+  DDC_INPUT_REQUIRE(cellIt != cells.end(), "element type '" << elem.get<std::string>("Type") << "' of '" << path
+                                                             << "' is " << entry.dim << "-D with " << entry.numNodes
+                                                             << " nodes, which no mesh cell type has (bodies need "
+                                                                "Quad4, Quad9, Hex8, Hex20, Hex27, Tet4 or Tet10 "
+                                                                "cells)");
+  in.cellType = *cellIt;
+  in.generatorParams = &body.sublist(in.generator);
+  return in;
+}
+
+void requireBodyExtent(const Mesh& mesh, int body, const BodyInput& in, MPI_Comm comm) {
+  // Lengths far from 1 under- or overflow in the element arithmetic
+  // (Jacobians are cubes of lengths in 3-D, stiffnesses divide by them):
+  // a body's extent must lie in [1e-100, 1e100].
+  const Body& b = mesh.body(body);
+  std::array<double, 6> box{{1e308, 1e308, 1e308, 1e308, 1e308, 1e308}};  // -hi, lo per axis
+  for (int n = b.firstNode; n < b.firstNode + b.numNodes; ++n)
+    for (int c = 0; c < 3; ++c) box[c] = std::min(box[c], mesh.coord(n)[c]), box[3 + c] = std::min(box[3 + c], -mesh.coord(n)[c]);
+  if (mesh.isPart()) MPI_Allreduce(MPI_IN_PLACE, box.data(), 6, MPI_DOUBLE, MPI_MIN, comm);
+  double extent = 1e308, far = 0.0;  // the smallest extent over the axes
+  for (int c = 0; c < mesh.dim(); ++c) {
+    const double lo = box[c], hi = -box[3 + c];
+    extent = std::min(extent, hi - lo);
+    far = std::max({far, std::abs(lo), std::abs(hi)});
+  }
+  DDC_INPUT_REQUIRE(mesh.bodyGlobalNodes(body) == 0 || (extent >= kMinBodyExtent && far <= kMaxCoordinate),
+                    "'" << in.path << "/" << in.generator << "': body '" << in.name << "' spans " << extent
+                        << " along its thinnest axis, with coordinates up to " << far
+                        << " in magnitude; its extent must lie in [" << kMinBodyExtent << ", " << kMaxCoordinate
+                        << "] and its coordinates within " << kMaxCoordinate
+                        << " (lengths this far from 1 under- or overflow in the element arithmetic): choose other "
+                           "length units");
+}
+
+std::shared_ptr<Mesh> buildMesh(Teuchos::ParameterList& meshParams, const ElementFactory& factory,
+                                const std::string& baseDirectory, const MemoryLimit* budget,
+                                const std::string& budgetHint, MPI_Comm comm) {
+  PL& bodies = validatedBodies(meshParams);
   const auto validBody = bodyValidParameters(factory);
   auto mesh = std::make_shared<Mesh>();
   if (budget && std::isfinite(budget->bytes)) mesh->setMemoryBudget(budget->bytes, budget->source, budgetHint);
   for (auto it = bodies.begin(); it != bodies.end(); ++it) {
     const std::string name = bodies.name(it);
-    const std::string path = "Mesh/Bodies/" + name;
     Activity activity("building the mesh of body '" + name + "' (" + std::to_string(mesh->numNodes()) +
                       " nodes before it)");
-    DDC_INPUT_REQUIRE(bodies.isSublist(name), "'" << path << "' must be a sublist describing a body");
-    PL& body = bodies.sublist(name);
-    validateLevel(body, *validBody, path);
-    const std::string gen = body.get<std::string>("Generator");
-    for (const auto& g : kMeshGenerators)
-      DDC_INPUT_REQUIRE(g == gen || !body.isSublist(g), "sublist '" << path << "/" << g
-                                                                    << "' does not apply: Generator is '"
-                                                                    << gen << "'");
-    DDC_INPUT_REQUIRE(body.isSublist("Element"), "sublist '" << path << "/Element' is required (Type, Material)");
-    PL& elem = body.sublist("Element");
-    DDC_INPUT_REQUIRE(elem.isParameter("Type"), "parameter '" << path << "/Element/Type' is required");
-    const auto& entry = factory.entry(elem.get<std::string>("Type"), path + "/Element");
-    DDC_INPUT_REQUIRE(!entry.contact, "'" << path << "/Element/Type' = '" << elem.get<std::string>("Type")
-                                          << "' is a contact element (the contact component makes those for "
-                                             "Contact/Pairs); a body needs one of "
-                                          << quotedNames(factory.bodyNames(), "(none registered)"));
-    // The mesh cell type of the element: the one of its dimension and node count.
-    const auto& cells = elementCellTypes();
-    const auto cellIt = std::find_if(cells.begin(), cells.end(), [&](CellType c) {
-      return cellDimension(c) == entry.dim && numCellNodes(c) == entry.numNodes;
-    });
-    DDC_INPUT_REQUIRE(cellIt != cells.end(), "element type '" << elem.get<std::string>("Type") << "' of '" << path
-                                                               << "' is " << entry.dim << "-D with " << entry.numNodes
-                                                               << " nodes, which no mesh cell type has (bodies need "
-                                                                  "Quad4, Quad9, Hex8, Hex20, Hex27, Tet4 or Tet10 "
-                                                                  "cells)");
-    const CellType cell = *cellIt;
-    PL& gp = body.sublist(gen);
-    if (gen == "Rectangle")
-      generateRectangle(*mesh, name, cell, gp, path + "/Rectangle");
-    else if (gen == "Annular Sector")
-      generateAnnularSector(*mesh, name, cell, gp, path + "/Annular Sector");
-    else if (gen == "Box")
-      generateBox(*mesh, name, cell, gp, path + "/Box");
-    else if (gen == "Cylindrical Shell Sector")
-      generateCylindricalShellSector(*mesh, name, cell, gp, path + "/Cylindrical Shell Sector");
-    else if (gen == "Sphere Octant")
-      generateSphereOctant(*mesh, name, cell, gp, path + "/Sphere Octant");
-    else if (gen == "Exodus")
-      readExodusBody(*mesh, name, cell, gp, path + "/Exodus", baseDirectory);
+    const BodyInput in = readBody(bodies, name, factory, *validBody);
+    PL& gp = *in.generatorParams;
+    const std::string at = in.path + "/" + in.generator;
+    if (in.generator == "Rectangle")
+      generateRectangle(*mesh, name, in.cellType, gp, at);
+    else if (in.generator == "Annular Sector")
+      generateAnnularSector(*mesh, name, in.cellType, gp, at);
+    else if (in.generator == "Box")
+      generateBox(*mesh, name, in.cellType, gp, at);
+    else if (in.generator == "Cylindrical Shell Sector")
+      generateCylindricalShellSector(*mesh, name, in.cellType, gp, at);
+    else if (in.generator == "Sphere Octant")
+      generateSphereOctant(*mesh, name, in.cellType, gp, at);
+    else if (in.generator == "Exodus")
+      readExodusBody(*mesh, name, in.cellType, gp, at, baseDirectory);
     else
-      readGmshBody(*mesh, name, cell, gp, path + "/Gmsh", baseDirectory);
-    // Lengths far from 1 under- or overflow in the element arithmetic
-    // (Jacobians are cubes of lengths in 3-D, stiffnesses divide by them):
-    // a body's extent must lie in [1e-100, 1e100].
-    const Body& b = mesh->body(mesh->numBodies() - 1);
-    double lo[3] = {1e308, 1e308, 1e308}, hi[3] = {-1e308, -1e308, -1e308};
-    for (int n = b.firstNode; n < b.firstNode + b.numNodes; ++n)
-      for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], mesh->coord(n)[c]), hi[c] = std::max(hi[c], mesh->coord(n)[c]);
-    double extent = 1e308, far = 0.0;  // the smallest extent over the axes
-    for (int c = 0; c < mesh->dim(); ++c) {
-      extent = std::min(extent, hi[c] - lo[c]);
-      far = std::max({far, std::abs(lo[c]), std::abs(hi[c])});
-    }
-    DDC_INPUT_REQUIRE(b.numNodes == 0 || (extent >= kMinBodyExtent && far <= kMaxCoordinate),
-                      "'" << path << "/" << gen << "': body '" << name << "' spans " << extent
-                          << " along its thinnest axis, with coordinates up to " << far
-                          << " in magnitude; its extent must lie in ["
-                          << kMinBodyExtent << ", " << kMaxCoordinate << "] and its coordinates within "
-                          << kMaxCoordinate << " (lengths this far from 1 under- or overflow in the element "
-                             "arithmetic): choose other length units");
+      readGmshBody(*mesh, name, in.cellType, gp, in.path + "/Gmsh", baseDirectory);
+    requireBodyExtent(*mesh, mesh->numBodies() - 1, in, comm);
   }
   mesh->checkConnectivity();
-  checkShareCollectively(mesh->numElements(), comm, [&](int first, int last) { mesh->checkShapes(first, last); });
+  checkShareCollectively(*mesh, comm, [&](int first, int last) { mesh->checkShapes(first, last); });
   return mesh;
 }
 
@@ -155,8 +179,8 @@ int automaticSubdomainCount(const Mesh& mesh, const PL& partition, const std::st
   // coarse problem with the number of subdomains.
   int size = partition.get<int>("Subdomain Size");
   if (size == 0) size = mesh.dim() == 3 ? 1650 : 3200;
-  const double dofs = double(mesh.numNodes()) * mesh.dim();
-  const double count = std::min(std::round(dofs / size), double(std::max(mesh.numElements(), 1)));
+  const double dofs = double(mesh.numGlobalNodes()) * mesh.dim();
+  const double count = std::min(std::round(dofs / size), double(std::max<Mesh::GlobalId>(mesh.numGlobalElements(), 1)));
   return std::max(ranks, int(count));
 }
 
@@ -207,7 +231,7 @@ void requireAdmissibleShare(const Mesh& mesh, const std::vector<std::shared_ptr<
     for (int i = 0; i < nn; ++i)
       for (int c = 0; c < d; ++c) X(i, c) = mesh.coord(mesh.elementNodes(e)[i])[c];
     const double detJ = elements[mesh.elementBody(e)]->minReferenceJacobian(X);
-    DDC_INPUT_REQUIRE(detJ > 0.0, "mesh: element " << e << " of body '" << mesh.body(mesh.elementBody(e)).name
+    DDC_INPUT_REQUIRE(detJ > 0.0, "mesh: element " << mesh.elementId(e) << " of body '" << mesh.body(mesh.elementBody(e)).name
                                                   << "' is inverted or degenerate (min det J = " << detJ << "); "
                                                   << (d == 2 ? "its nodes must run counter-clockwise"
                                                              : "its nodes must follow the Gmsh order with a "
@@ -221,8 +245,7 @@ void requireAdmissibleShare(const Mesh& mesh, const std::vector<std::shared_ptr<
 
 void requireAdmissibleElements(const Mesh& mesh, const std::vector<std::shared_ptr<const Element>>& elements,
                                MPI_Comm comm) {
-  checkShareCollectively(mesh.numElements(), comm,
-                         [&](int first, int last) { requireAdmissibleShare(mesh, elements, first, last); });
+  checkShareCollectively(mesh, comm, [&](int first, int last) { requireAdmissibleShare(mesh, elements, first, last); });
 }
 
 namespace {
@@ -377,9 +400,12 @@ Partition partitionModel(const Mesh& mesh, const PL& part, const std::string& st
     partition = partitionByBody(mesh);
     requireCount(partition.numSubdomains);
   } else {
-    Activity activity("partitioning " + std::to_string(mesh.numElements()) + " elements into " +
+    Activity activity("partitioning " + std::to_string(mesh.numGlobalElements()) + " elements into " +
                       std::to_string(nsub) + " subdomains (" + method + ")");
-    partition = method == "PT-Scotch" ? partitionPtScotch(mesh, nsub, comm) : partitionMetis(mesh, nsub);
+    if (mesh.isPart())
+      partition = partitionRangePtScotch(mesh, nsub, comm);
+    else
+      partition = method == "PT-Scotch" ? partitionPtScotch(mesh, nsub, comm) : partitionMetis(mesh, nsub);
   }
   DDC_INPUT_REQUIRE(partition.numSubdomains >= ranks,
                     "'Partition/Number of Subdomains' (" << partition.numSubdomains
@@ -388,12 +414,14 @@ Partition partitionModel(const Mesh& mesh, const PL& part, const std::string& st
   return partition;
 }
 
-std::string partitionSummary(const Partition& partition, const std::string& method) {
-  std::vector<long> count(partition.numSubdomains, 0);
+std::string partitionSummary(const Mesh& mesh, const Partition& partition, const std::string& method,
+                             MPI_Comm comm) {
+  std::vector<long long> count(partition.numSubdomains, 0);
   for (int s : partition.elementSubdomain) ++count[s];
-  const long largest = count.empty() ? 0 : *std::max_element(count.begin(), count.end());
-  const double mean =
-      partition.numSubdomains ? double(partition.elementSubdomain.size()) / partition.numSubdomains : 0.0;
+  if (mesh.isPart())
+    MPI_Allreduce(MPI_IN_PLACE, count.data(), partition.numSubdomains, MPI_LONG_LONG, MPI_SUM, comm);
+  const long long largest = count.empty() ? 0 : *std::max_element(count.begin(), count.end());
+  const double mean = partition.numSubdomains ? double(mesh.numGlobalElements()) / partition.numSubdomains : 0.0;
   std::ostringstream os;
   os << "partition: " << partition.numSubdomains << " subdomains by " << method << ", edge cut "
      << partition.edgeCut << " facets, largest subdomain " << largest << " elements (mean " << std::fixed
@@ -406,10 +434,11 @@ Partition balancedPartition(const Mesh& mesh, const PL& part, const std::string&
   if (!isGraphPartitioner(part.get<std::string>("Method"))) return partition;
   int nsub = part.get<int>("Number of Subdomains");
   if (nsub == 0) nsub = automaticSubdomainCount(mesh, part, strategy, ranks);
-  const long ne = mesh.numElements();
-  partition.numSubdomains = std::max(1, static_cast<int>(std::min<long>(nsub, std::max(ne, 1L))));
-  partition.elementSubdomain.resize(ne);
-  for (long e = 0; e < ne; ++e) partition.elementSubdomain[e] = static_cast<int>(e * partition.numSubdomains / ne);
+  const long long ne = mesh.numGlobalElements();
+  partition.numSubdomains = std::max(1, static_cast<int>(std::min<long long>(nsub, std::max(ne, 1LL))));
+  partition.elementSubdomain.resize(mesh.numElements());
+  for (int e = 0; e < mesh.numElements(); ++e)
+    partition.elementSubdomain[e] = static_cast<int>(mesh.elementId(e) * partition.numSubdomains / ne);
   return partition;
 }
 

@@ -21,6 +21,29 @@
 
 namespace ddc {
 
+/// A body of Mesh/Bodies, validated: its generator, the generator's
+/// sublist and the mesh cell type of its element.
+struct BodyInput {
+  std::string name, path, generator;  ///< path: "Mesh/Bodies/<name>"
+  CellType cellType = CellType::Quad4;
+  Teuchos::ParameterList* generatorParams = nullptr;
+};
+
+/// "Mesh" validated at its level, and its sublist Bodies.
+/// \throws InputError if Mesh/Bodies is missing or empty
+Teuchos::ParameterList& validatedBodies(Teuchos::ParameterList& meshParams);
+
+/// Mesh/Bodies/<name> validated against `validBody` (bodyValidParameters()),
+/// with the cell type of its element in `factory`.
+/// \throws InputError naming the parameter that is missing or wrong
+BodyInput readBody(Teuchos::ParameterList& bodies, const std::string& name, const ElementFactory& factory,
+                   const Teuchos::ParameterList& validBody);
+
+/// Refuse body `body` of `mesh` if its extent or coordinates are so far
+/// from 1 that the element arithmetic under- or overflows. On a part
+/// (Mesh::isPart()) the ranks' nodes are taken together; collective.
+void requireBodyExtent(const Mesh& mesh, int body, const BodyInput& input, MPI_Comm comm = MPI_COMM_SELF);
+
 /// Build the mesh described by "Mesh" (validated in place). Exposed for tools
 /// and tests. Cell types follow each body's element type in `factory`.
 /// \param budget if given, the memory a rank may use for the replicated mesh
@@ -44,7 +67,8 @@ std::vector<std::shared_ptr<const Element>> makeBodyElements(const Mesh& mesh, T
 std::string nearlyIncompressibleBodies(const Mesh& mesh, const Teuchos::ParameterList& meshParams);
 
 /// Refuse inverted or degenerate elements. The ranks of `comm` check an even
-/// share of the elements each; collective over comm.
+/// share of the elements each (of a part, Mesh::isPart(), each rank its
+/// own); collective over comm.
 /// \throws InputError on every rank, naming the lowest such element, its
 ///         body and its first node
 void requireAdmissibleElements(const Mesh& mesh, const std::vector<std::shared_ptr<const Element>>& elements,
@@ -64,7 +88,9 @@ void requireSupportedBodies(const Mesh& mesh, const BoundaryConditions& bcs, con
 /// The partition of "Partition" (validated): METIS, PT-Scotch (in parallel
 /// over `comm`), By Body, Box Grid or an element map file (resolved against
 /// `baseDirectory`), with the automatic subdomain count for `strategy` on
-/// the ranks of `comm`. Collective.
+/// the ranks of `comm`. On parts of a mesh in ranges of element ids
+/// (buildMeshInRanges()), PT-Scotch gives each rank its elements'
+/// subdomains (partitionRangePtScotch()). Collective.
 /// \throws InputError for a count that contradicts the method or is below
 ///         the number of ranks, and the partitioners' errors
 Partition partitionModel(const Mesh& mesh, const Teuchos::ParameterList& partition, const std::string& strategy,
@@ -73,12 +99,16 @@ Partition partitionModel(const Mesh& mesh, const Teuchos::ParameterList& partiti
 /// One progress line on a graph partition: its subdomain count, edge cut and
 /// largest subdomain, "partition: 255 subdomains by METIS, edge cut 10921
 /// facets, largest subdomain 530 elements (mean 514.0)".
-std::string partitionSummary(const Partition& partition, const std::string& method);
+/// On a part of a mesh (Mesh::isPart(): `partition` holds its elements'
+/// subdomains) the counts are summed over `comm` (collective).
+std::string partitionSummary(const Mesh& mesh, const Partition& partition, const std::string& method,
+                             MPI_Comm comm = MPI_COMM_SELF);
 
 /// What partitionModel() will give with METIS or PT-Scotch, before they run: its
 /// subdomain count with the elements spread evenly (for a memory estimate
 /// that refuses a run too large before the partitioning, which takes
 /// seconds on large meshes). Another method: a partition of 0 subdomains.
+/// On a part of a mesh: the subdomains of its elements in that spread.
 Partition balancedPartition(const Mesh& mesh, const Teuchos::ParameterList& partition, const std::string& strategy,
                             int ranks);
 

@@ -1,0 +1,104 @@
+#include "DDC_MeshInRanges.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include "DDC_AnalysisParameters.hpp"
+#include "DDC_Error.hpp"
+#include "DDC_InputDeck.hpp"
+#include "DDC_MeshGenerators.hpp"
+#include "DDC_ModelSetUp.hpp"
+#include "DDC_MpiRecords.hpp"
+#include "DDC_Parameters.hpp"
+
+namespace ddc {
+
+using PL = Teuchos::ParameterList;
+
+namespace {
+
+/// The generators that make a body by element range.
+bool generatesByRange(const std::string& generator) { return generator == "Rectangle" || generator == "Box"; }
+
+/// This rank's even share of `count` ids, in rank order.
+ElementRange evenRange(long long count, MPI_Comm comm) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  return ElementRange{count * rank / size, count * (rank + 1) / size};
+}
+
+/// Runs `step`; an InputError thrown on some ranks is thrown on all, with
+/// the message of the lowest of them.
+template <class Step>
+void agreeOnErrors(MPI_Comm comm, const Step& step) {
+  std::string error;
+  try {
+    step();
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  raiseCollectively<InputError>(comm, error);
+}
+
+}  // namespace
+
+bool meshBuiltInRanges(const PL& params) {
+  if (!params.isSublist("Partition") || !params.isSublist("Mesh")) return false;
+  const PL& partition = params.sublist("Partition");
+  if (partition.get<bool>("Mesh On Every Rank") || partition.get<std::string>("Method") != "PT-Scotch") return false;
+  const PL& mesh = params.sublist("Mesh");
+  if (!mesh.isSublist("Bodies") || mesh.sublist("Bodies").numParams() == 0) return false;
+  const PL& bodies = mesh.sublist("Bodies");
+  for (auto it = bodies.begin(); it != bodies.end(); ++it) {
+    if (!bodies.isSublist(bodies.name(it))) return false;  // buildMesh() says what is wrong
+    const PL& body = bodies.sublist(bodies.name(it));
+    // An unset Generator is Rectangle (bodyValidParameters()).
+    const std::string generator =
+        body.isType<std::string>("Generator") ? body.get<std::string>("Generator") : std::string("Rectangle");
+    if (body.isParameter("Generator") && !body.isType<std::string>("Generator")) return false;
+    if (!generatesByRange(generator)) return false;
+  }
+  return true;
+}
+
+std::shared_ptr<Mesh> buildMeshInRanges(PL& meshParams, const ElementFactory& factory, const MemoryLimit* budget,
+                                        const std::string& budgetHint, MPI_Comm comm) {
+  PL& bodies = validatedBodies(meshParams);
+  const auto validBody = bodyValidParameters(factory);
+  // Every body and its element count before any is made: the even range
+  // needs the total. The parameters are the same on every rank, so are
+  // these errors.
+  std::vector<BodyInput> inputs;
+  long long total = 0;
+  for (auto it = bodies.begin(); it != bodies.end(); ++it) {
+    inputs.push_back(readBody(bodies, bodies.name(it), factory, *validBody));
+    const BodyInput& in = inputs.back();
+    DDC_CHECK(generatesByRange(in.generator), "buildMeshInRanges() of a " << in.generator << " body");
+    total += structuredElementCount(in.generator, in.cellType, *in.generatorParams, in.path + "/" + in.generator);
+  }
+  const ElementRange range = evenRange(total, comm);
+  auto mesh = std::make_shared<Mesh>(Mesh::startPart());
+  if (budget && std::isfinite(budget->bytes)) mesh->setMemoryBudget(budget->bytes, budget->source, budgetHint);
+  {
+    Activity activity("building elements " + std::to_string(range.first) + " to " + std::to_string(range.last) +
+                      " of " + std::to_string(total) + " on each rank's share");
+    agreeOnErrors(comm, [&] {
+      for (const BodyInput& in : inputs) {
+        const std::string at = in.path + "/" + in.generator;
+        if (in.generator == "Box")
+          generateBox(*mesh, in.name, in.cellType, *in.generatorParams, at, range);
+        else
+          generateRectangle(*mesh, in.name, in.cellType, *in.generatorParams, at, range);
+      }
+    });
+  }
+  for (int b = 0; b < mesh->numBodies(); ++b) requireBodyExtent(*mesh, b, inputs[b], comm);
+  agreeOnErrors(comm, [&] {
+    mesh->checkConnectivity();
+    mesh->checkShapes(0, mesh->numElements());
+  });
+  return mesh;
+}
+
+}  // namespace ddc

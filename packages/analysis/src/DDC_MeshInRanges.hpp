@@ -1,0 +1,41 @@
+// A mesh no rank holds whole (doc/architecture.md, "What a distributed mesh
+// has to change"): each rank generates the bodies' elements of an even range
+// of element ids, PT-Scotch partitions the ranges' dual graph in parallel,
+// and each element moves to the rank of its subdomain (migratedRankPart()).
+// The analysis takes this path when 'Partition/Mesh On Every Rank' is false,
+// the partitioner is PT-Scotch and every body comes from the Rectangle or
+// Box generator; the model it gives is the one cut from the whole mesh.
+#pragma once
+
+#include <Teuchos_ParameterList.hpp>
+#include <mpi.h>
+
+#include <memory>
+#include <string>
+
+#include "DDC_ElementFactory.hpp"
+#include "DDC_Memory.hpp"
+#include "DDC_Mesh.hpp"
+
+namespace ddc {
+
+/// Whether the validated parameters `params` (the whole deck; Mesh/Bodies
+/// not yet validated) ask for a mesh built in ranges: 'Partition/Mesh On
+/// Every Rank' = false, 'Partition/Method' = PT-Scotch, and every body's
+/// Generator Rectangle or Box.
+bool meshBuiltInRanges(const Teuchos::ParameterList& params);
+
+/// The bodies of "Mesh" (validated in place) generated in this rank's even
+/// share of the element ids (rank r of P: ids [N r / P, N (r + 1) / P) of
+/// the N elements of all bodies): the part Mesh::part() would cut from the
+/// whole mesh (generateBox() by ElementRange). The checks of buildMesh()
+/// run on the parts and agree on every rank: body extents taken over the
+/// ranks, element shapes each on its own rank, the error of the lowest
+/// element id thrown on every rank. Collective.
+/// \param budget if given, what a rank may use: each generator refuses its
+///        share of a body that does not fit (Mesh::requireRoom())
+/// \throws InputError on every rank, as buildMesh()
+std::shared_ptr<Mesh> buildMeshInRanges(Teuchos::ParameterList& meshParams, const ElementFactory& factory,
+                                        const MemoryLimit* budget, const std::string& budgetHint, MPI_Comm comm);
+
+}  // namespace ddc

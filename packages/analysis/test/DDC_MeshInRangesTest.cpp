@@ -1,0 +1,169 @@
+// A mesh no rank holds whole (doc/architecture.md, "What a distributed mesh
+// has to change"), on 1-3 ranks: the bodies generated in even ranges of
+// element ids are the whole mesh's parts, PT-Scotch gives them the whole
+// mesh's subdomains, and each rank ends with the part and subdomains it
+// would cut from the whole mesh; the set-up's messages are the whole mesh's.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <Teuchos_ParameterList.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "DDC_ElementFactory.hpp"
+#include "DDC_MeshInRanges.hpp"
+#include "DDC_MeshPartCompare.hpp"
+#include "DDC_ModelSetUp.hpp"
+#include "DDC_ParallelPartition.hpp"
+#include "DDC_TestErrors.hpp"
+
+namespace {
+
+using ddc::test::inputErrorOf;
+using PL = Teuchos::ParameterList;
+
+int rank() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+
+int ranks() {
+  int s = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &s);
+  return s;
+}
+
+/// "Mesh" with a distorted Hex8 box and a Tet4 box beside it (two bodies,
+/// random vertex displacements, cells split into tetrahedra).
+PL twoBoxes() {
+  PL mesh("Mesh");
+  PL& left = mesh.sublist("Bodies").sublist("Left");
+  left.set("Generator", std::string("Box"));
+  left.sublist("Element").set("Type", std::string("Hex8"));
+  left.sublist("Element").sublist("Material").set("Type", std::string("Linear Elastic"));
+  PL& lb = left.sublist("Box");
+  lb.set("Elements X", 6);
+  lb.set("Elements Y", 3);
+  lb.set("Elements Z", 2);
+  lb.set("Distortion", 0.2);
+  PL& right = mesh.sublist("Bodies").sublist("Right");
+  right.set("Generator", std::string("Box"));
+  right.sublist("Element").set("Type", std::string("Tet4"));
+  right.sublist("Element").sublist("Material").set("Type", std::string("Linear Elastic"));
+  PL& rb = right.sublist("Box");
+  rb.set("Origin X", 2.0);
+  rb.set("Elements X", 2);
+  rb.set("Elements Y", 2);
+  rb.set("Elements Z", 3);
+  return mesh;
+}
+
+/// This rank's even range of the whole mesh's elements, cut from it.
+ddc::Mesh evenPart(const ddc::Mesh& whole) {
+  const long long ne = whole.numElements();
+  std::vector<int> mine;
+  for (long long e = ne * rank() / ranks(); e < ne * (rank() + 1) / ranks(); ++e) mine.push_back(int(e));
+  return whole.part(mine);
+}
+
+TEST(MeshInRanges, TheWholeMeshPartitionedAndCut) {
+  const auto factory = ddc::ElementFactory::withBuiltins();
+  PL forRanges = twoBoxes(), forWhole = twoBoxes();
+  const auto range = ddc::buildMeshInRanges(forRanges, factory, nullptr, "", MPI_COMM_WORLD);
+  const auto whole = ddc::buildMesh(forWhole, factory, ".");
+  ddc::test::expectSameParts(*range, evenPart(*whole));
+  for (int b = 0; b < whole->numBodies(); ++b) {
+    EXPECT_EQ(range->bodyGlobalNodes(b), whole->body(b).numNodes);
+    EXPECT_EQ(range->bodyGlobalElements(b), whole->body(b).numElements);
+  }
+  // PT-Scotch on the ranges: the whole mesh's subdomains, edge cut and summary.
+  const int subdomains = 5;
+  const ddc::Partition p = ddc::partitionRangePtScotch(*range, subdomains, MPI_COMM_WORLD);
+  const ddc::Partition wp = ddc::partitionPtScotch(*whole, subdomains, MPI_COMM_WORLD);
+  ASSERT_EQ(p.elementSubdomain.size(), size_t(range->numElements()));
+  for (int e = 0; e < range->numElements(); ++e)
+    EXPECT_EQ(p.elementSubdomain[e], wp.elementSubdomain[range->elementId(e)]) << "element " << range->elementId(e);
+  EXPECT_EQ(p.edgeCut, wp.edgeCut);
+  EXPECT_EQ(ddc::partitionSummary(*range, p, "PT-Scotch", MPI_COMM_WORLD),
+            ddc::partitionSummary(*whole, wp, "PT-Scotch"));
+  // Each element to the rank of its subdomain: the part rankPart() cuts.
+  const ddc::RankPart moved = ddc::migratedRankPart(MPI_COMM_WORLD, *range, p);
+  const ddc::RankPart cut = ddc::rankPart(*whole, wp, rank(), ranks());
+  ddc::test::expectSameParts(moved.mesh, cut.mesh);
+  EXPECT_EQ(moved.partition.elementSubdomain, cut.partition.elementSubdomain);
+  for (int b = 0; b < whole->numBodies(); ++b) EXPECT_EQ(moved.mesh.bodyGlobalNodes(b), whole->body(b).numNodes);
+}
+
+TEST(MeshInRanges, RangesThatDoNotCoverTheMeshInRankOrderAreRefused) {
+  PL mesh = twoBoxes();
+  const auto whole = ddc::buildMesh(mesh, ddc::ElementFactory::withBuiltins(), ".");
+  // Every rank the whole mesh's first element: not ranges in rank order
+  // (on one rank: not the whole mesh).
+  const ddc::Mesh first = whole->part({0});
+  EXPECT_THROW(ddc::partitionRangePtScotch(first, 2, MPI_COMM_WORLD), std::invalid_argument);
+}
+
+TEST(MeshInRanges, ChosenForPtScotchAndRangeGeneratorsWithoutTheWholeMesh) {
+  PL deck;
+  deck.sublist("Mesh") = twoBoxes();
+  deck.sublist("Partition").set("Mesh On Every Rank", false);
+  deck.sublist("Partition").set("Method", std::string("PT-Scotch"));
+  EXPECT_TRUE(ddc::meshBuiltInRanges(deck));
+  deck.sublist("Mesh").sublist("Bodies").sublist("Left").remove("Generator");  // Rectangle by default
+  EXPECT_TRUE(ddc::meshBuiltInRanges(deck));
+  deck.sublist("Partition").set("Method", std::string("METIS"));
+  EXPECT_FALSE(ddc::meshBuiltInRanges(deck));
+  deck.sublist("Partition").set("Method", std::string("PT-Scotch"));
+  deck.sublist("Partition").set("Mesh On Every Rank", true);
+  EXPECT_FALSE(ddc::meshBuiltInRanges(deck));
+  deck.sublist("Partition").set("Mesh On Every Rank", false);
+  deck.sublist("Mesh").sublist("Bodies").sublist("Right").set("Generator", std::string("Sphere Octant"));
+  EXPECT_FALSE(ddc::meshBuiltInRanges(deck));
+}
+
+TEST(MeshInRanges, ABodyTooThinIsRefusedWithTheWholeMeshesMessage) {
+  PL forRanges = twoBoxes(), forWhole = twoBoxes();
+  for (PL* p : {&forRanges, &forWhole})
+    p->sublist("Bodies").sublist("Right").sublist("Box").set("Length Z", 1e-101);
+  const auto factory = ddc::ElementFactory::withBuiltins();
+  const std::string expected = inputErrorOf([&] { ddc::buildMesh(forWhole, factory, "."); });
+  EXPECT_NE(expected.find("body 'Right' spans 1e-101 along its thinnest axis"), std::string::npos) << expected;
+  EXPECT_EQ(inputErrorOf([&] { ddc::buildMeshInRanges(forRanges, factory, nullptr, "", MPI_COMM_WORLD); }), expected);
+}
+
+TEST(MeshInRanges, ARankWithoutRoomForItsShareStopsEveryRank) {
+  PL mesh = twoBoxes();
+  const ddc::MemoryLimit tiny{1000.0, "a test's budget"};
+  const std::string msg = inputErrorOf([&] {
+    ddc::buildMeshInRanges(mesh, ddc::ElementFactory::withBuiltins(), &tiny, "run on more ranks", MPI_COMM_WORLD);
+  });
+  EXPECT_NE(msg.find("'Mesh/Bodies/Left/Box': the mesh would have"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("on this rank (its share of the mesh), more than the 1000 B available (a test's budget); run on "
+                     "more ranks"),
+            std::string::npos)
+      << msg;
+}
+
+TEST(MeshInRanges, AnInvertedElementIsNamedByItsIdInTheWholeMesh) {
+  // Element 30 of Left (in the first rank's range) and the Tet4 elements
+  // at a node of element 100 of Right (the last rank's on 1-3 ranks)
+  // turned inside out: every rank names the lowest, as on the whole mesh.
+  for (bool withLeft : {false, true}) {
+    PL mesh = twoBoxes();
+    const auto whole = ddc::buildMesh(mesh, ddc::ElementFactory::withBuiltins(), ".");
+    whole->coord(whole->elementNodes(100)[0])[1] += 3.0;
+    if (withLeft) whole->coord(whole->elementNodes(30)[6])[0] -= 2.0;
+    const auto all = ddc::makeBodyElements(*whole, mesh, ddc::ElementFactory::withBuiltins());
+    const std::string expected = inputErrorOf([&] { ddc::requireAdmissibleElements(*whole, all, MPI_COMM_SELF); });
+    EXPECT_NE(expected.find(withLeft ? "mesh: element 30 of body 'Left'" : "of body 'Right' is inverted"),
+              std::string::npos)
+        << expected;
+    const ddc::Mesh part = evenPart(*whole);
+    const auto elements = ddc::makeBodyElements(part, mesh, ddc::ElementFactory::withBuiltins());
+    EXPECT_EQ(inputErrorOf([&] { ddc::requireAdmissibleElements(part, elements, MPI_COMM_WORLD); }), expected);
+  }
+}
+
+}  // namespace
