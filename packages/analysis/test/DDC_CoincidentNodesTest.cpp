@@ -16,8 +16,12 @@
 #include "DDC_CoincidentNodes.hpp"
 #include "DDC_MeshGenerators.hpp"
 #include "DDC_TestErrors.hpp"
+#include "DDC_TestRanks.hpp"
 
 namespace {
+
+using ddc::test::rank;
+using ddc::test::ranks;
 
 using ddc::test::inputErrorOf;
 
@@ -84,17 +88,6 @@ TEST(CoincidentNodes, BodiesApartPass) {
   }
 }
 
-int rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-
-int ranks() {
-  int s = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &s);
-  return s;
-}
 
 /// This rank's part of `whole` when element e goes to rank (e * stride) %
 /// ranks: parts that share many nodes.

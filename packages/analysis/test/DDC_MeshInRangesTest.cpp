@@ -17,23 +17,16 @@
 #include "DDC_ModelSetUp.hpp"
 #include "DDC_ParallelPartition.hpp"
 #include "DDC_TestErrors.hpp"
+#include "DDC_TestRanks.hpp"
 
 namespace {
+
+using ddc::test::rank;
+using ddc::test::ranks;
 
 using ddc::test::inputErrorOf;
 using PL = Teuchos::ParameterList;
 
-int rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-
-int ranks() {
-  int s = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &s);
-  return s;
-}
 
 /// "Mesh" with a distorted Hex8 box and a Tet4 box beside it (two bodies,
 /// random vertex displacements, cells split into tetrahedra).

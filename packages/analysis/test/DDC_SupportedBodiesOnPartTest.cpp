@@ -16,14 +16,16 @@
 #include "DDC_ModelSetUp.hpp"
 #include "DDC_MpiRecords.hpp"
 #include "DDC_Partition.hpp"
+#include "DDC_TestRanks.hpp"
 
 namespace {
+
+using ddc::test::rank;
+using ddc::test::ranks;
 
 using PL = Teuchos::ParameterList;
 
 MPI_Comm world() { return ddc::rawComm(Tpetra::getDefaultComm()); }
-int rank() { return Tpetra::getDefaultComm()->getRank(); }
-int size() { return Tpetra::getDefaultComm()->getSize(); }
 
 /// An 8 x 5 (x 4) block of unit elements with a node set "Block/edge": the
 /// nodes on x = 0, y = 0 (a line).
@@ -70,10 +72,10 @@ std::string verdict(const ddc::Mesh& mesh, const ddc::BoundaryConditions& bcs, M
 
 void expectSameVerdicts(int dim, const std::vector<std::pair<ddc::BoundaryConditions, bool>>& cases) {
   ddc::Mesh whole = block(dim);
-  const ddc::Partition partition = ddc::partitionMetis(whole, 2 * size() + 1);
+  const ddc::Partition partition = ddc::partitionMetis(whole, 2 * ranks() + 1);
   // "Block/shared": one node that the parts of two ranks hold (on more than
   // one rank), to be counted once.
-  const std::vector<int> rankOf = ddc::subdomainOwnerRank(partition.numSubdomains, size());
+  const std::vector<int> rankOf = ddc::subdomainOwnerRank(partition.numSubdomains, ranks());
   std::vector<int> firstRank(whole.numNodes(), -1), shared;
   for (int e = 0; e < whole.numElements() && shared.empty(); ++e)
     for (int i = 0; i < whole.elementNumNodes(e); ++i) {
@@ -83,7 +85,7 @@ void expectSameVerdicts(int dim, const std::vector<std::pair<ddc::BoundaryCondit
     }
   if (shared.empty()) shared = {0};
   whole.addNodeSet(0, "shared", shared);
-  const ddc::RankPart own = ddc::rankPart(whole, partition, rank(), size());
+  const ddc::RankPart own = ddc::rankPart(whole, partition, rank(), ranks());
   for (const auto& [bcs, supported] : cases) {
     SCOPED_TRACE(bcs.displacements.front().setName);
     const std::string onWhole = verdict(whole, bcs, MPI_COMM_SELF);

@@ -26,6 +26,18 @@ inline MPI_Comm rawComm(const Teuchos::RCP<const Teuchos::Comm<int>>& comm) {
   return comm.is_null() ? MPI_COMM_SELF : rawComm(*comm);
 }
 
+/// This rank in `comm`, and the number of ranks of `comm`.
+inline int commRank(MPI_Comm comm) {
+  int r = 0;
+  MPI_Comm_rank(comm, &r);
+  return r;
+}
+inline int commSize(MPI_Comm comm) {
+  int s = 1;
+  MPI_Comm_size(comm, &s);
+  return s;
+}
+
 /// Variable-size all-to-all of trivially copyable records: send[r] goes to
 /// rank r; returns everything received, ordered by source rank. Collective.
 template <class T>

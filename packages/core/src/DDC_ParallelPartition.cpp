@@ -20,22 +20,6 @@ struct NodeElement {
   bool operator<(const NodeElement& o) const { return node != o.node ? node < o.node : element < o.element; }
 };
 
-int rankOf(MPI_Comm comm) {
-  int r = 0;
-  MPI_Comm_rank(comm, &r);
-  return r;
-}
-
-int sizeOf(MPI_Comm comm) {
-  int s = 1;
-  MPI_Comm_size(comm, &s);
-  return s;
-}
-
-/// The rank whose range [first[r], first[r+1]) holds global vertex v.
-int ownerOf(const std::vector<long long>& first, long long v) {
-  return static_cast<int>(std::upper_bound(first.begin(), first.end(), v) - first.begin()) - 1;
-}
 
 /// "" or what is wrong with the CSR input (checked on every rank, agreed on).
 std::string checkCorners(const std::vector<long long>& offsets, const std::vector<long long>& corners, int ncommon) {
@@ -51,8 +35,8 @@ std::string checkCorners(const std::vector<long long>& offsets, const std::vecto
 
 /// Phase 2 at a node's home: the whole element list of each node goes to
 /// every rank owning one of its elements (usually one rank).
-std::vector<std::vector<NodeElement>> nodeListsToOwners(std::vector<NodeElement> atHome,
-                                                        const std::vector<long long>& first, int size) {
+std::vector<std::vector<NodeElement>> nodeListsToOwners(std::vector<NodeElement> atHome, const DistributedGraph& g,
+                                                        int size) {
   std::sort(atHome.begin(), atHome.end());
   std::vector<std::vector<NodeElement>> send(size);
   std::vector<int> owners;
@@ -60,7 +44,7 @@ std::vector<std::vector<NodeElement>> nodeListsToOwners(std::vector<NodeElement>
     size_t j = i;
     owners.clear();
     for (; j < atHome.size() && atHome[j].node == atHome[i].node; ++j)
-      owners.push_back(ownerOf(first, atHome[j].element));
+      owners.push_back(g.holder(atHome[j].element));
     std::sort(owners.begin(), owners.end());
     owners.erase(std::unique(owners.begin(), owners.end()), owners.end());
     for (int r : owners) send[r].insert(send[r].end(), atHome.begin() + i, atHome.begin() + j);
@@ -104,7 +88,7 @@ DistributedGraph distributedDualGraph(MPI_Comm comm, const std::vector<long long
                                       const std::vector<long long>& corners, int ncommon) {
   const std::string bad = firstErrorOnAnyRank(comm, checkCorners(cornerOffsets, corners, ncommon));
   if (!bad.empty()) throw std::invalid_argument("distributedDualGraph(): " + bad);
-  const int rank = rankOf(comm), size = sizeOf(comm);
+  const int rank = commRank(comm), size = commSize(comm);
   DistributedGraph g;
   const long long nLocal = static_cast<long long>(cornerOffsets.size()) - 1;
   std::vector<long long> counts(size);
@@ -126,7 +110,7 @@ DistributedGraph distributedDualGraph(MPI_Comm comm, const std::vector<long long
       send[home(corners[k])].push_back(NodeElement{corners[k], first + l});
   std::vector<NodeElement> atHome = exchangeRecords(comm, send);
   // Phase 2: each node's element list to the owners of its elements.
-  std::vector<NodeElement> lists = exchangeRecords(comm, nodeListsToOwners(std::move(atHome), g.firstVertex, size));
+  std::vector<NodeElement> lists = exchangeRecords(comm, nodeListsToOwners(std::move(atHome), g, size));
   std::sort(lists.begin(), lists.end());
   lists.erase(std::unique(lists.begin(), lists.end(),
                           [](const NodeElement& a, const NodeElement& b) {
@@ -180,7 +164,7 @@ std::vector<int> partitionGraphPtScotch(MPI_Comm comm, const DistributedGraph& g
     error = "SCOTCH_dgraphBuild failed";
   if (error.empty() && SCOTCH_contextBindDgraph(&context, &built, &g) != 0) error = "SCOTCH_contextBindDgraph failed";
   if (error.empty() &&
-      SCOTCH_stratDgraphMapBuild(&strat, SCOTCH_STRATQUALITY, sizeOf(comm), numParts, kPtScotchImbalance) != 0)
+      SCOTCH_stratDgraphMapBuild(&strat, SCOTCH_STRATQUALITY, commSize(comm), numParts, kPtScotchImbalance) != 0)
     error = "SCOTCH_stratDgraphMapBuild failed";
   if (error.empty() && SCOTCH_dgraphPart(&g, numParts, &strat, result.data()) != 0)
     error = "SCOTCH_dgraphPart failed";
@@ -215,7 +199,7 @@ Partition partitionDistributedGraph(MPI_Comm comm, const DistributedGraph& graph
   }
   int level = MPI_THREAD_SINGLE;
   MPI_Query_thread(&level);
-  requirePtScotchThreadLevel(sizeOf(comm), level);
+  requirePtScotchThreadLevel(commSize(comm), level);
   p.elementSubdomain = partitionGraphPtScotch(comm, graph, numSubdomains);
   fillEmptySubdomains(comm, graph, numSubdomains, p.elementSubdomain);
   joinDetachedPieces(comm, graph, numSubdomains, p.elementSubdomain);
@@ -246,7 +230,7 @@ Partition partitionPtScotch(const Mesh& mesh, int numSubdomains, MPI_Comm comm) 
   p.numSubdomains = numSubdomains;
   p.elementSubdomain.assign(ne, 0);
   if (numSubdomains == 1) return p;
-  const int rank = rankOf(comm), size = sizeOf(comm);
+  const int rank = commRank(comm), size = commSize(comm);
   const int begin = static_cast<int>(static_cast<long long>(ne) * rank / size);
   const int end = static_cast<int>(static_cast<long long>(ne) * (rank + 1) / size);
   std::vector<long long> offsets, corners;
@@ -265,7 +249,7 @@ Partition partitionPtScotch(const Mesh& mesh, int numSubdomains, MPI_Comm comm) 
 }
 
 Partition partitionRangePtScotch(const Mesh& part, int numSubdomains, MPI_Comm comm) {
-  const int size = sizeOf(comm);
+  const int size = commSize(comm);
   // The ranges must follow one another in rank order from id 0.
   const long long first = part.numElements() ? part.elementId(0) : -1;
   const bool contiguous = part.numElements() == 0 || part.elementId(part.numElements() - 1) - first + 1 == part.numElements();

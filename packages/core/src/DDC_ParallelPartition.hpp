@@ -14,6 +14,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "DDC_Partition.hpp"
@@ -30,6 +31,10 @@ struct DistributedGraph {
   std::vector<long long> neighbours;   ///< global vertex ids
 
   long long numLocal() const { return static_cast<long long>(offsets.size()) - 1; }
+  /// The rank whose range holds global vertex v.
+  int holder(long long v) const {
+    return static_cast<int>(std::upper_bound(firstVertex.begin(), firstVertex.end(), v) - firstVertex.begin()) - 1;
+  }
 };
 
 /// The dual graph of this rank's elements: element l (global id

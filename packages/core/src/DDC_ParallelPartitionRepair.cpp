@@ -21,30 +21,14 @@ namespace ddc {
 
 namespace {
 
-int rankIn(MPI_Comm comm) {
-  int r = 0;
-  MPI_Comm_rank(comm, &r);
-  return r;
-}
-
-int sizeOf(MPI_Comm comm) {
-  int s = 1;
-  MPI_Comm_size(comm, &s);
-  return s;
-}
-
-int ownerOf(const std::vector<long long>& first, long long v) {
-  return static_cast<int>(std::upper_bound(first.begin(), first.end(), v) - first.begin()) - 1;
-}
-
 /// The neighbours of a DistributedGraph's local vertices that other ranks
 /// hold (ghosts), and their values: fetch(local) returns each ghost's value
 /// of a per-vertex array the ranks hold in pieces, and value() reads a
 /// neighbour's value from the local array or the fetched ghosts.
 class GraphHalo {
  public:
-  GraphHalo(MPI_Comm comm, const DistributedGraph& g) : comm_(comm), g_(g), first_(g.firstVertex[rankIn(comm)]) {
-    const int size = sizeOf(comm);
+  GraphHalo(MPI_Comm comm, const DistributedGraph& g) : comm_(comm), g_(g), first_(g.firstVertex[commRank(comm)]) {
+    const int size = commSize(comm);
     for (long long v : g.neighbours)
       if (!isLocal(v)) ghosts_.push_back(v);
     std::sort(ghosts_.begin(), ghosts_.end());
@@ -52,7 +36,7 @@ class GraphHalo {
     // Each rank asks the holders for its ghosts in increasing id, so the
     // answers arrive in the order of ghosts_ (by rank, then id).
     std::vector<std::vector<Request>> ask(size);
-    for (long long v : ghosts_) ask[ownerOf(g.firstVertex, v)].push_back(Request{rankIn(comm), v});
+    for (long long v : ghosts_) ask[g.holder(v)].push_back(Request{commRank(comm), v});
     serve_.resize(size);
     for (const Request& r : exchangeRecords(comm, ask)) serve_[r.from].push_back(r.vertex - first_);
   }
@@ -142,7 +126,7 @@ struct Move {
 /// rank) if a piece moved.
 bool joinPiecesOnce(MPI_Comm comm, const DistributedGraph& g, const GraphHalo& halo, int numSubdomains,
                     std::vector<int>& parts) {
-  const int size = sizeOf(comm);
+  const int size = commSize(comm);
   const std::vector<int> ghostParts = halo.fetch(parts);
   const std::vector<long long> label = pieceLabels(comm, g, halo, parts, ghostParts);
   // Sizes and facets to other subdomains, summed at the rank of each label.
@@ -156,7 +140,7 @@ bool joinPiecesOnce(MPI_Comm comm, const DistributedGraph& g, const GraphHalo& h
   }
   std::vector<std::vector<PieceRecord>> send(size);
   for (const auto& [key, count] : local)
-    send[ownerOf(g.firstVertex, key.first)].push_back(PieceRecord{key.first, key.second, count});
+    send[g.holder(key.first)].push_back(PieceRecord{key.first, key.second, count});
   std::map<long long, std::map<long long, long long>> pieces;  // label -> subdomain (-1: size) -> count
   for (const PieceRecord& r : exchangeRecords(comm, send)) pieces[r.label][r.subdomain] += r.count;
   // The piece each subdomain keeps: its largest, the lowest label on ties.

@@ -16,23 +16,17 @@
 #include "DDC_MeshGenerators.hpp"
 #include "DDC_MeshPartCompare.hpp"
 #include "DDC_Partition.hpp"
+#include "DDC_TestRanks.hpp"
 
 namespace {
+
+using ddc::test::rank;
+using ddc::test::ranks;
 
 using PL = Teuchos::ParameterList;
 using ddc::Mesh;
 using ddc::test::expectSameParts;
 
-int rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-int size() {
-  int s = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &s);
-  return s;
-}
 
 Mesh twoBodies() {
   Mesh mesh;
@@ -53,8 +47,8 @@ Mesh twoBodies() {
 /// The rank of each element of `whole`: METIS's subdomains (twice as many
 /// as ranks) in contiguous blocks.
 std::vector<int> ranksOfElements(const Mesh& whole) {
-  const ddc::Partition p = ddc::partitionMetis(whole, 2 * size());
-  const std::vector<int> owner = ddc::subdomainOwnerRank(p.numSubdomains, size());
+  const ddc::Partition p = ddc::partitionMetis(whole, 2 * ranks());
+  const std::vector<int> owner = ddc::subdomainOwnerRank(p.numSubdomains, ranks());
   std::vector<int> r(whole.numElements());
   for (int e = 0; e < whole.numElements(); ++e) r[e] = owner[p.elementSubdomain[e]];
   return r;
@@ -86,7 +80,7 @@ TEST(MeshMigrate, FromEvenRangesOfElements) {
   const std::vector<int> rankOf = ranksOfElements(whole);
   const int ne = whole.numElements();
   std::vector<int> range;
-  for (int e = ne * rank() / size(); e < ne * (rank() + 1) / size(); ++e) range.push_back(e);
+  for (int e = ne * rank() / ranks(); e < ne * (rank() + 1) / ranks(); ++e) range.push_back(e);
   const Mesh source = whole.part(range);
   std::vector<int> destination;
   for (int e : range) destination.push_back(rankOf[e]);
@@ -96,7 +90,7 @@ TEST(MeshMigrate, FromEvenRangesOfElements) {
   std::vector<int> back;
   for (int e = 0; e < got.numElements(); ++e) {
     int r = 0;  // the rank whose range [ne r / P, ne (r + 1) / P) holds the element
-    while (got.elementId(e) >= ne * (r + 1) / size()) ++r;
+    while (got.elementId(e) >= ne * (r + 1) / ranks()) ++r;
     back.push_back(r);
   }
   expectSameParts(got.migrated(MPI_COMM_WORLD, back), source);
@@ -105,7 +99,7 @@ TEST(MeshMigrate, FromEvenRangesOfElements) {
 TEST(MeshMigrate, RefusesADestinationPerElementThatIsNot) {
   const Mesh whole = twoBodies();
   EXPECT_THROW(whole.migrated(MPI_COMM_WORLD, {0}), std::invalid_argument);
-  EXPECT_THROW(whole.migrated(MPI_COMM_WORLD, std::vector<int>(whole.numElements(), size())), std::invalid_argument);
+  EXPECT_THROW(whole.migrated(MPI_COMM_WORLD, std::vector<int>(whole.numElements(), ranks())), std::invalid_argument);
 }
 
 TEST(MeshMigrate, RankPartFromEvenRangesWithTheirSubdomains) {
@@ -114,17 +108,17 @@ TEST(MeshMigrate, RankPartFromEvenRangesWithTheirSubdomains) {
   // goes to the rank of its subdomain with its subdomain: the rankPart() of
   // the whole mesh under the whole partition.
   const Mesh whole = twoBodies();
-  const ddc::Partition partition = ddc::partitionMetis(whole, 2 * size());
+  const ddc::Partition partition = ddc::partitionMetis(whole, 2 * ranks());
   const int ne = whole.numElements();
   std::vector<int> range;
   ddc::Partition ofRange;
   ofRange.numSubdomains = partition.numSubdomains;
-  for (int e = ne * rank() / size(); e < ne * (rank() + 1) / size(); ++e) {
+  for (int e = ne * rank() / ranks(); e < ne * (rank() + 1) / ranks(); ++e) {
     range.push_back(e);
     ofRange.elementSubdomain.push_back(partition.elementSubdomain[e]);
   }
   const ddc::RankPart got = ddc::migratedRankPart(MPI_COMM_WORLD, whole.part(range), ofRange);
-  const ddc::RankPart want = ddc::rankPart(whole, partition, rank(), size());
+  const ddc::RankPart want = ddc::rankPart(whole, partition, rank(), ranks());
   expectSameParts(got.mesh, want.mesh);
   EXPECT_EQ(got.partition.numSubdomains, want.partition.numSubdomains);
   EXPECT_EQ(got.partition.elementSubdomain, want.partition.elementSubdomain);

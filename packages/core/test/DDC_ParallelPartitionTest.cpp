@@ -16,12 +16,16 @@
 #include "DDC_MeshGenerators.hpp"
 #include "DDC_ParallelPartition.hpp"
 #include "DDC_TestErrors.hpp"
+#include "DDC_TestRanks.hpp"
 
 using ddc::CellType;
 using ddc::Mesh;
 using ::testing::HasSubstr;
 
 namespace {
+
+using ddc::test::rank;
+using ddc::test::ranks;
 
 /// The parallel partitioner's edge cut may exceed METIS's by at most this
 /// factor (the target for the examples, doc/partitioning.md).
@@ -30,16 +34,6 @@ constexpr double kEdgeCutOverMetis = 1.2;
 /// factor: PT-Scotch's kPtScotchImbalance plus the pieces joined afterwards.
 constexpr double kLargestOverMean = 1.10;
 
-int rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-int ranks() {
-  int s = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &s);
-  return s;
-}
 
 Mesh box(int nx, int ny, int nz, CellType t = CellType::Hex8) {
   Mesh m;

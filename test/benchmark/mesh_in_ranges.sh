@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# What building the mesh in ranges saves (doc/performance.md, "Memory at
+# set-up"): examples/block_3d.xml on NP ranks with the whole mesh on every
+# rank (METIS, PT-Scotch), each rank's part cut from the whole mesh it built
+# (METIS, 'Partition/Mesh On Every Rank' = false), and the mesh built in
+# ranges (PT-Scotch, the same parameter false: no rank holds the whole
+# mesh). One run per row. Prints a markdown table: peak resident memory per
+# rank (min / median / max, /usr/bin/time), and seconds from the launch to
+# the partition line and to the distribution line (the set-up before the
+# solver's own) and in all, read from the output as it arrives. With NP
+# above the host's cores the ranks are oversubscribed: memory is
+# meaningful, time is not. Not part of ctest.
+#
+#   bash test/benchmark/mesh_in_ranges.sh [BUILD_DIR]     # default: build
+# Environment: NP (16), REFINEMENT (8), SOLVERS ("Belos-MueLu FETI-DP").
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+# shellcheck source=common.sh
+. test/benchmark/common.sh "${1:-build}"
+NP=${NP:-16}
+REFINEMENT=${REFINEMENT:-8}
+SOLVERS=${SOLVERS:-Belos-MueLu FETI-DP}
+
+# stamped: each line of stdin prefixed with the seconds since the start.
+stamped() { python3 -u -c 'import sys, time
+t0 = time.time()
+for line in sys.stdin: sys.stdout.write("%.2f %s" % (time.time() - t0, line))'; }
+
+# row SOLVER MODE ARGS... -> a table row
+row() {
+  local solver=$1 mode=$2
+  shift 2
+  local log=$OUT/run.log solver_args
+  if [[ $solver == FETI-DP ]]; then solver_args=(--set Solver/Strategy=FETI-DP)
+  else solver_args=(--set "Solver/Linear Solver/Type=$solver"); fi
+  mpirun -np "$NP" /usr/bin/time -f "RSS %M" "$APP" examples/block_3d.xml \
+    --set "Mesh/Bodies/Block/Box/Refinement=$REFINEMENT" "${solver_args[@]}" --set Output/VTK=false \
+    --set "Output/Checkpoint Interval=0" --set "Solver/Memory Check=false" --output-dir "$OUT/o" "$@" 2>&1 |
+    stamped >"$log" || { echo "| $solver | $mode | failed: $(grep -m1 -i error "$log") | | | |"; return; }
+  local rss partition distribution wall
+  rss=$(sed -n 's/.*RSS \([0-9]*\)$/\1/p' "$log" | awk '{print $1 / 1024}' | sort -g |
+    awk '{a[NR] = $1} END {printf "%.0f / %.0f / %.0f", a[1], a[int((NR + 1) / 2)], a[NR]}')
+  partition=$(awk '/ partition: / {print $1; exit}' "$log")
+  distribution=$(awk '/ distribution: / {print $1; exit}' "$log")
+  wall=$(tail -1 "$log" | awk '{print $1}')
+  echo "| $solver | $mode | $rss | ${partition:--} | $distribution | $wall |"
+}
+
+echo "block_3d at Refinement $REFINEMENT on $NP ranks"
+echo
+echo "| solver | mesh | peak MiB per rank (min / median / max) | s to partition | s to distribution | s in all |"
+echo "|---|---|---|---:|---:|---:|"
+for solver in $SOLVERS; do
+  row "$solver" "whole, METIS"
+  row "$solver" "whole, PT-Scotch" --set Partition/Method=PT-Scotch
+  row "$solver" "parts cut from the whole, METIS" --set "Partition/Mesh On Every Rank=false"
+  row "$solver" "in ranges, PT-Scotch" --set Partition/Method=PT-Scotch --set "Partition/Mesh On Every Rank=false"
+done
