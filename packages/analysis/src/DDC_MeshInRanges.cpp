@@ -81,8 +81,8 @@ std::shared_ptr<Mesh> buildMeshInRanges(PL& meshParams, const ElementFactory& fa
   auto mesh = std::make_shared<Mesh>(Mesh::startPart());
   if (budget && std::isfinite(budget->bytes)) mesh->setMemoryBudget(budget->bytes, budget->source, budgetHint);
   {
-    Activity activity("building elements " + std::to_string(range.first) + " to " + std::to_string(range.last) +
-                      " of " + std::to_string(total) + " on each rank's share");
+    Activity activity("generating the mesh in ranges of elements (" + std::to_string(total) + " elements, " +
+                      std::to_string(range.last - range.first) + " on this rank)");
     agreeOnErrors(comm, [&] {
       for (const BodyInput& in : inputs) {
         const std::string at = in.path + "/" + in.generator;
