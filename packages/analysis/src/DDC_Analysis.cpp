@@ -75,6 +75,20 @@ void keepOwnPart(std::shared_ptr<Mesh>& mesh, Partition& partition, int rank, in
   partition = std::move(own.partition);
 }
 
+/// The contact elements by role and facet type, from the factory (host
+/// codes may replace them there).
+ContactComponent::SurfaceElementSource surfaceElementMaker(const ElementFactory& factory) {
+  return [factory](SurfaceContactRole role, CellType facet) {
+    Teuchos::ParameterList pl;
+    const std::string type = surfaceContactElementName(role, facet);
+    pl.set("Type", type);
+    auto el = std::dynamic_pointer_cast<const SurfaceContactElement>(factory.create(pl, "Contact/Formulation"));
+    DDC_INPUT_REQUIRE(el != nullptr, "element type '" << type << "' registered in the factory is not a surface "
+                                                      "contact element");
+    return el;
+  };
+}
+
 }  // namespace
 
 void Analysis::requireWholeMeshWhereNeeded(const PL& params) {
@@ -128,10 +142,25 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
   const std::string strategy = params.sublist("Solver").get<std::string>("Strategy");
   requireJoinedCoincidentNodes(*mesh, contact, rawComm(comm_));
   requireSupportedBodies(*mesh, bcs, contact, strategy == "FETI-DP", dynamic_, rawComm(comm_));
+  Partition partition = partitionMesh(mesh, params, contact, memoryCheck, baseDirectory);
+  strategy_ = makeSolutionStrategy(comm_, params.sublist("Solver"), contact);
+  Activity activity("building the model (" + std::to_string(mesh->numGlobalNodes()) + " nodes, " +
+                    std::to_string(mesh->numGlobalElements()) + " elements, " +
+                    std::to_string(partition.numSubdomains) + " subdomains; estimated " +
+                    formatBytes(memoryEstimate_.total()) + " per rank)");
+  if (!inRanges && !params.sublist("Partition").get<bool>("Mesh On Every Rank"))
+    keepOwnPart(mesh, partition, comm_->getRank(), comm_->getSize());
+  model_ = std::make_shared<Model>(comm_, mesh, std::move(elements), std::move(partition), std::move(bcs),
+                                   std::move(contact), surfaceElementMaker(factory_));
+}
+
+Partition Analysis::partitionMesh(std::shared_ptr<Mesh>& mesh, const PL& params, const ContactOptions& contact,
+                                  bool memoryCheck, const std::string& baseDirectory) {
   // A run too large even with evenly sized subdomains is refused before
   // METIS runs (it takes seconds on large meshes, on every rank).
   const int ranks = comm_->getSize();
   const PL& solver = params.sublist("Solver");
+  const std::string strategy = solver.get<std::string>("Strategy");
   if (memoryCheck) {
     const Partition balanced = balancedPartition(*mesh, params.sublist("Partition"), strategy, ranks);
     if (balanced.numSubdomains >= ranks) requireMemory(*mesh, balanced, solver, contact);
@@ -140,7 +169,7 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
   if (partition.edgeCut >= 0)
     progress(partitionSummary(*mesh, partition, params.sublist("Partition").get<std::string>("Method"),
                               rawComm(comm_)));
-  if (inRanges) {
+  if (meshInRanges_) {
     // Each element to the rank of its subdomain.
     Activity activity("moving each element to the rank of its subdomain");
     RankPart own = migratedRankPart(rawComm(comm_), *mesh, partition);
@@ -150,25 +179,7 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
   }
   if (memoryCheck) requireMemory(*mesh, partition, solver, contact);
   else memoryEstimate_ = estimate(*mesh, partition, solver, contact);
-  strategy_ = makeSolutionStrategy(comm_, params.sublist("Solver"), contact);
-  // The contact elements by role and facet type, from the factory (host
-  // codes may replace them there).
-  auto surfaceElements = [factory = factory_](SurfaceContactRole role, CellType facet) {
-    Teuchos::ParameterList pl;
-    const std::string type = surfaceContactElementName(role, facet);
-    pl.set("Type", type);
-    auto el = std::dynamic_pointer_cast<const SurfaceContactElement>(factory.create(pl, "Contact/Formulation"));
-    DDC_INPUT_REQUIRE(el != nullptr, "element type '" << type << "' registered in the factory is not a surface "
-                                                      "contact element");
-    return el;
-  };
-  Activity activity("building the model (" + std::to_string(mesh->numNodes()) + " nodes, " +
-                    std::to_string(mesh->numElements()) + " elements, " + std::to_string(partition.numSubdomains) +
-                    " subdomains; estimated " + formatBytes(memoryEstimate_.total()) + " per rank)");
-  if (!inRanges && !params.sublist("Partition").get<bool>("Mesh On Every Rank"))
-    keepOwnPart(mesh, partition, comm_->getRank(), ranks);
-  model_ = std::make_shared<Model>(comm_, mesh, std::move(elements), std::move(partition), std::move(bcs),
-                                   std::move(contact), surfaceElements);
+  return partition;
 }
 
 void Analysis::requireMemory(const Mesh& mesh, const Partition& partition, const PL& solver,

@@ -131,6 +131,12 @@ class Analysis {
   ///         the run needs the whole mesh on every rank
   static void requireWholeMeshWhereNeeded(const Teuchos::ParameterList& params);
   void buildModel(Teuchos::ParameterList& params, const std::string& baseDirectory);
+  /// The partition of `mesh` ("Partition"), with the memory checked before
+  /// (evenly sized subdomains) and after it (memoryEstimate_). A mesh
+  /// built in ranges becomes this rank's part, its elements moved to the
+  /// ranks of their subdomains. Collective.
+  Partition partitionMesh(std::shared_ptr<Mesh>& mesh, const Teuchos::ParameterList& params,
+                          const ContactOptions& contact, bool memoryCheck, const std::string& baseDirectory);
   /// Estimates the run's memory with `partition` (memoryEstimate_) and
   /// refuses the run when it does not fit with its margin
   /// (ddc::memoryBudget(); sets memoryBudget_).

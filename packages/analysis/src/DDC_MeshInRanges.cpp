@@ -28,19 +28,6 @@ ElementRange evenRange(long long count, MPI_Comm comm) {
   return ElementRange{count * rank / size, count * (rank + 1) / size};
 }
 
-/// Runs `step`; an InputError thrown on some ranks is thrown on all, with
-/// the message of the lowest of them.
-template <class Step>
-void agreeOnErrors(MPI_Comm comm, const Step& step) {
-  std::string error;
-  try {
-    step();
-  } catch (const InputError& e) {
-    error = e.what();
-  }
-  raiseCollectively<InputError>(comm, error);
-}
-
 }  // namespace
 
 bool meshBuiltInRanges(const PL& params) {
@@ -83,7 +70,7 @@ std::shared_ptr<Mesh> buildMeshInRanges(PL& meshParams, const ElementFactory& fa
   {
     Activity activity("generating the mesh in ranges of elements (" + std::to_string(total) + " elements, " +
                       std::to_string(range.last - range.first) + " on this rank)");
-    agreeOnErrors(comm, [&] {
+    runCollectively<InputError>(comm, [&] {
       for (const BodyInput& in : inputs) {
         const std::string at = in.path + "/" + in.generator;
         if (in.generator == "Box")
@@ -94,7 +81,7 @@ std::shared_ptr<Mesh> buildMeshInRanges(PL& meshParams, const ElementFactory& fa
     });
   }
   for (int b = 0; b < mesh->numBodies(); ++b) requireBodyExtent(*mesh, b, inputs[b], comm);
-  agreeOnErrors(comm, [&] {
+  runCollectively<InputError>(comm, [&] {
     mesh->checkConnectivity();
     mesh->checkShapes(0, mesh->numElements());
   });

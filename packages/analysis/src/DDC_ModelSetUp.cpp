@@ -52,13 +52,7 @@ template <class Check>
 void checkShareCollectively(const Mesh& mesh, MPI_Comm comm, const Check& check) {
   const auto [first, last] =
       mesh.isPart() ? std::pair<int, int>(0, mesh.numElements()) : evenShare(mesh.numElements(), comm);
-  std::string error;
-  try {
-    check(first, last);
-  } catch (const InputError& e) {
-    error = e.what();
-  }
-  raiseCollectively<InputError>(comm, error);
+  runCollectively<InputError>(comm, [&] { check(first, last); });
 }
 }  // namespace
 

@@ -98,4 +98,19 @@ void raiseCollectively(MPI_Comm comm, const std::string& msg) {
   if (!text.empty()) throw E(text);
 }
 
+/// Runs `step` on every rank; an E that it throws on some ranks is thrown
+/// on all, with the message of the lowest such rank (raiseCollectively()).
+/// Collective: `step` itself must not call collectives that an E could
+/// leave some ranks waiting in.
+template <class E, class Step>
+void runCollectively(MPI_Comm comm, const Step& step) {
+  std::string error;
+  try {
+    step();
+  } catch (const E& e) {
+    error = e.what();
+  }
+  raiseCollectively<E>(comm, error);
+}
+
 }  // namespace ddc
