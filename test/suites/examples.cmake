@@ -63,14 +63,18 @@ ddc_compare_histories(parts_equal_whole_block_3d_np2 example_block_3d_np2 distri
 # the run is the whole-mesh PT-Scotch run on as many ranks (the same
 # partition) to round-off, and on 4 ranks the 1-rank run to the examples'
 # rank-independence tolerance; the 2-D elastic block likewise on 3 ranks.
+# The block_3d runs write Exodus II results, one file with the whole mesh
+# and one piece per rank on parts (compared in output.cmake).
 set(IN_RANGES --set "Partition/Method=PT-Scotch" --set "Partition/Mesh On Every Rank=false" --set "Output/VTK=false")
 ddc_add_run_test(ptscotch_whole_block_3d_np2 RANKS 2 FIXTURE
   ARGS ${PROJECT_SOURCE_DIR}/examples/block_3d.xml --set "Partition/Method=PT-Scotch" --set "Output/VTK=false"
+    --set "Output/Exodus=true"
     --output-dir ${DDC_RUNS}/ptscotch_whole_block_3d_np2
   FILES ${DDC_RUNS}/ptscotch_whole_block_3d_np2/history.csv LABELS example REGEX "every rank holds the whole mesh")
 foreach(np 2 4)
   ddc_add_run_test(mesh_in_ranges_block_3d_np${np} RANKS ${np} FIXTURE
-    ARGS ${PROJECT_SOURCE_DIR}/examples/block_3d.xml ${IN_RANGES} --output-dir ${DDC_RUNS}/mesh_in_ranges_block_3d_np${np}
+    ARGS ${PROJECT_SOURCE_DIR}/examples/block_3d.xml ${IN_RANGES} --set "Output/Exodus=true"
+      --output-dir ${DDC_RUNS}/mesh_in_ranges_block_3d_np${np}
     FILES ${DDC_RUNS}/mesh_in_ranges_block_3d_np${np}/history.csv
     LABELS example
     REGEX "owns [0-9]+ of 425 nodes \\(${DISTRIBUTION_SHARE_np${np}}\\); the busiest rank holds [0-9]+ of 256 elements \\(${DISTRIBUTION_SHARE_np${np}}\\) and [0-9]+ of 425 nodes [^;]*; no rank held the whole mesh \\(built in ranges of elements\\)")

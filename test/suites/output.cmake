@@ -52,6 +52,22 @@ function(ddc_add_exodus_test name ranks deck)
     ${DDC_RUNS}/${name})
   set_tests_properties(${name}_readers PROPERTIES FIXTURES_REQUIRED ${name} LABELS "system;output")
 endfunction()
+# On parts of the mesh each rank writes its piece, results.e.P.r, and no
+# rank gathers the mesh or its values: the pieces joined by their node and
+# element ids are the whole-mesh run's results.e - on as many ranks (the same
+# PT-Scotch partition) to round-off, on 4 ranks to the examples'
+# rank-independence tolerance (runs in examples.cmake).
+foreach(np 2 4)
+  set(tolerance 1e-12)
+  if(np EQUAL 4)
+    set(tolerance 1e-10)
+  endif()
+  add_test(NAME exodus_pieces_equal_whole_block_3d_np${np} COMMAND ${DDC_SYSTEM_PYTHON}
+    ${CMAKE_CURRENT_SOURCE_DIR}/tools/check_exodus_pieces.py ${DDC_RUNS}/ptscotch_whole_block_3d_np2/results.e
+    ${DDC_RUNS}/mesh_in_ranges_block_3d_np${np}/results.e ${tolerance})
+  set_tests_properties(exodus_pieces_equal_whole_block_3d_np${np} PROPERTIES
+    FIXTURES_REQUIRED "ptscotch_whole_block_3d_np2;mesh_in_ranges_block_3d_np${np}" LABELS "system;output")
+endforeach()
 ddc_add_exodus_test(exodus_half_rings 2 ${PROJECT_SOURCE_DIR}/examples/two_half_rings.xml
   --set "Load Stepping/Number of Steps=10")
 ddc_add_exodus_test(exodus_arch_Quad9 2 ${PROJECT_SOURCE_DIR}/examples/arch.xml

@@ -87,8 +87,16 @@ ddc_add_restart_test(restart_other_mode_np2_to_3 2 other-mode:3 ${PROJECT_SOURCE
 # With PT-Scotch the parts are built in ranges of elements (no rank holds
 # the whole mesh): its checkpoint continues with the whole mesh, and the
 # other way round.
+# Its Exodus II results, one file or one piece per rank, continue across
+# the layouts; and a run on parts stopped and restarted in place ends with
+# the uninterrupted run's pieces, byte for byte (Amesos2: with MUMPS two
+# uninterrupted runs on 2 ranks already differ in the last bits, above).
 ddc_add_restart_test(restart_other_mode_in_ranges_np2_to_3 2 other-mode:3
-  ${PROJECT_SOURCE_DIR}/examples/bar_vibration.xml ARGS --set "Partition/Method=PT-Scotch")
+  ${PROJECT_SOURCE_DIR}/examples/bar_vibration.xml ENVIRONMENT PYTHON=${DDC_SYSTEM_PYTHON}
+  ARGS --set "Partition/Method=PT-Scotch" --set "Output/Exodus=true")
+ddc_add_restart_test(restart_sigterm_in_ranges_np2 2 sigterm ${PROJECT_SOURCE_DIR}/examples/bar_vibration.xml
+  ARGS --set "Partition/Method=PT-Scotch" --set "Partition/Mesh On Every Rank=false" --set "Output/Exodus=true"
+    --set "Solver/Linear Solver/Type=Amesos2")
 ddc_add_restart_test(restart_sigterm_step_control_np2 2 sigterm
   ${PROJECT_SOURCE_DIR}/examples/two_half_rings_adaptive.xml)
 # Coulomb friction (the slots' stick/slip states, tangential bases and
@@ -135,5 +143,8 @@ foreach(np 1 2)
       ENVIRONMENT PYTHON=${DDC_SYSTEM_PYTHON})
   endforeach()
 endforeach()
+# The Exodus II messages on parts of the mesh, where each rank writes its piece.
+ddc_add_restart_test(restart_exodus_messages_parts_np2 2 exodus-messages ${DDC_RESTART_BLOCK} LABELS negative
+  ENVIRONMENT PYTHON=${DDC_SYSTEM_PYTHON} ARGS --set "Partition/Mesh On Every Rank=false")
 ddc_add_restart_test(restart_input_change_gmsh_np3 3 input-change:gmsh ${DDC_RESTART_BLOCK} PROCESSORS 2
   LABELS negative)

@@ -93,15 +93,12 @@ ContactComponent::SurfaceElementSource surfaceElementMaker(const ElementFactory&
 
 void Analysis::requireWholeMeshWhereNeeded(const PL& params) {
   // What still reads the whole mesh on every rank: the contact slots and
-  // surfaces, the Exodus II writer (doc/architecture.md, "What a
-  // distributed mesh has to change").
+  // surfaces (doc/architecture.md, "What a distributed mesh has to change").
   if (params.sublist("Partition").get<bool>("Mesh On Every Rank")) return;
   std::string needs;
   if (params.isSublist("Contact") && params.sublist("Contact").isSublist("Pairs") &&
       params.sublist("Contact").sublist("Pairs").numParams() > 0)
     needs = "contact pairs (Contact/Pairs: every rank holds every contact surface)";
-  else if (params.sublist("Output").get<bool>("Exodus"))
-    needs = "Output/Exodus = true (rank 0 writes the whole mesh)";
   DDC_INPUT_REQUIRE(needs.empty(), "'Partition/Mesh On Every Rank' = false, but the run has "
                                        << needs << ", which needs the whole mesh on every rank; set it to true");
 }

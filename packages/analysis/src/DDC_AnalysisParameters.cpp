@@ -261,7 +261,8 @@ Teuchos::RCP<PL> partitionValidParameters() {
   pl->set("Mesh On Every Rank", true,
           "true: every rank keeps the whole mesh through the run. false: once the mesh is partitioned each "
           "rank keeps only its elements and their nodes (doc/architecture.md, 'What a distributed mesh has "
-          "to change'), for runs without contact pairs and without Output/Exodus (Monolithic or FETI-DP). "
+          "to change'), for runs without contact pairs (Monolithic or FETI-DP; Output/Exodus is written in "
+          "pieces, one per rank). "
           "With Method = PT-Scotch and every body from the Rectangle or Box generator no rank builds the "
           "whole mesh (each generates a range of the elements, which then move to their subdomains' ranks); "
           "otherwise each rank builds the whole mesh first and keeps its part, which lowers what a rank "
@@ -278,7 +279,9 @@ Teuchos::RCP<PL> outputValidParameters() {
           "Write results.e, the Exodus II results of the run: the mesh (an element block per body, the node "
           "and side sets) and every converged step's displacements (velocities and accelerations in "
           "dynamics), contact gap, pressure and multiplier, element stresses and von Mises stress, and global "
-          "values (doc/user-guide.md, 'The output directory').");
+          "values (doc/user-guide.md, 'The output directory'). With 'Partition/Mesh On Every Rank' = false each "
+          "rank writes its piece instead, results.e.P.r (P ranks, rank r; the pieces SEACAS epu joins and "
+          "ParaView reads as one), and no rank gathers the whole mesh or its values.");
   pl->set("Progress", true, "Print one progress line per converged step on rank 0.");
   pl->set("Checkpoint Interval", 10,
           "Write checkpoint.ddc, the state a restart continues from (ddcontact --restart), after every this many "

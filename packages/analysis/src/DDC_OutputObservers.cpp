@@ -77,9 +77,9 @@ ExodusObserver::ExodusObserver(Teuchos::RCP<const Teuchos::Comm<int>> comm, cons
     : comm_(std::move(comm)), kind_(kind), source_(restartSource), progress_(std::move(progress)) {
   const std::string path = directory + "/results.e";
   // A restart continuing in the staging directory of the run it continues:
-  // that run's results.e is moved aside before this run's is created,
-  // copied from and removed (a restart that failed before that finds it
-  // aside).
+  // that run's results.e (or its pieces, ExodusWriter::resultFiles()) is
+  // moved aside before this run's is created, copied from and removed (a
+  // restart that failed before that finds it aside).
   origin_ = source_;
   if (!source_.empty()) {
     std::string error;
@@ -87,14 +87,17 @@ ExodusObserver::ExodusObserver(Teuchos::RCP<const Teuchos::Comm<int>> comm, cons
     const std::string sourceDirectory = std::filesystem::path(source_).parent_path().string();
     const std::string aside = directory + "/results.e.before-restart";
     std::string missing;
-    if (comm_->getRank() == 0 && !std::filesystem::exists(source_, ec) &&
-        !(std::filesystem::equivalent(sourceDirectory, directory, ec) && std::filesystem::exists(aside, ec)))
-      missing = "1";
+    const bool sameDirectory = std::filesystem::equivalent(sourceDirectory, directory, ec);
+    const auto sourceFiles = comm_->getRank() == 0 ? ExodusWriter::resultFiles(source_) : std::vector<std::string>();
+    const auto asideFiles = comm_->getRank() == 0 ? ExodusWriter::resultFiles(aside) : std::vector<std::string>();
+    if (comm_->getRank() == 0 && sourceFiles.empty() && !(sameDirectory && !asideFiles.empty())) missing = "1";
     sourceMissing_ = !broadcastStrings(*comm_, {missing}).front().empty();
     if (sourceMissing_) source_.clear();
-    if (comm_->getRank() == 0 && !sourceMissing_ && std::filesystem::equivalent(sourceDirectory, directory, ec)) {
-      if (!std::filesystem::exists(aside, ec) && std::filesystem::exists(source_, ec))
-        std::filesystem::rename(source_, aside, ec);
+    if (comm_->getRank() == 0 && !sourceMissing_ && sameDirectory) {
+      // results.e -> results.e.before-restart, results.e.P.r -> results.e.before-restart.P.r
+      if (asideFiles.empty())
+        for (const std::string& f : sourceFiles)
+          if (!ec) std::filesystem::rename(f, aside + f.substr(source_.size()), ec);
       if (ec) error = "cannot move '" + source_ + "' aside for the restart: " + ec.message();
       source_ = aside;
       sourceAside_ = true;
@@ -125,7 +128,8 @@ void ExodusObserver::started(const StepLoop& loop) {
     progress_("warning: restart: results.e holds " + std::to_string(copied) + " of the " + std::to_string(count) +
               " steps before the checkpoint (" + why + ")");
   std::error_code ec;
-  if (sourceAside_) std::filesystem::remove(source_, ec);  // rank 0's flag
+  if (sourceAside_)  // rank 0's flag
+    for (const std::string& f : ExodusWriter::resultFiles(source_)) std::filesystem::remove(f, ec);
 }
 
 void ExodusObserver::accepted(const StepLoop& loop, const StepRecord& record, bool) {

@@ -15,6 +15,7 @@
 #include "DDC_Error.hpp"
 #include "DDC_InputDeck.hpp"
 #include "DDC_MpiRecords.hpp"
+#include "DDC_NodeDirectory.hpp"
 #include "DDC_ResultFile.hpp"
 
 namespace ddc {
@@ -52,6 +53,34 @@ std::vector<std::vector<double>> gatherColumns(const Teuchos::Comm<int>& comm, c
   return columns;
 }
 
+/// Rows of `width` values, each after its entity, as columns over `count`
+/// entities of this rank's piece (entities not given stay 0).
+std::vector<std::vector<double>> ownColumns(const std::vector<int>& ids, const std::vector<double>& rows, size_t width,
+                                            int count) {
+  std::vector<std::vector<double>> columns(width, std::vector<double>(size_t(count), 0.0));
+  for (size_t i = 0; i < ids.size(); ++i)
+    for (size_t k = 0; k < width; ++k) columns[k][size_t(ids[i])] = rows[i * width + k];
+  return columns;
+}
+
+/// The size of every node set and side set in the whole mesh, from the
+/// parts (collective): a node counted by the lowest rank that holds it, a
+/// side by the rank of its element.
+ExodusWriter::SetCounts wholeSetCounts(MPI_Comm comm, const Mesh& part) {
+  const NodeDirectory directory(comm, part);
+  const int rank = commRank(comm);
+  ExodusWriter::SetCounts c;
+  for (const std::string& name : part.nodeSetNames()) {
+    int mine = 0;
+    for (int n : part.nodeSet(name)) mine += directory.lowestHolder()[size_t(n)] == rank;
+    c.nodeSets.push_back(mine);
+  }
+  for (const std::string& name : part.sideSetNames()) c.sideSets.push_back(int(part.sideSet(name).size()));
+  MPI_Allreduce(MPI_IN_PLACE, c.nodeSets.data(), int(c.nodeSets.size()), MPI_INT, MPI_SUM, comm);
+  MPI_Allreduce(MPI_IN_PLACE, c.sideSets.data(), int(c.sideSets.size()), MPI_INT, MPI_SUM, comm);
+  return c;
+}
+
 /// Why a write to the Exodus II file `path` failed: the library's message,
 /// led by "No space left on device" when that is the cause (the library's
 /// error code, or no space left on the file system of `path`).
@@ -75,94 +104,143 @@ bool simulatedFullDisk(const std::string& path) {
   return true;
 }
 
+/// The calls that write one file: each returns < 0 on failure, and the
+/// first failure is the message.
+struct Calls {
+  int exoid;
+  std::string file;
+  std::string error;
+  bool operator()(int status, const char* what) {
+    if (status < 0 && error.empty())
+      error = "cannot write the Exodus II results '" + file + "' (" + what + "): " + writeError(file, status);
+    return status >= 0;
+  }
+};
+
+/// Names of blocks or sets (none: nothing to write).
+bool putNames(Calls& ok, ex_entity_type type, const std::vector<std::string>& names, const char* what) {
+  if (names.empty()) return true;
+  NameList list(names);
+  return ok(ex_put_names(ok.exoid, type, list.pointers.data()), what);
+}
+
+/// A piece's place in the whole (Nemesis I): the number of pieces, the
+/// whole mesh's counts and its blocks' and sets' sizes, and the ids of the
+/// piece's nodes and elements there.
+bool putPieceInfo(Calls& ok, const Mesh& mesh, int pieces, const ExodusWriter::SetCounts& sets) {
+  char parallel[] = "p";
+  const size_t nodeSets = sets.nodeSets.size(), sideSets = sets.sideSets.size();
+  if (!ok(ex_put_init_info(ok.exoid, pieces, 1, parallel), "pieces") ||
+      !ok(ex_put_init_global(ok.exoid, mesh.numGlobalNodes(), mesh.numGlobalElements(), mesh.numBodies(),
+                             int64_t(nodeSets), int64_t(sideSets)),
+          "whole-mesh counts"))
+    return false;
+  std::vector<int> ids(size_t(mesh.numNodes()));
+  for (int n = 0; n < mesh.numNodes(); ++n) ids[size_t(n)] = int(mesh.nodeId(n) + 1);
+  if (!ok(ex_put_id_map(ok.exoid, EX_NODE_MAP, ids.data()), "node ids")) return false;
+  ids.resize(size_t(mesh.numElements()));
+  for (int e = 0; e < mesh.numElements(); ++e) ids[size_t(e)] = int(mesh.elementId(e) + 1);
+  if (!ok(ex_put_id_map(ok.exoid, EX_ELEM_MAP, ids.data()), "element ids")) return false;
+  auto from1 = [](size_t n) {
+    std::vector<int> v(n);
+    for (size_t i = 0; i < n; ++i) v[i] = int(i) + 1;
+    return v;
+  };
+  std::vector<int> blockIds = from1(size_t(mesh.numBodies())), blockCounts, zeros(std::max(nodeSets, sideSets), 0);
+  for (int b = 0; b < mesh.numBodies(); ++b) blockCounts.push_back(int(mesh.bodyGlobalElements(b)));
+  std::vector<int> nodeSetIds = from1(nodeSets), sideSetIds = from1(sideSets);
+  std::vector<int> nodeSetCounts = sets.nodeSets, sideSetCounts = sets.sideSets;
+  return (blockIds.empty() || ok(ex_put_eb_info_global(ok.exoid, blockIds.data(), blockCounts.data()), "blocks")) &&
+         (nodeSets == 0 ||
+          ok(ex_put_ns_param_global(ok.exoid, nodeSetIds.data(), nodeSetCounts.data(), zeros.data()), "node sets")) &&
+         (sideSets == 0 ||
+          ok(ex_put_ss_param_global(ok.exoid, sideSetIds.data(), sideSetCounts.data(), zeros.data()), "side sets"));
+}
+
+/// The reference coordinates and their names.
+bool putCoordinates(Calls& ok, const Mesh& mesh) {
+  std::vector<double> x(mesh.numNodes()), y(mesh.numNodes()), z(mesh.numNodes());
+  for (int n = 0; n < mesh.numNodes(); ++n) x[n] = mesh.coord(n)[0], y[n] = mesh.coord(n)[1], z[n] = mesh.coord(n)[2];
+  char cx[] = "x", cy[] = "y", cz[] = "z";
+  char* coordNames[] = {cx, cy, cz};
+  return ok(ex_put_coord(ok.exoid, x.data(), y.data(), mesh.dim() == 3 ? z.data() : nullptr), "coordinates") &&
+         ok(ex_put_coord_names(ok.exoid, coordNames), "coordinate names");
+}
+
+/// One element block per body (id b + 1, empty when the mesh has none of
+/// its elements), named after it.
+bool putBlocks(Calls& ok, const Mesh& mesh) {
+  std::vector<std::string> blockNames;
+  for (int b = 0; b < mesh.numBodies(); ++b) {
+    const Body& body = mesh.body(b);
+    const auto& order = exodusNodeOrder(body.cellType);
+    const int nn = int(order.size());
+    if (!ok(ex_put_block(ok.exoid, EX_ELEM_BLOCK, b + 1, exodusElementType(body.cellType), body.numElements, nn, 0, 0,
+                         0),
+            "element block"))
+      return false;
+    std::vector<int> conn;
+    conn.reserve(size_t(body.numElements) * nn);
+    for (int e = body.firstElement; e < body.firstElement + body.numElements; ++e) {
+      const int* en = mesh.elementNodes(e);
+      for (int i = 0; i < nn; ++i) conn.push_back(en[order[i]] + 1);
+    }
+    if (body.numElements > 0 && !ok(ex_put_conn(ok.exoid, EX_ELEM_BLOCK, b + 1, conn.data(), nullptr, nullptr),
+                                    "connectivity"))
+      return false;
+    blockNames.push_back(body.name);
+  }
+  return putNames(ok, EX_ELEM_BLOCK, blockNames, "block names");
+}
+
+/// Node sets and side sets, ids from 1 in name order.
+bool putSets(Calls& ok, const Mesh& mesh) {
+  const auto nodeSets = mesh.nodeSetNames();
+  const auto sideSets = mesh.sideSetNames();
+  for (size_t s = 0; s < nodeSets.size(); ++s) {
+    std::vector<int> nodes;
+    for (int n : mesh.nodeSet(nodeSets[s])) nodes.push_back(n + 1);
+    if (!ok(ex_put_set_param(ok.exoid, EX_NODE_SET, int(s) + 1, int64_t(nodes.size()), 0), "node set") ||
+        (!nodes.empty() && !ok(ex_put_set(ok.exoid, EX_NODE_SET, int(s) + 1, nodes.data(), nullptr), "node set")))
+      return false;
+  }
+  if (!putNames(ok, EX_NODE_SET, nodeSets, "node set names")) return false;
+  for (size_t s = 0; s < sideSets.size(); ++s) {
+    std::vector<int> elements, sides;
+    for (const Segment& seg : mesh.sideSet(sideSets[s])) {
+      elements.push_back(seg.element + 1);
+      sides.push_back(exodusSideNumber(mesh.elementType(seg.element), seg.localSide));
+    }
+    if (!ok(ex_put_set_param(ok.exoid, EX_SIDE_SET, int(s) + 1, int64_t(elements.size()), 0), "side set") ||
+        (!elements.empty() &&
+         !ok(ex_put_set(ok.exoid, EX_SIDE_SET, int(s) + 1, elements.data(), sides.data()), "side set")))
+      return false;
+  }
+  return putNames(ok, EX_SIDE_SET, sideSets, "side set names");
+}
+
+/// The names of the nodal, element and global variables.
+bool putVariables(Calls& ok, const ExodusVariables& variables) {
+  auto put = [&](ex_entity_type type, const std::vector<std::string>& names, const char* what) {
+    if (names.empty()) return true;
+    NameList list(names);
+    return ok(ex_put_variable_param(ok.exoid, type, int(names.size())), what) &&
+           ok(ex_put_variable_names(ok.exoid, type, int(names.size()), list.pointers.data()), what);
+  };
+  return put(EX_NODAL, variables.nodal, "nodal variables") &&
+         put(EX_ELEM_BLOCK, variables.element, "element variables") &&
+         put(EX_GLOBAL, variables.global, "global variables");
+}
+
 }  // namespace
 
 ExodusWriter::ExodusWriter(Teuchos::RCP<const Teuchos::Comm<int>> comm, const std::string& path, const Mesh& mesh,
                            ExodusVariables variables)
     : comm_(std::move(comm)), path_(path), mesh_(mesh), variables_(std::move(variables)) {
-  const int dim = mesh.dim();
   std::string error;
-  if (comm_->getRank() == 0) {
-    // Each call below returns < 0 on failure; the first failure is the message.
-    auto check = [&](int status, const char* what) {
-      if (status < 0 && error.empty())
-        error = "cannot write the Exodus II results '" + path_ + "' (" + what + "): " + writeError(path_, status);
-      return status >= 0;
-    };
-    ex_opts(0);  // no messages on stderr, no abort: errors come back here
-    int cpuWordSize = 8, ioWordSize = 8;
-    exoid_ = ex_create(path_.c_str(), EX_CLOBBER, &cpuWordSize, &ioWordSize);
-    if (exoid_ < 0) {
-      check(exoid_, "create");
-    } else {
-      ex_set_max_name_length(exoid_, 80);
-      const auto nodeSets = mesh.nodeSetNames();
-      const auto sideSets = mesh.sideSetNames();
-      bool ok = check(ex_put_init(exoid_, "DDContact results", dim, mesh.numNodes(), mesh.numElements(),
-                                  mesh.numBodies(), int64_t(nodeSets.size()), int64_t(sideSets.size())),
-                      "init");
-      // Reference coordinates.
-      std::vector<double> x(mesh.numNodes()), y(mesh.numNodes()), z(mesh.numNodes());
-      for (int n = 0; n < mesh.numNodes(); ++n) x[n] = mesh.coord(n)[0], y[n] = mesh.coord(n)[1], z[n] = mesh.coord(n)[2];
-      ok = ok && check(ex_put_coord(exoid_, x.data(), y.data(), dim == 3 ? z.data() : nullptr), "coordinates");
-      char cx[] = "x", cy[] = "y", cz[] = "z";
-      char* coordNames[] = {cx, cy, cz};
-      ok = ok && check(ex_put_coord_names(exoid_, coordNames), "coordinate names");
-      // One element block per body.
-      std::vector<std::string> blockNames;
-      for (int b = 0; ok && b < mesh.numBodies(); ++b) {
-        const Body& body = mesh.body(b);
-        const auto& order = exodusNodeOrder(body.cellType);
-        const int nn = int(order.size());
-        ok = check(ex_put_block(exoid_, EX_ELEM_BLOCK, b + 1, exodusElementType(body.cellType), body.numElements, nn,
-                                0, 0, 0),
-                   "element block");
-        std::vector<int> conn;
-        conn.reserve(size_t(body.numElements) * nn);
-        for (int e = body.firstElement; e < body.firstElement + body.numElements; ++e) {
-          const int* en = mesh.elementNodes(e);
-          for (int i = 0; i < nn; ++i) conn.push_back(en[order[i]] + 1);
-        }
-        ok = ok && check(ex_put_conn(exoid_, EX_ELEM_BLOCK, b + 1, conn.data(), nullptr, nullptr), "connectivity");
-        blockNames.push_back(body.name);
-      }
-      auto putNames = [&](ex_entity_type type, const std::vector<std::string>& names, const char* what) {
-        if (names.empty()) return true;
-        NameList list(names);
-        return check(ex_put_names(exoid_, type, list.pointers.data()), what);
-      };
-      ok = ok && putNames(EX_ELEM_BLOCK, blockNames, "block names");
-      // Node sets and side sets, ids from 1 in name order.
-      for (size_t s = 0; ok && s < nodeSets.size(); ++s) {
-        std::vector<int> nodes;
-        for (int n : mesh.nodeSet(nodeSets[s])) nodes.push_back(n + 1);
-        ok = check(ex_put_set_param(exoid_, EX_NODE_SET, int(s) + 1, int64_t(nodes.size()), 0), "node set") &&
-             check(ex_put_set(exoid_, EX_NODE_SET, int(s) + 1, nodes.data(), nullptr), "node set");
-      }
-      ok = ok && putNames(EX_NODE_SET, nodeSets, "node set names");
-      for (size_t s = 0; ok && s < sideSets.size(); ++s) {
-        std::vector<int> elements, sides;
-        for (const Segment& seg : mesh.sideSet(sideSets[s])) {
-          elements.push_back(seg.element + 1);
-          sides.push_back(exodusSideNumber(mesh.elementType(seg.element), seg.localSide));
-        }
-        ok = check(ex_put_set_param(exoid_, EX_SIDE_SET, int(s) + 1, int64_t(elements.size()), 0), "side set") &&
-             check(ex_put_set(exoid_, EX_SIDE_SET, int(s) + 1, elements.data(), sides.data()), "side set");
-      }
-      ok = ok && putNames(EX_SIDE_SET, sideSets, "side set names");
-      // Variable names.
-      auto putVariables = [&](ex_entity_type type, const std::vector<std::string>& names, const char* what) {
-        if (names.empty()) return true;
-        NameList list(names);
-        return check(ex_put_variable_param(exoid_, type, int(names.size())), what) &&
-               check(ex_put_variable_names(exoid_, type, int(names.size()), list.pointers.data()), what);
-      };
-      ok = ok && putVariables(EX_NODAL, variables_.nodal, "nodal variables") &&
-           putVariables(EX_ELEM_BLOCK, variables_.element, "element variables") &&
-           putVariables(EX_GLOBAL, variables_.global, "global variables");
-      ok = ok && check(ex_update(exoid_), "flush");
-    }
-  }
+  file_ = spread() ? piecePath(path_, comm_->getSize(), comm_->getRank()) : path_;
+  if (spread()) setCounts_ = wholeSetCounts(rawComm(*comm_), mesh_);
+  if (writes()) error = create(file_);
   error = firstErrorOnAnyRank(rawComm(*comm_), error);
   if (!error.empty()) {
     if (exoid_ >= 0) ex_close(exoid_);
@@ -171,76 +249,28 @@ ExodusWriter::ExodusWriter(Teuchos::RCP<const Teuchos::Comm<int>> comm, const st
   }
 }
 
-ExodusWriter::~ExodusWriter() {
-  if (exoid_ >= 0) ex_close(exoid_);
+std::string ExodusWriter::create(const std::string& file) {
+  const Mesh& mesh = mesh_;
+  ex_opts(0);  // no messages on stderr, no abort: errors come back here
+  int cpuWordSize = 8, ioWordSize = 8;
+  exoid_ = ex_create(file.c_str(), EX_CLOBBER, &cpuWordSize, &ioWordSize);
+  Calls ok{exoid_, file};
+  if (exoid_ < 0) {
+    ok(exoid_, "create");
+    return ok.error;
+  }
+  ex_set_max_name_length(exoid_, 80);
+  if (ok(ex_put_init(exoid_, "DDContact results", mesh.dim(), mesh.numNodes(), mesh.numElements(), mesh.numBodies(),
+                     int64_t(mesh.nodeSetNames().size()), int64_t(mesh.sideSetNames().size())),
+         "init") &&
+      (!spread() || putPieceInfo(ok, mesh, comm_->getSize(), setCounts_)) && putCoordinates(ok, mesh) &&
+      putBlocks(ok, mesh) && putSets(ok, mesh) && putVariables(ok, variables_))
+    ok(ex_update(exoid_), "flush");
+  return ok.error;
 }
 
-std::pair<int, std::string> ExodusWriter::copySteps(const std::string& source, int count) {
-  const Mesh& mesh = mesh_;
-  const int numNodal = int(variables_.nodal.size()), numElement = int(variables_.element.size());
-  const int numGlobal = int(variables_.global.size());
-  std::string error, shortfall;
-  int copied = 0;
-  if (comm_->getRank() == 0 && exoid_ >= 0) {
-    int cpuWordSize = 8, ioWordSize = 0;
-    float version = 0.0f;
-    const int in = ex_open(source.c_str(), EX_READ, &cpuWordSize, &ioWordSize, &version);
-    if (in < 0) {
-      shortfall = "cannot read '" + source + "': " + exodusLibraryError(in);
-    } else {
-      // The same variables (the same model and kind of analysis).
-      auto variables = [](int id, ex_entity_type type) {
-        int n = 0;
-        return ex_get_variable_param(id, type, &n) < 0 ? -1 : n;
-      };
-      const int available = int(ex_inquire_int(in, EX_INQ_TIME));
-      if (variables(in, EX_NODAL) != numNodal || variables(in, EX_ELEM_BLOCK) != numElement ||
-          variables(in, EX_GLOBAL) != numGlobal ||
-          int(ex_inquire_int(in, EX_INQ_NODES)) != mesh.numNodes() ||
-          int(ex_inquire_int(in, EX_INQ_ELEM_BLK)) != mesh.numBodies()) {
-        shortfall = "'" + source + "' has other variables or another mesh";
-      } else {
-        const int n = std::min(count, available);
-        if (n < count)
-          shortfall = "'" + source + "' has " + std::to_string(available) + " of the " + std::to_string(count) +
-                      " steps before the checkpoint";
-        std::vector<double> values;
-        auto copy = [&](int step, ex_entity_type type, int var, int64_t id, int64_t length) {
-          values.resize(size_t(length));
-          const int r = ex_get_var(in, step, type, var, id, length, values.data());
-          if (r < 0) {
-            error = "cannot read step " + std::to_string(step) + " of '" + source + "': " + exodusLibraryError(r);
-            return false;
-          }
-          const int w = ex_put_var(exoid_, step, type, var, id, length, values.data());
-          if (w < 0)
-            error = "cannot write step " + std::to_string(step) + " of the Exodus II results '" + path_ +
-                    "': " + writeError(path_, w);
-          return w >= 0;
-        };
-        bool ok = true;
-        for (int step = 1; ok && step <= n; ++step) {
-          double time = 0.0;
-          ok = ex_get_time(in, step, &time) >= 0 && ex_put_time(exoid_, step, &time) >= 0;
-          if (!ok) error = "cannot copy the time of step " + std::to_string(step) + " from '" + source + "'";
-          for (int k = 0; ok && k < numNodal; ++k) ok = copy(step, EX_NODAL, k + 1, 1, mesh.numNodes());
-          for (int b = 0; ok && b < mesh.numBodies(); ++b)
-            for (int k = 0; ok && k < numElement; ++k)
-              ok = copy(step, EX_ELEM_BLOCK, k + 1, b + 1, mesh.body(b).numElements);
-          if (ok && numGlobal > 0) ok = copy(step, EX_GLOBAL, 1, 0, int64_t(numGlobal));
-          if (ok) copied = step;
-        }
-        if (ok && ex_update(exoid_) < 0) error = "cannot flush the Exodus II results '" + path_ + "'";
-      }
-      ex_close(in);
-    }
-  }
-  error = firstErrorOnAnyRank(rawComm(*comm_), error);
-  if (!error.empty()) throw OutputError(error);
-  shortfall = broadcastStrings(*comm_, {shortfall}).front();
-  Teuchos::broadcast(*comm_, 0, Teuchos::outArg(copied));
-  steps_ = copied;
-  return {copied, shortfall};
+ExodusWriter::~ExodusWriter() {
+  if (exoid_ >= 0) ex_close(exoid_);
 }
 
 void ExodusWriter::close() {
@@ -248,7 +278,7 @@ void ExodusWriter::close() {
   if (exoid_ >= 0) {
     const int status = ex_close(exoid_);
     exoid_ = -1;
-    if (status < 0) error = "cannot close the Exodus II results '" + path_ + "': " + exodusLibraryError(status);
+    if (status < 0) error = "cannot close the Exodus II results '" + file_ + "': " + exodusLibraryError(status);
   }
   error = firstErrorOnAnyRank(rawComm(*comm_), error);
   if (!error.empty()) throw OutputError(error);
@@ -261,7 +291,7 @@ void ExodusWriter::writeStep(double time, const ExodusStepValues& values) {
   if (values.nodal.size() != values.nodes.size() * numNodal ||
       values.element.size() != values.elements.size() * numElement)
     bad = "rows of another width than the variables";
-  if (comm_->getRank() == 0 && values.global.size() != variables_.global.size())
+  if (writes() && values.global.size() != variables_.global.size())
     bad = std::to_string(values.global.size()) + " global values for " + std::to_string(variables_.global.size()) +
           " names";
   for (int n : values.nodes)
@@ -270,21 +300,24 @@ void ExodusWriter::writeStep(double time, const ExodusStepValues& values) {
     if (e < 0 || e >= mesh.numElements()) bad = "element " + std::to_string(e) + " is not in the mesh";
   bad = firstErrorOnAnyRank(rawComm(*comm_), bad);
   if (!bad.empty()) throw std::invalid_argument("ExodusWriter::writeStep: " + bad);
-  const auto nodal = gatherColumns(*comm_, values.nodes, values.nodal, numNodal, mesh.numNodes());
-  const auto element = gatherColumns(*comm_, values.elements, values.element, numElement, mesh.numElements());
+  const auto nodal = spread() ? ownColumns(values.nodes, values.nodal, numNodal, mesh.numNodes())
+                              : gatherColumns(*comm_, values.nodes, values.nodal, numNodal, mesh.numNodes());
+  const auto element = spread()
+                           ? ownColumns(values.elements, values.element, numElement, mesh.numElements())
+                           : gatherColumns(*comm_, values.elements, values.element, numElement, mesh.numElements());
   std::string error;
-  if (comm_->getRank() == 0 && exoid_ >= 0) {
+  if (writes() && exoid_ >= 0) {
     auto check = [&](int status, const char* what) {
       if (status < 0 && error.empty())
-        error = "cannot write step " + std::to_string(steps_ + 1) + " of the Exodus II results '" + path_ + "' (" +
-                what + "): " + writeError(path_, status);
+        error = "cannot write step " + std::to_string(steps_ + 1) + " of the Exodus II results '" + file_ + "' (" +
+                what + "): " + writeError(file_, status);
       return status >= 0;
     };
     const int step = steps_ + 1;
     bool ok = true;
     if (simulatedFullDisk(path_)) {
       ok = false;
-      error = "cannot write step " + std::to_string(step) + " of the Exodus II results '" + path_ +
+      error = "cannot write step " + std::to_string(step) + " of the Exodus II results '" + file_ +
               "' (time): " + std::strerror(ENOSPC) + " (fault injection)";
     }
     ok = ok && check(ex_put_time(exoid_, step, &time), "time");
