@@ -68,6 +68,11 @@ foreach(np 2 4)
   set_tests_properties(exodus_pieces_equal_whole_block_3d_np${np} PROPERTIES
     FIXTURES_REQUIRED "ptscotch_whole_block_3d_np2;mesh_in_ranges_block_3d_np${np}" LABELS "system;output")
 endforeach()
+add_test(NAME exodus_pieces_gmsh_block_rank_zero COMMAND ${DDC_SYSTEM_PYTHON}
+  ${CMAKE_CURRENT_SOURCE_DIR}/tools/check_exodus_pieces.py ${DDC_RUNS}/gmsh_block_whole_np3/results.e
+  ${DDC_RUNS}/gmsh_block_rank_zero_np3/results.e)
+set_tests_properties(exodus_pieces_gmsh_block_rank_zero PROPERTIES
+  FIXTURES_REQUIRED "gmsh_block_whole_np3;gmsh_block_rank_zero_np3" LABELS "system;output")
 ddc_add_exodus_test(exodus_half_rings 2 ${PROJECT_SOURCE_DIR}/examples/two_half_rings.xml
   --set "Load Stepping/Number of Steps=10")
 ddc_add_exodus_test(exodus_arch_Quad9 2 ${PROJECT_SOURCE_DIR}/examples/arch.xml
@@ -118,6 +123,21 @@ foreach(case half_rings hertz)
   set_tests_properties(exodus_mesh_${case}_same_results PROPERTIES
     FIXTURES_REQUIRED "${source};exodus_mesh_${case}" LABELS "system;output")
 endforeach()
+# An Exodus II mesh read on rank 0 alone and dealt to 3 ranks in ranges of
+# elements (parts of the mesh, PT-Scotch): block_3d's 1-rank history, to
+# the examples' rank-independence tolerance.
+add_test(NAME exodus_mesh_block_files COMMAND sh -c
+  "mkdir -p ${EXO_MESH} && ${DDC_SYSTEM_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/tools/write_exodus_mesh.py ${DDC_RUNS}/exodus_block_Hex8/results.e ${EXO_MESH}/block.e && ${DDC_SYSTEM_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/tools/exodus_deck.py ${PROJECT_SOURCE_DIR}/examples/block_3d.xml ${EXO_MESH}/block.xml ${EXO_MESH}/block.e")
+set_tests_properties(exodus_mesh_block_files PROPERTIES FIXTURES_REQUIRED exodus_block_Hex8
+  FIXTURES_SETUP exodus_mesh_block_files LABELS "system;output")
+ddc_add_run_test(exodus_mesh_block_on_rank_zero_np3 RANKS 3 FIXTURE
+  ARGS ${EXO_MESH}/block.xml --set "Partition/Method=PT-Scotch" --set "Partition/Mesh On Every Rank=false"
+    --set "Output/VTK=false" --output-dir ${DDC_RUNS}/exodus_mesh_block_on_rank_zero_np3
+  FILES ${DDC_RUNS}/exodus_mesh_block_on_rank_zero_np3/history.csv LABELS output
+  REGEX "; only rank 0 held the whole mesh \\(and sent each rank a range of its elements\\)")
+set_tests_properties(exodus_mesh_block_on_rank_zero_np3 PROPERTIES FIXTURES_REQUIRED exodus_mesh_block_files)
+ddc_compare_histories(exodus_mesh_block_on_rank_zero_same_results example_block_3d_np1
+  exodus_mesh_block_on_rank_zero_np3 1e-10 LABELS output)
 # Malformed files, from the half-rings mesh.
 foreach(bad wedge inverted side_element side_number)
   if(bad STREQUAL wedge)

@@ -57,7 +57,7 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
   Activity activity("setting up the " + strategy_->name() + " solver (" + sizes + ")");
   strategy_->setUp(model_, [this](const std::string& line) { progress(line); });
   progress(distributionLine(*comm_, *model_, rankShare(*model_, strategy_->coarseRowsOnThisRank()),
-                            memoryEstimate_.total(), meshInRanges_));
+                            memoryEstimate_.total(), meshOrigin_));
   params_ = params;
 }
 
@@ -113,12 +113,17 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
       "refine less, run on more ranks or hosts, or set 'Solver/Memory Check' = false to run anyway";
   memoryBudget_ = MemoryBudget();
   PL& meshParams = params.sublist("Mesh");
-  // Without the whole mesh on every rank, bodies the generators make by
-  // element range are made so (no rank holds the whole mesh); otherwise
-  // each rank builds the whole mesh and keeps its part after partitioning.
-  const bool inRanges = meshInRanges_ = meshBuiltInRanges(params);
-  auto mesh = inRanges ? buildMeshInRanges(meshParams, factory_, &memory, memoryHint, rawComm(comm_))
-                       : buildMesh(meshParams, factory_, baseDirectory, &memory, memoryHint, rawComm(comm_));
+  // Without the whole mesh on every rank and with PT-Scotch, bodies the
+  // generators make by element range are made so (no rank holds the whole
+  // mesh) and others on rank 0 alone, which sends each rank a range;
+  // otherwise each rank builds the whole mesh (and keeps its part after
+  // partitioning).
+  meshOrigin_ = meshOrigin(params);
+  const MPI_Comm comm = rawComm(comm_);
+  auto mesh = meshOrigin_ == MeshOrigin::Ranges ? buildMeshInRanges(meshParams, factory_, &memory, memoryHint, comm)
+              : meshOrigin_ == MeshOrigin::RankZero
+                  ? buildMeshOnRankZero(meshParams, factory_, baseDirectory, &memory, memoryHint, comm)
+                  : buildMesh(meshParams, factory_, baseDirectory, &memory, memoryHint, comm);
   auto elements = makeBodyElements(*mesh, meshParams, factory_);
   // Nearly incompressible materials lock: said at the start and with a
   // Newton failure, where it is the likely cause (with the other caveats).
@@ -145,7 +150,7 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
                     std::to_string(mesh->numGlobalElements()) + " elements, " +
                     std::to_string(partition.numSubdomains) + " subdomains; estimated " +
                     formatBytes(memoryEstimate_.total()) + " per rank)");
-  if (!inRanges && !params.sublist("Partition").get<bool>("Mesh On Every Rank"))
+  if (meshOrigin_ == MeshOrigin::EveryRank && !params.sublist("Partition").get<bool>("Mesh On Every Rank"))
     keepOwnPart(mesh, partition, comm_->getRank(), comm_->getSize());
   model_ = std::make_shared<Model>(comm_, mesh, std::move(elements), std::move(partition), std::move(bcs),
                                    std::move(contact), surfaceElementMaker(factory_));
@@ -166,7 +171,7 @@ Partition Analysis::partitionMesh(std::shared_ptr<Mesh>& mesh, const PL& params,
   if (partition.edgeCut >= 0)
     progress(partitionSummary(*mesh, partition, params.sublist("Partition").get<std::string>("Method"),
                               rawComm(comm_)));
-  if (meshInRanges_) {
+  if (meshOrigin_ != MeshOrigin::EveryRank) {
     // Each element to the rank of its subdomain.
     Activity activity("moving each element to the rank of its subdomain");
     RankPart own = migratedRankPart(rawComm(comm_), *mesh, partition);

@@ -23,6 +23,7 @@
 #include "DDC_FetiDpSolver.hpp"
 #include "DDC_Memory.hpp"
 #include "DDC_MemoryEstimate.hpp"
+#include "DDC_MeshInRanges.hpp"
 #include "DDC_Model.hpp"
 #include "DDC_ModelSetUp.hpp"
 #include "DDC_OutputDirectory.hpp"
@@ -168,8 +169,9 @@ class Analysis {
   /// bodies.
   std::string caveats_;
   bool progressEnabled_ = true;
-  /// The mesh was built in ranges of elements (meshBuiltInRanges()): no rank held it whole.
-  bool meshInRanges_ = false;
+  /// Where the mesh came from (meshOrigin()): with Ranges no rank held it
+  /// whole, with RankZero only rank 0.
+  MeshOrigin meshOrigin_ = MeshOrigin::EveryRank;
   bool dynamic_ = false;  ///< Dynamics/Integrator is not None
   NewtonSettings newton_;
   Teuchos::RCP<Vector> unloaded_;                   ///< displacement() before a run

@@ -265,8 +265,9 @@ Teuchos::RCP<PL> partitionValidParameters() {
           "pieces, one per rank). "
           "With Method = PT-Scotch and every body from the Rectangle or Box generator no rank builds the "
           "whole mesh (each generates a range of the elements, which then move to their subdomains' ranks); "
-          "otherwise each rank builds the whole mesh first and keeps its part, which lowers what a rank "
-          "holds during the solve, not the peak of the set-up.");
+          "with PT-Scotch and other bodies rank 0 alone builds or reads the whole mesh and sends each rank a "
+          "range of it; otherwise (METIS and the other methods) each rank builds the whole mesh first and "
+          "keeps its part, which lowers what a rank holds during the solve, not the peak of the set-up.");
   return pl;
 }
 

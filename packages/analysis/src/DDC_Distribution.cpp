@@ -38,7 +38,7 @@ RankShare rankShare(const Model& model, long long coarseRows) {
 }
 
 std::string distributionLine(const Teuchos::Comm<int>& comm, const Model& model, const RankShare& mine,
-                             double estimatedBytesPerRank, bool builtInRanges) {
+                             double estimatedBytesPerRank, MeshOrigin origin) {
   const long long local[6] = {mine.elements, mine.nodes, mine.slots, mine.coarseRows, mine.heldElements,
                               mine.heldNodes};
   long long most[6] = {0, 0, 0, 0, 0, 0}, total[6] = {0, 0, 0, 0, 0, 0};
@@ -55,8 +55,10 @@ std::string distributionLine(const Teuchos::Comm<int>& comm, const Model& model,
     os << "; the busiest rank holds " << share(most[4], elements, "elements") << " and "
        << share(most[5], nodes, "nodes") << " of the mesh (its elements' nodes, those shared with other ranks "
        << "included)"
-       << (builtInRanges ? "; no rank held the whole mesh (built in ranges of elements)"
-                         : "; each rank built the whole mesh and kept its part");
+       << (origin == MeshOrigin::Ranges     ? "; no rank held the whole mesh (built in ranges of elements)"
+           : origin == MeshOrigin::RankZero ? "; only rank 0 held the whole mesh (and sent each rank a range of "
+                                              "its elements)"
+                                            : "; each rank built the whole mesh and kept its part");
   else
     os << "; every rank holds the whole mesh (" << elements << " elements, " << nodes << " nodes)";
   if (slots > 0) os << " and all " << slots << " contact slots";

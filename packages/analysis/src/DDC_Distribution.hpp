@@ -8,6 +8,8 @@
 #include <Teuchos_Comm.hpp>
 #include <string>
 
+#include "DDC_MeshInRanges.hpp"
+
 namespace ddc {
 
 class Model;
@@ -35,11 +37,12 @@ RankShare rankShare(const Model& model, long long coarseRows);
 /// ranks). On a part of a mesh (Partition/Mesh On Every Rank = false) the
 /// held part says "the busiest rank holds 205 of 544 elements (37.7 %) and
 /// 402 of 804 nodes (50.0 %) of the mesh (its elements' nodes, those shared
-/// with other ranks included)", and then how the parts were made: "; no
-/// rank held the whole mesh (built in ranges of elements)" with
-/// `builtInRanges`, else "; each rank built the whole mesh and kept its
-/// part". Collective.
+/// with other ranks included)", and then how the parts were made (`origin`):
+/// "; no rank held the whole mesh (built in ranges of elements)", "; only
+/// rank 0 held the whole mesh (and sent each rank a range of its
+/// elements)", or "; each rank built the whole mesh and kept its part".
+/// Collective.
 std::string distributionLine(const Teuchos::Comm<int>& comm, const Model& model, const RankShare& mine,
-                             double estimatedBytesPerRank, bool builtInRanges = false);
+                             double estimatedBytesPerRank, MeshOrigin origin = MeshOrigin::EveryRank);
 
 }  // namespace ddc

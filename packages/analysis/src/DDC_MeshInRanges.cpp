@@ -1,6 +1,9 @@
 #include "DDC_MeshInRanges.hpp"
 
+#include <Teuchos_XMLParameterListHelpers.hpp>
+
 #include <cmath>
+#include <sstream>
 #include <vector>
 
 #include "DDC_AnalysisParameters.hpp"
@@ -47,6 +50,46 @@ bool meshBuiltInRanges(const PL& params) {
     if (!generatesByRange(generator)) return false;
   }
   return true;
+}
+
+MeshOrigin meshOrigin(const PL& params) {
+  if (meshBuiltInRanges(params)) return MeshOrigin::Ranges;
+  if (!params.isSublist("Partition")) return MeshOrigin::EveryRank;
+  const PL& partition = params.sublist("Partition");
+  const bool rankZero =
+      !partition.get<bool>("Mesh On Every Rank") && partition.get<std::string>("Method") == "PT-Scotch";
+  return rankZero ? MeshOrigin::RankZero : MeshOrigin::EveryRank;
+}
+
+std::shared_ptr<Mesh> buildMeshOnRankZero(PL& meshParams, const ElementFactory& factory,
+                                          const std::string& baseDirectory, const MemoryLimit* budget,
+                                          const std::string& budgetHint, MPI_Comm comm) {
+  // The parameters are read on every rank (defaults filled in place); their
+  // errors are the same on every rank.
+  PL& bodies = validatedBodies(meshParams);
+  const auto validBody = bodyValidParameters(factory);
+  for (auto it = bodies.begin(); it != bodies.end(); ++it) readBody(bodies, bodies.name(it), factory, *validBody);
+  std::shared_ptr<Mesh> whole;
+  runCollectively<InputError>(comm, [&] {
+    if (commRank(comm) == 0) whole = buildMesh(meshParams, factory, baseDirectory, budget, budgetHint, MPI_COMM_SELF);
+  });
+  // The generators and readers filled their defaults on rank 0: every rank
+  // continues with rank 0's parameters.
+  std::string xml;
+  if (commRank(comm) == 0) {
+    std::ostringstream os;
+    Teuchos::writeParameterListToXmlOStream(meshParams, os);
+    xml = os.str();
+  }
+  long long length = static_cast<long long>(xml.size());
+  MPI_Bcast(&length, 1, MPI_LONG_LONG, 0, comm);
+  xml.resize(size_t(length));
+  MPI_Bcast(xml.data(), int(length), MPI_CHAR, 0, comm);
+  if (commRank(comm) != 0) meshParams = *Teuchos::getParametersFromXmlString(xml);
+  const long long elements = commRank(comm) == 0 ? whole->numElements() : 0;
+  Activity activity("sending each rank an even range of the mesh's elements (" + std::to_string(elements) +
+                    " elements on rank 0)");
+  return std::make_shared<Mesh>(Mesh::scatteredInRanges(comm, 0, whole.get()));
 }
 
 std::shared_ptr<Mesh> buildMeshInRanges(PL& meshParams, const ElementFactory& factory, const MemoryLimit* budget,

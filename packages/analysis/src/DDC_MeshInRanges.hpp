@@ -4,7 +4,11 @@
 // and each element moves to the rank of its subdomain (migratedRankPart()).
 // The analysis takes this path when 'Partition/Mesh On Every Rank' is false,
 // the partitioner is PT-Scotch and every body comes from the Rectangle or
-// Box generator; the model it gives is the one cut from the whole mesh.
+// Box generator; the model it gives is the one cut from the whole mesh. With
+// other bodies (the sector, shell and octant generators, Gmsh and Exodus II
+// files) rank 0 alone builds or reads the whole mesh and sends every rank
+// its even range of elements (buildMeshOnRankZero()); from there on the path
+// is the same.
 #pragma once
 
 #include <Teuchos_ParameterList.hpp>
@@ -18,6 +22,18 @@
 #include "DDC_Mesh.hpp"
 
 namespace ddc {
+
+/// Where a run's mesh comes from, by meshOrigin().
+enum class MeshOrigin {
+  EveryRank,  ///< every rank builds the whole mesh (and keeps its part without 'Mesh On Every Rank')
+  Ranges,     ///< each rank generates an even range of the elements (buildMeshInRanges())
+  RankZero,   ///< rank 0 builds or reads it and sends each rank an even range (buildMeshOnRankZero())
+};
+
+/// Ranges where meshBuiltInRanges(params); RankZero for the other bodies
+/// with 'Partition/Mesh On Every Rank' = false and 'Partition/Method' =
+/// PT-Scotch; else EveryRank.
+MeshOrigin meshOrigin(const Teuchos::ParameterList& params);
 
 /// Whether the validated parameters `params` (the whole deck; Mesh/Bodies
 /// not yet validated) ask for a mesh built in ranges: 'Partition/Mesh On
@@ -37,5 +53,15 @@ bool meshBuiltInRanges(const Teuchos::ParameterList& params);
 /// \throws InputError on every rank, as buildMesh()
 std::shared_ptr<Mesh> buildMeshInRanges(Teuchos::ParameterList& meshParams, const ElementFactory& factory,
                                         const MemoryLimit* budget, const std::string& budgetHint, MPI_Comm comm);
+
+/// The whole mesh of "Mesh" built or read by buildMesh() on rank 0 alone
+/// (its checks and messages those of the whole mesh), then dealt to the
+/// ranks in even ranges of element ids (Mesh::scatteredInRanges()): the
+/// parts buildMeshInRanges() would make, for any body. Every rank validates
+/// the bodies' parameters in place. Collective.
+/// \throws InputError on every rank, as buildMesh()
+std::shared_ptr<Mesh> buildMeshOnRankZero(Teuchos::ParameterList& meshParams, const ElementFactory& factory,
+                                          const std::string& baseDirectory, const MemoryLimit* budget,
+                                          const std::string& budgetHint, MPI_Comm comm);
 
 }  // namespace ddc

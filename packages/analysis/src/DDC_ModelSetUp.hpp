@@ -89,7 +89,7 @@ void requireSupportedBodies(const Mesh& mesh, const BoundaryConditions& bcs, con
 /// over `comm`), By Body, Box Grid or an element map file (resolved against
 /// `baseDirectory`), with the automatic subdomain count for `strategy` on
 /// the ranks of `comm`. On parts of a mesh in ranges of element ids
-/// (buildMeshInRanges()), PT-Scotch gives each rank its elements'
+/// (buildMeshInRanges(), buildMeshOnRankZero()), PT-Scotch gives each rank its elements'
 /// subdomains (partitionRangePtScotch()). Collective.
 /// \throws InputError for a count that contradicts the method or is below
 ///         the number of ranks, and the partitioners' errors

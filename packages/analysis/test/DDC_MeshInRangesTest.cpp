@@ -3,6 +3,8 @@
 // element ids are the whole mesh's parts, PT-Scotch gives them the whole
 // mesh's subdomains, and each rank ends with the part and subdomains it
 // would cut from the whole mesh; the set-up's messages are the whole mesh's.
+// A mesh built on rank 0 alone and dealt in ranges (buildMeshOnRankZero())
+// is the same parts.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -114,6 +116,52 @@ TEST(MeshInRanges, ChosenForPtScotchAndRangeGeneratorsWithoutTheWholeMesh) {
   deck.sublist("Partition").set("Mesh On Every Rank", false);
   deck.sublist("Mesh").sublist("Bodies").sublist("Right").set("Generator", std::string("Sphere Octant"));
   EXPECT_FALSE(ddc::meshBuiltInRanges(deck));
+}
+
+TEST(MeshInRanges, TheOriginOfTheMeshByPartitionerAndBodies) {
+  PL deck;
+  deck.sublist("Mesh") = twoBoxes();
+  deck.sublist("Partition").set("Mesh On Every Rank", false);
+  deck.sublist("Partition").set("Method", std::string("PT-Scotch"));
+  EXPECT_EQ(ddc::meshOrigin(deck), ddc::MeshOrigin::Ranges);
+  deck.sublist("Mesh").sublist("Bodies").sublist("Right").set("Generator", std::string("Sphere Octant"));
+  EXPECT_EQ(ddc::meshOrigin(deck), ddc::MeshOrigin::RankZero);
+  deck.sublist("Mesh").sublist("Bodies").sublist("Right").set("Generator", std::string("Gmsh"));
+  EXPECT_EQ(ddc::meshOrigin(deck), ddc::MeshOrigin::RankZero);
+  deck.sublist("Partition").set("Method", std::string("METIS"));
+  EXPECT_EQ(ddc::meshOrigin(deck), ddc::MeshOrigin::EveryRank);
+  deck.sublist("Partition").set("Method", std::string("PT-Scotch"));
+  deck.sublist("Partition").set("Mesh On Every Rank", true);
+  EXPECT_EQ(ddc::meshOrigin(deck), ddc::MeshOrigin::EveryRank);
+}
+
+TEST(MeshInRanges, BuiltOnRankZeroAndSentInRangesIsWhatTheRangesMake) {
+  // Rank 0 alone builds the whole mesh and deals it: every rank holds the
+  // part it would have generated in its range (the sets by id: the deal
+  // sorts a side set's segments by element id).
+  PL forRanges = twoBoxes(), onRankZero = twoBoxes();
+  const auto factory = ddc::ElementFactory::withBuiltins();
+  const auto ranges = ddc::buildMeshInRanges(forRanges, factory, nullptr, "", MPI_COMM_WORLD);
+  const auto dealt = ddc::buildMeshOnRankZero(onRankZero, factory, ".", nullptr, "", MPI_COMM_WORLD);
+  ddc::test::expectSameParts(*dealt, *ranges);
+  // Every rank has the parameters with the generators' defaults, as the ranges do.
+  EXPECT_TRUE(Teuchos::haveSameValues(onRankZero, forRanges)) << onRankZero << "\n" << forRanges;
+}
+
+TEST(MeshInRanges, AnErrorOfTheMeshOnRankZeroStopsEveryRank) {
+  // A file only rank 0 reads, missing: the whole mesh's message on every rank.
+  PL forWhole("Mesh");
+  PL& body = forWhole.sublist("Bodies").sublist("Block");
+  body.set("Generator", std::string("Gmsh"));
+  body.sublist("Element").set("Type", std::string("Quad4"));
+  body.sublist("Element").sublist("Material").set("Type", std::string("Linear Elastic"));
+  body.sublist("Gmsh").set("File", std::string("no_such_mesh.msh"));
+  PL onRankZero = forWhole;
+  const auto factory = ddc::ElementFactory::withBuiltins();
+  const std::string expected = inputErrorOf([&] { ddc::buildMesh(forWhole, factory, "."); });
+  EXPECT_NE(expected.find("no_such_mesh.msh"), std::string::npos) << expected;
+  EXPECT_EQ(inputErrorOf([&] { ddc::buildMeshOnRankZero(onRankZero, factory, ".", nullptr, "", MPI_COMM_WORLD); }),
+            expected);
 }
 
 TEST(MeshInRanges, ABodyTooThinIsRefusedWithTheWholeMeshesMessage) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 #include <stdexcept>
 
@@ -399,6 +400,93 @@ Mesh Mesh::migrated(MPI_Comm comm, const std::vector<int>& destination) const {
     p.sideSets_[sideNames[size_t(r.set)]].push_back(p.makeSegment(int(it - p.elementId_.begin()), r.side));
   }
   return p;
+}
+
+namespace {
+
+/// Appends a value's bytes to `out`.
+template <class T>
+void pack(std::vector<char>& out, const T& v) {
+  const char* p = reinterpret_cast<const char*>(&v);
+  out.insert(out.end(), p, p + sizeof(T));
+}
+void packString(std::vector<char>& out, const std::string& s) {
+  pack(out, s.size());
+  out.insert(out.end(), s.begin(), s.end());
+}
+/// Reads what pack() appended, from `at` on.
+template <class T>
+T unpack(const std::vector<char>& in, size_t& at) {
+  T v;
+  std::memcpy(&v, in.data() + at, sizeof(T));
+  at += sizeof(T);
+  return v;
+}
+std::string unpackString(const std::vector<char>& in, size_t& at) {
+  const auto n = unpack<size_t>(in, at);
+  std::string s(in.data() + at, n);
+  at += n;
+  return s;
+}
+
+}  // namespace
+
+Mesh Mesh::scatteredInRanges(MPI_Comm comm, int root, const Mesh* whole) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  // The root's shell - dimension, whole sizes, bodies, set names - to every
+  // rank, so that each can receive its elements (migrated()).
+  std::vector<char> buffer;
+  const bool wholeAtRoot = rank != root || (whole && !whole->isPart());
+  if (rank == root && wholeAtRoot) {
+    pack(buffer, whole->dim_);
+    pack(buffer, whole->numGlobalNodes());
+    pack(buffer, whole->numGlobalElements());
+    pack(buffer, whole->numBodies());
+    for (int b = 0; b < whole->numBodies(); ++b) {
+      packString(buffer, whole->bodies_[b].name);
+      pack(buffer, whole->bodies_[b].cellType);
+      pack(buffer, whole->bodyGlobalNodes(b));
+      pack(buffer, whole->bodyGlobalElements(b));
+    }
+    const auto nodeNames = whole->nodeSetNames(), sideNames = whole->sideSetNames();
+    pack(buffer, nodeNames.size());
+    for (const auto& n : nodeNames) packString(buffer, n);
+    pack(buffer, sideNames.size());
+    for (const auto& n : sideNames) packString(buffer, n);
+  }
+  long long size = wholeAtRoot ? static_cast<long long>(buffer.size()) : -1;
+  MPI_Bcast(&size, 1, MPI_LONG_LONG, root, comm);
+  if (size < 0) throw std::logic_error("Mesh::scatteredInRanges: the root holds no whole mesh");
+  buffer.resize(size_t(size));
+  MPI_Bcast(buffer.data(), int(size), MPI_CHAR, root, comm);
+  if (rank == root) {
+    // Element e of N to rank r when N r / P <= e < N (r + 1) / P.
+    std::vector<int> destination(size_t(whole->numElements()));
+    const long long n = whole->numElements();
+    for (int r = 0; r < ranks; ++r)
+      for (long long e = n * r / ranks; e < n * (r + 1) / ranks; ++e) destination[size_t(e)] = r;
+    return whole->migrated(comm, destination);
+  }
+  Mesh shell;
+  shell.isPart_ = true;
+  size_t at = 0;
+  shell.dim_ = unpack<int>(buffer, at);
+  shell.globalNodes_ = unpack<GlobalId>(buffer, at);
+  shell.globalElements_ = unpack<GlobalId>(buffer, at);
+  const int bodies = unpack<int>(buffer, at);
+  for (int b = 0; b < bodies; ++b) {
+    Body q;
+    q.name = unpackString(buffer, at);
+    q.cellType = unpack<CellType>(buffer, at);
+    q.wholeNodes = unpack<long long>(buffer, at);
+    q.wholeElements = unpack<long long>(buffer, at);
+    shell.bodies_.push_back(q);
+  }
+  for (size_t k = unpack<size_t>(buffer, at); k > 0; --k) shell.nodeSets_[unpackString(buffer, at)];
+  for (size_t k = unpack<size_t>(buffer, at); k > 0; --k) shell.sideSets_[unpackString(buffer, at)];
+  return shell.migrated(comm, {});
 }
 
 int Mesh::localNode(GlobalId id) const {

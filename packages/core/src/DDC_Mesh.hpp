@@ -101,6 +101,15 @@ class Mesh {
   /// \throws std::invalid_argument if `destination` does not hold one rank
   ///         of `comm` per element
   Mesh migrated(MPI_Comm comm, const std::vector<int>& destination) const;
+  /// The part of the whole mesh `whole`, held by rank `root` of `comm`
+  /// alone, that rank r of P receives when the elements are dealt in even
+  /// ranges of ids (elements [N r / P, N (r + 1) / P) of the N): how a mesh
+  /// that only one rank can read or build reaches the others without any
+  /// other rank holding it whole. The result is migrated()'s (sets sorted by
+  /// id). Collective on `comm`; `whole` is read on the root only (nullptr
+  /// elsewhere).
+  /// \throws std::logic_error if the root's `whole` is null or a part
+  static Mesh scatteredInRanges(MPI_Comm comm, int root, const Mesh* whole);
   /// A part built piece by piece, as a generator does that makes only some
   /// elements of a whole mesh (generateBox() with an ElementRange): no
   /// bodies, nodes or elements yet, a whole mesh of none.

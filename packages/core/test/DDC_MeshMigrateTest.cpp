@@ -1,7 +1,8 @@
 // Mesh::migrated(): every rank sends its elements to the ranks of their
 // subdomains, with their nodes and set memberships, and each rank gets the
 // part of the whole mesh it would cut out itself (Mesh::part()), from a
-// whole mesh on rank 0 or from even ranges of elements on every rank. On
+// whole mesh on rank 0 or from even ranges of elements on every rank, and
+// scattered in even ranges from the one rank that holds it. On
 // 1-3 ranks, a mesh of a Hex8 and a Hex20 body (two cell types, sets of
 // both kinds), METIS's subdomains spread over the ranks.
 #include <gmock/gmock.h>
@@ -94,6 +95,31 @@ TEST(MeshMigrate, FromEvenRangesOfElements) {
     back.push_back(r);
   }
   expectSameParts(got.migrated(MPI_COMM_WORLD, back), source);
+}
+
+TEST(MeshMigrate, ScatteredInRangesFromTheOnlyRankThatHoldsTheMesh) {
+  // Rank 0 alone holds the whole mesh; every rank gets the part of its even
+  // range of element ids, the bodies' and sets' names and the whole sizes
+  // included, and no other rank ever held the whole mesh.
+  const Mesh whole = twoBodies();
+  const int ne = whole.numElements();
+  std::vector<int> range;
+  for (int e = ne * rank() / ranks(); e < ne * (rank() + 1) / ranks(); ++e) range.push_back(e);
+  for (int root : {0, ranks() - 1}) {
+    const Mesh got = Mesh::scatteredInRanges(MPI_COMM_WORLD, root, rank() == root ? &whole : nullptr);
+    expectSameParts(got, whole.part(range));
+    EXPECT_EQ(got.numGlobalNodes(), whole.numNodes());
+    EXPECT_EQ(got.numGlobalElements(), whole.numElements());
+    for (int b = 0; b < whole.numBodies(); ++b) {
+      EXPECT_EQ(got.body(b).name, whole.body(b).name);
+      EXPECT_EQ(got.bodyGlobalNodes(b), whole.body(b).numNodes);
+      EXPECT_EQ(got.bodyGlobalElements(b), whole.body(b).numElements);
+    }
+    EXPECT_EQ(got.nodeSetNames(), whole.nodeSetNames());
+    EXPECT_EQ(got.sideSetNames(), whole.sideSetNames());
+  }
+  // A root without a whole mesh: refused on every rank (no rank waits).
+  EXPECT_THROW(Mesh::scatteredInRanges(MPI_COMM_WORLD, 0, nullptr), std::logic_error);
 }
 
 TEST(MeshMigrate, RefusesADestinationPerElementThatIsNot) {
