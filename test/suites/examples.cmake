@@ -88,16 +88,23 @@ ddc_add_run_test(mesh_in_ranges_elastic_block_np3 RANKS 3 FIXTURE
   REGEX "no rank held the whole mesh \\(built in ranges of elements\\)")
 ddc_compare_histories(mesh_in_ranges_rank_independence_elastic_block example_elastic_block_np1
   mesh_in_ranges_elastic_block_np3 1e-10)
-# Other bodies (here the arch's annular sector and a Gmsh file) rank 0 alone
-# builds or reads, and deals to the ranks in even ranges of elements: the
-# arch is the 1-rank run to the rank-independence tolerance; the Gmsh block
-# is the whole-mesh PT-Scotch run on as many ranks (the same partition), its
-# Exodus II pieces too (output.cmake).
-ddc_add_run_test(mesh_on_rank_zero_arch_np3 RANKS 3 FIXTURE
-  ARGS ${PROJECT_SOURCE_DIR}/examples/arch.xml ${IN_RANGES} --output-dir ${DDC_RUNS}/mesh_on_rank_zero_arch_np3
-  FILES ${DDC_RUNS}/mesh_on_rank_zero_arch_np3/history.csv LABELS example
-  REGEX "; only rank 0 held the whole mesh \\(and sent each rank a range of its elements\\)")
-ddc_compare_histories(mesh_on_rank_zero_rank_independence_arch example_arch_np1 mesh_on_rank_zero_arch_np3 1e-10)
+# The other generators too (the arch's annular sector, the 3-D arch's
+# cylindrical shell sector): the 1-rank runs to the rank-independence
+# tolerance. A Gmsh file rank 0 alone reads and deals to
+# the ranks in even ranges of elements: the whole-mesh PT-Scotch run on as
+# many ranks (the same partition), its Exodus II pieces too (output.cmake).
+ddc_add_run_test(mesh_in_ranges_arch_np3 RANKS 3 FIXTURE
+  ARGS ${PROJECT_SOURCE_DIR}/examples/arch.xml ${IN_RANGES} --output-dir ${DDC_RUNS}/mesh_in_ranges_arch_np3
+  FILES ${DDC_RUNS}/mesh_in_ranges_arch_np3/history.csv LABELS example
+  REGEX "; no rank held the whole mesh \\(built in ranges of elements\\)")
+ddc_compare_histories(mesh_in_ranges_rank_independence_arch example_arch_np1 mesh_in_ranges_arch_np3 1e-10)
+ddc_add_run_test(mesh_in_ranges_half_ring_arch_3d_np3 RANKS 3 FIXTURE
+  ARGS ${PROJECT_SOURCE_DIR}/examples/half_ring_arch_3d.xml ${IN_RANGES}
+    --output-dir ${DDC_RUNS}/mesh_in_ranges_half_ring_arch_3d_np3
+  FILES ${DDC_RUNS}/mesh_in_ranges_half_ring_arch_3d_np3/history.csv LABELS example
+  REGEX "; no rank held the whole mesh \\(built in ranges of elements\\)")
+ddc_compare_histories(mesh_in_ranges_rank_independence_half_ring_arch_3d example_half_ring_arch_3d_np1
+  mesh_in_ranges_half_ring_arch_3d_np3 1e-10)
 foreach(mode whole rank_zero)
   set(parts)
   set(said "every rank holds the whole mesh")

@@ -20,9 +20,6 @@ using PL = Teuchos::ParameterList;
 
 namespace {
 
-/// The generators that make a body by element range.
-bool generatesByRange(const std::string& generator) { return generator == "Rectangle" || generator == "Box"; }
-
 /// This rank's even share of `count` ids, in rank order.
 ElementRange evenRange(long long count, MPI_Comm comm) {
   int rank = 0, size = 1;
@@ -116,10 +113,17 @@ std::shared_ptr<Mesh> buildMeshInRanges(PL& meshParams, const ElementFactory& fa
     runCollectively<InputError>(comm, [&] {
       for (const BodyInput& in : inputs) {
         const std::string at = in.path + "/" + in.generator;
+        PL& gp = *in.generatorParams;
         if (in.generator == "Box")
-          generateBox(*mesh, in.name, in.cellType, *in.generatorParams, at, range);
+          generateBox(*mesh, in.name, in.cellType, gp, at, range);
+        else if (in.generator == "Annular Sector")
+          generateAnnularSector(*mesh, in.name, in.cellType, gp, at, range);
+        else if (in.generator == "Cylindrical Shell Sector")
+          generateCylindricalShellSector(*mesh, in.name, in.cellType, gp, at, range);
+        else if (in.generator == "Sphere Octant")
+          generateSphereOctant(*mesh, in.name, in.cellType, gp, at, range);
         else
-          generateRectangle(*mesh, in.name, in.cellType, *in.generatorParams, at, range);
+          generateRectangle(*mesh, in.name, in.cellType, gp, at, range);
       }
     });
   }

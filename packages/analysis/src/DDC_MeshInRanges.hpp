@@ -3,12 +3,11 @@
 // of element ids, PT-Scotch partitions the ranges' dual graph in parallel,
 // and each element moves to the rank of its subdomain (migratedRankPart()).
 // The analysis takes this path when 'Partition/Mesh On Every Rank' is false,
-// the partitioner is PT-Scotch and every body comes from the Rectangle or
-// Box generator; the model it gives is the one cut from the whole mesh. With
-// other bodies (the sector, shell and octant generators, Gmsh and Exodus II
-// files) rank 0 alone builds or reads the whole mesh and sends every rank
-// its even range of elements (buildMeshOnRankZero()); from there on the path
-// is the same.
+// the partitioner is PT-Scotch and every body comes from a built-in generator
+// (generatesByRange()); the model it gives is the one cut from the whole
+// mesh. With Gmsh or Exodus II files, rank 0 alone reads the whole mesh and
+// sends every rank its even range of elements (buildMeshOnRankZero()); from
+// there on the path is the same.
 #pragma once
 
 #include <Teuchos_ParameterList.hpp>
@@ -38,7 +37,7 @@ MeshOrigin meshOrigin(const Teuchos::ParameterList& params);
 /// Whether the validated parameters `params` (the whole deck; Mesh/Bodies
 /// not yet validated) ask for a mesh built in ranges: 'Partition/Mesh On
 /// Every Rank' = false, 'Partition/Method' = PT-Scotch, and every body's
-/// Generator Rectangle or Box.
+/// Generator one of the built-in generators (generatesByRange()).
 bool meshBuiltInRanges(const Teuchos::ParameterList& params);
 
 /// The bodies of "Mesh" (validated in place) generated in this rank's even

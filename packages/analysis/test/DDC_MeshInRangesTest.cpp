@@ -115,6 +115,8 @@ TEST(MeshInRanges, ChosenForPtScotchAndRangeGeneratorsWithoutTheWholeMesh) {
   EXPECT_FALSE(ddc::meshBuiltInRanges(deck));
   deck.sublist("Partition").set("Mesh On Every Rank", false);
   deck.sublist("Mesh").sublist("Bodies").sublist("Right").set("Generator", std::string("Sphere Octant"));
+  EXPECT_TRUE(ddc::meshBuiltInRanges(deck));  // every built-in generator makes ranges
+  deck.sublist("Mesh").sublist("Bodies").sublist("Right").set("Generator", std::string("Gmsh"));
   EXPECT_FALSE(ddc::meshBuiltInRanges(deck));
 }
 
@@ -124,7 +126,7 @@ TEST(MeshInRanges, TheOriginOfTheMeshByPartitionerAndBodies) {
   deck.sublist("Partition").set("Mesh On Every Rank", false);
   deck.sublist("Partition").set("Method", std::string("PT-Scotch"));
   EXPECT_EQ(ddc::meshOrigin(deck), ddc::MeshOrigin::Ranges);
-  deck.sublist("Mesh").sublist("Bodies").sublist("Right").set("Generator", std::string("Sphere Octant"));
+  deck.sublist("Mesh").sublist("Bodies").sublist("Right").set("Generator", std::string("Exodus"));
   EXPECT_EQ(ddc::meshOrigin(deck), ddc::MeshOrigin::RankZero);
   deck.sublist("Mesh").sublist("Bodies").sublist("Right").set("Generator", std::string("Gmsh"));
   EXPECT_EQ(ddc::meshOrigin(deck), ddc::MeshOrigin::RankZero);

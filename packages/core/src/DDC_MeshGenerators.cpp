@@ -454,27 +454,26 @@ SectorGeometry readSector(Teuchos::ParameterList& params, const std::string& pat
   return s;
 }
 
-/// Coordinates of the grid points of an annular sector (index 0 radial,
+/// Coordinates of grid point p of an annular sector (index 0 radial,
 /// inner -> outer; index 1 angular, Start -> End; index 2, in 3-D, axial from
 /// z0 over `length`). Every point is mapped from (r, theta) directly, so
 /// quadratic nodes lie on their circles; the 2-D and the 3-D sector compute
-/// x and y by this one function and agree to the last bit.
+/// x and y by this one function and agree to the last bit, and so do a
+/// whole sector and one made by element range.
+Point sectorPoint(const Grid& g, const SectorGeometry& s, const Index& p, double z0, double length) {
+  // (1-t) s + t e is exact at both ends (t = 0, 1).
+  const double t = static_cast<double>(p[1]) / (g.points(1) - 1);
+  const auto cs = cosSinDegrees((1.0 - t) * s.start + t * s.end);
+  const double u = static_cast<double>(p[0]) / (g.points(0) - 1);
+  const double r = (1.0 - u) * s.ri + u * s.ro;
+  const double z = g.dim == 3 ? axisCoordinate(z0, length, p[2], g.points(2)) : 0.0;
+  return {s.cx + r * cs[0], s.cy + r * cs[1], z};
+}
+
+/// sectorPoint() of every grid point, by g.index().
 std::vector<Point> sectorPoints(const Grid& g, const SectorGeometry& s, double z0 = 0.0, double length = 0.0) {
   std::vector<Point> x(g.numPoints());
-  const int na = g.points(0), nb = g.points(1);
-  for (int b = 0; b < nb; ++b) {
-    // (1-t) s + t e is exact at both ends (t = 0, 1).
-    const double t = static_cast<double>(b) / (nb - 1);
-    const auto cs = cosSinDegrees((1.0 - t) * s.start + t * s.end);
-    for (int a = 0; a < na; ++a) {
-      const double u = static_cast<double>(a) / (na - 1);
-      const double r = (1.0 - u) * s.ri + u * s.ro;
-      for (int c = 0; c < g.points(2); ++c) {
-        const double z = g.dim == 3 ? axisCoordinate(z0, length, c, g.points(2)) : 0.0;
-        x[g.index({{a, b, c}})] = {s.cx + r * cs[0], s.cy + r * cs[1], z};
-      }
-    }
-  }
+  g.forEachPoint(1, [&](const Index& p) { x[g.index(p)] = sectorPoint(g, s, p, z0, length); });
   return x;
 }
 
@@ -698,15 +697,20 @@ std::vector<Point> rangeBoxPoints(const Grid& g, const Point& origin, const Poin
   return x;
 }
 
+/// The coordinates of some grid points of a body (grid indices, ascending).
+using PointsOf = std::function<std::vector<Point>(const std::vector<Index>&)>;
+
 /// addStructuredBody() for the elements of the body whose ids in the whole
 /// mesh lie in `range`, into the part `mesh` (Mesh::startPart()): the
 /// elements in grid order with their ids, their nodes in id order, the
-/// sets restricted to them as Mesh::part() restricts them (2-D side sets in
-/// their chain order: forward along the bottom and right sides, backward
-/// along the top and left ones), and the whole mesh grown by the body.
+/// sets restricted to them as Mesh::part() restricts them (grid sides of
+/// one name one set; 2-D side sets in their chain order: in element order
+/// along grid sides 1 and 2, backward along 0 and 3, the other way round
+/// when `reversed`), and the whole mesh grown by the body.
+/// \param coordinates the points' coordinates, as the whole body has them
 /// \return the part's index of each node point it holds, by grid index.
-std::map<std::size_t, int> addStructuredBodyRange(Mesh& mesh, int body, const Grid& g, CellType type,
-                                                  const BoxGeometry& box, const ElementRange& range,
+std::map<std::size_t, int> addStructuredBodyRange(Mesh& mesh, int body, const Grid& g, CellType type, bool reversed,
+                                                  const PointsOf& coordinates, const ElementRange& range,
                                                   const std::vector<std::string>& sideNames, const std::string& path) {
   const ReferenceCell& ref = referenceCell(type);
   const int per = cellsPerGridCell(type);
@@ -724,14 +728,13 @@ std::map<std::size_t, int> addStructuredBodyRange(Mesh& mesh, int body, const Gr
     const long long c = le / per;
     const int i = static_cast<int>(c % g.n[0]), j = static_cast<int>(c / g.n[0] % g.n[1]);
     const int k = static_cast<int>(c / (static_cast<long long>(g.n[0]) * g.n[1]));
-    corners.push_back(gridCellCorners(g, type, /*reversed=*/false, i, j, k, static_cast<int>(le % per)));
+    corners.push_back(gridCellCorners(g, type, reversed, i, j, k, static_cast<int>(le % per)));
     for (const Index& p : cellNodePoints(type, corners.back())) points.push_back(p);
   }
   auto byIndex = [&](const Index& a, const Index& b) { return g.index(a) < g.index(b); };
   std::sort(points.begin(), points.end(), byIndex);
   points.erase(std::unique(points.begin(), points.end()), points.end());
-  const std::vector<Point> x =
-      rangeBoxPoints(g, box.origin, box.length, box.distortion, ref.simplex, points);
+  const std::vector<Point> x = coordinates(points);
   std::map<std::size_t, int> node;
   std::vector<int> all;
   for (size_t q = 0; q < points.size(); ++q) {
@@ -757,22 +760,38 @@ std::map<std::size_t, int> addStructuredBodyRange(Mesh& mesh, int body, const Gr
       }
   }
   for (std::size_t side = 0; side < sides.size(); ++side) {
-    // The whole mesh's 2-D chains run counter-clockwise: backward in
-    // element order along the left (side 0) and top (side 3) sides.
-    if (g.dim == 2 && (side == 0 || side == 3)) std::reverse(sides[side].begin(), sides[side].end());
-    mesh.addSideSet(body, sideNames[side], std::move(sides[side]));
-    // Its node set holds every node on the side, also those of elements
-    // whose facets on it this part does not hold (a tetrahedron may touch a
-    // side at an edge or a corner).
-    const int d = static_cast<int>(side / 2), at = side % 2 == 0 ? 0 : g.points(d) - 1;
+    // Grid sides of one name make one set, in order of first mention.
+    if (std::find(sideNames.begin(), sideNames.end(), sideNames[side]) - sideNames.begin() != long(side)) continue;
+    std::vector<Segment> segments;
     std::vector<int> onSide;
-    for (const Index& p : points)
-      if (p[d] == at) onSide.push_back(node.at(g.index(p)));
-    mesh.addNodeSet(body, sideNames[side], std::move(onSide));
+    for (std::size_t other = side; other < sides.size(); ++other) {
+      if (sideNames[other] != sideNames[side]) continue;
+      // The whole mesh's 2-D chains run counter-clockwise in space: backward
+      // in element order along grid sides 0 and 3, or 1 and 2 when the map
+      // reverses the orientation.
+      const bool backward = (other == 0 || other == 3) != reversed;
+      if (g.dim == 2 && backward) std::reverse(sides[other].begin(), sides[other].end());
+      segments.insert(segments.end(), sides[other].begin(), sides[other].end());
+      // The node set holds every node on the side, also those of elements
+      // whose facets on it this part does not hold (a tetrahedron may touch
+      // a side at an edge or a corner).
+      const int d = static_cast<int>(other / 2), at = other % 2 == 0 ? 0 : g.points(d) - 1;
+      for (const Index& p : points)
+        if (p[d] == at) onSide.push_back(node.at(g.index(p)));
+    }
+    mesh.addSideSet(body, sideNames[side], std::move(segments));
+    mesh.addNodeSet(body, sideNames[side], std::move(onSide));  // sorted, and united with the segments' nodes
   }
   mesh.addNodeSet(body, "all", std::move(all));
   mesh.growWhole(nodePointsBefore(g, type, Index{{0, 0, g.points(2)}}), cells * per);
   return node;
+}
+
+/// The points of a Rectangle or Box, displaced as the whole body's are.
+PointsOf boxPointsOf(const BoxGeometry& box, CellType type) {
+  return [box, simplex = referenceCell(type).simplex](const std::vector<Index>& points) {
+    return rangeBoxPoints(box.grid, box.origin, box.length, box.distortion, simplex, points);
+  };
 }
 
 /// The part's index of the node at grid index `index` as a one-node set,
@@ -791,8 +810,8 @@ int generateRectangle(Mesh& part, const std::string& bodyName, CellType type, Te
   const BoxGeometry box = readBox(params, type, 2, "Rectangle", path);
   const Grid& g = box.grid;
   const int body = part.beginBody(bodyName, type);
-  const auto node =
-      addStructuredBodyRange(part, body, g, type, box, range, {"left", "right", "bottom", "top"}, path);
+  const auto node = addStructuredBodyRange(part, body, g, type, /*reversed=*/false, boxPointsOf(box, type), range,
+                                           {"left", "right", "bottom", "top"}, path);
   const int na = g.points(0), nb = g.points(1);
   part.addNodeSet(body, "bottom left", heldNode(node, g.index({{0, 0, 0}})));
   part.addNodeSet(body, "bottom right", heldNode(node, g.index({{na - 1, 0, 0}})));
@@ -808,8 +827,8 @@ int generateBox(Mesh& part, const std::string& bodyName, CellType type, Teuchos:
   const BoxGeometry box = readBox(params, type, 3, "Box", path);
   const Grid& g = box.grid;
   const int body = part.beginBody(bodyName, type);
-  const auto node =
-      addStructuredBodyRange(part, body, g, type, box, range, {"left", "right", "bottom", "top", "back", "front"}, path);
+  const auto node = addStructuredBodyRange(part, body, g, type, /*reversed=*/false, boxPointsOf(box, type), range,
+                                           {"left", "right", "bottom", "top", "back", "front"}, path);
   for (int c = 0; c < 2; ++c)
     for (int b = 0; b < 2; ++b)
       for (int a = 0; a < 2; ++a) {
@@ -818,15 +837,6 @@ int generateBox(Mesh& part, const std::string& bodyName, CellType type, Teuchos:
                         heldNode(node, g.index({{a * (g.points(0) - 1), b * (g.points(1) - 1), c * (g.points(2) - 1)}})));
       }
   return body;
-}
-
-long long structuredElementCount(const std::string& generator, CellType type, Teuchos::ParameterList& params,
-                                 const std::string& path) {
-  DDC_CHECK(generator == "Rectangle" || generator == "Box", "structuredElementCount() of a " << generator);
-  const bool box3 = generator == "Box";
-  validateLevel(params, box3 ? *BoxGenerator::getValidParameters() : *RectangleGenerator::getValidParameters(), path);
-  const Grid g = readBox(params, type, box3 ? 3 : 2, generator, path).grid;
-  return static_cast<long long>(g.n[0]) * g.n[1] * (g.dim == 3 ? g.n[2] : 1) * cellsPerGridCell(type);
 }
 
 // ----------------------------------------------------------- Annular sector
@@ -929,33 +939,151 @@ std::vector<double> gradedParameters(int n, int m, double r) {
 
 }  // namespace
 
-int generateSphereOctant(Mesh& mesh, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
-                         const std::string& path) {
-  validateLevel(params, *SphereOctantGenerator::getValidParameters(), path);
-  const int refinement = params.get<int>("Refinement");
-  const int n = refinedCount(params, "Elements", refinement, path);
-  const Grid g = makeGrid(type, {n, n, n}, "Sphere Octant", path);
-  requireRoom(mesh, g, type, path);
-  const double radius = params.get<double>("Radius");
-  const Point c{params.get<double>("Center X"), params.get<double>("Center Y"), params.get<double>("Center Z")};
-  const auto t = gradedParameters(n, g.m, std::pow(params.get<double>("Progression"), 1.0 / refinement));
-  // Cube point p = (a, b, w) in [0,1] x [0,1] x [-1,0], graded towards the
-  // pole (0, 0, -1), mapped to the ball by p (1 - m + m^2/|p|), m = |p|_inf
-  // (see the header): the outer cube faces (m = 1) onto the sphere, the
-  // planes a = 0, b = 0, w = 0 onto themselves.
-  std::vector<Point> x(g.numPoints());
-  g.forEachPoint(1, [&](const Index& p) {
+namespace {
+
+/// The Sphere Octant's map of grid points to space (see the header): cube
+/// point p = (a, b, w) in [0,1] x [0,1] x [-1,0], graded towards the pole
+/// (0, 0, -1), mapped to the ball by p (1 - m + m^2/|p|), m = |p|_inf: the
+/// outer cube faces (m = 1) onto the sphere, the planes a = 0, b = 0, w = 0
+/// onto themselves. One function for the whole body and its ranges.
+struct OctantMap {
+  Point centre{0, 0, 0};
+  double radius = 1.0;
+  std::vector<double> t;  ///< graded parameter of each grid index
+  OctantMap(const Grid& g, Teuchos::ParameterList& params, int n) {
+    const int refinement = params.get<int>("Refinement");
+    radius = params.get<double>("Radius");
+    centre = {params.get<double>("Center X"), params.get<double>("Center Y"), params.get<double>("Center Z")};
+    t = gradedParameters(n, g.m, std::pow(params.get<double>("Progression"), 1.0 / refinement));
+  }
+  Point operator()(const Index& p) const {
     const double a = t[p[0]], b = t[p[1]], w = t[p[2]] - 1.0;
     const double norm = std::sqrt(a * a + b * b + w * w);
     const double m = std::max({a, b, -w});
     const double scale = norm > 0.0 ? radius * (1.0 - m + m * m / norm) : 0.0;
-    x[g.index(p)] = {c[0] + scale * a, c[1] + scale * b, c[2] + scale * w};
-  });
+    return {centre[0] + scale * a, centre[1] + scale * b, centre[2] + scale * w};
+  }
+};
+
+/// The Sphere Octant's grid: n elements along each edge of the cube.
+Grid octantGrid(CellType type, Teuchos::ParameterList& params, const std::string& path, int& n) {
+  n = refinedCount(params, "Elements", params.get<int>("Refinement"), path);
+  return makeGrid(type, {n, n, n}, "Sphere Octant", path);
+}
+
+const std::vector<std::string> kOctantSides = {"symmetry x", "sphere", "symmetry y", "sphere", "sphere", "top"};
+
+}  // namespace
+
+int generateSphereOctant(Mesh& mesh, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
+                         const std::string& path) {
+  validateLevel(params, *SphereOctantGenerator::getValidParameters(), path);
+  int n = 0;
+  const Grid g = octantGrid(type, params, path, n);
+  requireRoom(mesh, g, type, path);
+  const OctantMap map(g, params, n);
+  std::vector<Point> x(g.numPoints());
+  g.forEachPoint(1, [&](const Index& p) { x[g.index(p)] = map(p); });
   const int body = mesh.beginBody(bodyName, type);
-  const auto node =
-      addStructuredBody(mesh, body, g, type, /*reversed=*/false, x, {"symmetry x", "sphere", "symmetry y", "sphere", "sphere", "top"});
+  const auto node = addStructuredBody(mesh, body, g, type, /*reversed=*/false, x, kOctantSides);
   mesh.addNodeSet(body, "pole", {node[g.index({{0, 0, 0}})]});
   return body;
+}
+
+// ------------------------------- Sectors and the octant by element range
+
+namespace {
+
+/// sectorPoint() of the given grid points.
+PointsOf sectorPointsOf(const Grid& g, const SectorGeometry& s, double z0, double length) {
+  return [g, s, z0, length](const std::vector<Index>& points) {
+    std::vector<Point> x;
+    x.reserve(points.size());
+    for (const Index& p : points) x.push_back(sectorPoint(g, s, p, z0, length));
+    return x;
+  };
+}
+
+}  // namespace
+
+int generateAnnularSector(Mesh& part, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
+                          const std::string& path, const ElementRange& range) {
+  DDC_CHECK(part.isPart(), "generateAnnularSector() by range into a whole mesh");
+  validateLevel(params, *AnnularSectorGenerator::getValidParameters(), path);
+  const SectorGeometry s = readSector(params, path);
+  const Grid g = makeGrid(type, {s.nr, s.nc}, "Annular Sector", path);
+  const int body = part.beginBody(bodyName, type);
+  addStructuredBodyRange(part, body, g, type, /*reversed=*/s.end < s.start, sectorPointsOf(g, s, 0.0, 0.0), range,
+                         {"inner", "outer", "start", "end"}, path);
+  return body;
+}
+
+int generateCylindricalShellSector(Mesh& part, const std::string& bodyName, CellType type,
+                                   Teuchos::ParameterList& params, const std::string& path,
+                                   const ElementRange& range) {
+  DDC_CHECK(part.isPart(), "generateCylindricalShellSector() by range into a whole mesh");
+  validateLevel(params, *CylindricalShellSectorGenerator::getValidParameters(), path);
+  const SectorGeometry s = readSector(params, path);
+  const int nz = refinedCount(params, "Axial Elements", s.refinement, path);
+  const Grid g = makeGrid(type, {s.nr, s.nc, nz}, "Cylindrical Shell Sector", path);
+  const int body = part.beginBody(bodyName, type);
+  addStructuredBodyRange(part, body, g, type, /*reversed=*/s.end < s.start,
+                         sectorPointsOf(g, s, params.get<double>("Origin Z"), params.get<double>("Axial Length")),
+                         range, {"inner", "outer", "start", "end", "back", "front"}, path);
+  return body;
+}
+
+int generateSphereOctant(Mesh& part, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
+                         const std::string& path, const ElementRange& range) {
+  DDC_CHECK(part.isPart(), "generateSphereOctant() by range into a whole mesh");
+  validateLevel(params, *SphereOctantGenerator::getValidParameters(), path);
+  int n = 0;
+  const Grid g = octantGrid(type, params, path, n);
+  const OctantMap map(g, params, n);
+  const int body = part.beginBody(bodyName, type);
+  const auto node = addStructuredBodyRange(
+      part, body, g, type, /*reversed=*/false,
+      [&map](const std::vector<Index>& points) {
+        std::vector<Point> x;
+        x.reserve(points.size());
+        for (const Index& p : points) x.push_back(map(p));
+        return x;
+      },
+      range, kOctantSides, path);
+  part.addNodeSet(body, "pole", heldNode(node, g.index({{0, 0, 0}})));
+  return body;
+}
+
+bool generatesByRange(const std::string& generator) {
+  return generator == "Rectangle" || generator == "Box" || generator == "Annular Sector" ||
+         generator == "Cylindrical Shell Sector" || generator == "Sphere Octant";
+}
+
+long long structuredElementCount(const std::string& generator, CellType type, Teuchos::ParameterList& params,
+                                 const std::string& path) {
+  DDC_CHECK(generatesByRange(generator), "structuredElementCount() of a " << generator);
+  Grid g;
+  if (generator == "Rectangle" || generator == "Box") {
+    const bool box3 = generator == "Box";
+    validateLevel(params, box3 ? *BoxGenerator::getValidParameters() : *RectangleGenerator::getValidParameters(),
+                  path);
+    g = readBox(params, type, box3 ? 3 : 2, generator, path).grid;
+  } else if (generator == "Sphere Octant") {
+    validateLevel(params, *SphereOctantGenerator::getValidParameters(), path);
+    int n = 0;
+    g = octantGrid(type, params, path, n);
+  } else {
+    const bool shell = generator == "Cylindrical Shell Sector";
+    validateLevel(params,
+                  shell ? *CylindricalShellSectorGenerator::getValidParameters()
+                        : *AnnularSectorGenerator::getValidParameters(),
+                  path);
+    const SectorGeometry s = readSector(params, path);
+    g = shell ? makeGrid(type, {s.nr, s.nc, refinedCount(params, "Axial Elements", s.refinement, path)}, generator,
+                         path)
+              : makeGrid(type, {s.nr, s.nc}, generator, path);
+  }
+  return static_cast<long long>(g.n[0]) * g.n[1] * (g.dim == 3 ? g.n[2] : 1) * cellsPerGridCell(type);
 }
 
 }  // namespace ddc

@@ -228,10 +228,15 @@ struct ElementRange {
 int generateRectangle(Mesh& part, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
                       const std::string& path, const ElementRange& range);
 
-/// The number of elements generateRectangle() (`generator` "Rectangle") or
-/// generateBox() ("Box") makes of a body, from its parameters (validated
-/// and checked as those functions check them), without making any: what an
-/// even range of element ids over several bodies needs first.
+/// Whether `generator` (a body's Generator) can make a body by element
+/// range: Rectangle, Box, Annular Sector, Cylindrical Shell Sector, Sphere
+/// Octant.
+bool generatesByRange(const std::string& generator);
+
+/// The number of elements the generator `generator` (generatesByRange())
+/// makes of a body, from its parameters (validated and checked as the
+/// generator checks them), without making any: what an even range of
+/// element ids over several bodies needs first.
 long long structuredElementCount(const std::string& generator, CellType type, Teuchos::ParameterList& params,
                                  const std::string& path);
 
@@ -243,6 +248,10 @@ long long structuredElementCount(const std::string& generator, CellType type, Te
 ///         non-positive element counts or refinement.
 int generateAnnularSector(Mesh& mesh, const std::string& bodyName, CellType type,
                           Teuchos::ParameterList& params, const std::string& path);
+
+/// generateAnnularSector() by element range, as generateRectangle() by range.
+int generateAnnularSector(Mesh& part, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
+                          const std::string& path, const ElementRange& range);
 
 /// Add a box body named `bodyName` to `mesh`.
 /// \param type Hex8, Hex20, Hex27, Tet4 or Tet10.
@@ -268,6 +277,12 @@ int generateBox(Mesh& part, const std::string& bodyName, CellType type, Teuchos:
 int generateCylindricalShellSector(Mesh& mesh, const std::string& bodyName, CellType type,
                                    Teuchos::ParameterList& params, const std::string& path);
 
+/// generateCylindricalShellSector() by element range, as generateRectangle()
+/// by range.
+int generateCylindricalShellSector(Mesh& part, const std::string& bodyName, CellType type,
+                                   Teuchos::ParameterList& params, const std::string& path,
+                                   const ElementRange& range);
+
 /// Add a sphere-octant body named `bodyName` to `mesh`.
 /// \param type Hex8, Hex20, Hex27, Tet4 or Tet10.
 /// \param params validated against SphereOctantGenerator::getValidParameters().
@@ -276,5 +291,9 @@ int generateCylindricalShellSector(Mesh& mesh, const std::string& bodyName, Cell
 ///         range (Progression outside [1, 2]) or a 2-D cell type.
 int generateSphereOctant(Mesh& mesh, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
                          const std::string& path);
+
+/// generateSphereOctant() by element range, as generateRectangle() by range.
+int generateSphereOctant(Mesh& part, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
+                         const std::string& path, const ElementRange& range);
 
 }  // namespace ddc
