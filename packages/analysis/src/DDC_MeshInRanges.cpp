@@ -18,18 +18,6 @@ namespace ddc {
 
 using PL = Teuchos::ParameterList;
 
-namespace {
-
-/// This rank's even share of `count` ids, in rank order.
-ElementRange evenRange(long long count, MPI_Comm comm) {
-  int rank = 0, size = 1;
-  MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &size);
-  return ElementRange{count * rank / size, count * (rank + 1) / size};
-}
-
-}  // namespace
-
 bool meshBuiltInRanges(const PL& params) {
   if (!params.isSublist("Partition") || !params.isSublist("Mesh")) return false;
   const PL& partition = params.sublist("Partition");
@@ -104,7 +92,8 @@ std::shared_ptr<Mesh> buildMeshInRanges(PL& meshParams, const ElementFactory& fa
     DDC_CHECK(generatesByRange(in.generator), "buildMeshInRanges() of a " << in.generator << " body");
     total += structuredElementCount(in.generator, in.cellType, *in.generatorParams, in.path + "/" + in.generator);
   }
-  const ElementRange range = evenRange(total, comm);
+  const auto [first, last] = evenShare(total, comm);
+  const ElementRange range{first, last};
   auto mesh = std::make_shared<Mesh>(Mesh::startPart());
   if (budget && std::isfinite(budget->bytes)) mesh->setMemoryBudget(budget->bytes, budget->source, budgetHint);
   {

@@ -34,15 +34,6 @@ constexpr double kNearlyIncompressible = 0.49;
 constexpr double kMinBodyExtent = 1e-100;
 constexpr double kMaxCoordinate = Mesh::kMaxCoordinate;
 
-/// This rank's even share [first, last) of `count` items in rank order: the
-/// lowest rank that finds an error has the lowest item.
-std::pair<int, int> evenShare(int count, MPI_Comm comm) {
-  int rank = 0, size = 1;
-  MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &size);
-  return {int(static_cast<long long>(count) * rank / size), int(static_cast<long long>(count) * (rank + 1) / size)};
-}
-
 /// check(first, last) on this rank's share of the elements of `mesh`: an
 /// even share of a whole mesh, all of a part's (Mesh::isPart()); the
 /// InputError of the lowest rank that throws one is thrown on every rank
@@ -50,9 +41,10 @@ std::pair<int, int> evenShare(int count, MPI_Comm comm) {
 /// the lowest element).
 template <class Check>
 void checkShareCollectively(const Mesh& mesh, MPI_Comm comm, const Check& check) {
+  // The lowest rank that finds an error has the lowest element.
   const auto [first, last] =
-      mesh.isPart() ? std::pair<int, int>(0, mesh.numElements()) : evenShare(mesh.numElements(), comm);
-  runCollectively<InputError>(comm, [&] { check(first, last); });
+      mesh.isPart() ? std::pair<long long, long long>(0, mesh.numElements()) : evenShare(mesh.numElements(), comm);
+  runCollectively<InputError>(comm, [&] { check(int(first), int(last)); });
 }
 }  // namespace
 

@@ -466,7 +466,8 @@ Mesh Mesh::scatteredInRanges(MPI_Comm comm, int root, const Mesh* whole) {
     std::vector<int> destination(size_t(whole->numElements()));
     const long long n = whole->numElements();
     for (int r = 0; r < ranks; ++r)
-      for (long long e = n * r / ranks; e < n * (r + 1) / ranks; ++e) destination[size_t(e)] = r;
+      for (long long e = evenShareStart(n, r, ranks); e < evenShareStart(n, r + 1, ranks); ++e)
+        destination[size_t(e)] = r;
     return whole->migrated(comm, destination);
   }
   Mesh shell;

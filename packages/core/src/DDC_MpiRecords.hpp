@@ -11,6 +11,7 @@
 #include <climits>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace ddc {
@@ -36,6 +37,15 @@ inline int commSize(MPI_Comm comm) {
   int s = 1;
   MPI_Comm_size(comm, &s);
   return s;
+}
+
+/// Rank `rank`'s even share of `count` items over `ranks` ranks in rank
+/// order starts at evenShareStart(count, rank, ranks) and ends where the
+/// next rank's starts; this rank's share of `comm` is evenShare().
+inline long long evenShareStart(long long count, int rank, int ranks) { return count * rank / ranks; }
+inline std::pair<long long, long long> evenShare(long long count, MPI_Comm comm) {
+  const int rank = commRank(comm), ranks = commSize(comm);
+  return {evenShareStart(count, rank, ranks), evenShareStart(count, rank + 1, ranks)};
 }
 
 /// Variable-size all-to-all of trivially copyable records: send[r] goes to
