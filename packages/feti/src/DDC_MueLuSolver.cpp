@@ -6,6 +6,7 @@
 #include <MueLu_ParameterListInterpreter.hpp>
 #include <MueLu_TpetraOperator.hpp>
 #include <sstream>
+#include <type_traits>
 
 #include "DDC_Error.hpp"
 #include "DDC_IterativeSolvers.hpp"
@@ -51,7 +52,12 @@ Teuchos::ParameterList defaultMueLuList() {
   p.set("transpose: use implicit", true,
         "the restriction R = P^T is applied as a transpose product of P instead of being stored: less memory "
         "at the same iterations (doc/performance.md, \"The matrix assembled in place\")");
-  p.set("coarse: max size", 1000, "stop coarsening below this many rows");
+  // With 1000, block_3d's hierarchy on 8-16 ranks (uncoupled aggregates
+  // stop at rank boundaries) had a level of about 1300 rows coarsened once
+  // more to 24: CG took 29-31 iterations against 20 on one rank; solving
+  // that level directly gives 20-22 on 1-16 ranks at the same memory and
+  // set-up time (doc/performance.md, "Belos-MueLu on more ranks").
+  p.set("coarse: max size", 2000, "stop coarsening below this many rows");
   p.set("coarse: type", std::string("KLU2"),
         "exact coarse solve; correct in parallel only because repartitioning moves the coarse level to one "
         "rank (KLU2 on a distributed matrix is wrong in this Trilinos, doc/trilinos-notes.md)");
@@ -64,12 +70,32 @@ Teuchos::ParameterList defaultMueLuList() {
     z.set("algorithm", std::string("multijagged"), "geometric partitioner using the node coordinates");
   }
   p.set("repartition: start level", 1, "repartition from level 1 (the fine level stays as given)");
-  p.set("repartition: min rows per proc", 1000,
+  p.set("repartition: min rows per proc", 2000,
         "a rank should own at least this many rows; a level with fewer rows in total goes to one rank, "
         "so the coarsest level (<= 'coarse: max size') always does");
   p.set("repartition: max imbalance", 1.2, "repartition when max/mean rows per rank exceeds this");
   p.set("repartition: use subcommunicators", true, "levels on fewer ranks get their own communicator");
   return p;
+}
+
+/// KLU2 solves the coarsest level right only on one rank (doc/trilinos-notes.md):
+/// repartitioning puts a level of fewer than 'repartition: min rows per
+/// proc' rows on one rank, so the coarsest (at most 'coarse: max size'
+/// rows) must not be larger. \throws InputError naming both parameters.
+void requireOneRankCoarseLevel(const Teuchos::ParameterList& list) {
+  auto value = [&](const char* name, const auto& fallback) {
+    using T = std::decay_t<decltype(fallback)>;
+    return list.isType<T>(name) ? list.get<T>(name) : fallback;
+  };
+  if (value("coarse: type", std::string("KLU2")) != "KLU2" || !value("repartition: enable", true)) return;
+  const int maxSize = value("coarse: max size", 2000), minRows = value("repartition: min rows per proc", 2000);
+  DDC_INPUT_REQUIRE(maxSize <= minRows,
+                    "parameter '" << MueLuSolver::kType << "/MueLu/coarse: max size' (" << maxSize
+                                  << ") is above 'repartition: min rows per proc' (" << minRows
+                                  << "): a coarsest level of up to " << maxSize
+                                  << " rows could be spread over several ranks, where the coarse solver KLU2 is "
+                                     "wrong in this Trilinos (doc/trilinos-notes.md); raise 'repartition: min rows "
+                                     "per proc' with it, or choose another 'coarse: type'");
 }
 
 }  // namespace
@@ -125,6 +151,7 @@ MueLuSolver::MueLuSolver(const Teuchos::ParameterList& params)
     m.userSetRepartition = user.isParameter("repartition: enable");
     m.userSetCoarse = user.isParameter("coarse: type");
   }
+  requireOneRankCoarseLevel(m.mueluList);
   if (verbosity_ >= 1 && !(params.isSublist("MueLu") && params.sublist("MueLu").isParameter("verbosity")))
     m.mueluList.set("verbosity", "low");
   // Let MueLu validate the list now (its master list, top level and

@@ -883,6 +883,22 @@ TEST(MueLuSolver, MisspeltMueLuParameterIsAnInputError) {
   expectThrowWith<ddc::InputError>([&] { make("Belos-MueLu", e); }, {"Belos-MueLu/MueLu/number of equations"});
 }
 
+TEST(MueLuSolver, ACoarsestLevelThatCouldSpanRanksIsRefusedWithKlu2) {
+  // KLU2 is wrong on a distributed matrix: the coarsest level (up to
+  // 'coarse: max size' rows) must be one repartitioning puts on one rank.
+  Teuchos::ParameterList big;
+  big.sublist("MueLu").set("coarse: max size", 5000);
+  expectThrowWith<ddc::InputError>([&] { make("Belos-MueLu", big); },
+                                   {"Belos-MueLu/MueLu/coarse: max size' (5000)",
+                                    "'repartition: min rows per proc' (2000)", "KLU2"});
+  Teuchos::ParameterList both = big;
+  both.sublist("MueLu").set("repartition: min rows per proc", 5000);
+  EXPECT_NO_THROW(make("Belos-MueLu", both));
+  Teuchos::ParameterList other = big;
+  other.sublist("MueLu").set("coarse: type", std::string("CHEBYSHEV"));
+  EXPECT_NO_THROW(make("Belos-MueLu", other));
+}
+
 TEST(MueLuSolver, ReuseOptionUpdatesTheHierarchy) {
   // "reuse: type" = "tP": numeric() keeps the prolongators and recomputes
   // the coarse matrices and smoothers (MueLu::ReuseTpetraPreconditioner).
