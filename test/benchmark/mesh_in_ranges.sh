@@ -1,7 +1,11 @@
 #!/usr/bin/env bash
 # What building the mesh in ranges saves (doc/performance.md, "Memory at
-# set-up"): examples/block_3d.xml on NP ranks with the whole mesh on every
-# rank (METIS, PT-Scotch), each rank's part cut from the whole mesh it built
+# set-up"): examples/block_3d.xml (MODEL=block_3d), or the Hertz sphere
+# with contact (MODEL=hertz_sphere: sphere and block at the refinement, the
+# decomposed element under FETI-DP; another SOLVERS entry, e.g. MUMPS,
+# solves the conventional element monolithically), on NP ranks with the
+# whole mesh on every rank (METIS, PT-Scotch), each rank's part cut from the
+# whole mesh it built
 # (METIS, 'Partition/Mesh On Every Rank' = false), and the mesh built in
 # ranges (PT-Scotch, the same parameter false: no rank holds the whole
 # mesh). One run per row. Prints a markdown table: peak resident memory per
@@ -12,14 +16,23 @@
 # meaningful, time is not. Not part of ctest.
 #
 #   bash test/benchmark/mesh_in_ranges.sh [BUILD_DIR]     # default: build
-# Environment: NP (16), REFINEMENT (8), SOLVERS ("Belos-MueLu FETI-DP").
+# Environment: NP (16), MODEL (block_3d), REFINEMENT (8), SOLVERS
+# ("Belos-MueLu FETI-DP"; for hertz_sphere "FETI-DP").
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 # shellcheck source=common.sh
 . test/benchmark/common.sh "${1:-build}"
 NP=${NP:-16}
 REFINEMENT=${REFINEMENT:-8}
-SOLVERS=${SOLVERS:-Belos-MueLu FETI-DP}
+MODEL=${MODEL:-block_3d}
+if [[ $MODEL == hertz_sphere ]]; then SOLVERS=${SOLVERS:-FETI-DP}; else SOLVERS=${SOLVERS:-Belos-MueLu FETI-DP}; fi
+case $MODEL in
+  block_3d) MODEL_ARGS=(examples/block_3d.xml --set "Mesh/Bodies/Block/Box/Refinement=$REFINEMENT") ;;
+  hertz_sphere)
+    MODEL_ARGS=(examples/hertz_sphere.xml --set "Mesh/Bodies/Sphere/Sphere Octant/Refinement=$REFINEMENT"
+      --set "Mesh/Bodies/Block/Box/Refinement=$REFINEMENT" --set "Partition/Number of Subdomains=0") ;;
+  *) echo "MODEL must be block_3d or hertz_sphere, not '$MODEL'" >&2; exit 2 ;;
+esac
 
 # stamped: each line of stdin prefixed with the seconds since the start.
 stamped() { python3 -u -c 'import sys, time
@@ -32,9 +45,11 @@ row() {
   shift 2
   local log=$OUT/run.log solver_args
   if [[ $solver == FETI-DP ]]; then solver_args=(--set Solver/Strategy=FETI-DP)
-  else solver_args=(--set "Solver/Linear Solver/Type=$solver"); fi
-  mpirun -np "$NP" /usr/bin/time -f "RSS %M" "$APP" examples/block_3d.xml \
-    --set "Mesh/Bodies/Block/Box/Refinement=$REFINEMENT" "${solver_args[@]}" --set Output/VTK=false \
+  else solver_args=(--set Solver/Strategy=Monolithic --set "Solver/Linear Solver/Type=$solver"); fi
+  if [[ $MODEL == hertz_sphere && $solver != FETI-DP ]]; then
+    solver_args+=(--set "Contact/Formulation=Node-To-Surface")
+  fi
+  mpirun -np "$NP" /usr/bin/time -f "RSS %M" "$APP" "${MODEL_ARGS[@]}" "${solver_args[@]}" --set Output/VTK=false \
     --set "Output/Checkpoint Interval=0" --set "Solver/Memory Check=false" --output-dir "$OUT/o" "$@" 2>&1 |
     stamped >"$log" || { echo "| $solver | $mode | failed: $(grep -m1 -i error "$log") | | | |"; return; }
   local rss partition distribution wall
@@ -46,7 +61,7 @@ row() {
   echo "| $solver | $mode | $rss | ${partition:--} | $distribution | $wall |"
 }
 
-echo "block_3d at Refinement $REFINEMENT on $NP ranks"
+echo "$MODEL at Refinement $REFINEMENT on $NP ranks"
 echo
 echo "| solver | mesh | peak MiB per rank (min / median / max) | s to partition | s to distribution | s in all |"
 echo "|---|---|---|---:|---:|---:|"

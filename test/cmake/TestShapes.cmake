@@ -117,14 +117,17 @@ function(ddc_check_history name run)
   set_tests_properties(${name} PROPERTIES FIXTURES_REQUIRED ${fixture} LABELS "${C_LABELS}")
 endfunction()
 
-# ddc_compare_histories(<name> <run a> <run b> <tolerance> [COLUMNS c...] [LABELS l...]):
-# tools/compare_history.cpp on the history.csv of two runs (both declared
-# with FIXTURE): the COLUMNS (default: every column but wall_seconds) agree
-# to <tolerance> relative ("exact": field for field).
+# ddc_compare_histories(<name> <run a> <run b> <tolerance> [FILE f] [COLUMNS c...] [LABELS l...]):
+# tools/compare_history.cpp on the history.csv (or the CSV file FILE) of two
+# runs (both declared with FIXTURE): the COLUMNS (default: every column but
+# wall_seconds) agree to <tolerance> relative ("exact": field for field).
 function(ddc_compare_histories name a b tolerance)
-  cmake_parse_arguments(C "" "" "COLUMNS;LABELS" ${ARGN})
+  cmake_parse_arguments(C "" "FILE" "COLUMNS;LABELS" ${ARGN})
   list(PREPEND C_LABELS system)
-  add_test(NAME ${name} COMMAND compare_history ${DDC_RUNS}/${a}/history.csv ${DDC_RUNS}/${b}/history.csv
+  if(NOT C_FILE)
+    set(C_FILE history.csv)
+  endif()
+  add_test(NAME ${name} COMMAND compare_history ${DDC_RUNS}/${a}/${C_FILE} ${DDC_RUNS}/${b}/${C_FILE}
     ${tolerance} ${C_COLUMNS})
   set_tests_properties(${name} PROPERTIES FIXTURES_REQUIRED "${a};${b}" LABELS "${C_LABELS}")
 endfunction()

@@ -435,6 +435,51 @@ foreach(case bybody_np1 bybody_np2 metis8_np3 metis32_np2 ptscotch8_np3)
     COLUMNS ${HERTZ_COLUMNS})
   dd_contact_check(hertz_sphere_${case}_one_exchange_per_step ${name} NROWS 4 CHECKS "all:contact_exchanges:==:1")
 endforeach()
+# Contact with no rank holding the whole mesh: with Partition/Method =
+# PT-Scotch and Mesh On Every Rank = false each rank generates an even range
+# of the elements and keeps its subdomains' part, and the contact surfaces
+# are registered from the parts by their ids in the whole mesh (the Hertz
+# sphere's "sphere" side set merges three grid sides, so its facets are not
+# in element order). Each run equals the whole-mesh run on the same ranks
+# and partition to round-off, its history and its contact_nodes.csv (pairs,
+# slave nodes, gaps, multipliers, states): the conventional element solved
+# monolithically, the decomposed element under FETI-DP, with friction, and
+# the 2-D half rings. Round-off: FETI-DP's runs are bitwise equal (0
+# measured); MUMPS on 2 ranks sums in message order, so the Monolithic
+# run differs from itself by 2e-12 in the near-zero contact_force_x (three
+# repeated whole-mesh runs) and is compared to the rank-independence
+# tolerance, 1e-10.
+set(CONTACT_PARTS_HERTZ_conventional_Monolithic_np2 ${HERTZ} --set "Contact/Formulation=Node-To-Surface"
+  --set "Solver/Strategy=Monolithic" --set "Partition/Method=PT-Scotch")
+set(CONTACT_PARTS_HERTZ_decomposed_FETI-DP_np3 ${HERTZ} ${HERTZ_PART_ptscotch8})
+set(CONTACT_PARTS_HERTZ_friction_FETI-DP_np3 ${HERTZ} ${HERTZ_PART_ptscotch8}
+  --set "Contact/Pairs/Sphere on block/Friction Coefficient=0.3")
+set(CONTACT_PARTS_half_rings_FETI-DP_np3 ${PROJECT_SOURCE_DIR}/examples/two_half_rings.xml
+  --set "Partition/Method=PT-Scotch" --set "Output/Contact Nodes=true")
+foreach(case HERTZ_conventional_Monolithic_np2 HERTZ_decomposed_FETI-DP_np3 HERTZ_friction_FETI-DP_np3
+    half_rings_FETI-DP_np3)
+  string(REGEX MATCH "[0-9]+$" np ${case})
+  string(TOLOWER ${case} name)
+  set(tolerance 1e-12)
+  if(case MATCHES Monolithic)
+    set(tolerance 1e-10)
+  endif()
+  foreach(mode whole in_ranges)
+    set(parts)
+    set(said "every rank holds the whole mesh")
+    if(mode STREQUAL in_ranges)
+      set(parts --set "Partition/Mesh On Every Rank=false")
+      set(said "; no rank held the whole mesh \\(built in ranges of elements\\).*step +[0-9]+/[0-9]+ .*contacts [1-9]")
+    endif()
+    ddc_add_run_test(contact_${mode}_${name} RANKS ${np} FIXTURE
+      ARGS ${CONTACT_PARTS_${case}} ${parts} --set "Output/VTK=false" --output-dir ${DDC_RUNS}/contact_${mode}_${name}
+      REGEX "${said}" FILES ${DDC_RUNS}/contact_${mode}_${name}/contact_nodes.csv LABELS contact)
+  endforeach()
+  ddc_compare_histories(contact_in_ranges_equal_whole_${name} contact_whole_${name} contact_in_ranges_${name}
+    ${tolerance} LABELS contact)
+  ddc_compare_histories(contact_in_ranges_equal_whole_${name}_nodes contact_whole_${name} contact_in_ranges_${name}
+    ${tolerance} FILE contact_nodes.csv LABELS contact)
+endforeach()
 # Hertz with friction (mu = 0.3; the block 1000 times stiffer, so the
 # sphere's surface slides outwards under the load: 8 nodes stick, 1 slips at
 # the end): 3-D friction on the quarter model, whose symmetry-plane nodes

@@ -35,8 +35,7 @@
 #                   continued with the whole mesh on every rank, and one
 #                   written with the whole mesh continued on parts, both on
 #                   M ranks into other directories: history.csv equals the
-#                   uninterrupted run's to 1e-10 (the deck must have no
-#                   contact pairs); with Output/Exodus the continued run's
+#                   uninterrupted run's to 1e-10; with Output/Exodus the continued run's
 #                   results.e, or its pieces on parts, equals the
 #                   uninterrupted run's to 1e-10 (tools/check_exodus_pieces.py,
 #                   PYTHON): the steps before the checkpoint are copied by

@@ -42,7 +42,6 @@ Analysis::Analysis(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramet
                          params.sublist("Contact").sublist("Pairs").numParams() > 0),
                     "parameter 'Output/Contact Nodes' is true, but the deck has no contact pairs "
                     "(Contact/Pairs): there are no contact nodes to write");
-  requireWholeMeshWhereNeeded(params);
   // Every rank reads the mesh and map files named in the parameters: a file
   // missing or different on some ranks must fail all ranks alike.
   inputFiles_ = requireSameFilesOnEveryRank(*comm_, namedInputFiles(params, baseDirectory));
@@ -91,18 +90,6 @@ ContactComponent::SurfaceElementSource surfaceElementMaker(const ElementFactory&
 
 }  // namespace
 
-void Analysis::requireWholeMeshWhereNeeded(const PL& params) {
-  // What still reads the whole mesh on every rank: the contact slots and
-  // surfaces (doc/architecture.md, "What a distributed mesh has to change").
-  if (params.sublist("Partition").get<bool>("Mesh On Every Rank")) return;
-  std::string needs;
-  if (params.isSublist("Contact") && params.sublist("Contact").isSublist("Pairs") &&
-      params.sublist("Contact").sublist("Pairs").numParams() > 0)
-    needs = "contact pairs (Contact/Pairs: every rank holds every contact surface)";
-  DDC_INPUT_REQUIRE(needs.empty(), "'Partition/Mesh On Every Rank' = false, but the run has "
-                                       << needs << ", which needs the whole mesh on every rank; set it to true");
-}
-
 void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& baseDirectory) {
   // Memory: what each rank may use, checked by the mesh generators before
   // they allocate and, once the mesh and partition are known, against the
@@ -138,7 +125,7 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
                           "'Dynamics/Integrator' is not None: a traction's Load Curve applies to static runs "
                           "only; remove it (the traction then grows with the time) or set 'Dynamics/Integrator' "
                           "= None");
-  auto contact = ContactOptions::fromParameters(params.sublist("Contact"), *mesh, "Contact");
+  auto contact = ContactOptions::fromParameters(params.sublist("Contact"), *mesh, "Contact", rawComm(comm_));
   if (dynamic_ && params.sublist("Contact").get<std::string>("Initial Contact State") == "Automatic")
     contact.initialInContact = false;  // Previous Step: a time step changes the active set little
   const std::string strategy = params.sublist("Solver").get<std::string>("Strategy");

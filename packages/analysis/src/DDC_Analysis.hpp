@@ -128,9 +128,6 @@ class Analysis {
 
  private:
   /// The model from the validated parameters (the constructor's work).
-  /// \throws InputError if 'Partition/Mesh On Every Rank' = false where
-  ///         the run needs the whole mesh on every rank
-  static void requireWholeMeshWhereNeeded(const Teuchos::ParameterList& params);
   void buildModel(Teuchos::ParameterList& params, const std::string& baseDirectory);
   /// The partition of `mesh` ("Partition"), with the memory checked before
   /// (evenly sized subdomains) and after it (memoryEstimate_). A mesh

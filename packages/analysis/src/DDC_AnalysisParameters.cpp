@@ -261,8 +261,8 @@ Teuchos::RCP<PL> partitionValidParameters() {
   pl->set("Mesh On Every Rank", true,
           "true: every rank keeps the whole mesh through the run. false: once the mesh is partitioned each "
           "rank keeps only its elements and their nodes (doc/architecture.md, 'What a distributed mesh has "
-          "to change'), for runs without contact pairs (Monolithic or FETI-DP; Output/Exodus is written in "
-          "pieces, one per rank). "
+          "to change'), Monolithic or FETI-DP, with or without contact (the contact surfaces stay on every "
+          "rank); Output/Exodus is written in pieces, one per rank. "
           "With Method = PT-Scotch and every body from a built-in generator no rank builds the whole mesh "
           "(each generates a range of the elements, which then move to their subdomains' ranks); with "
           "PT-Scotch and bodies from Gmsh or Exodus II files rank 0 alone reads the whole mesh and sends each "

@@ -7,11 +7,15 @@ namespace ddc {
 namespace {
 
 /// The contact slot of each mesh node that is a slave node, -1 for the
-/// others (the slots are replicated); empty without contact.
+/// others (the slots are replicated; a slot names its slave node by its id
+/// in the whole mesh); empty without contact.
 std::vector<int> slaveSlotOfNode(const Model& model) {
   std::vector<int> slotOf(model.hasContact() ? model.mesh().numNodes() : 0, -1);
   const auto& slots = model.contactSlots();
-  for (size_t k = 0; k < slots.size(); ++k) slotOf[size_t(slots[k].slaveNode)] = int(k);
+  for (size_t k = 0; k < slots.size(); ++k) {
+    const int n = model.mesh().localNode(slots[k].slaveNode);
+    if (n >= 0) slotOf[size_t(n)] = int(k);
+  }
   return slotOf;
 }
 

@@ -152,7 +152,7 @@ void ContactNodesObserver::finished(const StepLoop& loop) {
           "slip,state\n";
     os.precision(17);
     for (const auto& s : loop.state().convergedSlots) {
-      const auto& X = model.mesh().coord(s.slaveNode);
+      const Eigen::Vector3d X = model.contactNodeReference(s.slaveNode);  // rank 0 may not hold the node
       const Eigen::Vector3d t = s.tangentialForce() + Eigen::Vector3d::Zero();  // + 0: no "-0" when zero
       os << s.pair << ',' << s.slaveNode << ',' << X[0] << ',' << X[1] << ',' << (model.dim() == 3 ? X[2] : 0.0)
          << ',' << (s.paired() ? s.gap : 0.0) << ',' << (s.active ? s.state.multiplier : 0.0) << ','

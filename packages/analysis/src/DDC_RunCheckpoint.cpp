@@ -19,7 +19,7 @@ namespace {
 /// the step records' fields are those the "history fields" section names.
 /// Layout 3: the section kInputFilesSection identifies the mesh and
 /// element-map files the run read.
-constexpr double kCheckpointLayout = 4.0;  // 4: the contact slots carry Coulomb friction's state
+constexpr double kCheckpointLayout = 5.0;  // 4: the contact slots carry Coulomb friction's state; 5: their master facets in the order of (element id, side)
 /// The first layout that records the input files.
 constexpr double kFirstLayoutWithInputFiles = 3.0;
 

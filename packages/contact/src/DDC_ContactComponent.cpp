@@ -121,6 +121,13 @@ bool ContactComponent::isSurfaceNode(int id) const { return topology_->index(id)
 
 Eigen::Vector3d ContactComponent::referencePosition(int id) const { return topology_->referencePosition(id); }
 
+GO ContactComponent::surfaceNodeDof(int id, int c) const {
+  topology_->requireCommitted("surfaceNodeDof");
+  const int i = topology_->index(id);
+  if (i < 0) throw std::out_of_range("ContactComponent::surfaceNodeDof: node " + std::to_string(id) + " is no surface node");
+  return topology_->dofsAt(i).at(size_t(c));
+}
+
 int ContactComponent::dim() const { return topology_->dim(); }
 
 ContactSummary ContactComponent::summary() const { return pairing_->summary(); }

@@ -245,6 +245,10 @@ class ContactComponent {
   bool isSurfaceNode(int id) const;
   /// Reference coordinates of a surface node (z = 0 in 2-D).
   Eigen::Vector3d referencePosition(int id) const;
+  /// The host DOF id of component c of surface node `id` (known on every
+  /// rank after setDofs(), as the rows of a slot need it).
+  /// \throws std::out_of_range if `id` is no surface node
+  GO surfaceNodeDof(int id, int c) const;
   /// Space dimension of the contact surfaces (2 or 3; known after commit()).
   int dim() const;
   /// Active slots and the resultant contact force, from the replicated slots
@@ -266,9 +270,10 @@ class ContactComponent {
   /// After the initial pairing: a slave node that starts inside the master
   /// body of its pair and is not paired (farther than the search radius from
   /// the master surface, or rejected by the facing rule) can never be pushed
-  /// out. `locate[p]` returns the element of pair p's master body containing
-  /// a reference point (dim() coordinates), or −1 (e.g.
-  /// BodyLocator::elementContaining; an empty function skips the pair).
+  /// out. `locate[p]` returns the host's id of an element of pair p's master
+  /// body that this rank holds and that contains a reference point (dim()
+  /// coordinates), or −1 (e.g. BodyLocator::elementContaining; an empty
+  /// function skips the pair); the ranks agree on the lowest id.
   /// If no unpaired slave node of a pair is inside, a node on the master
   /// body's boundary counts as inside if a point of `inward(p, node)` is:
   /// points of the slave body next to the node (e.g. halfway to the
@@ -277,7 +282,8 @@ class ContactComponent {
   /// lying in the master body with its nodes on the master's far surface (a
   /// body one element across) is found; an empty function: the nodes only
   /// (doc/contact.md, "Which slave nodes pair").
-  /// Replicated data: the same verdict on every rank.
+  /// `inward` gives every rank the same points. Collective: the same
+  /// verdict on every rank.
   /// \throws InputError naming the pair, the node, the depth and why.
   void checkInitialPenetration(const std::vector<std::function<int(const Eigen::VectorXd&)>>& locate,
                                const std::function<std::vector<Eigen::VectorXd>(int, int)>& inward = {}) const;

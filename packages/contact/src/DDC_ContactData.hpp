@@ -133,7 +133,7 @@ struct ContactNodeDofs {
 /// A facet of a contact surface, registered by the rank that evaluates its
 /// element.
 struct ContactFacet {
-  long id = -1;  ///< position of the facet in its surface: orders the facets (search tie-breaks), unique per surface
+  long id = -1;  ///< the host's id of the facet: orders the facets (search tie-breaks), unique per surface
   /// Host node ids in the facet type's node order (DDC_ReferenceCell.hpp),
   /// oriented outward: in 2-D with the body on the left of nodes[0] →
   /// nodes[1], in 3-D counter-clockwise seen from outside.

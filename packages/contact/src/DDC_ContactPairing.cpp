@@ -5,6 +5,8 @@
 // DDC_ContactPairingEvaluation.cpp.
 #include "DDC_ContactPairing.hpp"
 
+#include "DDC_MpiRecords.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -231,9 +233,14 @@ void ContactPairing::checkInitialPenetration(
   // boundary is not inside, but if the slave body next to it is (points
   // towards its elements' centroids), the bodies overlap there all the same:
   // those nodes are reported where no node of the pair is inside.
-  // Reference configuration, replicated surfaces and slots: every rank
+  // Reference configuration, replicated surfaces and slots. Each rank
+  // locates the points in the master elements it holds (all of them with a
+  // whole mesh on every rank); the ranks agree per slot on its first point
+  // found inside and on the lowest element id containing it, so every rank
   // reaches the same verdict.
   const int dim = topo_.dim();
+  const MPI_Comm comm = rawComm(topo_.comm());
+  constexpr long long kNone = std::numeric_limits<long long>::max();
   for (size_t p = 0; p < size_t(topo_.numPairs()) && p < locate.size(); ++p) {
     if (!locate[p]) continue;
     const Pair& pair = topo_.pair(int(p));
@@ -242,15 +249,24 @@ void ContactPairing::checkInitialPenetration(
     int first = -1, count = 0, element = -1;
     for (const bool probe : {false, true}) {
       if (first >= 0 || (probe && !inward)) break;
-      for (int k : pair.slots) {
+      // Per slot: (its first point inside) · 2^31 + (the element's id).
+      std::vector<long long> found(pair.slots.size(), kNone);
+      for (size_t i = 0; i < pair.slots.size(); ++i) {
+        const int k = pair.slots[i];
         if (slots_[k].paired()) continue;
-        int e = -1;
-        if (!probe) e = locate[p](Eigen::VectorXd(topo_.referencePosition(slots_[k].slaveNode).head(dim)));
-        else
-          for (const Eigen::VectorXd& x : inward(int(p), slots_[k].slaveNode))
-            if ((e = locate[p](x)) >= 0) break;
-        if (e < 0) continue;
-        if (first < 0) first = k, element = e;
+        const std::vector<Eigen::VectorXd> points =
+            probe ? inward(int(p), slots_[k].slaveNode)
+                  : std::vector<Eigen::VectorXd>{topo_.referencePosition(slots_[k].slaveNode).head(dim)};
+        for (size_t j = 0; j < points.size() && found[i] == kNone; ++j) {
+          const int e = locate[p](points[j]);
+          if (e >= 0) found[i] = (long long)j << 31 | e;
+        }
+      }
+      if (!found.empty())  // the slots are on every rank: all ranks agree
+        MPI_Allreduce(MPI_IN_PLACE, found.data(), int(found.size()), MPI_LONG_LONG, MPI_MIN, comm);
+      for (size_t i = 0; i < found.size(); ++i) {
+        if (found[i] == kNone) continue;
+        if (first < 0) first = pair.slots[i], element = int(found[i] & 0x7fffffff);
         ++count;
       }
     }

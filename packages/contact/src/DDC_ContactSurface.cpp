@@ -110,6 +110,7 @@ ContactSurfaceFacets contactSurfaceFromSideSet(const Mesh& mesh, const std::stri
                                                      << "; a contact surface has facets of one type");
     out.nodes.emplace_back(s.nodes.begin(), s.nodes.begin() + s.numNodes);
     out.elements.push_back(s.element);
+    out.sides.push_back(s.localSide);
   }
   if (out.type == CellType::Line2) {
     out.depths = line2Depths(mesh, sides, sideSet);

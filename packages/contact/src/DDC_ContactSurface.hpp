@@ -42,6 +42,7 @@ struct ContactSurfaceFacets {
   CellType type = CellType::Line2;      ///< facet cell type, one per side set
   std::vector<std::vector<int>> nodes;  ///< per facet: mesh node ids in the facet type's node order
   std::vector<int> elements;            ///< per facet: the element it is a facet of
+  std::vector<int> sides;               ///< per facet: its local side (facet) number in that element
   std::vector<double> depths;           ///< per facet: extent of that element behind the facet (> 0)
 };
 

@@ -32,14 +32,6 @@ struct NodeRecord {
   double x, y, z;
 };
 
-/// Every rank's records on every rank, ordered by source rank.
-template <class T>
-std::vector<T> allGather(MPI_Comm comm, const std::vector<T>& mine) {
-  int size = 1;
-  MPI_Comm_size(comm, &size);
-  return exchangeRecords(comm, std::vector<std::vector<T>>(size, mine));
-}
-
 /// Corner node ids of a facet's side `s` (sorted), and the polyline through
 /// the side's nodes (corner, middle, corner): the facet's boundary pieces
 /// for the free-boundary rule. Line facets: the end node itself.

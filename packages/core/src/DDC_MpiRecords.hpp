@@ -73,6 +73,12 @@ std::vector<T> exchangeRecords(MPI_Comm comm, const std::vector<std::vector<T>>&
   return recv;
 }
 
+/// Every rank's records on every rank, ordered by source rank. Collective.
+template <class T>
+std::vector<T> allGather(MPI_Comm comm, const std::vector<T>& mine) {
+  return exchangeRecords(comm, std::vector<std::vector<T>>(size_t(commSize(comm)), mine));
+}
+
 /// Logical OR of `bad` over the communicator, so that all ranks agree to
 /// throw. Collective.
 inline bool anyRank(MPI_Comm comm, bool bad) {

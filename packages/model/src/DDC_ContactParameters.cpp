@@ -2,22 +2,25 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <cmath>
 #include <sstream>
 #include <utility>
 
 #include "DDC_ContactSurface.hpp"
 #include "DDC_Error.hpp"
+#include "DDC_MpiRecords.hpp"
 #include "DDC_Parameters.hpp"
 
 namespace ddc {
 
 namespace {
 
-/// A facet compared by its corner node ids, sorted: orientation and the
-/// middle nodes of quadratic facets do not matter for "the same facet" (as
-/// Mesh::facetKey()).
-using FacetKey = std::vector<int>;
+/// A facet compared by its corner nodes' ids in the whole mesh, sorted:
+/// orientation and the middle nodes of quadratic facets do not matter for
+/// "the same facet" (as Mesh::facetKey()).
+using FacetKey = std::vector<Mesh::GlobalId>;
 
 /// The corner nodes of a side-set facet: start and end in 2-D (Line2, Line3),
 /// the face corners in 3-D.
@@ -26,16 +29,59 @@ std::vector<int> cornersOf(const Mesh& mesh, const Segment& s, const std::string
   return std::vector<int>(s.nodes.begin(), s.nodes.begin() + corners);
 }
 
-/// The facets of side set `set` as keys, sorted and unique.
-std::vector<FacetKey> facetsOf(const Mesh& mesh, const std::string& set) {
-  std::vector<FacetKey> out;
+/// Sorted and without repeats.
+template <class T>
+void sortUnique(std::vector<T>& v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
+
+/// The facets of side set `set` as keys, sorted and unique; of the whole
+/// mesh, gathered over `comm` when `mesh` is a part of it.
+std::vector<FacetKey> facetsOf(const Mesh& mesh, const std::string& set, MPI_Comm comm) {
+  struct Record {
+    Mesh::GlobalId corner[4];
+  };
+  std::vector<Record> mine;
   for (const Segment& s : mesh.sideSet(set)) {
-    out.push_back(cornersOf(mesh, s, set));
-    std::sort(out.back().begin(), out.back().end());
+    Record r{{-1, -1, -1, -1}};
+    const std::vector<int> c = cornersOf(mesh, s, set);
+    for (size_t i = 0; i < c.size(); ++i) r.corner[i] = mesh.nodeId(c[i]);
+    std::sort(r.corner, r.corner + c.size());
+    mine.push_back(r);
   }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+  if (mesh.isPart()) mine = allGather(comm, mine);
+  std::vector<FacetKey> out(mine.size());
+  for (size_t i = 0; i < mine.size(); ++i)
+    for (Mesh::GlobalId id : mine[i].corner)
+      if (id >= 0) out[i].push_back(id);
+  sortUnique(out);
   return out;
+}
+
+/// The ids of `nodes` (of this mesh), of the whole mesh's when `mesh` is a
+/// part of it (gathered over `comm`), sorted and unique.
+std::vector<Mesh::GlobalId> nodeIdsOf(const Mesh& mesh, const std::vector<int>& nodes, MPI_Comm comm) {
+  std::vector<Mesh::GlobalId> ids;
+  for (int n : nodes) ids.push_back(mesh.nodeId(n));
+  if (mesh.isPart()) ids = allGather(comm, ids);
+  sortUnique(ids);
+  return ids;
+}
+
+/// Mesh::coordText() of the node with id `id` in the whole mesh: on a part,
+/// from a rank that holds it. Collective on `comm` for a part.
+std::string coordTextOf(const Mesh& mesh, Mesh::GlobalId id, MPI_Comm comm) {
+  if (!mesh.isPart()) return mesh.coordText(int(id));
+  const int n = mesh.localNode(id);
+  std::array<double, 3> x;
+  x.fill(std::numeric_limits<double>::infinity());
+  if (n >= 0) x = mesh.coord(n);
+  MPI_Allreduce(MPI_IN_PLACE, x.data(), 3, MPI_DOUBLE, MPI_MIN, comm);
+  std::ostringstream os;
+  os << x[0] << ", " << x[1];
+  if (mesh.dim() == 3) os << ", " << x[2];
+  return os.str();
 }
 
 /// The automatic length scale of one master facet (header): 2-D the length
@@ -79,23 +125,24 @@ bool firstCommon(const std::vector<T>& a, const std::vector<T>& b, T& out) {
 /// 3-D), so two side sets of different names over the same surface count as
 /// the same surface.
 void checkPairsDoNotOverlap(const std::vector<ContactPairDefinition>& pairs, const Mesh& mesh,
-                            const std::string& path) {
+                            const std::string& path, MPI_Comm comm) {
+  // By ids in the whole mesh; a part of a mesh gathers the surfaces (the
+  // contact component holds them all as well), so every rank decides alike.
   struct Sets {
-    std::vector<int> slaveNodes;  // the pair's slave nodes: not on its master surface
+    std::vector<Mesh::GlobalId> slaveNodes;  // the pair's slave nodes: not on its master surface
     std::vector<FacetKey> slaveFacets, masterFacets;
   };
   std::vector<Sets> sets;
   for (const auto& d : pairs) {
     Sets s;
-    s.slaveFacets = facetsOf(mesh, d.slaveSet);
-    s.masterFacets = facetsOf(mesh, d.masterSet);
-    std::vector<int> master;
+    s.slaveFacets = facetsOf(mesh, d.slaveSet, comm);
+    s.masterFacets = facetsOf(mesh, d.masterSet, comm);
+    std::vector<int> masterNodes;
     for (const Segment& f : mesh.sideSet(d.masterSet))
-      master.insert(master.end(), f.nodes.begin(), f.nodes.begin() + f.numNodes);
-    std::sort(master.begin(), master.end());
-    for (int n : mesh.nodeSet(d.slaveSet))
+      masterNodes.insert(masterNodes.end(), f.nodes.begin(), f.nodes.begin() + f.numNodes);
+    const std::vector<Mesh::GlobalId> master = nodeIdsOf(mesh, masterNodes, comm);
+    for (Mesh::GlobalId n : nodeIdsOf(mesh, mesh.nodeSet(d.slaveSet), comm))
       if (!std::binary_search(master.begin(), master.end(), n)) s.slaveNodes.push_back(n);
-    std::sort(s.slaveNodes.begin(), s.slaveNodes.end());
     sets.push_back(std::move(s));
   }
   auto where = [&](size_t i) { return "'" + path + "/Pairs/" + pairs[i].name + "'"; };
@@ -106,13 +153,13 @@ void checkPairsDoNotOverlap(const std::vector<ContactPairDefinition>& pairs, con
     std::ostringstream os;
     os << noun << " of nodes " << k[0];
     for (size_t i = 1; i < k.size(); ++i) os << "-" << k[i];
-    os << " at (" << mesh.coordText(k[0]) << ")";
-    if (mesh.dim() == 2) os << "-(" << mesh.coordText(k[1]) << ")";
+    os << " at (" << coordTextOf(mesh, k[0], comm) << ")";
+    if (mesh.dim() == 2) os << "-(" << coordTextOf(mesh, k[1], comm) << ")";
     return os.str();
   };
   for (size_t i = 0; i < pairs.size(); ++i)
     for (size_t j = i + 1; j < pairs.size(); ++j) {
-      int node = -1;
+      Mesh::GlobalId node = -1;
       FacetKey e, f;
       // Duplicated: a slave node of both pairs and a master facet of both.
       // Its nearest facet may then be the same in both pairs: two identical
@@ -120,7 +167,7 @@ void checkPairsDoNotOverlap(const std::vector<ContactPairDefinition>& pairs, con
       DDC_INPUT_REQUIRE(!(firstCommon(sets[i].slaveNodes, sets[j].slaveNodes, node) &&
                           firstCommon(sets[i].masterFacets, sets[j].masterFacets, e)),
                         "contact pairs " << where(i) << " and " << where(j) << " duplicate each other: slave node "
-                                         << node << " at (" << mesh.coordText(node) << ") is a slave of both (Slave '"
+                                         << node << " at (" << coordTextOf(mesh, node, comm) << ") is a slave of both (Slave '"
                                          << pairs[i].slaveSet << "' and '" << pairs[j].slaveSet
                                          << "') and their master surfaces ('" << pairs[i].masterSet << "' and '"
                                          << pairs[j].masterSet << "') share the " << facet(e)
@@ -211,7 +258,7 @@ Teuchos::RCP<const Teuchos::ParameterList> ContactOptions::getValidParameters() 
 }
 
 ContactOptions ContactOptions::fromParameters(Teuchos::ParameterList& list, const Mesh& mesh,
-                                              const std::string& path) {
+                                              const std::string& path, MPI_Comm comm) {
   const auto valid = getValidParameters();
   validateLevel(list, *valid, path);
   ContactOptions o;
@@ -264,7 +311,11 @@ ContactOptions ContactOptions::fromParameters(Teuchos::ParameterList& list, cons
     }
     o.pairs.push_back(d);
   }
-  checkPairsDoNotOverlap(o.pairs, mesh, path);
+  checkPairsDoNotOverlap(o.pairs, mesh, path, comm);
+  if (mesh.isPart()) {
+    MPI_Allreduce(MPI_IN_PLACE, &sizeSum, 1, MPI_DOUBLE, MPI_SUM, comm);
+    MPI_Allreduce(MPI_IN_PLACE, &facets, 1, MPI_INT, MPI_SUM, comm);
+  }
   const double h = facets ? sizeSum / facets : 1.0;
   o.length = h;
   o.searchRadius = list.get<double>("Search Radius");

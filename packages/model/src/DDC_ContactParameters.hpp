@@ -72,9 +72,13 @@ struct ContactOptions {
   /// by nodes and by facets' sorted corner nodes, not by names (doc/contact.md
   /// "Pairs that overlap"). Formulation "Node-To-Surface" / "Decomposed
   /// Node-To-Surface" are synonyms of "Node-To-Segment" / "Decomposed
-  /// Node-To-Segment". Every rank holds the mesh, so every rank throws alike.
+  /// Node-To-Segment". With a whole mesh on every rank every rank throws
+  /// alike; with a part of a mesh (Mesh::isPart()) the checks and the
+  /// length scale are the whole mesh's, from the parts of the ranks of
+  /// `comm` (collective then; unused for a whole mesh).
   /// \throws InputError naming the parameter path or both pairs.
-  static ContactOptions fromParameters(Teuchos::ParameterList& list, const Mesh& mesh, const std::string& path);
+  static ContactOptions fromParameters(Teuchos::ParameterList& list, const Mesh& mesh, const std::string& path,
+                                       MPI_Comm comm = MPI_COMM_SELF);
 };
 
 }  // namespace ddc

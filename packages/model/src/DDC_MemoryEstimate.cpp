@@ -188,16 +188,17 @@ ModelSize measureModelOnParts(MPI_Comm comm, const Mesh& part, const Partition& 
   size.meshIsWhole = false;
   size.dim = part.dim();
   size.bodies = bodySizes(part);
-  // The largest rank's part, term by term (each is a bound of that rank's).
-  std::array<double, 5> mine{{double(part.numNodes()), double(part.numElements()), elementNodes(part),
-                              contactFacets(part, contact),
+  // The largest rank's part, term by term (each is a bound of that rank's);
+  // the contact surfaces whole, as every rank holds them.
+  std::array<double, 4> mine{{double(part.numNodes()), double(part.numElements()), elementNodes(part),
                               partition.numSubdomains > 1 ? elementCorners(part) : 0.0}};
-  MPI_Allreduce(MPI_IN_PLACE, mine.data(), 5, MPI_DOUBLE, MPI_MAX, comm);
+  MPI_Allreduce(MPI_IN_PLACE, mine.data(), 4, MPI_DOUBLE, MPI_MAX, comm);
   size.meshNodes = mine[0];
   size.meshElements = mine[1];
   size.meshElementNodes = mine[2];
-  size.contactFacets = mine[3];
-  size.partitionCorners = mine[4];
+  size.partitionCorners = mine[3];
+  size.contactFacets = contactFacets(part, contact);
+  MPI_Allreduce(MPI_IN_PLACE, &size.contactFacets, 1, MPI_DOUBLE, MPI_SUM, comm);
   size.subdomainElements.assign(std::max(partition.numSubdomains, 1), 0.0);
   for (int s : partition.elementSubdomain) size.subdomainElements[s] += 1.0;
   MPI_Allreduce(MPI_IN_PLACE, size.subdomainElements.data(), static_cast<int>(size.subdomainElements.size()),

@@ -28,23 +28,30 @@ namespace ddc {
 
 namespace {
 
-/// doc/contact.md "Which slave nodes pair": for each slave node of the pairs,
-/// points of the slave body next to it, halfway from the node to the
-/// centroid of the corners of each of its elements; none for a pair of two
+/// doc/contact.md "Which slave nodes pair": for each slave node of the pairs
+/// (by its id in the whole mesh), points of the slave body next to it,
+/// halfway from the node to the centroid of the corners of each of its
+/// elements, in the order of the elements' ids; none for a pair of two
 /// surfaces of one body (self-contact: the slave body is the master body).
+/// A part of a mesh gathers them over `comm` (surface-sized), so that every
+/// rank holds every slave node's points.
 std::function<std::vector<Eigen::VectorXd>(int, int)> slaveBodyPoints(const Mesh& mesh,
-                                                                      const ContactOptions& contact) {
-  auto points = std::make_shared<std::map<int, std::vector<Eigen::VectorXd>>>();
+                                                                      const ContactOptions& contact, MPI_Comm comm) {
+  struct Point {
+    Mesh::GlobalId node, element;
+    double x[3];
+  };
   std::set<int> bodies;
-  std::vector<char> selfContact;
+  std::vector<char> isSlave(mesh.numNodes(), 0), selfContact;
   for (const auto& def : contact.pairs) {
     const int slave = mesh.bodyIndex(def.slaveSet.substr(0, def.slaveSet.find('/')));
     selfContact.push_back(slave == mesh.bodyIndex(def.masterSet.substr(0, def.masterSet.find('/'))));
     if (selfContact.back()) continue;
     bodies.insert(slave);
-    for (int n : mesh.nodeSet(def.slaveSet)) (*points)[n];
+    for (int n : mesh.nodeSet(def.slaveSet)) isSlave[n] = 1;
   }
   const int dim = mesh.dim();
+  std::vector<Point> mine;
   for (int b : bodies) {
     const int corners = referenceCell(mesh.body(b).cellType).numCorners;
     for (int e = mesh.body(b).firstElement; e < mesh.body(b).firstElement + mesh.body(b).numElements; ++e) {
@@ -53,12 +60,18 @@ std::function<std::vector<Eigen::VectorXd>(int, int)> slaveBodyPoints(const Mesh
       for (int i = 0; i < corners; ++i) c += Eigen::Map<const Eigen::VectorXd>(mesh.coord(en[i]).data(), dim);
       c /= corners;
       for (int i = 0; i < mesh.elementNumNodes(e); ++i) {
-        auto it = points->find(en[i]);
-        if (it != points->end())
-          it->second.push_back(0.5 * (Eigen::Map<const Eigen::VectorXd>(mesh.coord(en[i]).data(), dim) + c));
+        if (!isSlave[en[i]]) continue;
+        const Eigen::VectorXd x = 0.5 * (Eigen::Map<const Eigen::VectorXd>(mesh.coord(en[i]).data(), dim) + c);
+        mine.push_back({mesh.nodeId(en[i]), mesh.elementId(e), {x[0], x[1], dim == 3 ? x[2] : 0.0}});
       }
     }
   }
+  std::vector<Point> all = mesh.isPart() ? allGather(comm, mine) : std::move(mine);
+  std::stable_sort(all.begin(), all.end(), [](const Point& a, const Point& b) {
+    return a.node != b.node ? a.node < b.node : a.element < b.element;
+  });
+  auto points = std::make_shared<std::map<int, std::vector<Eigen::VectorXd>>>();
+  for (const Point& p : all) (*points)[int(p.node)].push_back(Eigen::Map<const Eigen::VectorXd>(p.x, dim));
   return [points, selfContact](int pair, int n) {
     const auto it = points->find(n);
     return selfContact.at(pair) || it == points->end() ? std::vector<Eigen::VectorXd>() : it->second;
@@ -87,8 +100,6 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
     // A part of a mesh (Mesh::part()) is this rank's elements and nodes.
     DDC_CHECK(static_cast<int>(localElements_.size()) == mesh_->numElements(),
               "Model: the part of the mesh on rank " << comm_->getRank() << " holds elements of other ranks");
-    if (contactOptions_.enabled())
-      throw std::logic_error("Model: contact on a part of a mesh (Mesh::part()) is not supported yet");
   }
 
   computeNodeOwners();
@@ -101,10 +112,11 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
   if (hasContact()) {
     // The model's DOFs of the surface nodes it owns, and its multipliers.
     std::vector<ContactNodeDofs> nodeDofs;
-    for (int n : contact_->surfaceNodes()) {
-      if (nodeOwner_[n] != comm_->getRank()) continue;
+    for (int id : contact_->surfaceNodes()) {
+      const int n = meshNodeOfContactNode(id);
+      if (n < 0 || nodeOwner_[n] != comm_->getRank()) continue;
       ContactNodeDofs d;
-      d.id = n;
+      d.id = id;
       for (int c = 0; c < mesh_->dim(); ++c) {
         d.dofs[c] = dof(n, c);
         d.prescribed[c] = constrained_[dof(n, c)] != 0;
@@ -121,15 +133,17 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
     std::vector<std::unique_ptr<BodyLocator>> locators;
     std::vector<std::function<int(const Eigen::VectorXd&)>> locate;
     for (const auto& def : contactOptions_.pairs) {
+      // The master body's elements this rank holds, found by element id.
       const std::string body = def.masterSet.substr(0, def.masterSet.find('/'));
       locators.push_back(std::make_unique<BodyLocator>(*mesh_, mesh_->bodyIndex(body)));
       const BodyLocator* l = locators.back().get();
-      if (mesh_->dim() == 2)
-        locate.push_back([l](const Eigen::VectorXd& x) { return l->elementContaining(Eigen::Vector2d(x)); });
-      else
-        locate.push_back([l](const Eigen::VectorXd& x) { return l->elementContaining(Eigen::Vector3d(x)); });
+      locate.push_back([this, l](const Eigen::VectorXd& x) {
+        const int e = mesh_->dim() == 2 ? l->elementContaining(Eigen::Vector2d(x))
+                                        : l->elementContaining(Eigen::Vector3d(x));
+        return e >= 0 ? contactElementId(e) : -1;
+      });
     }
-    contact_->checkInitialPenetration(locate, slaveBodyPoints(*mesh_, contactOptions_));
+    contact_->checkInitialPenetration(locate, slaveBodyPoints(*mesh_, contactOptions_, rawComm(*comm_)));
   }
   buildTopology();
   assembleTractions();
@@ -138,7 +152,12 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
 void Model::buildContact(ContactComponent::SurfaceElementSource surfaceElements) {
   // Register the contact surfaces with the component: each rank the surface
   // nodes it owns and the facets of its elements (doc/embedding.md,
-  // "(c) The contact component"); the component merges them.
+  // "(c) The contact component"); the component merges them. Nodes,
+  // elements and facets are named by their ids in the whole mesh
+  // (contactNodeId()), so a part of the mesh registers what the whole mesh
+  // would, and a facet's id, which orders the facets (search tie-breaks),
+  // is its element's id and side (contactFacetId()), not its position in
+  // the side set, whose order a part does not keep.
   const Mesh& mesh = *mesh_;
   const int me = comm_->getRank();
   ContactComponentOptions options;
@@ -149,7 +168,7 @@ void Model::buildContact(ContactComponent::SurfaceElementSource surfaceElements)
   std::vector<char> isSurface(mesh.numNodes(), 0);
   auto facets = [&](const std::string& set, bool master, CellType& type) {
     const ContactSurfaceFacets surface = contactSurfaceFromSideSet(mesh, set);
-    type = surface.type;
+    type = mesh.isPart() ? agreedFacetType(surface, set) : surface.type;
     std::vector<ContactFacet> mine;
     for (size_t i = 0; i < surface.nodes.size(); ++i) {
       for (int n : surface.nodes[i]) isSurface[n] = 1;
@@ -157,9 +176,9 @@ void Model::buildContact(ContactComponent::SurfaceElementSource surfaceElements)
       const int sub = partition_.elementSubdomain[e];
       if (subdomainRank_[sub] != me) continue;
       ContactFacet f;
-      f.id = long(i);
-      f.nodes = surface.nodes[i];
-      f.element = e;
+      f.id = contactFacetId(e, surface.sides[i]);
+      for (int n : surface.nodes[i]) f.nodes.push_back(contactNodeId(n));
+      f.element = contactElementId(e);
       f.subdomain = sub;
       if (master) f.depth = surface.depths[i];
       mine.push_back(f);
@@ -178,17 +197,51 @@ void Model::buildContact(ContactComponent::SurfaceElementSource surfaceElements)
     if (def.friction > 0.0) pair.frictionStiffness = frictionStiffness(def);
     for (int n : mesh.nodeSet(def.slaveSet)) {
       isSurface[n] = 1;
-      if (nodeOwner_[n] == me) pair.slaveNodes.push_back(n);
+      if (nodeOwner_[n] == me) pair.slaveNodes.push_back(contactNodeId(n));
     }
+    // A part may hold a master node without a master facet (an element that
+    // touches the surface at an edge or a corner) and own it: the node set
+    // of the side set names it there.
+    for (int n : mesh.nodeSet(def.masterSet)) isSurface[n] = 1;
     contact_->registerPair(std::move(pair));
   }
   std::vector<ContactNode> nodes;
   for (int n = 0; n < mesh.numNodes(); ++n)
     if (isSurface[n] && nodeOwner_[n] == me)
-      nodes.push_back({n, Eigen::Vector3d(mesh.coord(n)[0], mesh.coord(n)[1], mesh.coord(n)[2])});
+      nodes.push_back({contactNodeId(n), Eigen::Vector3d(mesh.coord(n)[0], mesh.coord(n)[1], mesh.coord(n)[2])});
   contact_->registerNodes(nodes);
   contact_->commit();
 }
+
+CellType Model::agreedFacetType(const ContactSurfaceFacets& surface, const std::string& set) const {
+  // A part may hold none of a side set's facets, and then knows no type.
+  int type[2] = {surface.nodes.empty() ? std::numeric_limits<int>::max() : int(surface.type),
+                 surface.nodes.empty() ? std::numeric_limits<int>::min() : int(surface.type)};
+  MPI_Allreduce(MPI_IN_PLACE, &type[0], 1, MPI_INT, MPI_MIN, rawComm(*comm_));
+  MPI_Allreduce(MPI_IN_PLACE, &type[1], 1, MPI_INT, MPI_MAX, rawComm(*comm_));
+  if (type[0] == std::numeric_limits<int>::max()) return surface.type;  // empty on every rank
+  DDC_INPUT_REQUIRE(type[0] == type[1], "side set '" << set << "' has " << cellTypeName(CellType(type[0])) << " and "
+                                                     << cellTypeName(CellType(type[1]))
+                                                     << " facets; a contact surface has facets of one type");
+  return CellType(type[0]);
+}
+
+int Model::contactNodeId(int n) const {
+  const Mesh::GlobalId id = mesh_->nodeId(n);
+  DDC_CHECK(id <= std::numeric_limits<int>::max(), "contact: node id " << id << " exceeds the contact component's int ids");
+  return static_cast<int>(id);
+}
+
+int Model::contactElementId(int e) const {
+  const Mesh::GlobalId id = mesh_->elementId(e);
+  DDC_CHECK(id <= std::numeric_limits<int>::max(),
+            "contact: element id " << id << " exceeds the contact component's int ids");
+  return static_cast<int>(id);
+}
+
+long Model::contactFacetId(int e, int side) const { return long(mesh_->elementId(e)) * kMaxElementFacets + side; }
+
+int Model::meshNodeOfContactNode(int id) const { return mesh_->localNode(id); }
 
 std::vector<std::string> Model::pairsInGrossSlip() const {
   std::vector<std::string> out;
@@ -247,16 +300,17 @@ std::vector<GO> Model::numberNodeDofs(std::vector<GO>& count) {
   const int d = mesh.dim();
   // Per rank: its nodes' DOFs, then its multipliers; ranks in order, a
   // rank's nodes in the order of their ids.
-  count.assign(nranks, 0);
+  std::vector<GO> nodeDofs(nranks, 0);
   if (mesh.isPart()) {
     GO mine = 0;
     for (int n = 0; n < mesh.numNodes(); ++n) mine += nodeOwner_[n] == me ? d : 0;
-    Teuchos::gatherAll<int, GO>(*comm_, 1, &mine, nranks, count.data());
+    Teuchos::gatherAll<int, GO>(*comm_, 1, &mine, nranks, nodeDofs.data());
   } else {
-    for (int n = 0; n < mesh.numNodes(); ++n) count[nodeOwner_[n]] += d;
-    for (size_t k = 0; k < numSlots; ++k)
-      count[contact_->slotOwner(static_cast<int>(k))] += contact_->numMultipliers(static_cast<int>(k));
+    for (int n = 0; n < mesh.numNodes(); ++n) nodeDofs[nodeOwner_[n]] += d;
   }
+  count = nodeDofs;
+  for (size_t k = 0; k < numSlots; ++k)  // the slots are on every rank
+    count[contact_->slotOwner(static_cast<int>(k))] += contact_->numMultipliers(static_cast<int>(k));
   std::vector<GO> offset(nranks + 1, 0);
   for (int r = 0; r < nranks; ++r) offset[r + 1] = offset[r] + count[r];
   numGlobalDofs_ = offset[nranks];
@@ -267,6 +321,8 @@ std::vector<GO> Model::numberNodeDofs(std::vector<GO>& count) {
     nodeDof_[n] = next[nodeOwner_[n]];
     next[nodeOwner_[n]] += d;
   }
+  // Each rank's multipliers follow its node DOFs (a part numbers only its own nodes).
+  for (int r = 0; r < nranks; ++r) next[r] = offset[r] + nodeDofs[r];
   if (mesh.isPart()) {
     // The DOFs of the nodes other ranks own, from their owners.
     struct Request {
@@ -390,9 +446,39 @@ std::string Model::prescriptionConflict(const DisplacementCondition& a, const Di
 GO Model::partitionFreeDof(GO g) const {
   const GO d = mesh_->dim();
   const int e = entityAt(overlapMap_->getLocalElement(g), g);
-  if (e >= 0) return GO(mesh_->nodeId(e)) * d + (g - nodeDof_[e]);
+  if (e >= 0) return GO(entityNodeId(e)) * d + (g - entityFirstDof(e));
   const int k = -1 - e;
   return GO(mesh_->numGlobalNodes()) * d + lmFreeOffset_[k] + (g - lmDof_[k]);
+}
+
+GO Model::entityFirstDof(int entity) const {
+  if (entity < mesh_->numNodes()) return nodeDof_[entity];
+  return contact_->surfaceNodeDof(remoteSurfaceNodes_.at(size_t(entity - mesh_->numNodes())), 0);
+}
+
+Mesh::GlobalId Model::entityNodeId(int entity) const {
+  if (entity < mesh_->numNodes()) return mesh_->nodeId(entity);
+  return remoteSurfaceNodes_.at(size_t(entity - mesh_->numNodes()));
+}
+
+int Model::entityBody(int entity) const {
+  // Each body's nodes are consecutive, in body order, in a part and in the
+  // whole mesh (their ids).
+  if (entity < mesh_->numNodes()) {
+    for (int b = 0; b < mesh_->numBodies(); ++b)
+      if (entity < mesh_->body(b).firstNode + mesh_->body(b).numNodes) return b;
+  }
+  const Mesh::GlobalId id = entityNodeId(entity);
+  Mesh::GlobalId end = 0;
+  for (int b = 0; b < mesh_->numBodies(); ++b)
+    if (id < (end += mesh_->bodyGlobalNodes(b))) return b;
+  throw std::logic_error("Model: node id " + std::to_string(id) + " is in no body");
+}
+
+std::array<double, 3> Model::entityReference(int entity) const {
+  if (entity < mesh_->numNodes()) return mesh_->coord(entity);
+  const Eigen::Vector3d X = contact_->referencePosition(int(entityNodeId(entity)));
+  return {X.x(), X.y(), X.z()};
 }
 
 int Model::entityAt(LO l, GO g) const {
@@ -741,10 +827,11 @@ std::vector<std::vector<ConstraintEntry>> Model::contactRowEntries(const std::ve
     if (e.role == SurfaceContactRole::Slave && e.slot != slot) {
       slot = e.slot;
       slaveSystem = systems.size();
-      const int n = contact_->slots()[e.slot].slaveNode;
+      const int id = contact_->slots()[e.slot].slaveNode;
       for (size_t i = 0; i < systems.size() && slaveSystem == systems.size(); ++i)
         for (int c = 0; c < mesh_->dim(); ++c)
-          if (slaveSystem == systems.size() && localIndex(systems[i], dof(n, c)) >= 0) slaveSystem = i;
+          if (slaveSystem == systems.size() && localIndex(systems[i], contact_->surfaceNodeDof(id, c)) >= 0)
+            slaveSystem = i;
     }
     for (size_t i = 0; i < systems.size(); ++i) {
       if (e.role == SurfaceContactRole::Master ? systems[i].id != e.subdomain : i != slaveSystem) continue;

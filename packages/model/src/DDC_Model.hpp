@@ -28,6 +28,7 @@
 namespace ddc {
 
 struct SubdomainSystem;
+struct ContactSurfaceFacets;
 
 /// Where assemble() also puts element tangents: the local stiffness of each
 /// subdomain (FETI-DP), with `where[e]` = (system index, element position in
@@ -279,7 +280,10 @@ class Model {
   /// Slots whose multiplier this rank owns, in the order of multiplierMap().
   const std::vector<int>& ownedSlots() const;
   /// 1 for nodes on a contact surface (slave or master).
-  bool isContactSurfaceNode(int n) const { return contact_ && contact_->isSurfaceNode(n); }
+  bool isContactSurfaceNode(int n) const { return contact_ && contact_->isSurfaceNode(contactNodeId(n)); }
+  /// The reference coordinates of contact surface node `id` (an id in the
+  /// whole mesh, as ContactSlot::slaveNode), known on every rank.
+  Eigen::Vector3d contactNodeReference(int id) const { return contact_->referencePosition(id); }
   ContactSummary contactSummary() const { return contact_ ? contact_->summary() : ContactSummary(); }
   /// Restore slots saved before a failed increment (pairing and state);
   /// rebuilds the topology if the pairing differs.
@@ -325,6 +329,22 @@ class Model {
   /// 1 and 0.1 in doc/contact.md, "Friction"; 2-D the same within 5 %).
   static constexpr double kFrictionStiffnessFactor = 0.1;
   void buildContact(ContactComponent::SurfaceElementSource surfaceElements);
+  /// The contact component names nodes and elements by their ids in the
+  /// whole mesh (equal to the index on a whole mesh), and a facet by its
+  /// element's id and its side: the same on every layout of the mesh.
+  /// \throws std::logic_error if an id exceeds the component's int ids
+  int contactNodeId(int n) const;
+  int contactElementId(int e) const;
+  long contactFacetId(int e, int side) const;
+  /// The facet type of a contact side set on a part of a mesh: the one
+  /// type of the facets of all parts (collective).
+  /// \throws InputError naming the set if the parts' facets differ in type
+  CellType agreedFacetType(const ContactSurfaceFacets& surface, const std::string& set) const;
+  /// The local node of a contact node id, −1 if this rank's mesh lacks it.
+  int meshNodeOfContactNode(int id) const;
+  /// The most facets an element has (a hexahedron's 6): the stride of
+  /// contactFacetId().
+  static constexpr int kMaxElementFacets = 6;
   /// computeNodeOwners() on a part of a mesh: by a directory of node ids.
   /// Collective.
   void computePartNodeOwners();
@@ -391,6 +411,17 @@ class Model {
   /// a per-DOF array of the whole model on every rank would not shrink
   /// with the ranks (doc/performance.md, "Memory at set-up").
   std::vector<int> overlapEntity_;
+  /// Contact surface nodes whose DOFs this rank's overlap map holds (for a
+  /// slot or a counterpart) but whose elements are on other ranks (a part of
+  /// a mesh only): their ids, entity numNodes() + i of overlapEntity_.
+  std::vector<int> remoteSurfaceNodes_;
+  /// Of a node entity of overlapEntity_ (local node or remote surface
+  /// node): its first DOF, its id in the whole mesh, its body, and its
+  /// reference coordinates.
+  GO entityFirstDof(int entity) const;
+  Mesh::GlobalId entityNodeId(int entity) const;
+  int entityBody(int entity) const;
+  std::array<double, 3> entityReference(int entity) const;
   /// overlapEntity_ of overlap LID l; throws std::logic_error for an
   /// invalid LID (a DOF this rank does not have).
   int entityAt(LO l, GO g) const;

@@ -112,9 +112,10 @@ Teuchos::ArrayRCP<const double> Model::Assembly::overlap(const Vector* v, Teucho
 }
 
 std::array<double, 3> Model::Assembly::position(int n) const {
-  std::array<double, 3> x = m_.mesh_->coord(n);
+  std::array<double, 3> x = m_.entityReference(n);
+  const GO first = m_.entityFirstDof(n);
   for (int c = 0; c < m_.mesh_->dim(); ++c) {
-    const LO l = m_.overlapMap_->getLocalElement(m_.nodeDof_[n] + c);
+    const LO l = m_.overlapMap_->getLocalElement(first + c);
     if (l != Teuchos::OrdinalTraits<LO>::invalid()) x[c] += ud_[l];
   }
   return x;
@@ -259,8 +260,8 @@ void Model::Assembly::addContactRow(const std::vector<GO>& d, const ElementResul
     for (int a = 0; a < first; ++a) {
       const int node = entities_[a];
       if (r.tangent(row, a) != 0.0)
-        rigid_->addRowEntry(k * m_.rigidRowsPerSlot_ + c, node, static_cast<int>(d[a] - m_.nodeDof_[node]),
-                            position(node), r.tangent(row, a));
+        rigid_->addBodyRowEntry(k * m_.rigidRowsPerSlot_ + c, m_.entityBody(node),
+                                static_cast<int>(d[a] - m_.entityFirstDof(node)), position(node), r.tangent(row, a));
     }
   }
 }

@@ -300,7 +300,7 @@ void Model::buildGhostGraph(const LocalNodes& local) {
     const size_t r = numOwned + ghost;
     cols.clear();
     const int n = overlapEntity_[r];
-    if (n >= 0 && row[n] >= 0)
+    if (n >= 0 && n < mesh.numNodes() && row[n] >= 0)
       for (const GO* m = nb.begin(row[n]); m != nb.end(row[n]); ++m) {
         const LO first = overlapMap_->getLocalElement(*m);
         for (int c = 0; c < d; ++c) cols.push_back(first + c);
@@ -340,11 +340,20 @@ void Model::setGhostEntities(const std::vector<GO>& gids, const std::vector<int>
   std::sort(unresolved.begin(), unresolved.end());
   auto resolve = [&](GO g, int entity) {
     const auto it = std::lower_bound(unresolved.begin(), unresolved.end(), std::make_pair(g, size_t(0)));
-    if (it != unresolved.end() && it->first == g) overlapEntity_[it->second] = entity;
+    if (it == unresolved.end() || it->first != g) return false;
+    overlapEntity_[it->second] = entity;
+    return true;
   };
   DDC_CHECK(contact_, "overlap DOFs that are not local nodes' without contact");
-  for (int n : contact_->surfaceNodes())
-    for (int c = 0; c < d; ++c) resolve(dof(n, c), n);
+  // A surface node the part of the mesh lacks becomes a remote entity.
+  remoteSurfaceNodes_.clear();
+  for (int id : contact_->surfaceNodes()) {
+    const int n = meshNodeOfContactNode(id);
+    const int entity = n >= 0 ? n : mesh_->numNodes() + int(remoteSurfaceNodes_.size());
+    bool reached = false;
+    for (int c = 0; c < d; ++c) reached = resolve(contact_->surfaceNodeDof(id, c), entity) || reached;
+    if (reached && n < 0) remoteSurfaceNodes_.push_back(id);
+  }
   for (size_t k = 0; k < lmDof_.size(); ++k)
     for (int c = 0; c < contact_->numMultipliers(static_cast<int>(k)); ++c)
       resolve(lmDof_[k] + c, -1 - static_cast<int>(k));

@@ -89,8 +89,7 @@ void RigidMotionCheck::reset() {
   rows_.assign(static_cast<size_t>(numSlots_) * (numModes() + 1), 0.0);
 }
 
-int RigidMotionCheck::modeValues(int n, int c, const std::array<double, 3>& x, double* values) const {
-  const int b = nodeBody_[n];
+int RigidMotionCheck::modeValues(int b, int c, const std::array<double, 3>& x, double* values) const {
   const Eigen::Vector3d r = (Eigen::Vector3d(x.data()) - centre_[b]) / radius_[b];
   for (int j = 0; j < modesPerBody_; ++j) values[j] = 0.0;
   values[c] = 1.0;  // translation along c
@@ -109,15 +108,20 @@ int RigidMotionCheck::modeValues(int n, int c, const std::array<double, 3>& x, d
 
 void RigidMotionCheck::addPrescribed(int n, int c, const std::array<double, 3>& x) {
   double v[6];
-  const int b = modeValues(n, c, x, v);
+  const int b = modeValues(nodeBody_[n], c, x, v);
   const int o = b * modesPerBody_;
   for (int i = 0; i < modesPerBody_; ++i)
     for (int j = 0; j < modesPerBody_; ++j) prescribed_(o + i, o + j) += v[i] * v[j];
 }
 
 void RigidMotionCheck::addRowEntry(int slot, int n, int c, const std::array<double, 3>& x, double coefficient) {
+  addBodyRowEntry(slot, nodeBody_[n], c, x, coefficient);
+}
+
+void RigidMotionCheck::addBodyRowEntry(int slot, int body, int c, const std::array<double, 3>& x,
+                                       double coefficient) {
   double v[6];
-  const int b = modeValues(n, c, x, v);
+  const int b = modeValues(body, c, x, v);
   double* row = rows_.data() + static_cast<size_t>(slot) * (numModes() + 1);
   for (int j = 0; j < modesPerBody_; ++j) row[b * modesPerBody_ + j] += coefficient * v[j];
   row[numModes()] += coefficient * coefficient;

@@ -64,6 +64,9 @@ class RigidMotionCheck {
   /// One coefficient of contact row `slot` (this rank's part of it):
   /// component c of node n at position x.
   void addRowEntry(int slot, int n, int c, const std::array<double, 3>& x, double coefficient);
+  /// addRowEntry() for a node named by its body: a contact surface node
+  /// that this rank's part of a mesh does not hold.
+  void addBodyRowEntry(int slot, int body, int c, const std::array<double, 3>& x, double coefficient);
   /// Collective: the free rigid motions, described for a message ("body
   /// 'Upper': translation along x; ..."), or "" if every motion is
   /// restrained. Equal on every rank.
@@ -74,9 +77,9 @@ class RigidMotionCheck {
   Eigen::MatrixXd freeBasis(const Teuchos::Comm<int>& comm) const;
 
  private:
-  /// The rigid-motion values at component c of node n (position x): the
-  /// node's body and its modesPerBody_ columns.
-  int modeValues(int n, int c, const std::array<double, 3>& x, double* values) const;
+  /// The rigid-motion values at component c of a node of body `body` at
+  /// position x: the body, and its modesPerBody_ columns in `values`.
+  int modeValues(int body, int c, const std::array<double, 3>& x, double* values) const;
 
   int dim_ = 2;
   int modesPerBody_ = 3;
