@@ -30,7 +30,8 @@ case $MODEL in
   block_3d) MODEL_ARGS=(examples/block_3d.xml --set "Mesh/Bodies/Block/Box/Refinement=$REFINEMENT") ;;
   hertz_sphere)
     MODEL_ARGS=(examples/hertz_sphere.xml --set "Mesh/Bodies/Sphere/Sphere Octant/Refinement=$REFINEMENT"
-      --set "Mesh/Bodies/Block/Box/Refinement=$REFINEMENT" --set "Partition/Number of Subdomains=0") ;;
+      --set "Mesh/Bodies/Block/Box/Refinement=$REFINEMENT" --set "Partition/Method=METIS"
+      --set "Partition/Number of Subdomains=0") ;;
   *) echo "MODEL must be block_3d or hertz_sphere, not '$MODEL'" >&2; exit 2 ;;
 esac
 

@@ -23,8 +23,8 @@
 #   bash test/benchmark/weak_scaling_ranks.sh [BUILD_DIR]     # default: build
 # Environment: PS ("1 2 4 8 16"), DOFS_PER_RANK (250000), MODELS
 #   ("block_3d hertz"), BLOCK_STRATEGIES ("FETI-DP Belos-MueLu"), BLOCK_MESH
-#   ("whole"; "ranges": block_3d with PT-Scotch and Partition/Mesh On Every
-#   Rank = false, so no rank builds the whole mesh).
+#   ("whole"; "ranges": both models with PT-Scotch and Partition/Mesh On
+#   Every Rank = false, so no rank builds the whole mesh).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 # shellcheck source=common.sh
@@ -59,6 +59,9 @@ run_case() {
     deck=examples/hertz_sphere.xml
     args=(--set "Mesh/Bodies/Sphere/Sphere Octant/Refinement=$r" --set "Mesh/Bodies/Block/Box/Refinement=$r"
           --set "Partition/Method=METIS" --set "Partition/Number of Subdomains=0")
+    if [[ $BLOCK_MESH == ranges ]]; then
+      args+=(--set "Partition/Method=PT-Scotch" --set "Partition/Mesh On Every Rank=false")
+    fi
   fi
   rm -rf "$OUT/o"
   local t0 t1

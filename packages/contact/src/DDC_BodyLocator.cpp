@@ -1,6 +1,8 @@
 // Point location in a body's elements; the rules are in the header.
 #include "DDC_BodyLocator.hpp"
 
+#include "DDC_MpiRecords.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -60,7 +62,7 @@ double solidAngle(const Eigen::Vector3d* t, const Eigen::Vector3d& x) {
 
 }  // namespace
 
-BodyLocator::BodyLocator(const Mesh& mesh, int body)
+BodyLocator::BodyLocator(const Mesh& mesh, int body, MPI_Comm comm)
     : mesh_(mesh),
       body_(body),
       dim_(mesh.dim()),
@@ -83,15 +85,8 @@ BodyLocator::BodyLocator(const Mesh& mesh, int body)
     for (int d = 0; d < dim_; ++d) all[d] = std::min(all[d], b[d]), all[3 + d] = std::max(all[3 + d], b[3 + d]);
     meanSize += largestExtent(b, dim_) / numElements_;
   }
+  findBoundaryFacets(comm);  // collective on a part, also without elements here
   if (numElements_ == 0) return;
-  // Boundary facets: corner edges (2-D) or faces (3-D) that only one element
-  // of the body has.
-  std::map<std::vector<int>, int> facetCount;
-  for (int i = 0; i < numElements_; ++i)
-    for (int a = 0; a < numFacets_; ++a) ++facetCount[mesh_.facetKey(firstElement_ + i, a)];
-  boundaryFacet_.resize(numElements_);
-  for (int i = 0; i < numElements_; ++i)
-    for (int a = 0; a < numFacets_; ++a) boundaryFacet_[i][a] = facetCount[mesh_.facetKey(firstElement_ + i, a)] == 1;
   // Bins about one element wide (at most ~1e6 of them over the body's box:
   // 1000 per axis in 2-D, 100 in 3-D): a query meets O(1) elements.
   const double smallest = largestExtent(all, dim_) / (dim_ == 2 ? 1000.0 : 100.0);
@@ -135,6 +130,52 @@ bool BodyLocator::inClosure(int e, const Eigen::Vector2d& x) const {
     if (!(t.x() * d.y() - t.y() * d.x() >= -kInsideMargin * t.squaredNorm())) return false;
   }
   return true;
+}
+
+void BodyLocator::findBoundaryFacets(MPI_Comm comm) {
+  // Boundary facets: corner edges (2-D) or faces (3-D) that only one element
+  // of the body has.
+  std::map<std::vector<int>, int> facetCount;
+  for (int i = 0; i < numElements_; ++i)
+    for (int a = 0; a < numFacets_; ++a) ++facetCount[mesh_.facetKey(firstElement_ + i, a)];
+  boundaryFacet_.assign(size_t(numElements_), {});
+  for (int i = 0; i < numElements_; ++i)
+    for (int a = 0; a < numFacets_; ++a) boundaryFacet_[i][a] = facetCount[mesh_.facetKey(firstElement_ + i, a)] == 1;
+  if (!mesh_.isPart()) return;
+  // On a part, a facet only one of this rank's elements has may be shared
+  // with another rank's element: each such facet, by its corners' ids, goes
+  // to the rank its smallest corner id names, which counts the ranks
+  // sending it and answers with the count.
+  struct Key {
+    Mesh::GlobalId corner[4];
+    int rank;  ///< the sender; in the answer, how many elements have the facet
+    int at;    ///< the sender's element i * 6 + facet a
+  };
+  const int ranks = commSize(comm), me = commRank(comm);
+  std::vector<std::vector<Key>> send(static_cast<size_t>(ranks));
+  for (int i = 0; i < numElements_; ++i)
+    for (int a = 0; a < numFacets_; ++a) {
+      if (!boundaryFacet_[i][a]) continue;
+      Key k{{-1, -1, -1, -1}, me, i * 6 + a};
+      const std::vector<int> corners = mesh_.facetKey(firstElement_ + i, a);
+      for (size_t c = 0; c < corners.size(); ++c) k.corner[c] = mesh_.nodeId(corners[c]);
+      std::sort(k.corner, k.corner + corners.size());
+      send[size_t(k.corner[0] % ranks)].push_back(k);
+    }
+  std::vector<Key> asked = exchangeRecords(comm, send);
+  auto sameFacet = [](const Key& x, const Key& y) { return std::equal(x.corner, x.corner + 4, y.corner); };
+  std::sort(asked.begin(), asked.end(), [](const Key& x, const Key& y) {
+    return std::lexicographical_compare(x.corner, x.corner + 4, y.corner, y.corner + 4);
+  });
+  for (auto& v : send) v.clear();
+  for (size_t j = 0; j < asked.size();) {
+    size_t end = j;
+    while (end < asked.size() && sameFacet(asked[end], asked[j])) ++end;
+    for (size_t k = j; k < end; ++k) send[size_t(asked[k].rank)].push_back({{0, 0, 0, 0}, int(end - j), asked[k].at});
+    j = end;
+  }
+  for (const Key& answer : exchangeRecords(comm, send))
+    if (answer.rank > 1) boundaryFacet_[size_t(answer.at / 6)][size_t(answer.at % 6)] = 0;
 }
 
 bool BodyLocator::onBoundaryFacet(int e, int a, const Eigen::Vector2d& x) const {

@@ -5,6 +5,8 @@
 
 #include <Eigen/Dense>
 
+#include <mpi.h>
+
 #include <array>
 #include <utility>
 #include <vector>
@@ -13,9 +15,10 @@ namespace ddc {
 
 class Mesh;
 
-/// Point location in the elements of one body of a replicated mesh, by a
-/// uniform grid of bins (squares in 2-D, cubes in 3-D) over the elements'
-/// bounding boxes (a query tests the elements of one bin, never all of them).
+/// Point location in the elements of one body of a mesh (whole, or this
+/// rank's part of it: see the constructor), by a uniform grid of bins
+/// (squares in 2-D, cubes in 3-D) over the elements' bounding boxes (a query
+/// tests the elements of one bin, never all of them).
 ///
 /// Only corner nodes count: an element is taken as its linear sub-cell (exact
 /// for Quad4, Tet4 and Hex8 with plane faces, the straight-sided
@@ -55,7 +58,11 @@ class BodyLocator {
 
   /// \param mesh the mesh (must outlive the locator)
   /// \param body body index
-  BodyLocator(const Mesh& mesh, int body);
+  /// \param comm for a part of a mesh (Mesh::isPart()): the ranks holding
+  ///        the other parts, so that a face two ranks' elements share is
+  ///        not the body's boundary (collective then); unused for a whole
+  ///        mesh
+  BodyLocator(const Mesh& mesh, int body, MPI_Comm comm = MPI_COMM_SELF);
 
   /// For a 2-D body: if x is inside the body, an element whose closure
   /// contains x (the lowest index if several do); otherwise −1.
@@ -83,6 +90,10 @@ class BodyLocator {
   /// its size.
   double margin(int e) const;
   long long cell(double v, double origin, long long n) const;
+  /// boundaryFacet_: the facets only one element has, on this part and, on
+  /// a part of a mesh, on the other ranks' parts (a directory of facets by
+  /// their corners' ids).
+  void findBoundaryFacets(MPI_Comm comm);
 
   const Mesh& mesh_;
   int body_ = 0, dim_ = 2, numFacets_ = 4;

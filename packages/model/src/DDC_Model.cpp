@@ -135,7 +135,7 @@ Model::Model(Teuchos::RCP<const Teuchos::Comm<int>> comm, std::shared_ptr<const 
     for (const auto& def : contactOptions_.pairs) {
       // The master body's elements this rank holds, found by element id.
       const std::string body = def.masterSet.substr(0, def.masterSet.find('/'));
-      locators.push_back(std::make_unique<BodyLocator>(*mesh_, mesh_->bodyIndex(body)));
+      locators.push_back(std::make_unique<BodyLocator>(*mesh_, mesh_->bodyIndex(body), rawComm(*comm_)));
       const BodyLocator* l = locators.back().get();
       locate.push_back([this, l](const Eigen::VectorXd& x) {
         const int e = mesh_->dim() == 2 ? l->elementContaining(Eigen::Vector2d(x))
