@@ -17,7 +17,8 @@
 #
 #   bash test/benchmark/mesh_in_ranges.sh [BUILD_DIR]     # default: build
 # Environment: NP (16), MODEL (block_3d), REFINEMENT (8), SOLVERS
-# ("Belos-MueLu FETI-DP"; for hertz_sphere "FETI-DP").
+# ("Belos-MueLu FETI-DP"; for hertz_sphere "FETI-DP"), MESHES (the rows:
+# "whole-metis whole-ptscotch parts-metis ranges").
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 # shellcheck source=common.sh
@@ -25,6 +26,7 @@ cd "$(dirname "$0")/../.."
 NP=${NP:-16}
 REFINEMENT=${REFINEMENT:-8}
 MODEL=${MODEL:-block_3d}
+MESHES=${MESHES:-whole-metis whole-ptscotch parts-metis ranges}
 if [[ $MODEL == hertz_sphere ]]; then SOLVERS=${SOLVERS:-FETI-DP}; else SOLVERS=${SOLVERS:-Belos-MueLu FETI-DP}; fi
 case $MODEL in
   block_3d) MODEL_ARGS=(examples/block_3d.xml --set "Mesh/Bodies/Block/Box/Refinement=$REFINEMENT") ;;
@@ -67,8 +69,14 @@ echo
 echo "| solver | mesh | peak MiB per rank (min / median / max) | s to partition | s to distribution | s in all |"
 echo "|---|---|---|---:|---:|---:|"
 for solver in $SOLVERS; do
-  row "$solver" "whole, METIS"
-  row "$solver" "whole, PT-Scotch" --set Partition/Method=PT-Scotch
-  row "$solver" "parts cut from the whole, METIS" --set "Partition/Mesh On Every Rank=false"
-  row "$solver" "in ranges, PT-Scotch" --set Partition/Method=PT-Scotch --set "Partition/Mesh On Every Rank=false"
+  for mesh in $MESHES; do
+    case $mesh in
+      whole-metis) row "$solver" "whole, METIS" ;;
+      whole-ptscotch) row "$solver" "whole, PT-Scotch" --set Partition/Method=PT-Scotch ;;
+      parts-metis) row "$solver" "parts cut from the whole, METIS" --set "Partition/Mesh On Every Rank=false" ;;
+      ranges) row "$solver" "in ranges, PT-Scotch" --set Partition/Method=PT-Scotch \
+        --set "Partition/Mesh On Every Rank=false" ;;
+      *) echo "MESHES: unknown row '$mesh'" >&2; exit 2 ;;
+    esac
+  done
 done
