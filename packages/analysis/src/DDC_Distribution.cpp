@@ -58,10 +58,11 @@ std::string distributionLine(const Teuchos::Comm<int>& comm, const Model& model,
        << (origin == MeshOrigin::Ranges     ? "; no rank held the whole mesh (built in ranges of elements)"
            : origin == MeshOrigin::RankZero ? "; only rank 0 held the whole mesh (and sent each rank a range of "
                                               "its elements)"
-                                            : "; each rank built the whole mesh and kept its part");
+                                            : "; each rank built the whole mesh and kept its part")
+       << (slots > 0 ? "; every rank holds all " + std::to_string(slots) + " contact slots" : "");
   else
-    os << "; every rank holds the whole mesh (" << elements << " elements, " << nodes << " nodes)";
-  if (slots > 0) os << " and all " << slots << " contact slots";
+    os << "; every rank holds the whole mesh (" << elements << " elements, " << nodes << " nodes)"
+       << (slots > 0 ? " and all " + std::to_string(slots) + " contact slots" : "");
   os << "; estimated " << formatBytes(estimatedBytesPerRank) << " per rank";
   return os.str();
 }
