@@ -407,7 +407,9 @@ class Model {
   std::vector<GO> lmFreeOffset_;  ///< multipliers of the slots before slot k (partitionFreeDof())
   int rigidRowsPerSlot_ = 1;  ///< rows of the rigid-motion check per slot (its most multipliers)
   /// Per DOF of the overlap map (by LID; the owned DOFs first): its node
-  /// (≥ 0), or −1 − k for a multiplier of slot k. Only this rank's DOFs:
+  /// (a mesh node below mesh().numNodes(), a remote surface node from
+  /// there: remoteSurfaceNodes_), or −1 − k for a multiplier of slot k.
+  /// Only this rank's DOFs:
   /// a per-DOF array of the whole model on every rank would not shrink
   /// with the ranks (doc/performance.md, "Memory at set-up").
   std::vector<int> overlapEntity_;
