@@ -8,7 +8,11 @@
 # whole mesh it built
 # (METIS, 'Partition/Mesh On Every Rank' = false), and the mesh built in
 # ranges (PT-Scotch, the same parameter false: no rank holds the whole
-# mesh). One run per row. Prints a markdown table: peak resident memory per
+# mesh), and the same mesh read from an Exodus II file whole on every rank
+# (exodus-whole) or in slabs (exodus-ranges: each rank reads its range of
+# the elements and a share of the coordinates and sets). The file is
+# written first from a run's results.e (test/tools/write_exodus_mesh.py,
+# exodus_deck.py; not timed). One run per row. Prints a markdown table: peak resident memory per
 # rank (min / median / max, /usr/bin/time), and seconds from the launch to
 # the partition line and to the distribution line (the set-up before the
 # solver's own) and in all, read from the output as it arrives. With NP
@@ -18,7 +22,8 @@
 #   bash test/benchmark/mesh_in_ranges.sh [BUILD_DIR]     # default: build
 # Environment: NP (16), MODEL (block_3d), REFINEMENT (8), SOLVERS
 # ("Belos-MueLu FETI-DP"; for hertz_sphere "FETI-DP"), MESHES (the rows:
-# "whole-metis whole-ptscotch parts-metis ranges").
+# "whole-metis whole-ptscotch parts-metis ranges"; also exodus-whole and
+# exodus-ranges).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 # shellcheck source=common.sh
@@ -28,14 +33,31 @@ REFINEMENT=${REFINEMENT:-8}
 MODEL=${MODEL:-block_3d}
 MESHES=${MESHES:-whole-metis whole-ptscotch parts-metis ranges}
 if [[ $MODEL == hertz_sphere ]]; then SOLVERS=${SOLVERS:-FETI-DP}; else SOLVERS=${SOLVERS:-Belos-MueLu FETI-DP}; fi
+# DECK, the mesh's parameters (MESH_ARGS) and the others (RUN_ARGS).
 case $MODEL in
-  block_3d) MODEL_ARGS=(examples/block_3d.xml --set "Mesh/Bodies/Block/Box/Refinement=$REFINEMENT") ;;
+  block_3d) DECK=examples/block_3d.xml MESH_ARGS=(--set "Mesh/Bodies/Block/Box/Refinement=$REFINEMENT") RUN_ARGS=() ;;
   hertz_sphere)
-    MODEL_ARGS=(examples/hertz_sphere.xml --set "Mesh/Bodies/Sphere/Sphere Octant/Refinement=$REFINEMENT"
-      --set "Mesh/Bodies/Block/Box/Refinement=$REFINEMENT" --set "Partition/Method=METIS"
-      --set "Partition/Number of Subdomains=0") ;;
+    DECK=examples/hertz_sphere.xml
+    MESH_ARGS=(--set "Mesh/Bodies/Sphere/Sphere Octant/Refinement=$REFINEMENT"
+      --set "Mesh/Bodies/Block/Box/Refinement=$REFINEMENT")
+    RUN_ARGS=(--set "Partition/Method=METIS" --set "Partition/Number of Subdomains=0") ;;
   *) echo "MODEL must be block_3d or hertz_sphere, not '$MODEL'" >&2; exit 2 ;;
 esac
+MODEL_ARGS=("$DECK" "${MESH_ARGS[@]}" "${RUN_ARGS[@]}")
+
+# exodus_model: MODEL_ARGS reading the model's mesh from $OUT/mesh.e, written
+# once from a one-step run's results.e.
+exodus_model() {
+  if [[ ! -f $OUT/mesh.xml ]]; then
+    mpirun -np "$NP" "$APP" "${MODEL_ARGS[@]}" --set Output/Exodus=true --set Output/VTK=false \
+      --set "Load Stepping/Number of Steps=1" --set "Output/Checkpoint Interval=0" --set "Solver/Memory Check=false" \
+      --output-dir "$OUT/w" >"$OUT/w.log" 2>&1 || { echo "writing the Exodus II mesh failed: $OUT/w.log" >&2; exit 1; }
+    /usr/bin/python3 test/tools/write_exodus_mesh.py "$OUT/w/results.e" "$OUT/mesh.e"
+    /usr/bin/python3 test/tools/exodus_deck.py "$DECK" "$OUT/mesh.xml" "$OUT/mesh.e"
+    rm -rf "$OUT/w"
+  fi
+  MODEL_ARGS=("$OUT/mesh.xml" "${RUN_ARGS[@]}")
+}
 
 # stamped: each line of stdin prefixed with the seconds since the start.
 stamped() { python3 -u -c 'import sys, time
@@ -76,6 +98,13 @@ for solver in $SOLVERS; do
       parts-metis) row "$solver" "parts cut from the whole, METIS" --set "Partition/Mesh On Every Rank=false" ;;
       ranges) row "$solver" "in ranges, PT-Scotch" --set Partition/Method=PT-Scotch \
         --set "Partition/Mesh On Every Rank=false" ;;
+      exodus-whole | exodus-ranges)
+        saved=("${MODEL_ARGS[@]}")
+        exodus_model
+        if [[ $mesh == exodus-whole ]]; then row "$solver" "Exodus II, whole, PT-Scotch" --set Partition/Method=PT-Scotch
+        else row "$solver" "Exodus II, in slabs, PT-Scotch" --set Partition/Method=PT-Scotch \
+          --set "Partition/Mesh On Every Rank=false"; fi
+        MODEL_ARGS=("${saved[@]}") ;;
       *) echo "MESHES: unknown row '$mesh'" >&2; exit 2 ;;
     esac
   done

@@ -123,21 +123,47 @@ foreach(case half_rings hertz)
   set_tests_properties(exodus_mesh_${case}_same_results PROPERTIES
     FIXTURES_REQUIRED "${source};exodus_mesh_${case}" LABELS "system;output")
 endforeach()
-# An Exodus II mesh read on rank 0 alone and dealt to 3 ranks in ranges of
-# elements (parts of the mesh, PT-Scotch): block_3d's 1-rank history, to
-# the examples' rank-independence tolerance.
+# An Exodus II mesh read in slabs on 3 ranks (parts of the mesh,
+# PT-Scotch: each rank reads a range of the elements and a share of the
+# coordinates and sets, none the whole file): block_3d's 1-rank history, to
+# the examples' rank-independence tolerance, and the whole-mesh run's
+# history on the same 3 ranks and partition, to round-off.
 add_test(NAME exodus_mesh_block_files COMMAND sh -c
   "mkdir -p ${EXO_MESH} && ${DDC_SYSTEM_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/tools/write_exodus_mesh.py ${DDC_RUNS}/exodus_block_Hex8/results.e ${EXO_MESH}/block.e && ${DDC_SYSTEM_PYTHON} ${CMAKE_CURRENT_SOURCE_DIR}/tools/exodus_deck.py ${PROJECT_SOURCE_DIR}/examples/block_3d.xml ${EXO_MESH}/block.xml ${EXO_MESH}/block.e")
 set_tests_properties(exodus_mesh_block_files PROPERTIES FIXTURES_REQUIRED exodus_block_Hex8
   FIXTURES_SETUP exodus_mesh_block_files LABELS "system;output")
-ddc_add_run_test(exodus_mesh_block_on_rank_zero_np3 RANKS 3 FIXTURE
-  ARGS ${EXO_MESH}/block.xml --set "Partition/Method=PT-Scotch" --set "Partition/Mesh On Every Rank=false"
-    --set "Output/VTK=false" --output-dir ${DDC_RUNS}/exodus_mesh_block_on_rank_zero_np3
-  FILES ${DDC_RUNS}/exodus_mesh_block_on_rank_zero_np3/history.csv LABELS output
-  REGEX "; only rank 0 held the whole mesh \\(and sent each rank a range of its elements\\)")
-set_tests_properties(exodus_mesh_block_on_rank_zero_np3 PROPERTIES FIXTURES_REQUIRED exodus_mesh_block_files)
-ddc_compare_histories(exodus_mesh_block_on_rank_zero_same_results example_block_3d_np1
-  exodus_mesh_block_on_rank_zero_np3 1e-10 LABELS output)
+foreach(mode whole in_ranges)
+  set(parts)
+  set(said "every rank holds the whole mesh")
+  if(mode STREQUAL in_ranges)
+    set(parts --set "Partition/Mesh On Every Rank=false")
+    set(said "; no rank held the whole mesh \\(built in ranges of elements\\)")
+  endif()
+  ddc_add_run_test(exodus_mesh_block_${mode}_np3 RANKS 3 FIXTURE
+    ARGS ${EXO_MESH}/block.xml --set "Partition/Method=PT-Scotch" ${parts}
+      --set "Output/VTK=false" --output-dir ${DDC_RUNS}/exodus_mesh_block_${mode}_np3
+    FILES ${DDC_RUNS}/exodus_mesh_block_${mode}_np3/history.csv LABELS output
+    REGEX "${said}")
+  set_tests_properties(exodus_mesh_block_${mode}_np3 PROPERTIES FIXTURES_REQUIRED exodus_mesh_block_files)
+endforeach()
+ddc_compare_histories(exodus_mesh_block_in_ranges_same_results example_block_3d_np1
+  exodus_mesh_block_in_ranges_np3 1e-10 LABELS output)
+ddc_compare_histories(exodus_mesh_block_in_ranges_equal_whole exodus_mesh_block_whole_np3
+  exodus_mesh_block_in_ranges_np3 1e-12 LABELS output)
+# The half rings' file read in slabs (2-D, contact, FETI-DP on 3 ranks):
+# the run on the generated mesh in ranges (contact.cmake), whose ids the
+# file keeps - history and contact nodes to round-off (0 measured).
+ddc_add_run_test(exodus_mesh_half_rings_in_ranges_np3 RANKS 3 FIXTURE
+  ARGS ${EXO_MESH}/half_rings.xml --set "Partition/Method=PT-Scotch" --set "Partition/Mesh On Every Rank=false"
+    --set "Output/Contact Nodes=true" --set "Output/VTK=false"
+    --output-dir ${DDC_RUNS}/exodus_mesh_half_rings_in_ranges_np3
+  FILES ${DDC_RUNS}/exodus_mesh_half_rings_in_ranges_np3/contact_nodes.csv LABELS output
+  REGEX "; no rank held the whole mesh \\(built in ranges of elements\\)")
+set_tests_properties(exodus_mesh_half_rings_in_ranges_np3 PROPERTIES FIXTURES_REQUIRED exodus_mesh_half_rings_files)
+ddc_compare_histories(exodus_mesh_half_rings_in_ranges_equal_generated contact_in_ranges_half_rings_feti-dp_np3
+  exodus_mesh_half_rings_in_ranges_np3 1e-12 LABELS output)
+ddc_compare_histories(exodus_mesh_half_rings_in_ranges_equal_generated_nodes contact_in_ranges_half_rings_feti-dp_np3
+  exodus_mesh_half_rings_in_ranges_np3 1e-12 FILE contact_nodes.csv LABELS output)
 # Malformed files, from the half-rings mesh.
 foreach(bad wedge inverted side_element side_number)
   if(bad STREQUAL wedge)

@@ -101,13 +101,14 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
   memoryBudget_ = MemoryBudget();
   PL& meshParams = params.sublist("Mesh");
   // Without the whole mesh on every rank and with PT-Scotch, bodies the
-  // generators make by element range are made so (no rank holds the whole
-  // mesh) and others on rank 0 alone, which sends each rank a range;
-  // otherwise each rank builds the whole mesh (and keeps its part after
-  // partitioning).
+  // generators make or the Exodus II reader reads by element range are made
+  // so (no rank holds the whole mesh) and others (Gmsh) on rank 0 alone,
+  // which sends each rank a range; otherwise each rank builds the whole
+  // mesh (and keeps its part after partitioning).
   meshOrigin_ = meshOrigin(params);
   const MPI_Comm comm = rawComm(comm_);
-  auto mesh = meshOrigin_ == MeshOrigin::Ranges ? buildMeshInRanges(meshParams, factory_, &memory, memoryHint, comm)
+  auto mesh = meshOrigin_ == MeshOrigin::Ranges
+                  ? buildMeshInRanges(meshParams, factory_, &memory, memoryHint, comm, baseDirectory)
               : meshOrigin_ == MeshOrigin::RankZero
                   ? buildMeshOnRankZero(meshParams, factory_, baseDirectory, &memory, memoryHint, comm)
                   : buildMesh(meshParams, factory_, baseDirectory, &memory, memoryHint, comm);

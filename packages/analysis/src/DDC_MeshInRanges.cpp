@@ -2,12 +2,14 @@
 
 #include <Teuchos_XMLParameterListHelpers.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <vector>
 
 #include "DDC_AnalysisParameters.hpp"
 #include "DDC_Error.hpp"
+#include "DDC_ExodusMesh.hpp"
 #include "DDC_InputDeck.hpp"
 #include "DDC_MeshGenerators.hpp"
 #include "DDC_ModelSetUp.hpp"
@@ -17,6 +19,8 @@
 namespace ddc {
 
 using PL = Teuchos::ParameterList;
+
+bool readsByRange(const std::string& generator) { return generatesByRange(generator) || generator == "Exodus"; }
 
 bool meshBuiltInRanges(const PL& params) {
   if (!params.isSublist("Partition") || !params.isSublist("Mesh")) return false;
@@ -32,7 +36,7 @@ bool meshBuiltInRanges(const PL& params) {
     const std::string generator =
         body.isType<std::string>("Generator") ? body.get<std::string>("Generator") : std::string("Rectangle");
     if (body.isParameter("Generator") && !body.isType<std::string>("Generator")) return false;
-    if (!generatesByRange(generator)) return false;
+    if (!readsByRange(generator)) return false;
   }
   return true;
 }
@@ -78,31 +82,46 @@ std::shared_ptr<Mesh> buildMeshOnRankZero(PL& meshParams, const ElementFactory& 
 }
 
 std::shared_ptr<Mesh> buildMeshInRanges(PL& meshParams, const ElementFactory& factory, const MemoryLimit* budget,
-                                        const std::string& budgetHint, MPI_Comm comm) {
+                                        const std::string& budgetHint, MPI_Comm comm,
+                                        const std::string& baseDirectory) {
   PL& bodies = validatedBodies(meshParams);
   const auto validBody = bodyValidParameters(factory);
   // Every body and its element count before any is made: the even range
-  // needs the total. The parameters are the same on every rank, so are
-  // these errors.
+  // needs the total. The parameters are the same on every rank, and so are
+  // the files' headers: so are these errors.
   std::vector<BodyInput> inputs;
   long long total = 0;
   for (auto it = bodies.begin(); it != bodies.end(); ++it) {
     inputs.push_back(readBody(bodies, bodies.name(it), factory, *validBody));
     const BodyInput& in = inputs.back();
-    DDC_CHECK(generatesByRange(in.generator), "buildMeshInRanges() of a " << in.generator << " body");
-    total += structuredElementCount(in.generator, in.cellType, *in.generatorParams, in.path + "/" + in.generator);
+    DDC_CHECK(readsByRange(in.generator), "buildMeshInRanges() of a " << in.generator << " body");
+    const std::string at = in.path + "/" + in.generator;
+    if (in.generator == "Exodus")
+      runCollectively<InputError>(comm, [&] {
+        total += exodusBodyElementCount(*in.generatorParams, in.name, in.cellType, at, baseDirectory);
+      });
+    else
+      total += structuredElementCount(in.generator, in.cellType, *in.generatorParams, at);
   }
   const auto [first, last] = evenShare(total, comm);
   const ElementRange range{first, last};
   auto mesh = std::make_shared<Mesh>(Mesh::startPart());
   if (budget && std::isfinite(budget->bytes)) mesh->setMemoryBudget(budget->bytes, budget->source, budgetHint);
   {
-    Activity activity("generating the mesh in ranges of elements (" + std::to_string(total) + " elements, " +
-                      std::to_string(range.last - range.first) + " on this rank)");
-    runCollectively<InputError>(comm, [&] {
-      for (const BodyInput& in : inputs) {
-        const std::string at = in.path + "/" + in.generator;
-        PL& gp = *in.generatorParams;
+    const bool reads =
+        std::any_of(inputs.begin(), inputs.end(), [](const BodyInput& in) { return in.generator == "Exodus"; });
+    Activity activity(std::string(reads ? "reading" : "generating") + " the mesh in ranges of elements (" +
+                      std::to_string(total) + " elements, " + std::to_string(range.last - range.first) +
+                      " on this rank)");
+    for (const BodyInput& in : inputs) {
+      const std::string at = in.path + "/" + in.generator;
+      PL& gp = *in.generatorParams;
+      // The reader is collective and agrees on its errors itself.
+      if (in.generator == "Exodus") {
+        readExodusBodyInRange(*mesh, in.name, in.cellType, gp, at, baseDirectory, range, comm);
+        continue;
+      }
+      runCollectively<InputError>(comm, [&] {
         if (in.generator == "Box")
           generateBox(*mesh, in.name, in.cellType, gp, at, range);
         else if (in.generator == "Annular Sector")
@@ -113,8 +132,8 @@ std::shared_ptr<Mesh> buildMeshInRanges(PL& meshParams, const ElementFactory& fa
           generateSphereOctant(*mesh, in.name, in.cellType, gp, at, range);
         else
           generateRectangle(*mesh, in.name, in.cellType, gp, at, range);
-      }
-    });
+      });
+    }
   }
   for (int b = 0; b < mesh->numBodies(); ++b) requireBodyExtent(*mesh, b, inputs[b], comm);
   runCollectively<InputError>(comm, [&] {

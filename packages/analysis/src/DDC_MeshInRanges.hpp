@@ -1,13 +1,14 @@
 // A mesh no rank holds whole (doc/architecture.md, "What a distributed mesh
-// has to change"): each rank generates the bodies' elements of an even range
-// of element ids, PT-Scotch partitions the ranges' dual graph in parallel,
-// and each element moves to the rank of its subdomain (migratedRankPart()).
-// The analysis takes this path when 'Partition/Mesh On Every Rank' is false,
-// the partitioner is PT-Scotch and every body comes from a built-in generator
-// (generatesByRange()); the model it gives is the one cut from the whole
-// mesh. With Gmsh or Exodus II files, rank 0 alone reads the whole mesh and
-// sends every rank its even range of elements (buildMeshOnRankZero()); from
-// there on the path is the same.
+// has to change"): each rank generates or reads the bodies' elements of an
+// even range of element ids, PT-Scotch partitions the ranges' dual graph in
+// parallel, and each element moves to the rank of its subdomain
+// (migratedRankPart()). The analysis takes this path when 'Partition/Mesh On
+// Every Rank' is false, the partitioner is PT-Scotch and every body comes
+// from a built-in generator (generatesByRange()) or an Exodus II file
+// (readExodusBodyInRange(): slabs of the file); the model it gives is the
+// one cut from the whole mesh. With a Gmsh file, rank 0 alone reads the
+// whole mesh and sends every rank its even range of elements
+// (buildMeshOnRankZero()); from there on the path is the same.
 #pragma once
 
 #include <Teuchos_ParameterList.hpp>
@@ -26,8 +27,12 @@ namespace ddc {
 enum class MeshOrigin {
   EveryRank,  ///< every rank builds the whole mesh (and keeps its part without 'Mesh On Every Rank')
   Ranges,     ///< each rank generates an even range of the elements (buildMeshInRanges())
-  RankZero,   ///< rank 0 builds or reads it and sends each rank an even range (buildMeshOnRankZero())
+  RankZero,   ///< rank 0 reads it (a Gmsh file) and sends each rank an even range (buildMeshOnRankZero())
 };
+
+/// Whether a body of this Generator can be made in ranges of elements: the
+/// built-in generators (generatesByRange()) and Exodus II files.
+bool readsByRange(const std::string& generator);
 
 /// Ranges where meshBuiltInRanges(params); RankZero for the other bodies
 /// with 'Partition/Mesh On Every Rank' = false and 'Partition/Method' =
@@ -37,21 +42,24 @@ MeshOrigin meshOrigin(const Teuchos::ParameterList& params);
 /// Whether the validated parameters `params` (the whole deck; Mesh/Bodies
 /// not yet validated) ask for a mesh built in ranges: 'Partition/Mesh On
 /// Every Rank' = false, 'Partition/Method' = PT-Scotch, and every body's
-/// Generator one of the built-in generators (generatesByRange()).
+/// Generator one that readsByRange().
 bool meshBuiltInRanges(const Teuchos::ParameterList& params);
 
-/// The bodies of "Mesh" (validated in place) generated in this rank's even
-/// share of the element ids (rank r of P: ids [N r / P, N (r + 1) / P) of
-/// the N elements of all bodies): the part Mesh::part() would cut from the
+/// The bodies of "Mesh" (validated in place) generated or read (Exodus II
+/// files, readExodusBodyInRange()) in this rank's even share of the element
+/// ids (rank r of P: ids [N r / P, N (r + 1) / P) of the N elements of all
+/// bodies): the part Mesh::part() would cut from the
 /// whole mesh (generateBox() by ElementRange). The checks of buildMesh()
 /// run on the parts and agree on every rank: body extents taken over the
 /// ranks, element shapes each on its own rank, the error of the lowest
 /// element id thrown on every rank. Collective.
 /// \param budget if given, what a rank may use: each generator refuses its
 ///        share of a body that does not fit (Mesh::requireRoom())
+/// \param baseDirectory what a relative Exodus II file name is resolved against
 /// \throws InputError on every rank, as buildMesh()
 std::shared_ptr<Mesh> buildMeshInRanges(Teuchos::ParameterList& meshParams, const ElementFactory& factory,
-                                        const MemoryLimit* budget, const std::string& budgetHint, MPI_Comm comm);
+                                        const MemoryLimit* budget, const std::string& budgetHint, MPI_Comm comm,
+                                        const std::string& baseDirectory = ".");
 
 /// The whole mesh of "Mesh" built or read by buildMesh() on rank 0 alone
 /// (its checks and messages those of the whole mesh), then dealt to the

@@ -4,16 +4,23 @@
 // mesh's subdomains, and each rank ends with the part and subdomains it
 // would cut from the whole mesh; the set-up's messages are the whole mesh's.
 // A mesh built on rank 0 alone and dealt in ranges (buildMeshOnRankZero())
-// is the same parts.
+// is the same parts, and so is an Exodus II file read in slabs
+// (readExodusBodyInRange()), its faults named as the whole reader names them.
 #include <gtest/gtest.h>
 #include <mpi.h>
+#include <unistd.h>
 
+#include <Teuchos_DefaultSerialComm.hpp>
 #include <Teuchos_ParameterList.hpp>
+#include <cmath>
+#include <filesystem>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "DDC_ElementFactory.hpp"
+#include "DDC_ExodusWriter.hpp"
 #include "DDC_MeshInRanges.hpp"
 #include "DDC_MeshPartCompare.hpp"
 #include "DDC_ModelSetUp.hpp"
@@ -127,7 +134,7 @@ TEST(MeshInRanges, TheOriginOfTheMeshByPartitionerAndBodies) {
   deck.sublist("Partition").set("Method", std::string("PT-Scotch"));
   EXPECT_EQ(ddc::meshOrigin(deck), ddc::MeshOrigin::Ranges);
   deck.sublist("Mesh").sublist("Bodies").sublist("Right").set("Generator", std::string("Exodus"));
-  EXPECT_EQ(ddc::meshOrigin(deck), ddc::MeshOrigin::RankZero);
+  EXPECT_EQ(ddc::meshOrigin(deck), ddc::MeshOrigin::Ranges);  // read in slabs
   deck.sublist("Mesh").sublist("Bodies").sublist("Right").set("Generator", std::string("Gmsh"));
   EXPECT_EQ(ddc::meshOrigin(deck), ddc::MeshOrigin::RankZero);
   deck.sublist("Partition").set("Method", std::string("METIS"));
@@ -206,6 +213,91 @@ TEST(MeshInRanges, AnInvertedElementIsNamedByItsIdInTheWholeMesh) {
     const ddc::Mesh part = evenPart(*whole);
     const auto elements = ddc::makeBodyElements(part, mesh, ddc::ElementFactory::withBuiltins());
     EXPECT_EQ(inputErrorOf([&] { ddc::requireAdmissibleElements(part, elements, MPI_COMM_WORLD); }), expected);
+  }
+}
+
+/// twoBoxes() written whole to an Exodus II file by rank 0 (the Exodus II
+/// library: one block per body, named after it, and the sets), and the
+/// "Mesh" that reads each body back from its block.
+class ExodusInRanges : public testing::Test {
+ protected:
+  void SetUp() override {
+    long long pid = ::getpid();
+    MPI_Bcast(&pid, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+    dir_ = std::filesystem::temp_directory_path() / ("ddc_mesh_in_ranges_exodus_" + std::to_string(pid));
+    if (rank() == 0) std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override {
+    MPI_Barrier(MPI_COMM_WORLD);
+    if (rank() == 0) std::filesystem::remove_all(dir_);
+  }
+  /// `whole` as the file `name`, written on rank 0 before any rank reads it.
+  std::string write(const ddc::Mesh& whole, const std::string& name) const {
+    const std::string path = (dir_ / name).string();
+    if (rank() == 0)
+      ddc::ExodusWriter(Teuchos::rcp(new Teuchos::SerialComm<int>()), path, whole, ddc::ExodusVariables());
+    MPI_Barrier(MPI_COMM_WORLD);
+    return path;
+  }
+  static PL readBack(const std::string& file) {
+    PL mesh = twoBoxes();
+    for (const char* name : {"Left", "Right"}) {
+      PL& body = mesh.sublist("Bodies").sublist(name);
+      body.remove("Box");
+      body.set("Generator", std::string("Exodus"));
+      body.sublist("Exodus").set("File", file);
+      body.sublist("Exodus").set("Element Block", std::string(name));
+    }
+    return mesh;
+  }
+
+  std::filesystem::path dir_;
+};
+
+TEST_F(ExodusInRanges, SlabsOfTheFileAreTheWholeBodysParts) {
+  // Each block uses some of the file's nodes (the two bodies share the
+  // file's coordinates); each body has its own sets and none of the other's.
+  const auto factory = ddc::ElementFactory::withBuiltins();
+  PL generate = twoBoxes();
+  const std::string file = write(*ddc::buildMesh(generate, factory, "."), "two_boxes.e");
+  PL slabs = readBack(file), onRankZero = readBack(file), whole = readBack(file);
+  ddc::Mesh::GlobalId total = 0;
+  const auto ranges = ddc::buildMeshInRanges(slabs, factory, nullptr, "", MPI_COMM_WORLD, ".");
+  const auto dealt = ddc::buildMeshOnRankZero(onRankZero, factory, ".", nullptr, "", MPI_COMM_WORLD);
+  const auto read = ddc::buildMesh(whole, factory, ".");
+  ddc::test::expectSameParts(*ranges, *dealt);
+  ddc::test::expectSameParts(*ranges, evenPart(*read));
+  for (int b = 0; b < read->numBodies(); ++b) {
+    EXPECT_EQ(ranges->bodyGlobalNodes(b), read->body(b).numNodes);
+    total += read->body(b).numNodes;
+  }
+  EXPECT_EQ(ranges->numGlobalNodes(), total);
+  EXPECT_TRUE(read->hasSideSet("Left/Left/left")) << "the file's side sets are read";
+  EXPECT_FALSE(read->hasNodeSet("Left/Right/left")) << "another body's sets are left out";
+}
+
+TEST_F(ExodusInRanges, AFaultIsNamedAsTheWholeReaderNamesIt) {
+  // The faults of AnInvertedElementIsNamedByItsIdInTheWholeMesh (file
+  // elements 78, on the last rank's range on 2 and 3 ranks, and 31, on the
+  // first's), and a coordinate that is not a number at a node of element 90
+  // (file node 108, whose owner is the last rank): each rank checks its
+  // slab, and every rank throws the first fault the whole reader meets.
+  const auto factory = ddc::ElementFactory::withBuiltins();
+  const std::vector<std::string> expected = {"element 78 (element 42 of element block 'Right') is inverted",
+                                             "element 31 (element 31 of element block 'Left') is inverted",
+                                             "node 108 of element block 'Right' has y = nan; every coordinate must"};
+  for (int fault = 0; fault < 3; ++fault) {
+    PL generate = twoBoxes();
+    const auto mesh = ddc::buildMesh(generate, factory, ".");
+    if (fault < 2) mesh->coord(mesh->elementNodes(100)[0])[1] += 3.0;
+    if (fault == 1) mesh->coord(mesh->elementNodes(30)[6])[0] -= 2.0;
+    if (fault == 2) mesh->coord(mesh->elementNodes(90)[2])[1] = std::numeric_limits<double>::quiet_NaN();
+    const std::string file = write(*mesh, "fault" + std::to_string(fault) + ".e");
+    PL slabs = readBack(file), whole = readBack(file);
+    const std::string message = inputErrorOf([&] { ddc::buildMesh(whole, factory, "."); });
+    EXPECT_NE(message.find(expected[fault]), std::string::npos) << message;
+    EXPECT_EQ(inputErrorOf([&] { ddc::buildMeshInRanges(slabs, factory, nullptr, "", MPI_COMM_WORLD, "."); }),
+              message);
   }
 }
 

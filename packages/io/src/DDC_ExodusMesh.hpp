@@ -21,13 +21,22 @@
 //   on an element number the file does not have, or a side number the
 //   element type does not have, is an error naming the set.
 // Every error names the file and the entity.
+//
+// A body is read whole (readExodusBody()), or in slabs, each rank the
+// elements of a range of ids (readExodusBodyInRange()): the part of the
+// whole body that Mesh::part() would cut, with the same messages, and no
+// rank reading or holding the whole block, its coordinates or its sets
+// (doc/architecture.md, "What a distributed mesh has to change").
 #pragma once
 
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_RCP.hpp>
+#include <mpi.h>
+
 #include <string>
 
 #include "DDC_Mesh.hpp"
+#include "DDC_MeshGenerators.hpp"
 
 namespace ddc {
 
@@ -48,5 +57,25 @@ class ExodusMeshReader {
 /// \throws InputError naming the parameter, the file and the entity.
 int readExodusBody(Mesh& mesh, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
                    const std::string& path, const std::string& baseDirectory);
+
+/// The number of elements of the body's element block (the header alone).
+/// \throws InputError as readExodusBody() for the file and the block
+long long exodusBodyElementCount(Teuchos::ParameterList& params, const std::string& bodyName, CellType type,
+                                 const std::string& path, const std::string& baseDirectory);
+
+/// readExodusBody() for the elements of the body whose ids in the whole
+/// mesh lie in `range` (the body's ids follow those of the bodies before
+/// it, part.numGlobalElements() of them) and their nodes, into the part
+/// `part` (Mesh::startPart()), as the generators make their ranges
+/// (generateBox() with an ElementRange): the part Mesh::part() would cut
+/// from the whole mesh, its side sets' segments by element and side. Each
+/// rank reads its elements' connectivity (ex_get_partial_conn), an even
+/// share of the file's coordinates and of each set's entries; the ranks'
+/// ranges must be contiguous in rank order. Collective on `comm`.
+/// \throws InputError on every rank, with the message readExodusBody()
+///         gives for the first fault in the file
+int readExodusBodyInRange(Mesh& part, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
+                          const std::string& path, const std::string& baseDirectory, const ElementRange& range,
+                          MPI_Comm comm);
 
 }  // namespace ddc
