@@ -45,13 +45,23 @@ case $MODEL in
 esac
 MODEL_ARGS=("$DECK" "${MESH_ARGS[@]}" "${RUN_ARGS[@]}")
 
-# exodus_model: MODEL_ARGS reading the model's mesh from $OUT/mesh.e, written
-# once from a one-step run's results.e.
+# solver_args SOLVER: the solver's parameters, in SOLVER_ARGS.
+solver_args() {
+  if [[ $1 == FETI-DP ]]; then SOLVER_ARGS=(--set Solver/Strategy=FETI-DP)
+  else SOLVER_ARGS=(--set Solver/Strategy=Monolithic --set "Solver/Linear Solver/Type=$1"); fi
+  if [[ $MODEL == hertz_sphere && $1 != FETI-DP ]]; then
+    SOLVER_ARGS+=(--set "Contact/Formulation=Node-To-Surface")
+  fi
+}
+
+# exodus_model SOLVER: MODEL_ARGS reading the model's mesh from $OUT/mesh.e,
+# written once from a one-step run's results.e (solved by SOLVER).
 exodus_model() {
   if [[ ! -f $OUT/mesh.xml ]]; then
-    mpirun -np "$NP" "$APP" "${MODEL_ARGS[@]}" --set Output/Exodus=true --set Output/VTK=false \
+    solver_args "$1"
+    mpirun -np "$NP" "$APP" "${MODEL_ARGS[@]}" "${SOLVER_ARGS[@]}" --set Output/Exodus=true --set Output/VTK=false \
       --set "Load Stepping/Number of Steps=1" --set "Output/Checkpoint Interval=0" --set "Solver/Memory Check=false" \
-      --output-dir "$OUT/w" >"$OUT/w.log" 2>&1 || { echo "writing the Exodus II mesh failed: $OUT/w.log" >&2; exit 1; }
+      --output-dir "$OUT/w" >"$OUT/w.log" 2>&1 || { echo "writing the Exodus II mesh failed:" >&2; tail -5 "$OUT/w.log" >&2; exit 1; }
     /usr/bin/python3 test/tools/write_exodus_mesh.py "$OUT/w/results.e" "$OUT/mesh.e"
     /usr/bin/python3 test/tools/exodus_deck.py "$DECK" "$OUT/mesh.xml" "$OUT/mesh.e"
     rm -rf "$OUT/w"
@@ -68,13 +78,9 @@ for line in sys.stdin: sys.stdout.write("%.2f %s" % (time.time() - t0, line))'; 
 row() {
   local solver=$1 mode=$2
   shift 2
-  local log=$OUT/run.log solver_args
-  if [[ $solver == FETI-DP ]]; then solver_args=(--set Solver/Strategy=FETI-DP)
-  else solver_args=(--set Solver/Strategy=Monolithic --set "Solver/Linear Solver/Type=$solver"); fi
-  if [[ $MODEL == hertz_sphere && $solver != FETI-DP ]]; then
-    solver_args+=(--set "Contact/Formulation=Node-To-Surface")
-  fi
-  mpirun -np "$NP" /usr/bin/time -f "RSS %M" "$APP" "${MODEL_ARGS[@]}" "${solver_args[@]}" --set Output/VTK=false \
+  local log=$OUT/run.log
+  solver_args "$solver"
+  mpirun -np "$NP" /usr/bin/time -f "RSS %M" "$APP" "${MODEL_ARGS[@]}" "${SOLVER_ARGS[@]}" --set Output/VTK=false \
     --set "Output/Checkpoint Interval=0" --set "Solver/Memory Check=false" --output-dir "$OUT/o" "$@" 2>&1 |
     stamped >"$log" || { echo "| $solver | $mode | failed: $(grep -m1 -i error "$log") | | | |"; return; }
   local rss partition distribution wall
@@ -100,7 +106,7 @@ for solver in $SOLVERS; do
         --set "Partition/Mesh On Every Rank=false" ;;
       exodus-whole | exodus-ranges)
         saved=("${MODEL_ARGS[@]}")
-        exodus_model
+        exodus_model "$solver"
         if [[ $mesh == exodus-whole ]]; then row "$solver" "Exodus II, whole, PT-Scotch" --set Partition/Method=PT-Scotch
         else row "$solver" "Exodus II, in slabs, PT-Scotch" --set Partition/Method=PT-Scotch \
           --set "Partition/Mesh On Every Rank=false"; fi

@@ -150,20 +150,27 @@ ddc_compare_histories(exodus_mesh_block_in_ranges_same_results example_block_3d_
   exodus_mesh_block_in_ranges_np3 1e-10 LABELS output)
 ddc_compare_histories(exodus_mesh_block_in_ranges_equal_whole exodus_mesh_block_whole_np3
   exodus_mesh_block_in_ranges_np3 1e-12 LABELS output)
-# The half rings' file read in slabs (2-D, contact, FETI-DP on 3 ranks):
-# the run on the generated mesh in ranges (contact.cmake), whose ids the
-# file keeps - history and contact nodes to round-off (0 measured).
-ddc_add_run_test(exodus_mesh_half_rings_in_ranges_np3 RANKS 3 FIXTURE
-  ARGS ${EXO_MESH}/half_rings.xml --set "Partition/Method=PT-Scotch" --set "Partition/Mesh On Every Rank=false"
-    --set "Output/Contact Nodes=true" --set "Output/VTK=false"
-    --output-dir ${DDC_RUNS}/exodus_mesh_half_rings_in_ranges_np3
-  FILES ${DDC_RUNS}/exodus_mesh_half_rings_in_ranges_np3/contact_nodes.csv LABELS output
-  REGEX "; no rank held the whole mesh \\(built in ranges of elements\\)")
-set_tests_properties(exodus_mesh_half_rings_in_ranges_np3 PROPERTIES FIXTURES_REQUIRED exodus_mesh_half_rings_files)
-ddc_compare_histories(exodus_mesh_half_rings_in_ranges_equal_generated contact_in_ranges_half_rings_feti-dp_np3
-  exodus_mesh_half_rings_in_ranges_np3 1e-12 LABELS output)
-ddc_compare_histories(exodus_mesh_half_rings_in_ranges_equal_generated_nodes contact_in_ranges_half_rings_feti-dp_np3
-  exodus_mesh_half_rings_in_ranges_np3 1e-12 FILE contact_nodes.csv LABELS output)
+# The contact meshes' files read in slabs on 3 ranks: the runs on the
+# generated meshes in ranges (contact.cmake), whose ids the files keep -
+# history and contact nodes to round-off (0 measured): the half rings (2-D,
+# FETI-DP) and the Hertz sphere (3-D, the decomposed element under FETI-DP
+# on 8 PT-Scotch subdomains; its "sphere" side set merges three grid sides).
+set(EXO_IN_RANGES_half_rings half_rings_feti-dp_np3)
+set(EXO_IN_RANGES_hertz hertz_decomposed_feti-dp_np3 --set "Partition/Number of Subdomains=8")
+foreach(case half_rings hertz)
+  list(POP_FRONT EXO_IN_RANGES_${case} generated)
+  ddc_add_run_test(exodus_mesh_${case}_in_ranges_np3 RANKS 3 FIXTURE
+    ARGS ${EXO_MESH}/${case}.xml --set "Partition/Method=PT-Scotch" --set "Partition/Mesh On Every Rank=false"
+      --set "Output/Contact Nodes=true" --set "Output/VTK=false" ${EXO_IN_RANGES_${case}}
+      --output-dir ${DDC_RUNS}/exodus_mesh_${case}_in_ranges_np3
+    FILES ${DDC_RUNS}/exodus_mesh_${case}_in_ranges_np3/contact_nodes.csv LABELS output
+    REGEX "; no rank held the whole mesh \\(built in ranges of elements\\)")
+  set_tests_properties(exodus_mesh_${case}_in_ranges_np3 PROPERTIES FIXTURES_REQUIRED exodus_mesh_${case}_files)
+  ddc_compare_histories(exodus_mesh_${case}_in_ranges_equal_generated contact_in_ranges_${generated}
+    exodus_mesh_${case}_in_ranges_np3 1e-12 LABELS output)
+  ddc_compare_histories(exodus_mesh_${case}_in_ranges_equal_generated_nodes contact_in_ranges_${generated}
+    exodus_mesh_${case}_in_ranges_np3 1e-12 FILE contact_nodes.csv LABELS output)
+endforeach()
 # Malformed files, from the half-rings mesh.
 foreach(bad wedge inverted side_element side_number)
   if(bad STREQUAL wedge)
