@@ -103,6 +103,10 @@ ddc_add_restart_test(restart_other_mode_in_ranges_np2_to_3 2 other-mode:3
 # relatively: the Exodus II copy across layouts is the case above).
 ddc_add_restart_test(restart_other_mode_contact_in_ranges_np2_to_3 2 other-mode:3 ${DDC_HALF_RINGS}
   LABELS contact ARGS --set "Partition/Method=PT-Scotch")
+# The same with the half rings read from an Exodus II file (output.cmake):
+# on parts each rank read its slab of the file.
+ddc_add_restart_test(restart_other_mode_exodus_in_ranges_np2_to_3 2 other-mode:3 ${DDC_RUNS}/exodus_mesh/half_rings.xml
+  LABELS contact output FIXTURES exodus_mesh_half_rings_files ARGS --set "Partition/Method=PT-Scotch")
 ddc_add_restart_test(restart_sigterm_in_ranges_np2 2 sigterm ${PROJECT_SOURCE_DIR}/examples/bar_vibration.xml
   ARGS --set "Partition/Method=PT-Scotch" --set "Partition/Mesh On Every Rank=false" --set "Output/Exodus=true"
     --set "Solver/Linear Solver/Type=Amesos2")
