@@ -276,6 +276,22 @@ TEST_F(ExodusInRanges, SlabsOfTheFileAreTheWholeBodysParts) {
   EXPECT_FALSE(read->hasNodeSet("Left/Right/left")) << "another body's sets are left out";
 }
 
+TEST_F(ExodusInRanges, AGeneratedBodyBeforeOneReadInSlabs) {
+  // Left generated in its range, Right read from its block: Right's ids
+  // follow Left's, in the file's slabs as in the generator's ranges.
+  const auto factory = ddc::ElementFactory::withBuiltins();
+  PL generate = twoBoxes();
+  const std::string file = write(*ddc::buildMesh(generate, factory, "."), "two_boxes.e");
+  PL mixed = readBack(file);
+  mixed.sublist("Bodies").sublist("Left") = twoBoxes().sublist("Bodies").sublist("Left");
+  PL slabs = mixed, onRankZero = mixed;
+  const auto ranges = ddc::buildMeshInRanges(slabs, factory, nullptr, "", MPI_COMM_WORLD, ".");
+  const auto dealt = ddc::buildMeshOnRankZero(onRankZero, factory, ".", nullptr, "", MPI_COMM_WORLD);
+  ddc::test::expectSameParts(*ranges, *dealt);
+  EXPECT_EQ(ranges->body(0).name, "Left");
+  EXPECT_EQ(ranges->bodyGlobalElements(1), 72);  // Right's 2 x 2 x 3 cells of 6 tetrahedra
+}
+
 TEST_F(ExodusInRanges, AFaultIsNamedAsTheWholeReaderNamesIt) {
   // The faults of AnInvertedElementIsNamedByItsIdInTheWholeMesh (file
   // elements 78, on the last rank's range on 2 and 3 ranks, and 31, on the
