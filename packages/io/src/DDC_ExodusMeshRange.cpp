@@ -67,6 +67,9 @@ std::string firstError(const Step& step) {
   return std::string();
 }
 
+/// One body read in slabs by readExodusBodyInRange(), in the steps of
+/// read(); each step agrees on its errors over the ranks before the next
+/// collective, and every check is ExodusBodyHeader's.
 class ExodusBodyRangeReader {
  public:
   ExodusBodyRangeReader(Mesh& part, const std::string& bodyName, CellType type, const std::string& path,
