@@ -56,17 +56,6 @@ int rangeRank(const std::vector<long long>& starts, long long i) {
   return int(std::upper_bound(starts.begin(), starts.end(), i) - starts.begin()) - 1;
 }
 
-/// The message of the first InputError `step` throws, "" if none.
-template <class Step>
-std::string firstError(const Step& step) {
-  try {
-    step();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return std::string();
-}
-
 /// One body read in slabs by readExodusBodyInRange(), in the steps of
 /// read(); each step agrees on its errors over the ranks before the next
 /// collective, and every check is ExodusBodyHeader's.
@@ -112,13 +101,13 @@ class ExodusBodyRangeReader {
   /// This rank's elements' connectivity, each entry a node of the file.
   void readConnectivity() {
     conn_.assign(size_t(hi_ - lo_) * nen_, 0);
-    raiseCollectively<InputError>(comm_, firstError([&] {
+    runCollectively<InputError>(comm_, [&] {
       if (hi_ > lo_)
         ex_->check(ex_get_partial_conn(ex_->id(), EX_ELEM_BLOCK, h_->blockId(), lo_ + 1, hi_ - lo_, conn_.data(),
                                        nullptr, nullptr),
                    "the connectivity of " + h_->blockLabel());
       for (int n : conn_) h_->requireFileNode(n);
-    }));
+    });
     for (int n : conn_) nodes_.push_back(n - 1);
     std::sort(nodes_.begin(), nodes_.end());
     nodes_.erase(std::unique(nodes_.begin(), nodes_.end()), nodes_.end());
@@ -143,13 +132,13 @@ class ExodusBodyRangeReader {
     // The owner's coordinates, from the first to the last node it was asked for.
     const int first = used_.empty() ? 0 : used_.front(), span = used_.empty() ? 0 : used_.back() - first + 1;
     std::vector<double> x(span), y(span), z(span, 0.0);
-    raiseCollectively<InputError>(comm_, firstError([&] {
+    runCollectively<InputError>(comm_, [&] {
       if (span > 0)
         ex_->check(ex_get_partial_coord(ex_->id(), first + 1, span, x.data(), y.data(),
                                         h_->fileDim() == 3 ? z.data() : nullptr),
                    "the coordinates");
       for (int n : used_) h_->requireAdmissibleNode(n, {x[n - first], y[n - first], z[n - first]});
-    }));
+    });
     std::vector<std::vector<NodeAnswer>> answer(ranks_);
     for (const NodeRequest& q : requests_) {
       const int i = q.node - first;
@@ -172,7 +161,7 @@ class ExodusBodyRangeReader {
     firstPartElement_ = part_.numElements();
     const auto& order = exodusNodeOrder(type_);
     const ReferenceCell& ref = referenceCell(type_);
-    raiseCollectively<InputError>(comm_, firstError([&] {
+    runCollectively<InputError>(comm_, [&] {
       for (int e = lo_; e < hi_; ++e) {
         int nodes[27];
         for (int i = 0; i < nen_; ++i) nodes[order[i]] = partNode(conn_[size_t(e - lo_) * nen_ + i] - 1);
@@ -181,7 +170,7 @@ class ExodusBodyRangeReader {
         h_->requireValidElement(e, corners);
         part_.addPartElement(firstElementId_ + e, nodes);
       }
-    }));
+    });
     part_.growWhole(bodyNodes_, h_->blockSize());
   }
 
@@ -249,7 +238,7 @@ class ExodusBodyRangeReader {
   /// This rank's share of node set `id`'s entries, checked, each to its owner.
   void readNodeSet(int id, int s, const std::string& name, std::vector<std::vector<SetMember>>& toOwner) {
     std::vector<int> entries;
-    raiseCollectively<InputError>(comm_, firstError([&] {
+    runCollectively<InputError>(comm_, [&] {
       int n = 0, ndf = 0;
       ex_->check(ex_get_set_param(ex_->id(), EX_NODE_SET, id, &n, &ndf), "node set '" + name + "'");
       const auto [a, b] = evenShare(n, comm_);
@@ -257,14 +246,14 @@ class ExodusBodyRangeReader {
       if (b > a)
         ex_->check(ex_get_partial_node_set(ex_->id(), id, a + 1, b - a, entries.data()), "node set '" + name + "'");
       for (int v : entries) h_->requireSetNode(name, v);
-    }));
+    });
     for (int v : entries) toOwner[rangeRank(nodeStarts_, v - 1)].push_back({s, v - 1});
   }
 
   /// This rank's share of side set `id`'s entries, checked; each side of
   /// the block to the rank that holds its element.
   void readSideSet(int id, int s, const std::string& name, std::vector<std::vector<SideRecord>>& toHolder) {
-    raiseCollectively<InputError>(comm_, firstError([&] {
+    runCollectively<InputError>(comm_, [&] {
       int n = 0, ndf = 0;
       ex_->check(ex_get_set_param(ex_->id(), EX_SIDE_SET, id, &n, &ndf), "side set '" + name + "'");
       const auto [a, b] = evenShare(n, comm_);
@@ -278,7 +267,7 @@ class ExodusBodyRangeReader {
         const int e = elems[k] - 1 - h_->firstFileElement();
         toHolder[rangeRank(elementStarts_, firstElementId_ + e)].push_back({s, e, f});
       }
-    }));
+    });
   }
 
   Mesh& part_;
