@@ -10,9 +10,12 @@
 # ranges (PT-Scotch, the same parameter false: no rank holds the whole
 # mesh), and the same mesh read from an Exodus II file whole on every rank
 # (exodus-whole) or in slabs (exodus-ranges: each rank reads its range of
-# the elements and a share of the coordinates and sets). The file is
-# written first from a run's results.e (test/tools/write_exodus_mesh.py,
-# exodus_deck.py; not timed). One run per row. Prints a markdown table: peak resident memory per
+# the elements and a share of the coordinates and sets), or from a Gmsh file
+# whole on every rank (gmsh-whole) or in ranges (gmsh-ranges: each rank keeps
+# its range of the elements and a share of the nodes as the file streams
+# by). The file is written first from a run's results.e
+# (test/tools/write_exodus_mesh.py or write_gmsh_mesh.py, exodus_deck.py;
+# not timed). One run per row. Prints a markdown table: peak resident memory per
 # rank (min / median / max, /usr/bin/time), and seconds from the launch to
 # the partition line and to the distribution line (the set-up before the
 # solver's own) and in all, read from the output as it arrives. With NP
@@ -22,8 +25,8 @@
 #   bash test/benchmark/mesh_in_ranges.sh [BUILD_DIR]     # default: build
 # Environment: NP (16), MODEL (block_3d), REFINEMENT (8), SOLVERS
 # ("Belos-MueLu FETI-DP"; for hertz_sphere "FETI-DP"), MESHES (the rows:
-# "whole-metis whole-ptscotch parts-metis ranges"; also exodus-whole and
-# exodus-ranges).
+# "whole-metis whole-ptscotch parts-metis ranges"; also exodus-whole,
+# exodus-ranges, gmsh-whole and gmsh-ranges).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 # shellcheck source=common.sh
@@ -54,19 +57,23 @@ solver_args() {
   fi
 }
 
-# exodus_model SOLVER: MODEL_ARGS reading the model's mesh from $OUT/mesh.e,
-# written once from a one-step run's results.e (solved by SOLVER).
-exodus_model() {
-  if [[ ! -f $OUT/mesh.xml ]]; then
+# file_model SOLVER KIND: MODEL_ARGS reading the model's mesh from
+# $OUT/mesh.e (KIND exodus) or $OUT/mesh.msh (gmsh), written once from a
+# one-step run's results.e (solved by SOLVER).
+file_model() {
+  local mesh=$OUT/mesh.e writer=write_exodus_mesh.py
+  if [[ $2 == gmsh ]]; then mesh=$OUT/mesh.msh writer=write_gmsh_mesh.py; fi
+  if [[ ! -f $OUT/w/results.e ]]; then
     solver_args "$1"
     mpirun -np "$NP" "$APP" "${MODEL_ARGS[@]}" "${SOLVER_ARGS[@]}" --set Output/Exodus=true --set Output/VTK=false \
       --set "Load Stepping/Number of Steps=1" --set "Output/Checkpoint Interval=0" --set "Solver/Memory Check=false" \
-      --output-dir "$OUT/w" >"$OUT/w.log" 2>&1 || { echo "writing the Exodus II mesh failed:" >&2; tail -5 "$OUT/w.log" >&2; exit 1; }
-    /usr/bin/python3 test/tools/write_exodus_mesh.py "$OUT/w/results.e" "$OUT/mesh.e"
-    /usr/bin/python3 test/tools/exodus_deck.py "$DECK" "$OUT/mesh.xml" "$OUT/mesh.e"
-    rm -rf "$OUT/w"
+      --output-dir "$OUT/w" >"$OUT/w.log" 2>&1 || { echo "writing the mesh failed:" >&2; tail -5 "$OUT/w.log" >&2; exit 1; }
   fi
-  MODEL_ARGS=("$OUT/mesh.xml" "${RUN_ARGS[@]}")
+  if [[ ! -f $OUT/$2.xml ]]; then
+    /usr/bin/python3 "test/tools/$writer" "$OUT/w/results.e" "$mesh"
+    /usr/bin/python3 test/tools/exodus_deck.py "$DECK" "$OUT/$2.xml" "$mesh"
+  fi
+  MODEL_ARGS=("$OUT/$2.xml" "${RUN_ARGS[@]}")
 }
 
 # stamped: each line of stdin prefixed with the seconds since the start.
@@ -104,12 +111,14 @@ for solver in $SOLVERS; do
       parts-metis) row "$solver" "parts cut from the whole, METIS" --set "Partition/Mesh On Every Rank=false" ;;
       ranges) row "$solver" "in ranges, PT-Scotch" --set Partition/Method=PT-Scotch \
         --set "Partition/Mesh On Every Rank=false" ;;
-      exodus-whole | exodus-ranges)
+      exodus-whole | exodus-ranges | gmsh-whole | gmsh-ranges)
         saved=("${MODEL_ARGS[@]}")
-        exodus_model "$solver"
-        if [[ $mesh == exodus-whole ]]; then row "$solver" "Exodus II, whole, PT-Scotch" --set Partition/Method=PT-Scotch
-        else row "$solver" "Exodus II, in slabs, PT-Scotch" --set Partition/Method=PT-Scotch \
-          --set "Partition/Mesh On Every Rank=false"; fi
+        kind=${mesh%-*}
+        file_model "$solver" "$kind"
+        label=$([[ $kind == gmsh ]] && echo "Gmsh" || echo "Exodus II")
+        if [[ $mesh == *-whole ]]; then row "$solver" "$label, whole, PT-Scotch" --set Partition/Method=PT-Scotch
+        else row "$solver" "$label, in $([[ $kind == gmsh ]] && echo ranges || echo slabs), PT-Scotch" \
+          --set Partition/Method=PT-Scotch --set "Partition/Mesh On Every Rank=false"; fi
         MODEL_ARGS=("${saved[@]}") ;;
       *) echo "MESHES: unknown row '$mesh'" >&2; exit 2 ;;
     esac

@@ -6,6 +6,7 @@
 #   ddc_add_script_test     a bash script of several runs (studies, fault injection)
 #   ddc_check_history       values in the history.csv of a run
 #   ddc_compare_histories   two runs' history.csv, column by column (compare_history)
+#   ddc_mesh_mode           the arguments of a run with the whole mesh or the mesh in ranges
 #   ddc_add_mpmd_startup_test  an MPMD launch with another program (the start-up handshake)
 # The negative cases have their own table and function (NegativeCases.cmake).
 #
@@ -131,6 +132,20 @@ function(ddc_compare_histories name a b tolerance)
     ${tolerance} ${C_COLUMNS})
   set_tests_properties(${name} PROPERTIES FIXTURES_REQUIRED "${a};${b}" LABELS "${C_LABELS}")
 endfunction()
+
+# ddc_mesh_mode(<mode> <args var> <said var>): a run with the whole mesh on
+# every rank (<mode> whole) or with the mesh built in ranges (in_ranges:
+# Partition/Mesh On Every Rank = false, with PT-Scotch): the arguments that
+# choose it, and the regular expression of what its distribution line says
+# (';' in a bracket expression: a bare one would end the REGEX argument).
+macro(ddc_mesh_mode mode args said)
+  set(${args})
+  set(${said} "every rank holds the whole mesh")
+  if("${mode}" STREQUAL in_ranges)
+    set(${args} --set "Partition/Mesh On Every Rank=false")
+    set(${said} "[;] no rank held the whole mesh \\(built in ranges of elements\\)")
+  endif()
+endmacro()
 
 # ddc_add_mpmd_startup_test(<name> first|second [LABELS l...] ARGS <deck> ... REGEX <regex>):
 # an MPMD launch, ddcontact (with ARGS and --output-dir) on one rank and a

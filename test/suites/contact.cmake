@@ -465,11 +465,9 @@ foreach(case HERTZ_conventional_Monolithic_np2 HERTZ_decomposed_FETI-DP_np3 HERT
     set(tolerance 1e-10)
   endif()
   foreach(mode whole in_ranges)
-    set(parts)
-    set(said "every rank holds the whole mesh")
+    ddc_mesh_mode(${mode} parts said)
     if(mode STREQUAL in_ranges)
-      set(parts --set "Partition/Mesh On Every Rank=false")
-      set(said "; no rank held the whole mesh \\(built in ranges of elements\\); every rank holds all [0-9]+ contact slots;.*step +[0-9]+/[0-9]+ .*contacts [1-9]")
+      string(APPEND said "[;] every rank holds all [0-9]+ contact slots[;].*step +[0-9]+/[0-9]+ .*contacts [1-9]")
     endif()
     ddc_add_run_test(contact_${mode}_${name} RANKS ${np} FIXTURE
       ARGS ${CONTACT_PARTS_${case}} ${parts} --set "Output/VTK=false" --output-dir ${DDC_RUNS}/contact_${mode}_${name}
@@ -662,6 +660,24 @@ foreach(case boxgrid_np2 metis8_np2)
     REGEX "check: .a error. <= 0.02: passed.*check: .c error. <= 0.03: passed")
   set_tests_properties(${run}_vs_theory PROPERTIES FIXTURES_REQUIRED ${run})
 endforeach()
+# The slide with its two bodies read in ranges from the one Gmsh file
+# (Partition/Mesh On Every Rank = false: each rank keeps its range of the
+# elements as the file streams by) equals the whole-mesh run on the same
+# PT-Scotch partition (8 subdomains, 3 ranks, 2 steps): history and
+# contact_nodes.csv bitwise (measured 0).
+foreach(mode whole in_ranges)
+  ddc_mesh_mode(${mode} parts said)
+  ddc_add_run_test(cattaneo_2d_slide_${mode}_np3 RANKS 3 FIXTURE
+    ARGS ${CATTANEO_SLIDE} ${DD_FETI} --set "Partition/Method=PT-Scotch" --set "Partition/Number of Subdomains=8"
+      --set "Load Stepping/Number of Steps=2" --set "Output/VTK=false" ${parts}
+      --output-dir ${DDC_RUNS}/cattaneo_2d_slide_${mode}_np3
+    REGEX "${said}.*step +2/2 .*contacts [1-9]" FILES ${DDC_RUNS}/cattaneo_2d_slide_${mode}_np3/contact_nodes.csv
+    LABELS contact feti dd_contact)
+endforeach()
+ddc_compare_histories(cattaneo_2d_slide_in_ranges_equal_whole cattaneo_2d_slide_whole_np3
+  cattaneo_2d_slide_in_ranges_np3 0 LABELS contact)
+ddc_compare_histories(cattaneo_2d_slide_in_ranges_equal_whole_nodes cattaneo_2d_slide_whole_np3
+  cattaneo_2d_slide_in_ranges_np3 0 FILE contact_nodes.csv LABELS contact)
 set(CATTANEO_conventional Node-To-Surface)
 set(CATTANEO_decomposed "Decomposed Node-To-Surface")
 foreach(case conventional_np1 decomposed_np2)

@@ -90,9 +90,9 @@ ddc_compare_histories(mesh_in_ranges_rank_independence_elastic_block example_ela
   mesh_in_ranges_elastic_block_np3 1e-10)
 # The other generators too (the arch's annular sector, the 3-D arch's
 # cylindrical shell sector): the 1-rank runs to the rank-independence
-# tolerance. A Gmsh file rank 0 alone reads and deals to
-# the ranks in even ranges of elements: the whole-mesh PT-Scotch run on as
-# many ranks (the same partition), its Exodus II pieces too (output.cmake).
+# tolerance. A Gmsh file each rank reads its even range of elements of (as
+# the file streams by): the whole-mesh PT-Scotch run on as many ranks (the
+# same partition), its Exodus II pieces too (output.cmake).
 ddc_add_run_test(mesh_in_ranges_arch_np3 RANKS 3 FIXTURE
   ARGS ${PROJECT_SOURCE_DIR}/examples/arch.xml ${IN_RANGES} --output-dir ${DDC_RUNS}/mesh_in_ranges_arch_np3
   FILES ${DDC_RUNS}/mesh_in_ranges_arch_np3/history.csv LABELS example
@@ -105,19 +105,14 @@ ddc_add_run_test(mesh_in_ranges_half_ring_arch_3d_np3 RANKS 3 FIXTURE
   REGEX "; no rank held the whole mesh \\(built in ranges of elements\\)")
 ddc_compare_histories(mesh_in_ranges_rank_independence_half_ring_arch_3d example_half_ring_arch_3d_np1
   mesh_in_ranges_half_ring_arch_3d_np3 1e-10)
-foreach(mode whole rank_zero)
-  set(parts)
-  set(said "every rank holds the whole mesh")
-  if(mode STREQUAL rank_zero)
-    set(parts --set "Partition/Mesh On Every Rank=false")
-    set(said "; only rank 0 held the whole mesh \\(and sent each rank a range of its elements\\)")
-  endif()
+foreach(mode whole in_ranges)
+  ddc_mesh_mode(${mode} parts said)
   ddc_add_run_test(gmsh_block_${mode}_np3 RANKS 3 FIXTURE
     ARGS ${DDC_INPUTS}/restart_block.xml --set "Partition/Method=PT-Scotch" --set "Output/VTK=false"
       --set "Output/Exodus=true" ${parts} --output-dir ${DDC_RUNS}/gmsh_block_${mode}_np3
     FILES ${DDC_RUNS}/gmsh_block_${mode}_np3/history.csv LABELS example REGEX "${said}")
 endforeach()
-ddc_compare_histories(gmsh_block_rank_zero_equal_whole gmsh_block_whole_np3 gmsh_block_rank_zero_np3 1e-12)
+ddc_compare_histories(gmsh_block_in_ranges_equal_whole gmsh_block_whole_np3 gmsh_block_in_ranges_np3 1e-12)
 
 # The bar impact (implicit dynamics with contact, the decomposed element
 # under FETI-DP): on 1, 2 and 3 ranks, each subdomain factorised once

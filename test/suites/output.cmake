@@ -68,11 +68,11 @@ foreach(np 2 4)
   set_tests_properties(exodus_pieces_equal_whole_block_3d_np${np} PROPERTIES
     FIXTURES_REQUIRED "ptscotch_whole_block_3d_np2;mesh_in_ranges_block_3d_np${np}" LABELS "system;output")
 endforeach()
-add_test(NAME exodus_pieces_gmsh_block_rank_zero COMMAND ${DDC_SYSTEM_PYTHON}
+add_test(NAME exodus_pieces_gmsh_block_in_ranges COMMAND ${DDC_SYSTEM_PYTHON}
   ${CMAKE_CURRENT_SOURCE_DIR}/tools/check_exodus_pieces.py ${DDC_RUNS}/gmsh_block_whole_np3/results.e
-  ${DDC_RUNS}/gmsh_block_rank_zero_np3/results.e)
-set_tests_properties(exodus_pieces_gmsh_block_rank_zero PROPERTIES
-  FIXTURES_REQUIRED "gmsh_block_whole_np3;gmsh_block_rank_zero_np3" LABELS "system;output")
+  ${DDC_RUNS}/gmsh_block_in_ranges_np3/results.e)
+set_tests_properties(exodus_pieces_gmsh_block_in_ranges PROPERTIES
+  FIXTURES_REQUIRED "gmsh_block_whole_np3;gmsh_block_in_ranges_np3" LABELS "system;output")
 ddc_add_exodus_test(exodus_half_rings 2 ${PROJECT_SOURCE_DIR}/examples/two_half_rings.xml
   --set "Load Stepping/Number of Steps=10")
 ddc_add_exodus_test(exodus_arch_Quad9 2 ${PROJECT_SOURCE_DIR}/examples/arch.xml
@@ -133,12 +133,7 @@ add_test(NAME exodus_mesh_block_files COMMAND sh -c
 set_tests_properties(exodus_mesh_block_files PROPERTIES FIXTURES_REQUIRED exodus_block_Hex8
   FIXTURES_SETUP exodus_mesh_block_files LABELS "system;output")
 foreach(mode whole in_ranges)
-  set(parts)
-  set(said "every rank holds the whole mesh")
-  if(mode STREQUAL in_ranges)
-    set(parts --set "Partition/Mesh On Every Rank=false")
-    set(said "; no rank held the whole mesh \\(built in ranges of elements\\)")
-  endif()
+  ddc_mesh_mode(${mode} parts said)
   ddc_add_run_test(exodus_mesh_block_${mode}_np3 RANKS 3 FIXTURE
     ARGS ${EXO_MESH}/block.xml --set "Partition/Method=PT-Scotch" ${parts}
       --set "Output/VTK=false" --output-dir ${DDC_RUNS}/exodus_mesh_block_${mode}_np3

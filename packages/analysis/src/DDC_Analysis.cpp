@@ -100,18 +100,15 @@ void Analysis::buildModel(Teuchos::ParameterList& params, const std::string& bas
       "refine less, run on more ranks or hosts, or set 'Solver/Memory Check' = false to run anyway";
   memoryBudget_ = MemoryBudget();
   PL& meshParams = params.sublist("Mesh");
-  // Without the whole mesh on every rank and with PT-Scotch, bodies the
-  // generators make or the Exodus II reader reads by element range are made
-  // so (no rank holds the whole mesh) and others (Gmsh) on rank 0 alone,
-  // which sends each rank a range; otherwise each rank builds the whole
-  // mesh (and keeps its part after partitioning).
+  // Without the whole mesh on every rank and with PT-Scotch, the bodies are
+  // generated or read by element range (no rank holds the whole mesh);
+  // otherwise each rank builds the whole mesh (and keeps its part after
+  // partitioning).
   meshOrigin_ = meshOrigin(params);
   const MPI_Comm comm = rawComm(comm_);
   auto mesh = meshOrigin_ == MeshOrigin::Ranges
                   ? buildMeshInRanges(meshParams, factory_, &memory, memoryHint, comm, baseDirectory)
-              : meshOrigin_ == MeshOrigin::RankZero
-                  ? buildMeshOnRankZero(meshParams, factory_, baseDirectory, &memory, memoryHint, comm)
-                  : buildMesh(meshParams, factory_, baseDirectory, &memory, memoryHint, comm);
+              : buildMesh(meshParams, factory_, baseDirectory, &memory, memoryHint, comm);
   auto elements = makeBodyElements(*mesh, meshParams, factory_);
   // Nearly incompressible materials lock: said at the start and with a
   // Newton failure, where it is the likely cause (with the other caveats).

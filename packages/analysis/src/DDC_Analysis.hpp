@@ -167,7 +167,7 @@ class Analysis {
   std::string caveats_;
   bool progressEnabled_ = true;
   /// Where the mesh came from (meshOrigin()): with Ranges no rank held it
-  /// whole, with RankZero only rank 0.
+  /// whole.
   MeshOrigin meshOrigin_ = MeshOrigin::EveryRank;
   bool dynamic_ = false;  ///< Dynamics/Integrator is not None
   NewtonSettings newton_;

@@ -263,10 +263,9 @@ Teuchos::RCP<PL> partitionValidParameters() {
           "rank keeps only its elements and their nodes (doc/architecture.md, 'What a distributed mesh has "
           "to change'), Monolithic or FETI-DP, with or without contact (the contact surfaces stay on every "
           "rank); Output/Exodus is written in pieces, one per rank. "
-          "With Method = PT-Scotch and every body from a built-in generator or an Exodus II file no rank "
-          "builds the whole mesh (each generates or reads a range of the elements, which then move to their "
-          "subdomains' ranks); with PT-Scotch and a body from a Gmsh file rank 0 alone reads the whole mesh "
-          "and sends each rank a range of it; otherwise (METIS and the other methods) each rank builds the whole mesh first and "
+          "With Method = PT-Scotch no rank builds the whole mesh (each generates a range of the elements, "
+          "or reads it from an Exodus II or Gmsh file, and the elements then move to their subdomains' "
+          "ranks); otherwise (METIS and the other methods) each rank builds the whole mesh first and "
           "keeps its part, which lowers what a rank holds during the solve, not the peak of the set-up.");
   return pl;
 }

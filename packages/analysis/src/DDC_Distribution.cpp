@@ -55,10 +55,8 @@ std::string distributionLine(const Teuchos::Comm<int>& comm, const Model& model,
     os << "; the busiest rank holds " << share(most[4], elements, "elements") << " and "
        << share(most[5], nodes, "nodes") << " of the mesh (its elements' nodes, those shared with other ranks "
        << "included)"
-       << (origin == MeshOrigin::Ranges     ? "; no rank held the whole mesh (built in ranges of elements)"
-           : origin == MeshOrigin::RankZero ? "; only rank 0 held the whole mesh (and sent each rank a range of "
-                                              "its elements)"
-                                            : "; each rank built the whole mesh and kept its part")
+       << (origin == MeshOrigin::Ranges ? "; no rank held the whole mesh (built in ranges of elements)"
+                                        : "; each rank built the whole mesh and kept its part")
        << (slots > 0 ? "; every rank holds all " + std::to_string(slots) + " contact slots" : "");
   else
     os << "; every rank holds the whole mesh (" << elements << " elements, " << nodes << " nodes)"

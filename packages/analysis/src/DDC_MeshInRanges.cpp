@@ -10,6 +10,7 @@
 #include "DDC_AnalysisParameters.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_ExodusMesh.hpp"
+#include "DDC_Gmsh.hpp"
 #include "DDC_InputDeck.hpp"
 #include "DDC_MeshGenerators.hpp"
 #include "DDC_ModelSetUp.hpp"
@@ -20,7 +21,14 @@ namespace ddc {
 
 using PL = Teuchos::ParameterList;
 
-bool readsByRange(const std::string& generator) { return generatesByRange(generator) || generator == "Exodus"; }
+namespace {
+
+/// Whether a body of this Generator is read from a file (in ranges).
+bool readsFile(const std::string& generator) { return generator == "Exodus" || generator == "Gmsh"; }
+
+}  // namespace
+
+bool readsByRange(const std::string& generator) { return generatesByRange(generator) || readsFile(generator); }
 
 bool meshBuiltInRanges(const PL& params) {
   if (!params.isSublist("Partition") || !params.isSublist("Mesh")) return false;
@@ -42,12 +50,7 @@ bool meshBuiltInRanges(const PL& params) {
 }
 
 MeshOrigin meshOrigin(const PL& params) {
-  if (meshBuiltInRanges(params)) return MeshOrigin::Ranges;
-  if (!params.isSublist("Partition")) return MeshOrigin::EveryRank;
-  const PL& partition = params.sublist("Partition");
-  const bool rankZero =
-      !partition.get<bool>("Mesh On Every Rank") && partition.get<std::string>("Method") == "PT-Scotch";
-  return rankZero ? MeshOrigin::RankZero : MeshOrigin::EveryRank;
+  return meshBuiltInRanges(params) ? MeshOrigin::Ranges : MeshOrigin::EveryRank;
 }
 
 std::shared_ptr<Mesh> buildMeshOnRankZero(PL& meshParams, const ElementFactory& factory,
@@ -100,6 +103,8 @@ std::shared_ptr<Mesh> buildMeshInRanges(PL& meshParams, const ElementFactory& fa
       runCollectively<InputError>(comm, [&] {
         total += exodusBodyElementCount(*in.generatorParams, in.name, in.cellType, at, baseDirectory);
       });
+    else if (in.generator == "Gmsh")  // collective; agrees on its errors itself
+      total += gmshBodyElementCount(*in.generatorParams, in.name, in.cellType, at, baseDirectory, comm);
     else
       total += structuredElementCount(in.generator, in.cellType, *in.generatorParams, at);
   }
@@ -109,7 +114,7 @@ std::shared_ptr<Mesh> buildMeshInRanges(PL& meshParams, const ElementFactory& fa
   if (budget && std::isfinite(budget->bytes)) mesh->setMemoryBudget(budget->bytes, budget->source, budgetHint);
   {
     const bool reads =
-        std::any_of(inputs.begin(), inputs.end(), [](const BodyInput& in) { return in.generator == "Exodus"; });
+        std::any_of(inputs.begin(), inputs.end(), [](const BodyInput& in) { return readsFile(in.generator); });
     Activity activity(std::string(reads ? "reading" : "generating") + " the mesh in ranges of elements (" +
                       std::to_string(total) + " elements, " + std::to_string(range.last - range.first) +
                       " on this rank)");
@@ -119,6 +124,10 @@ std::shared_ptr<Mesh> buildMeshInRanges(PL& meshParams, const ElementFactory& fa
       // The reader is collective and agrees on its errors itself.
       if (in.generator == "Exodus") {
         readExodusBodyInRange(*mesh, in.name, in.cellType, gp, at, baseDirectory, range, comm);
+        continue;
+      }
+      if (in.generator == "Gmsh") {
+        readGmshBodyInRange(*mesh, in.name, in.cellType, gp, at, baseDirectory, range, comm);
         continue;
       }
       runCollectively<InputError>(comm, [&] {

@@ -366,8 +366,8 @@ Partition partitionModel(const Mesh& mesh, const PL& part, const std::string& st
   if (nsub == 0) nsub = automaticSubdomainCount(mesh, part, strategy, ranks);
   Partition partition;
   const std::string method = part.get<std::string>("Method");
-  // Parts of a mesh come from buildMeshInRanges() or buildMeshOnRankZero(),
-  // which PT-Scotch alone partitions (meshOrigin()).
+  // Parts of a mesh come from buildMeshInRanges() (or buildMeshOnRankZero()
+  // in a host code), which PT-Scotch alone partitions (meshOrigin()).
   DDC_CHECK(!mesh.isPart() || method == "PT-Scotch", "partitionModel() of a part of a mesh with Method " << method);
   auto requireCount = [&](int count) {
     const int given = part.get<int>("Number of Subdomains");

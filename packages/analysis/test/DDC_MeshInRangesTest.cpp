@@ -4,8 +4,9 @@
 // mesh's subdomains, and each rank ends with the part and subdomains it
 // would cut from the whole mesh; the set-up's messages are the whole mesh's.
 // A mesh built on rank 0 alone and dealt in ranges (buildMeshOnRankZero())
-// is the same parts, and so is an Exodus II file read in slabs
-// (readExodusBodyInRange()), its faults named as the whole reader names them.
+// is the same parts, and so are an Exodus II file read in slabs
+// (readExodusBodyInRange()) and a Gmsh file read in ranges
+// (readGmshBodyInRange()), their faults named as the whole readers name them.
 #include <gtest/gtest.h>
 #include <mpi.h>
 #include <unistd.h>
@@ -124,7 +125,9 @@ TEST(MeshInRanges, ChosenForPtScotchAndRangeGeneratorsWithoutTheWholeMesh) {
   deck.sublist("Mesh").sublist("Bodies").sublist("Right").set("Generator", std::string("Sphere Octant"));
   EXPECT_TRUE(ddc::meshBuiltInRanges(deck));  // every built-in generator makes ranges
   deck.sublist("Mesh").sublist("Bodies").sublist("Right").set("Generator", std::string("Gmsh"));
-  EXPECT_FALSE(ddc::meshBuiltInRanges(deck));
+  EXPECT_TRUE(ddc::meshBuiltInRanges(deck));  // read in ranges as the file streams by
+  deck.sublist("Mesh").sublist("Bodies").sublist("Right").set("Generator", 3);
+  EXPECT_FALSE(ddc::meshBuiltInRanges(deck));  // buildMesh() says what is wrong
 }
 
 TEST(MeshInRanges, TheOriginOfTheMeshByPartitionerAndBodies) {
@@ -136,7 +139,7 @@ TEST(MeshInRanges, TheOriginOfTheMeshByPartitionerAndBodies) {
   deck.sublist("Mesh").sublist("Bodies").sublist("Right").set("Generator", std::string("Exodus"));
   EXPECT_EQ(ddc::meshOrigin(deck), ddc::MeshOrigin::Ranges);  // read in slabs
   deck.sublist("Mesh").sublist("Bodies").sublist("Right").set("Generator", std::string("Gmsh"));
-  EXPECT_EQ(ddc::meshOrigin(deck), ddc::MeshOrigin::RankZero);
+  EXPECT_EQ(ddc::meshOrigin(deck), ddc::MeshOrigin::Ranges);  // read as the file streams by
   deck.sublist("Partition").set("Method", std::string("METIS"));
   EXPECT_EQ(ddc::meshOrigin(deck), ddc::MeshOrigin::EveryRank);
   deck.sublist("Partition").set("Method", std::string("PT-Scotch"));
@@ -170,6 +173,38 @@ TEST(MeshInRanges, AnErrorOfTheMeshOnRankZeroStopsEveryRank) {
   const std::string expected = inputErrorOf([&] { ddc::buildMesh(forWhole, factory, "."); });
   EXPECT_NE(expected.find("no_such_mesh.msh"), std::string::npos) << expected;
   EXPECT_EQ(inputErrorOf([&] { ddc::buildMeshOnRankZero(onRankZero, factory, ".", nullptr, "", MPI_COMM_WORLD); }),
+            expected);
+}
+
+TEST(MeshInRanges, GmshFilesReadInRangesAreWhatRankZeroDeals) {
+  // The Mindlin sphere's two bodies, each a physical volume of one file:
+  // read in ranges (each rank keeps its range as the file streams by), as
+  // rank 0 reads them whole and deals them; a missing file stops every
+  // rank with the whole reader's message.
+  PL mesh("Mesh");
+  for (const char* name : {"Sphere", "Block"}) {
+    PL& body = mesh.sublist("Bodies").sublist(name);
+    body.set("Generator", std::string("Gmsh"));
+    body.sublist("Element").set("Type", std::string("Hex8"));
+    body.sublist("Element").sublist("Material").set("Type", std::string("Linear Elastic"));
+    body.sublist("Gmsh").set("File", std::string(DDC_SOURCE_DIR) + "/examples/mindlin_sphere.msh");
+    body.sublist("Gmsh").set("Physical Volume", std::string(name == std::string("Sphere") ? "sphere" : "block"));
+  }
+  const auto factory = ddc::ElementFactory::withBuiltins();
+  PL forRanges = mesh, onRankZero = mesh;
+  const auto ranges = ddc::buildMeshInRanges(forRanges, factory, nullptr, "", MPI_COMM_WORLD, ".");
+  const auto dealt = ddc::buildMeshOnRankZero(onRankZero, factory, ".", nullptr, "", MPI_COMM_WORLD);
+  ddc::test::expectSameParts(*ranges, *dealt);
+  EXPECT_TRUE(Teuchos::haveSameValues(onRankZero, forRanges)) << onRankZero << "\n" << forRanges;
+  EXPECT_TRUE(ranges->hasSideSet("Sphere/surface")) << "every rank names the file's face sets";
+  EXPECT_TRUE(ranges->hasSideSet("Block/top"));
+  PL missing = mesh, missingWhole = mesh;
+  for (PL* m : {&missing, &missingWhole})
+    m->sublist("Bodies").sublist("Block").sublist("Gmsh").set("File", std::string("no_such_mesh.msh"));
+  const std::string expected = inputErrorOf([&] { ddc::buildMesh(missingWhole, factory, "."); });
+  EXPECT_NE(expected.find("'Mesh/Bodies/Block/Gmsh/File' (body 'Block'): cannot open Gmsh file"), std::string::npos)
+      << expected;
+  EXPECT_EQ(inputErrorOf([&] { ddc::buildMeshInRanges(missing, factory, nullptr, "", MPI_COMM_WORLD, "."); }),
             expected);
 }
 

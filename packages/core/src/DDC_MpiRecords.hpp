@@ -9,6 +9,7 @@
 #include <Teuchos_Comm.hpp>
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <climits>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -77,6 +78,21 @@ std::vector<T> exchangeRecords(MPI_Comm comm, const std::vector<std::vector<T>>&
 template <class T>
 std::vector<T> allGather(MPI_Comm comm, const std::vector<T>& mine) {
   return exchangeRecords(comm, std::vector<std::vector<T>>(size_t(commSize(comm)), mine));
+}
+
+/// The starts of the ranks' ranges [first, last) in rank order and the end
+/// of the last (P + 1 values), on every rank. Collective.
+/// \throws std::logic_error naming `who` if a range does not start where
+///         the one of the rank before it ends
+inline std::vector<long long> contiguousRangeStarts(long long first, long long last, MPI_Comm comm,
+                                                    const std::string& who) {
+  const std::vector<long long> firsts = allGather(comm, std::vector<long long>{first});
+  const std::vector<long long> lasts = allGather(comm, std::vector<long long>{last});
+  for (size_t r = 0; r + 1 < firsts.size(); ++r)
+    if (lasts[r] != firsts[r + 1]) throw std::logic_error(who + ": the ranges are not contiguous in rank order");
+  std::vector<long long> starts = firsts;
+  starts.push_back(lasts.back());
+  return starts;
 }
 
 /// Logical OR of `bad` over the communicator, so that all ranks agree to

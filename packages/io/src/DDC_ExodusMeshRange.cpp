@@ -67,12 +67,7 @@ class ExodusBodyRangeReader {
         rank_(commRank(comm)), ranks_(commSize(comm)) {
     firstNodeId_ = part.numGlobalNodes();
     firstElementId_ = part.numGlobalElements();
-    const std::vector<long long> firsts = allGather(comm, std::vector<long long>{range.first});
-    const std::vector<long long> lasts = allGather(comm, std::vector<long long>{range.last});
-    for (int r = 0; r + 1 < ranks_; ++r)
-      DDC_CHECK(lasts[r] == firsts[r + 1], "readExodusBodyInRange(): the ranges are not contiguous in rank order");
-    elementStarts_ = firsts;
-    elementStarts_.push_back(lasts.back());
+    elementStarts_ = contiguousRangeStarts(range.first, range.last, comm, "readExodusBodyInRange()");
     range_ = range;
   }
 

@@ -71,6 +71,15 @@
 // dimension in the file is read and every physical group of lower
 // dimension must belong to it.
 //
+// In ranges (readGmshBodyInRange(); doc/partitioning.md): every rank reads
+// the file as it streams by and keeps its range of the body's elements, an
+// even share of the node tags, and the elements of lower dimension (the
+// side sets, curves and points: the size of the boundary); the node
+// numbering and every set membership go through the nodes' owners. No rank
+// holds the whole body, and each fault is named as the whole reader names
+// it. Every rank reads the whole text, twice (once to count the body's
+// elements); the file system serves the same file to all.
+//
 // Note: Gmsh saves only elements of physical groups once any physical group
 // exists (Mesh.SaveAll = 0); define a Physical Surface / Volume for the
 // body, or the file will contain no elements of the body's dimension
@@ -79,9 +88,13 @@
 
 #include <Teuchos_ParameterList.hpp>
 #include <Teuchos_RCP.hpp>
+#include <mpi.h>
+
 #include <string>
 
+#include "DDC_Error.hpp"
 #include "DDC_Mesh.hpp"
+#include "DDC_MeshGenerators.hpp"
 
 namespace ddc {
 
@@ -108,6 +121,38 @@ class GmshReader {
 ///         parameter errors.
 int readGmshBody(Mesh& mesh, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
                  const std::string& path, const std::string& baseDirectory);
+
+/// The file (resolved against `baseDirectory`) and the selecting physical
+/// group of a Gmsh body's parameters, validated as readGmshBody() does.
+struct GmshBodyFile {
+  std::string file, group;
+};
+GmshBodyFile gmshBodyFile(Teuchos::ParameterList& params, const std::string& bodyName, CellType type,
+                          const std::string& path, const std::string& baseDirectory);
+/// Throws `e` again, led by the parameter path `path`/File and the body.
+[[noreturn]] void throwForBody(const InputError& e, const std::string& bodyName, const std::string& path);
+
+/// The number of elements readGmshBody() would read (the file is parsed on
+/// every rank). Collective on `comm`; a fault of the file is thrown on
+/// every rank with the whole reader's message.
+long long gmshBodyElementCount(Teuchos::ParameterList& params, const std::string& bodyName, CellType type,
+                               const std::string& path, const std::string& baseDirectory, MPI_Comm comm);
+
+/// readGmshBody() making only the body's elements whose ids in the whole
+/// mesh lie in `range` (they follow those of the bodies before it), and
+/// their nodes, into the part `part` (Mesh::startPart()): the part
+/// Mesh::part() would cut from the whole read, with the whole reader's
+/// messages (see "In ranges" above). Collective on `comm`; the ranges of
+/// the ranks must be contiguous in rank order.
+int readGmshBodyInRange(Mesh& part, const std::string& bodyName, CellType type, Teuchos::ParameterList& params,
+                        const std::string& path, const std::string& baseDirectory, const ElementRange& range,
+                        MPI_Comm comm);
+
+/// gmshBodyElementCount() and readGmshBodyInRange() of a file directly.
+long long gmshFileElementCount(const std::string& fileName, const std::string& bodyName, CellType type,
+                               const std::string& physicalGroup, MPI_Comm comm);
+int readGmshFileInRange(Mesh& part, const std::string& bodyName, CellType type, const std::string& fileName,
+                        const std::string& physicalGroup, const ElementRange& range, MPI_Comm comm);
 
 /// Read a file directly (used by readGmshBody; handy for tests and tools).
 /// \param fileName path as given (already resolved).

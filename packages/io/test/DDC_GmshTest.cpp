@@ -1,9 +1,14 @@
 // Gmsh MSH 4.1 reader: the small files in data/ and variants of them written
 // to a temporary directory, one per unsupported or malformed case; in 3-D
-// also generated meshes written to MSH and read back.
+// also generated meshes written to MSH and read back. Every fault is also
+// read in ranges on all ranks (readError()), with the whole reader's
+// message, and the files that read are read in ranges into the parts the
+// whole read cuts.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <mpi.h>
+
+#include <unistd.h>
 
 #include <cmath>
 #include <fstream>
@@ -14,6 +19,8 @@
 #include "DDC_Error.hpp"
 #include "DDC_Gmsh.hpp"
 #include "DDC_MeshGenerators.hpp"
+#include "DDC_MeshPartCompare.hpp"
+#include "DDC_MpiRecords.hpp"
 #include "DDC_TestErrors.hpp"
 #include "DDC_TestTolerances.hpp"
 
@@ -35,13 +42,41 @@ std::string slurp(const std::string& file) {
   return ss.str();
 }
 
-/// Write `content` to a per-rank temporary file and return its path.
+/// Write `content` to a temporary file of this run (rank 0 writes it, every
+/// rank reads it) and return its path. Collective.
 std::string writeTemp(const std::string& name, const std::string& content) {
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  const std::string file = ::testing::TempDir() + "ddc_gmsh_" + std::to_string(rank) + "_" + name;
-  std::ofstream(file) << content;
+  long long pid = ::getpid();
+  MPI_Bcast(&pid, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+  const std::string file = ::testing::TempDir() + "ddc_gmsh_" + std::to_string(pid) + "_" + name;
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (ddc::commRank(MPI_COMM_WORLD) == 0) std::ofstream(file) << content;
+  MPI_Barrier(MPI_COMM_WORLD);
   return file;
+}
+
+/// The bodies (name, physical group) of `file` read in ranges: each rank its
+/// even share of their elements. Collective.
+Mesh readInRanges(const std::string& file, CellType t, const std::vector<std::pair<std::string, std::string>>& bodies) {
+  long long total = 0;
+  for (const auto& [name, group] : bodies) total += ddc::gmshFileElementCount(file, name, t, group, MPI_COMM_WORLD);
+  const auto [first, last] = ddc::evenShare(total, MPI_COMM_WORLD);
+  Mesh part = Mesh::startPart();
+  for (const auto& [name, group] : bodies)
+    ddc::readGmshFileInRange(part, name, t, file, group, {first, last}, MPI_COMM_WORLD);
+  return part;
+}
+
+/// The whole read of `file`'s bodies, and what reading them in ranges gives
+/// each rank: the part the whole read cuts (its even share of the elements).
+void expectSameInRanges(const std::string& file, CellType t,
+                        const std::vector<std::pair<std::string, std::string>>& bodies) {
+  Mesh whole;
+  for (const auto& [name, group] : bodies) ddc::readGmshFile(whole, name, t, file, group);
+  const auto [first, last] = ddc::evenShare(whole.numElements(), MPI_COMM_WORLD);
+  std::vector<int> mine;
+  for (long long e = first; e < last; ++e) mine.push_back(int(e));
+  SCOPED_TRACE(file);
+  ddc::test::expectSameParts(readInRanges(file, t, bodies), whole.part(mine));
 }
 
 /// `text` with the first occurrence of `from` replaced by `to` (must exist).
@@ -52,11 +87,15 @@ std::string replaced(std::string text, const std::string& from, const std::strin
   return text;
 }
 
+/// The whole reader's message for `file`; reading it in ranges must stop
+/// every rank with the same message. Collective.
 std::string readError(const std::string& file, CellType t = CellType::Quad4, const std::string& surface = "") {
-  return inputErrorOf([&] {
+  const std::string whole = inputErrorOf([&] {
     Mesh m;
     ddc::readGmshFile(m, "Body", t, file, surface);
   });
+  EXPECT_EQ(inputErrorOf([&] { readInRanges(file, t, {{"Body", surface}}); }), whole) << "in ranges: " << file;
+  return whole;
 }
 
 /// Side-set segments point away from the body: for these convex bodies the
@@ -328,10 +367,7 @@ std::string writeMsh(const Mesh& m, const std::vector<std::string>& sets) {
 }
 
 std::string readError3(const std::string& file, CellType t = CellType::Hex8, const std::string& volume = "") {
-  return inputErrorOf([&] {
-    Mesh m;
-    ddc::readGmshFile(m, "Body", t, file, volume);
-  });
+  return readError(file, t, volume);
 }
 
 }  // namespace
@@ -602,4 +638,77 @@ TEST(Gmsh3D, RejectsBadFaceSets) {
               HasSubstr("line element 2 of physical curve 'edge' has a node that belongs to no 3-D element"));
   EXPECT_THAT(readError3(writeTemp("curve_quad.msh", replaced(base, "1 1 1 1\n2 1 7\n", "1 1 3 1\n2 1 7 10 4\n"))),
               HasSubstr("physical curve 'edge' (curve 1) has 4-node quadrangles (type 3); expected 2-node lines"));
+}
+
+TEST(GmshInRanges, EveryFileReadsIntoThePartsOfTheWholeRead) {
+  // Each rank its even share of the elements, of one body or of two bodies
+  // selected by their physical groups (the second's ids after the first's).
+  const std::string examples = std::string(DDC_SOURCE_DIR) + "/examples";
+  expectSameInRanges(kData + "/rect2x1.msh", CellType::Quad4, {{"Body", ""}});
+  expectSameInRanges(kData + "/quad9.msh", CellType::Quad9, {{"Body", ""}});
+  expectSameInRanges(kData + "/hex2x1x1.msh", CellType::Hex8, {{"Body", ""}});
+  expectSameInRanges(kData + "/hex20.msh", CellType::Hex20, {{"Body", ""}});
+  expectSameInRanges(kData + "/tet2.msh", CellType::Tet4, {{"Body", ""}});
+  expectSameInRanges(kData + "/tet10.msh", CellType::Tet10, {{"Body", ""}});
+  expectSameInRanges(kData + "/two_surfaces.msh", CellType::Quad4, {{"A", "block"}, {"B", "pad"}});
+  expectSameInRanges(kData + "/two_volumes.msh", CellType::Hex8, {{"A", "block"}, {"B", "pad"}});
+  expectSameInRanges(std::string(DDC_SOURCE_DIR) + "/test/inputs/restart_block.msh", CellType::Quad4, {{"Block", ""}});
+  expectSameInRanges(examples + "/cattaneo_2d.msh", CellType::Quad4, {{"Cylinder", "cylinder"}, {"Block", "block"}});
+  expectSameInRanges(examples + "/mindlin_sphere.msh", CellType::Hex8, {{"Sphere", "sphere"}, {"Block", "block"}});
+  // Generated bodies of every 3-D type with face sets, their tags reversed.
+  for (CellType t : {CellType::Hex8, CellType::Hex20, CellType::Hex27, CellType::Tet4, CellType::Tet10}) {
+    Mesh g;
+    Teuchos::ParameterList p;
+    p.set("Elements X", 3);
+    p.set("Elements Y", 2);
+    p.set("Elements Z", 2);
+    p.set("Distortion", 0.2);
+    ddc::generateBox(g, "G", t, p, "B");
+    const std::vector<std::string> sets = {"G/left", "G/right", "G/bottom", "G/top", "G/back", "G/front"};
+    const std::string file = writeTemp(std::string("ranges_") + ddc::cellTypeName(t) + ".msh", writeMsh(g, sets));
+    expectSameInRanges(file, t, {{"G", "solid"}});
+  }
+}
+
+TEST(GmshInRanges, ANodeTagGivenTwiceIsNamedBeforeALaterFault) {
+  // Tag 40 given to the node at (1, 1) as well: only the tag's owner (the
+  // second rank on 2 and 3 ranks) sees both, while the first rank meets the
+  // element with a node too few further down first. The first fault in the
+  // file is named, as the whole reader names it (readError() compares).
+  const std::string base = slurp(kData + "/rect2x1.msh");
+  const std::string twice =
+      replaced(replaced(base, "1 3 0 1\n50\n", "1 3 0 1\n40\n"), "5 20 50 60 30\n", "5 20 50 60\n");
+  EXPECT_THAT(readError(writeTemp("twice.msh", twice)), HasSubstr("line 42: node tag 40 appears twice in section $Nodes"));
+  EXPECT_THAT(readError(writeTemp("twice_only.msh", replaced(base, "1 3 0 1\n50\n", "1 3 0 1\n40\n"))),
+              HasSubstr("node tag 40 appears twice"));
+}
+
+TEST(GmshInRanges, GroupsNamedAfterTheElementsAreRefusedForASelection) {
+  // A selection needs the groups while the elements stream by: a file that
+  // names them after $Elements is refused with what to do; without a
+  // selection it reads.
+  const std::string base = slurp(kData + "/two_surfaces.msh");
+  const auto names = base.substr(base.find("$PhysicalNames"),
+                                 base.find("$EndPhysicalNames") + 18 - base.find("$PhysicalNames"));
+  const std::string late = replaced(base, names, "") + names;
+  const std::string file = writeTemp("late_names.msh", late);
+  EXPECT_NO_THROW({
+    Mesh m;
+    ddc::readGmshFile(m, "A", CellType::Quad4, file, "block");
+  });
+  EXPECT_THAT(inputErrorOf([&] { readInRanges(file, CellType::Quad4, {{"A", "block"}}); }),
+              HasSubstr("$PhysicalNames or $Entities comes after $Elements; a body selected by a physical group "
+                        "('block') is read in ranges only from a file that names its groups first"));
+}
+
+TEST(GmshInRanges, RangesThatDoNotFollowEachOtherAreRefused) {
+  // Every rank the whole body: the ranges overlap (on one rank they are the
+  // whole, and read).
+  const std::string file = kData + "/rect2x1.msh";
+  Mesh part = Mesh::startPart();
+  const auto read = [&] { ddc::readGmshFileInRange(part, "Body", CellType::Quad4, file, "", {0, 2}, MPI_COMM_WORLD); };
+  if (ddc::commSize(MPI_COMM_WORLD) == 1)
+    EXPECT_NO_THROW(read());
+  else
+    EXPECT_THROW(read(), std::logic_error);
 }
