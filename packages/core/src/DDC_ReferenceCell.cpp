@@ -194,8 +194,47 @@ double determinant(const double j[3][3], int d) {
          j[0][2] * (j[1][0] * j[2][1] - j[1][1] * j[2][0]);
 }
 
-/// J[i][k] = d x_i / d xi_k of the corner map at reference point `xi`.
-void cornerMapJacobian(const ReferenceCell& c, const std::array<double, 3>* x, const Point& xi, double j[3][3]) {
+/// The corner map's evaluation points of cornerJacobian() -- the centre
+/// (-1), then each corner of a multilinear cell -- and there
+/// dn[p][a][k] = d N_a / d xi_k of the corner map's shape functions
+/// N_a = prod_m (1 + xi_m xi_a,m) / 2 (xi_a,m = +-1), computed once per cell
+/// type in the order the Jacobian used to compute them at every call.
+struct CornerMapWeights {
+  int points = 0;
+  std::array<int, 9> where{};
+  double dn[9][8][3] = {};
+};
+
+CornerMapWeights buildCornerMapWeights(const ReferenceCell& c) {
+  CornerMapWeights t;
+  t.where[t.points++] = -1;
+  for (int a = 0; a < c.numCorners; ++a) t.where[t.points++] = a;
+  for (int p = 0; p < t.points; ++p) {
+    const Point xi = t.where[p] < 0 ? Point{0, 0, 0} : c.nodes[t.where[p]];
+    for (int a = 0; a < c.numCorners; ++a) {
+      const Point& ca = c.nodes[a];
+      for (int k = 0; k < c.dim; ++k) {
+        double dn = 0.5 * ca[k];
+        for (int m = 0; m < c.dim; ++m)
+          if (m != k) dn *= 0.5 * (1.0 + xi[m] * ca[m]);
+        t.dn[p][a][k] = dn;
+      }
+    }
+  }
+  return t;
+}
+
+/// The weights of a multilinear cell type (Quad*, Hex*: their corners are
+/// a Quad4's or a Hex8's).
+const CornerMapWeights& cornerMapWeights(const ReferenceCell& c) {
+  static const CornerMapWeights quad = buildCornerMapWeights(referenceCell(CellType::Quad4));
+  static const CornerMapWeights hex = buildCornerMapWeights(referenceCell(CellType::Hex8));
+  return c.dim == 2 ? quad : hex;
+}
+
+/// J[i][k] = d x_i / d xi_k of the corner map at evaluation point `p` of
+/// cornerMapWeights() (a simplex's affine map: the same everywhere).
+void cornerMapJacobian(const ReferenceCell& c, const std::array<double, 3>* x, int p, double j[3][3]) {
   const int d = c.dim;
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k) j[i][k] = 0.0;
@@ -205,16 +244,10 @@ void cornerMapJacobian(const ReferenceCell& c, const std::array<double, 3>* x, c
       for (int k = 0; k < d; ++k) j[i][k] = x[k + 1][i] - x[0][i];
     return;
   }
-  // N_a = prod_m (1 + xi_m xi_a,m) / 2 over the corners a (xi_a,m = +-1).
-  for (int a = 0; a < c.numCorners; ++a) {
-    const Point& ca = c.nodes[a];
-    for (int k = 0; k < d; ++k) {
-      double dn = 0.5 * ca[k];
-      for (int m = 0; m < d; ++m)
-        if (m != k) dn *= 0.5 * (1.0 + xi[m] * ca[m]);
-      for (int i = 0; i < d; ++i) j[i][k] += x[a][i] * dn;
-    }
-  }
+  const auto& dn = cornerMapWeights(c).dn[p];
+  for (int a = 0; a < c.numCorners; ++a)
+    for (int k = 0; k < d; ++k)
+      for (int i = 0; i < d; ++i) j[i][k] += x[a][i] * dn[a][k];
 }
 
 }  // namespace
@@ -233,17 +266,15 @@ CornerJacobian cornerJacobian(CellType t, const std::array<double, 3>* corners) 
   CornerJacobian r;
   r.tolerance = 1e-12 * std::pow(h, d);
   // Evaluation points: the centre (-1), then the corners of multilinear cells.
-  std::vector<int> where{-1};
-  if (!c.simplex)
-    for (int a = 0; a < c.numCorners; ++a) where.push_back(a);
+  const int points = c.simplex ? 1 : c.numCorners + 1;
   double lowest = 0.0;
   bool first = true, degenerate = false;
   int degenerateAt = -1;
   double degenerateDet = 0.0;
-  for (int w : where) {
-    const Point xi = w < 0 ? Point{0, 0, 0} : c.nodes[w];
+  for (int p = 0; p < points; ++p) {
+    const int w = p - 1;
     double j[3][3];
-    cornerMapJacobian(c, corners, xi, j);
+    cornerMapJacobian(c, corners, p, j);
     const double det = determinant(j, d);
     if (first || det < lowest) {
       lowest = det;

@@ -723,18 +723,20 @@ void GmshBody::readPointNodeSets(const UsedTag& used, const AddNodes& add) const
     if (b.dim == 0 && b.type == 15)
       pointNodes[b.entity].insert(pointNodes[b.entity].end(), b.nodes.begin(), b.nodes.end());
   for (const auto& kv : pointNodes) {
-    const auto& phys = physicalsOf(d_, 0, kv.first);
+    std::vector<std::string> names;
+    for (int pt : physicalsOf(d_, 0, kv.first)) names.push_back(physicalName(d_, 0, pt));
+    if (names.empty()) continue;
+    std::vector<long long> tags;
     for (long long tag : kv.second) {
-      for (int pt : phys) {
-        const std::string name = physicalName(d_, 0, pt);
-        if (!used(tag)) {
-          if (selectedTag_ >= 0) continue;
-          fail("physical point '" + name + "' (node " + std::to_string(tag) + ") belongs to no " + dimWord_ +
-               " element");
-        }
-        add(name, {tag});
+      if (used(tag)) {
+        tags.push_back(tag);
+        continue;
       }
+      if (selectedTag_ >= 0) continue;  // a point of another body
+      fail("physical point '" + names[0] + "' (node " + std::to_string(tag) + ") belongs to no " + dimWord_ +
+           " element");
     }
+    for (const auto& name : names) add(name, tags);
   }
 }
 

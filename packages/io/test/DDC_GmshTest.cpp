@@ -284,6 +284,9 @@ TEST(Gmsh, RejectsBadSideSetsAndMalformedFiles) {
   EXPECT_THAT(readError(writeTemp("degen.msh", replaced(base, "4 10 20 50 40", "4 10 20 30 10"))),
               HasSubstr("element 4 has zero area"));
   EXPECT_THAT(readError(kData + "/does_not_exist.msh"), HasSubstr("cannot open Gmsh file"));
+  // A physical point on a node of no element.
+  EXPECT_THAT(readError(writeTemp("stray_point.msh", replaced(base, "0 1 15 1\n1 10\n", "0 1 15 1\n1 70\n"))),
+              HasSubstr("physical point 'origin' (node 70) belongs to no 2-D element"));
 }
 
 TEST(Gmsh, SkipsUnknownSections) {
