@@ -176,11 +176,9 @@ TEST(MeshInRanges, AnErrorOfTheMeshOnRankZeroStopsEveryRank) {
             expected);
 }
 
-TEST(MeshInRanges, GmshFilesReadInRangesAreWhatRankZeroDeals) {
-  // The Mindlin sphere's two bodies, each a physical volume of one file:
-  // read in ranges (each rank keeps its range as the file streams by), as
-  // rank 0 reads them whole and deals them; a missing file stops every
-  // rank with the whole reader's message.
+/// "Mesh" with the Mindlin sphere's two bodies, each a physical volume of
+/// examples/mindlin_sphere.msh.
+PL mindlinBodies() {
   PL mesh("Mesh");
   for (const char* name : {"Sphere", "Block"}) {
     PL& body = mesh.sublist("Bodies").sublist(name);
@@ -190,6 +188,14 @@ TEST(MeshInRanges, GmshFilesReadInRangesAreWhatRankZeroDeals) {
     body.sublist("Gmsh").set("File", std::string(DDC_SOURCE_DIR) + "/examples/mindlin_sphere.msh");
     body.sublist("Gmsh").set("Physical Volume", std::string(name == std::string("Sphere") ? "sphere" : "block"));
   }
+  return mesh;
+}
+
+TEST(MeshInRanges, GmshFilesReadInRangesAreWhatRankZeroDeals) {
+  // Read in ranges (each rank keeps its range as the file streams by), as
+  // rank 0 reads them whole and deals them; a missing file stops every
+  // rank with the whole reader's message.
+  const PL mesh = mindlinBodies();
   const auto factory = ddc::ElementFactory::withBuiltins();
   PL forRanges = mesh, onRankZero = mesh;
   const auto ranges = ddc::buildMeshInRanges(forRanges, factory, nullptr, "", MPI_COMM_WORLD, ".");
@@ -206,6 +212,20 @@ TEST(MeshInRanges, GmshFilesReadInRangesAreWhatRankZeroDeals) {
       << expected;
   EXPECT_EQ(inputErrorOf([&] { ddc::buildMeshInRanges(missing, factory, nullptr, "", MPI_COMM_WORLD, "."); }),
             expected);
+}
+
+TEST(MeshInRanges, AGmshBodyWithoutRoomForItsShareStopsEveryRank) {
+  PL mesh = mindlinBodies();
+  const ddc::MemoryLimit tiny{1000.0, "a test's budget"};
+  const std::string msg = inputErrorOf([&] {
+    ddc::buildMeshInRanges(mesh, ddc::ElementFactory::withBuiltins(), &tiny, "run on more ranks", MPI_COMM_WORLD);
+  });
+  EXPECT_NE(msg.find("'Mesh/Bodies/Sphere/Gmsh/File' (body 'Sphere'): '"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("mindlin_sphere.msh': the mesh would have"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("on this rank (its share of the mesh), more than the 1000 B available (a test's budget); run on "
+                     "more ranks"),
+            std::string::npos)
+      << msg;
 }
 
 TEST(MeshInRanges, ABodyTooThinIsRefusedWithTheWholeMeshesMessage) {
