@@ -239,6 +239,12 @@ void ProgressObserver::finished(const StepLoop& loop) {
     os << "contact: " << model.exchanges() << " contact-geometry exchanges (" << model.bytesExchanged()
        << " bytes between ranks); slave queries: " << c[0] << " by tracking (" << c[1]
        << " fell back to the global search), " << c[2] << " by the global search";
+    if (model.decomposedContact()) {
+      const auto n = model.contactValueUpdates();
+      const auto& b = loop.timing().contactValueBytes;
+      os << "; active-set updates: " << n[0] << " in Newton iterations (at most " << b[0]
+         << " bytes received by a rank), " << n[1] << " at step ends (at most " << b[1] << ")";
+    }
     progress_(os.str());
     for (const auto& pair : model.neverPairedPairs())
       progress_("warning: " + pair + " never paired a slave node in this run: no master facet within the search "

@@ -52,8 +52,8 @@ void ContactComponent::beginStep(const Vector& u0) {
   pairing_->beginStep(u0);
 }
 
-std::vector<int> ContactComponent::updateActiveSet(const Vector& u, const Vector* multipliers) {
-  return pairing_->updateActiveSet(u, multipliers);
+std::vector<int> ContactComponent::updateActiveSet(const Vector& u, const Vector* multipliers, bool everySlot) {
+  return pairing_->updateActiveSet(u, multipliers, everySlot);
 }
 
 FrozenGeometryError ContactComponent::frozenGeometryError(const std::vector<ContactSlot>& converged) const {
@@ -139,6 +139,10 @@ const std::string& ContactComponent::pairName(int p) const { return topology_->p
 long ContactComponent::exchanges() const { return pairing_->exchanges(); }
 
 long ContactComponent::bytesExchanged() const { return pairing_->bytesExchanged(); }
+
+std::array<long, 2> ContactComponent::valueBytesReceived() const { return pairing_->valueBytesReceived(); }
+
+std::array<long, 2> ContactComponent::valueUpdates() const { return pairing_->valueUpdates(); }
 
 std::array<long, 3> ContactComponent::searchCounters() const { return pairing_->searchCounters(); }
 

@@ -25,8 +25,10 @@
 //  - decomposed element: at step ends the owner of each slave node searches
 //    over the master-surface nodes the other ranks send it because they lie
 //    in its bounding box (one exchange); the contact state is checked on the
-//    multiplier map (partial gaps of the two counterparts summed there), with
-//    no geometry moving (doc/contact.md).
+//    multiplier map (partial gaps of the two counterparts summed there, and
+//    decided by the slot's owner), with no geometry moving; in a Newton
+//    iteration only the evaluated slots' values come back, at a step's end
+//    every slot's (updateActiveSet(); doc/contact.md).
 //
 // Facets. A pair's facets are of one cell type per surface
 // (ContactPairSurfaces::masterFacetType / slaveFacetType): Line2 or Line3
@@ -156,12 +158,26 @@ class ContactComponent {
   /// rules: release an active slot in tension (λ > 0), activate an inactive
   /// paired slot with g_N < −tol; an active slot of a frictional pair sticks
   /// or slips by Coulomb's law (DDC_Friction.hpp), a new contact sticking.
-  /// Returns the slots whose state changed (a stick/slip flip included).
+  /// Returns the slots whose state changed (a stick/slip flip included),
+  /// ascending, the same on every rank. Collective.
   /// λ: `multipliers` on multiplierMap(), or, when the host gave multiplier
   /// DOFs to setDofs(), null (read from u).
-  /// \throws InputError (every rank: the slots are replicated) if a fully
-  ///         prescribed slot penetrates.
-  std::vector<int> updateActiveSet(const Vector& u, const Vector* multipliers = nullptr);
+  ///
+  /// Decomposed element: the owner of a slot decides it from the partial
+  /// gaps summed on the multiplier map, and every rank takes the states
+  /// (active, stick/slip) of the changed slots, so the active set is
+  /// replicated. With `everySlot` (the default) every rank also receives
+  /// every slot's gap, slips and multipliers; without it only the slots
+  /// whose counterparts it evaluates (ownedSlots(), localMasterSlots()):
+  /// what a Newton iteration needs, with bytes that grow with the rank's
+  /// part of the contact zone, not with the surface. The other slots'
+  /// values then stay as the last update with `everySlot` left them: a
+  /// host reads every slot's values (summary(), slots()) after such an
+  /// update (at the step's end). The conventional element gathers the
+  /// surface either way, and every rank decides every slot.
+  /// \throws InputError (every rank) if a fully prescribed slot penetrates
+  ///         (the message of the first such slot).
+  std::vector<int> updateActiveSet(const Vector& u, const Vector* multipliers = nullptr, bool everySlot = true);
   /// Decomposed element, after the step-end pairing: the frozen-geometry
   /// error of the step, from `converged` (the slots after the step's last
   /// active-set update, before the pairing) and the slots now. Replicated
@@ -264,6 +280,15 @@ class ContactComponent {
   long exchanges() const;
   /// Bytes the exchanges() moved between ranks (see exchanges()).
   long bytesExchanged() const;
+  /// Decomposed element: the bytes this rank received in the active-set
+  /// updates since construction (the displacements and multipliers at the
+  /// counterparts, the partial gaps at the owners, the summed gaps and
+  /// slips and the multipliers back, and the other ranks' changed states;
+  /// see updateActiveSet()): {in the updates without everySlot, with it}.
+  std::array<long, 2> valueBytesReceived() const;
+  /// Decomposed element: the active-set updates since construction,
+  /// {without everySlot, with it} (the same on every rank).
+  std::array<long, 2> valueUpdates() const;
   /// Search work summed over the pairs: {tracking queries, tracking fallbacks, global queries}.
   std::array<long, 3> searchCounters() const;
 

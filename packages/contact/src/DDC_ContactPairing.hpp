@@ -4,7 +4,11 @@
 //
 //   slots         one per topology slot, replicated: its master facet, the
 //                 frozen projection ξ^p and normal n^p, the gap, the
-//                 multiplier and whether it is active;
+//                 multiplier and whether it is active. The pairing and the
+//                 states are the same on every rank; the decomposed
+//                 element's values (gap, slips, multipliers) are current
+//                 where the slot is evaluated, and on every rank after an
+//                 update with everySlot (updateActiveSet());
 //   pairing       updatePairing(): the search and tracking over each pair's
 //                 master facets (FacetSearch), with the facing and
 //                 free-boundary rules (doc/contact.md, "Which slave nodes
@@ -63,12 +67,16 @@ class ContactPairing {
   std::array<long, 3> searchCounters() const;
   long exchanges() const { return exchanges_; }
   long bytesExchanged() const { return bytesExchanged_; }
+  /// ContactComponent::valueBytesReceived(), valueUpdates().
+  std::array<long, 2> valueBytesReceived() const { return valueBytes_; }
+  std::array<long, 2> valueUpdates() const { return valueUpdates_; }
 
   // ---- per iteration: the active set and what the host assembles ---------------
   void activateAllPaired();
   /// The step start of the slip of frictional pairs (ContactComponent::beginStep()).
   void beginStep(const Vector& u0);
-  std::vector<int> updateActiveSet(const Vector& u, const Vector* multipliers);
+  /// ContactComponent::updateActiveSet().
+  std::vector<int> updateActiveSet(const Vector& u, const Vector* multipliers, bool everySlot);
   std::vector<ContactRowEntry> contactRows() const;
   /// ContactComponent::slipRowHeld().
   bool frozenSlipHeld(int k, int alpha) const;
@@ -137,7 +145,23 @@ class ContactPairing {
   // evaluation (DDC_ContactPairingEvaluation.cpp)
   void gatherSurface(const Vector& u, const Vector* multipliers, std::vector<double>& values) const;
   void refreshSlotGeometry(const std::vector<double>& surfaceValues);
-  void assembleFrozenGaps(const Vector& u, const Vector* multipliers);
+  /// Decomposed element: the summed gaps (and slips) and the multipliers
+  /// into the slots this rank evaluates (owned and master counterparts),
+  /// or into every slot with `everySlot`.
+  void assembleFrozenGaps(const Vector& u, const Vector* multipliers, bool everySlot);
+  /// Slot k's multipliers, gap and slips from summed values `g` and
+  /// multipliers `lam`, indexed by at(multiplier id).
+  template <class At>
+  void takeFrozenValues(int k, const double* g, const double* lam, const At& at);
+  /// Decomposed element: the owners decide their slots (applyContactRules()),
+  /// every rank takes the changed states; returns every changed slot,
+  /// ascending. Collective.
+  std::vector<int> decideOnOwners(bool everySlot);
+  /// The contact-state rules for slot k (ContactComponent::updateActiveSet()),
+  /// with lmax the largest |λ| of all slots; appends k to `changed` (and to
+  /// `activated`). Returns the message of a fully prescribed slot that
+  /// penetrates ("" otherwise).
+  std::string applyContactRules(int k, double lmax, std::vector<int>& changed, std::vector<int>& activated);
   Field gatherField(const Vector& u, const Vector* multipliers) const;
   /// forceStick: a frictional pair's tangential rows as in stick (its slip parts).
   void evaluate(int k, SurfaceContactRole role, const Field& f, bool forceActive, unsigned what, ElementResult& er,
@@ -160,7 +184,8 @@ class ContactPairing {
                         ElementResult& er) const;
   void refreshSlip(ContactSlot& s, const std::array<double, 2>& xi, const Position& position) const;
   FrictionState newContactState(const ContactSlot& s) const;
-  void slipNewContactsOfSlidingPairs(const std::vector<int>& activated);
+  /// `owned`: counted over this rank's slots and summed over the ranks (collective).
+  void slipNewContactsOfSlidingPairs(const std::vector<int>& activated, bool owned);
   /// Stick or slip of active slot k; true if a frictional pair's state flipped.
   bool updateFriction(int k);
   /// Throws std::logic_error before the first updatePairing().
@@ -176,6 +201,8 @@ class ContactPairing {
   std::vector<std::string> warnings_;  ///< takeWarnings()
   long distributedQueries_ = 0;
   mutable long exchanges_ = 0, bytesExchanged_ = 0;
+  /// valueBytesReceived(), valueUpdates(): [0] without everySlot, [1] with it.
+  std::array<long, 2> valueBytes_{{0, 0}}, valueUpdates_{{0, 0}};
 
   Teuchos::RCP<Vector> stepStart_;        ///< u at the step start (frictional pairs; beginStep())
   std::vector<double> stepStartSurface_;  ///< its surface values (conventional element)

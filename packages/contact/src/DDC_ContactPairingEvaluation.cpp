@@ -4,12 +4,15 @@
 // contributions.
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <sstream>
 
 #include "DDC_NodeToSurface.hpp"
 #include "DDC_ShapeFunctions.hpp"
 
 #include "DDC_ContactPairing.hpp"
 #include "DDC_Error.hpp"
+#include "DDC_MpiRecords.hpp"
 
 namespace ddc {
 
@@ -422,11 +425,28 @@ void ContactPairing::refreshSlip(ContactSlot& s, const std::array<double, 2>& xi
   s.tangentialSlip = conventionalSlip(pair.masterType, x, x0, xi, &s.tangent);
 }
 
-void ContactPairing::assembleFrozenGaps(const Vector& u, const Vector* multipliers) {
+template <class At>
+void ContactPairing::takeFrozenValues(int k, const double* g, const double* lam, const At& at) {
+  ContactSlot& s = slots_[k];
+  const int nm = topo_.numMultipliers(k);
+  s.state.multiplier = lam[at(topo_.multiplierId(k, 0))];
+  for (int c = 1; c < nm; ++c) s.tangential[c - 1] = lam[at(topo_.multiplierId(k, c))];
+  if (!s.paired()) return;
+  s.normal = s.frozen.normal;
+  s.gap = g[at(topo_.multiplierId(k, 0))];
+  if (nm > 1) {
+    // A held slip row's residual is its multiplier (restrainHeldSlip()),
+    // not a slip: its direction takes no part in the decision.
+    s.tangent = s.frozen.tangent;
+    for (int c = 1; c < nm; ++c) s.tangentialSlip[c - 1] = frozenSlipHeld(k, c - 1) ? 0.0 : g[at(topo_.multiplierId(k, c))];
+  }
+}
+
+void ContactPairing::assembleFrozenGaps(const Vector& u, const Vector* multipliers, bool everySlot) {
   // Partial gaps (and slips, frictional pairs) of the counterparts at their
-  // multipliers, summed on the multiplier map (Export ADD), then (value,
-  // multiplier) of every slot's multipliers to every rank. Only
-  // multiplier-map values travel, no geometry.
+  // multipliers, summed on the multiplier map (Export ADD). Then (value,
+  // multiplier) back to the slots this rank evaluates (everySlot: to every
+  // rank for every slot). Only multiplier-map values travel, no geometry.
   const Field f = gatherField(u, multipliers);
   const auto& local = topo_.ownedSlots();
   Vector gOv(lmOverlapMap_), gOwned(topo_.multiplierMap());
@@ -445,6 +465,24 @@ void ContactPairing::assembleFrozenGaps(const Vector& u, const Vector* multiplie
     for (int k : localMasterSlots_) addRows(k, SurfaceContactRole::Master);
   }
   gOwned.doExport(gOv, *lmExporter_, Tpetra::ADD);
+  // Received so far: the field at the counterparts (and at the step start)
+  // and the partial gaps at the owners.
+  const auto& lmIn = multipliers ? lmImporter_ : lmHostImporter_;
+  valueBytes_[everySlot] += long((dofImporter_->getNumRemoteIDs() * (stepStart_.is_null() ? 1 : 2) +
+                                  lmIn->getNumRemoteIDs() + lmExporter_->getNumRemoteIDs()) *
+                                 sizeof(double));
+  if (!everySlot) {
+    // The summed values back on the counterparts' map: the multipliers are
+    // there already (the field).
+    Vector gHeld(lmOverlapMap_);
+    gHeld.doImport(gOwned, *lmImporter_, Tpetra::INSERT);
+    valueBytes_[0] += long(lmImporter_->getNumRemoteIDs() * sizeof(double));
+    auto g = gHeld.getData();
+    auto at = [&](GO id) { return lmOverlapMap_->getLocalElement(id); };
+    for (int k : local) takeFrozenValues(k, g.getRawPtr(), f.l.getRawPtr(), at);
+    for (int k : localMasterSlots_) takeFrozenValues(k, g.getRawPtr(), f.l.getRawPtr(), at);
+    return;
+  }
   const Map& ownedMap = *topo_.multiplierMap();
   MultiVector owned(topo_.multiplierMap(), 2), all(topo_.multiplierAllMap(), 2);
   {
@@ -455,24 +493,11 @@ void ContactPairing::assembleFrozenGaps(const Vector& u, const Vector* multiplie
     }
   }
   all.doImport(owned, *topo_.multiplierAllImporter(), Tpetra::INSERT);
+  valueBytes_[1] += long(topo_.multiplierAllImporter()->getNumRemoteIDs() * 2 * sizeof(double));
   auto g = all.getData(0), lam = all.getData(1);
   const Map& allMap = *topo_.multiplierAllMap();
-  for (size_t k = 0; k < slots_.size(); ++k) {
-    ContactSlot& s = slots_[k];
-    const int nm = topo_.numMultipliers(int(k));
-    auto at = [&](int c) { return allMap.getLocalElement(topo_.multiplierId(int(k), c)); };
-    s.state.multiplier = lam[at(0)];
-    for (int c = 1; c < nm; ++c) s.tangential[c - 1] = lam[at(c)];
-    if (!s.paired()) continue;
-    s.normal = s.frozen.normal;
-    s.gap = g[at(0)];
-    if (nm > 1) {
-      // A held slip row's residual is its multiplier (restrainHeldSlip()),
-      // not a slip: its direction takes no part in the decision.
-      s.tangent = s.frozen.tangent;
-      for (int c = 1; c < nm; ++c) s.tangentialSlip[c - 1] = frozenSlipHeld(int(k), c - 1) ? 0.0 : g[at(c)];
-    }
-  }
+  auto at = [&](GO id) { return allMap.getLocalElement(id); };
+  for (size_t k = 0; k < slots_.size(); ++k) takeFrozenValues(int(k), g.getRawPtr(), lam.getRawPtr(), at);
 }
 
 FrictionState ContactPairing::newContactState(const ContactSlot& s) const {
@@ -493,63 +518,135 @@ void ContactPairing::activateAllPaired() {
   }
 }
 
-std::vector<int> ContactPairing::updateActiveSet(const Vector& u, const Vector* multipliers) {
+std::vector<int> ContactPairing::updateActiveSet(const Vector& u, const Vector* multipliers, bool everySlot) {
   topo_.requireCommitted("updateActiveSet");
   if (topo_.options().decomposed) {
-    assembleFrozenGaps(u, multipliers);
-  } else {
-    std::vector<double> v;
-    gatherSurface(u, multipliers, v);
-    refreshSlotGeometry(v);
+    ++valueUpdates_[everySlot];
+    assembleFrozenGaps(u, multipliers, everySlot);
+    return decideOnOwners(everySlot);
   }
-  // Tension threshold: λ > 0 up to round-off of the largest multiplier.
+  std::vector<double> v;
+  gatherSurface(u, multipliers, v);
+  refreshSlotGeometry(v);
+  // Every rank holds every slot's values: each decides every slot alike.
   double lmax = 0.0;
   for (const auto& s : slots_) lmax = std::max(lmax, std::abs(s.state.multiplier));
-  const double tensionTol = 1e-10 * lmax;
-  const double tol = topo_.options().penetrationTolerance;
   std::vector<int> changed, activated;
   for (size_t k = 0; k < slots_.size(); ++k) {
-    ContactSlot& s = slots_[k];
-    if (!s.paired()) continue;
-    if (s.active && s.state.multiplier > tensionTol) {
-      s.active = false;
-      changed.push_back(static_cast<int>(k));
-    } else if (!s.active && s.gap < -tol && fullyPrescribed(int(k))) {
-      DDC_THROW(InputError, topo_.describeSlot(int(k))
-                                << ": the slave node and its master segment have all their displacements "
-                                   "prescribed (Boundary Conditions), so contact cannot remove their penetration "
-                                   "(gap "
-                                << s.gap << "); free the contact surfaces or change the prescribed values");
-    } else if (!s.active && s.gap < -tol) {
-      s.active = true;
-      s.friction = newContactState(s);
-      changed.push_back(static_cast<int>(k));
-      activated.push_back(static_cast<int>(k));
-    } else if (s.active && updateFriction(int(k))) {
-      changed.push_back(static_cast<int>(k));
-    }
-    if (!s.active) s.friction = FrictionState::Open;
-    s.slip = s.active ? std::hypot(s.tangentialSlip[0], s.tangentialSlip[1]) : 0.0;
+    const std::string fault = applyContactRules(int(k), lmax, changed, activated);
+    if (!fault.empty()) throw InputError(fault);
   }
-  if (topo_.frictional()) slipNewContactsOfSlidingPairs(activated);
+  if (topo_.frictional()) slipNewContactsOfSlidingPairs(activated, /*owned=*/false);
   return changed;
 }
 
-void ContactPairing::slipNewContactsOfSlidingPairs(const std::vector<int>& activated) {
+std::vector<int> ContactPairing::decideOnOwners(bool everySlot) {
+  // The owner of a slot decides it from the values summed on its multiplier
+  // map; the ranks agree on the largest multiplier (the tension threshold)
+  // and, in frictional pairs, on each pair's contacts, and every rank then
+  // takes the changed slots' states. So the active set is the same on every
+  // rank while the values of a slot are current only where it is evaluated
+  // (everywhere with everySlot).
+  const MPI_Comm comm = rawComm(topo_.comm());
+  double lmax = 0.0;
+  for (int k : topo_.ownedSlots()) lmax = std::max(lmax, std::abs(slots_[k].state.multiplier));
+  MPI_Allreduce(MPI_IN_PLACE, &lmax, 1, MPI_DOUBLE, MPI_MAX, comm);
+  std::vector<int> changed, activated;
+  std::string fault;
+  int faultSlot = std::numeric_limits<int>::max();
+  for (int k : topo_.ownedSlots()) {
+    const std::string why = applyContactRules(k, lmax, changed, activated);
+    if (!why.empty() && fault.empty()) fault = why, faultSlot = k;
+  }
+  // A fully prescribed slot that penetrates: the message of the first such slot.
+  int first = faultSlot;
+  MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, comm);
+  raiseCollectively<InputError>(comm, faultSlot == first ? fault : std::string());
+  if (topo_.frictional()) slipNewContactsOfSlidingPairs(activated, /*owned=*/true);
+  struct Change {
+    int slot;
+    char active, friction;
+  };
+  std::vector<Change> mine;
+  for (int k : changed) mine.push_back({k, char(slots_[k].active), char(slots_[k].friction)});
+  const std::vector<Change> all = allGather(comm, mine);
+  valueBytes_[everySlot] += long((all.size() - mine.size()) * sizeof(Change));
+  const int me = topo_.comm()->getRank();
+  changed.clear();
+  for (const Change& c : all) {
+    changed.push_back(c.slot);
+    if (topo_.slotOwner(c.slot) == me) continue;
+    slots_[c.slot].active = c.active != 0;
+    slots_[c.slot].friction = FrictionState(c.friction);
+  }
+  std::sort(changed.begin(), changed.end());
+  // The slip of the slots whose values are current here.
+  auto slip = [this](int k) {
+    ContactSlot& s = slots_[k];
+    if (s.paired()) s.slip = s.active ? std::hypot(s.tangentialSlip[0], s.tangentialSlip[1]) : 0.0;
+  };
+  if (everySlot) {
+    for (size_t k = 0; k < slots_.size(); ++k) slip(int(k));
+  } else {
+    for (int k : localMasterSlots_) slip(k);
+  }
+  return changed;
+}
+
+std::string ContactPairing::applyContactRules(int k, double lmax, std::vector<int>& changed,
+                                              std::vector<int>& activated) {
+  // Tension threshold: λ > 0 up to round-off of the largest multiplier.
+  const double tensionTol = 1e-10 * lmax;
+  const double tol = topo_.options().penetrationTolerance;
+  ContactSlot& s = slots_[k];
+  if (!s.paired()) return {};
+  if (s.active && s.state.multiplier > tensionTol) {
+    s.active = false;
+    changed.push_back(k);
+  } else if (!s.active && s.gap < -tol && fullyPrescribed(k)) {
+    std::ostringstream os;
+    os << topo_.describeSlot(k)
+       << ": the slave node and its master segment have all their displacements prescribed (Boundary Conditions), "
+          "so contact cannot remove their penetration (gap "
+       << s.gap << "); free the contact surfaces or change the prescribed values";
+    return os.str();
+  } else if (!s.active && s.gap < -tol) {
+    s.active = true;
+    s.friction = newContactState(s);
+    changed.push_back(k);
+    activated.push_back(k);
+  } else if (s.active && updateFriction(k)) {
+    changed.push_back(k);
+  }
+  if (!s.active) s.friction = FrictionState::Open;
+  s.slip = s.active ? std::hypot(s.tangentialSlip[0], s.tangentialSlip[1]) : 0.0;
+  return {};
+}
+
+void ContactPairing::slipNewContactsOfSlidingPairs(const std::vector<int>& activated, bool owned) {
   // A new contact starts sticking (newContactState()), unless every other
   // slave node in contact of its pair slips: then the pair slides, and a
   // new contact sticking alone would hold it for one more iteration (and
-  // hide a gross slip from the singularity check).
+  // hide a gross slip from the singularity check). Counted over the slots
+  // this rank decides (owned: its own, summed over the ranks).
   std::vector<char> isNew(slots_.size(), 0);
   for (int k : activated) isNew[k] = slots_[k].friction == FrictionState::Stick;
-  std::vector<int> others(topo_.numPairs(), 0), sticking(topo_.numPairs(), 0);
-  for (size_t k = 0; k < slots_.size(); ++k)
-    if (slots_[k].active && !isNew[k]) {
-      ++others[slots_[k].pair];
-      sticking[slots_[k].pair] += slots_[k].friction == FrictionState::Stick;
-    }
-  for (size_t k = 0; k < slots_.size(); ++k)
-    if (isNew[k] && others[slots_[k].pair] > 0 && sticking[slots_[k].pair] == 0) slots_[k].friction = FrictionState::Slip;
+  const int np = topo_.numPairs();
+  std::vector<int> counts(2 * size_t(np), 0);  // per pair: the others in contact, the sticking ones
+  auto count = [&](int k) {
+    if (!slots_[k].active || isNew[k]) return;
+    ++counts[slots_[k].pair];
+    counts[np + slots_[k].pair] += slots_[k].friction == FrictionState::Stick;
+  };
+  if (owned) {
+    for (int k : topo_.ownedSlots()) count(k);
+    MPI_Allreduce(MPI_IN_PLACE, counts.data(), 2 * np, MPI_INT, MPI_SUM, rawComm(topo_.comm()));
+  } else {
+    for (size_t k = 0; k < slots_.size(); ++k) count(int(k));
+  }
+  for (int k : activated)
+    if (isNew[k] && counts[slots_[k].pair] > 0 && counts[np + slots_[k].pair] == 0)
+      slots_[k].friction = FrictionState::Slip;
 }
 
 bool ContactPairing::updateFriction(int k) {

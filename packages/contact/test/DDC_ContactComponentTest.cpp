@@ -145,6 +145,69 @@ TEST(ContactComponent, DecomposedRowsGapsAndActiveSetAcrossRanks) {
   for (const auto& s : c->slots()) EXPECT_FALSE(s.active);
 }
 
+TEST(ContactComponent, ANewtonIterationsActiveSetMovesOnlyTheEvaluatedSlotsValues) {
+  // The slots are owned by the last rank and their master counterparts
+  // evaluated on rank 0; on 3 ranks, rank 1 evaluates nothing. An update
+  // without everySlot (a Newton iteration's) gives every rank the changed
+  // states but the values only to the ranks that evaluate the slots; an
+  // update with it (a step's end) gives every rank every value.
+  Host h;
+  auto c = registered(h, true);
+  auto map = h.map();
+  c->setDofs(map, dofsOf(h));
+  c->updatePairing(*state(h, map, 0.0), /*global=*/true, /*freeze=*/true);
+  const bool evaluates = h.ownsMaster() || h.ownsSlave();
+  ddc::Vector lambda(c->multiplierMap());
+  auto pushed = state(h, map, 0.15);
+  const auto bytes0 = c->valueBytesReceived();
+  auto changed = c->updateActiveSet(*pushed, &lambda, /*everySlot=*/false);
+  EXPECT_EQ(changed, (std::vector<int>{0, 1})) << "the changes of the owner's slots, on every rank";
+  const long lean = c->valueBytesReceived()[0] - bytes0[0];
+  for (const auto& s : c->slots()) {
+    EXPECT_TRUE(s.active) << "the active set is the same on every rank";
+    EXPECT_EQ(s.friction, ddc::FrictionState::Slip) << "a frictionless contact slips";
+    EXPECT_NEAR(s.gap, evaluates ? kGap0 - 0.15 : kGap0, kRoundoff)
+        << "the summed gap reaches the evaluating ranks only; elsewhere the pairing's stays";
+  }
+  // The step's end: every value to every rank; nothing changes.
+  changed = c->updateActiveSet(*pushed, &lambda, /*everySlot=*/true);
+  EXPECT_TRUE(changed.empty());
+  const long every = c->valueBytesReceived()[1] - bytes0[1];
+  EXPECT_EQ(c->valueBytesReceived()[0], bytes0[0] + lean) << "counted apart";
+  EXPECT_EQ(c->valueUpdates(), (std::array<long, 2>{1, 1}));
+  for (const auto& s : c->slots()) EXPECT_NEAR(s.gap, kGap0 - 0.15, kRoundoff) << "every rank holds every value now";
+  if (!evaluates) {
+    EXPECT_EQ(every, long(2 * 2 * sizeof(double))) << "a bystander receives (gap, λ) of both slots at the step's end";
+    EXPECT_LT(lean, every) << "and in a Newton iteration only the other ranks' changed states";
+  }
+  if (h.comm->getSize() == 1) EXPECT_EQ(lean + every, 0) << "one rank receives nothing";
+  // Tension releases both slots, on every rank.
+  lambda.putScalar(1.0);
+  changed = c->updateActiveSet(*pushed, &lambda, /*everySlot=*/false);
+  EXPECT_EQ(changed, (std::vector<int>{0, 1}));
+  for (const auto& s : c->slots()) EXPECT_FALSE(s.active);
+}
+
+TEST(ContactComponent, AFullyPrescribedSlotThatPenetratesStopsEveryRank) {
+  // Slave node 11 and its master facet (nodes 1, 2) fully prescribed: the
+  // owner of its slot finds it, and every rank throws its message, in a
+  // Newton iteration's update as in a step's end.
+  for (const bool everySlot : {false, true}) {
+    Host h;
+    auto c = registered(h, true);
+    auto map = h.map();
+    auto dofs = dofsOf(h);
+    for (auto& d : dofs)
+      if (d.id == 1 || d.id == 2 || d.id == 11) d.prescribed = {{true, true, true}};
+    c->setDofs(map, dofs);
+    c->updatePairing(*state(h, map, 0.0), /*global=*/true, /*freeze=*/true);
+    ddc::Vector lambda(c->multiplierMap());
+    auto pushed = state(h, map, 0.15);
+    ddc::test::expectThrowWith<InputError>([&] { c->updateActiveSet(*pushed, &lambda, everySlot); },
+                                           {"slave node 11", "have all their displacements prescribed", "(gap -0.05"});
+  }
+}
+
 TEST(ContactComponent, TheFrozenGeometryErrorOfAStepAgainstItsClosedForm) {
   // The step starts paired at u = 0 (n^p = (0, 1), xi^p = 0: the segment
   // midpoints). It ends with the slave surface moved by (s, -(kGap0 + d))

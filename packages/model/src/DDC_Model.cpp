@@ -771,7 +771,7 @@ void Model::activateAllPaired() {
 
 bool Model::fullyPrescribed(int k) const { return contact_ && contact_->fullyPrescribed(k); }
 
-std::vector<int> Model::updateActiveSet(const Vector& u) {
+std::vector<int> Model::updateActiveSet(const Vector& u, bool everySlot) {
   if (!contact_) return {};  // no surface or multiplier maps exist
   // A geometry the update cannot evaluate (a closest-point projection that
   // does not converge, at an iterate far from the solution) is raised on
@@ -779,7 +779,7 @@ std::vector<int> Model::updateActiveSet(const Vector& u) {
   std::vector<int> changed;
   std::string failure;
   try {
-    changed = contact_->updateActiveSet(u);
+    changed = contact_->updateActiveSet(u, nullptr, everySlot);
   } catch (const InadmissibleDeformation& e) {
     failure = e.what();
   }

@@ -249,11 +249,13 @@ class Model {
   void activateAllPaired();
   /// ContactComponent::fullyPrescribed().
   bool fullyPrescribed(int k) const;
-  /// ContactComponent::updateActiveSet() with the multipliers of u.
+  /// ContactComponent::updateActiveSet() with the multipliers of u
+  /// (`everySlot`: every slot's values to every rank, as a step's end
+  /// reads them; a Newton iteration needs only the evaluated slots').
   /// Without contact: nothing to do, returns no slots. Collective.
   /// \throws InadmissibleDeformation on every rank when some rank meets a
   ///         geometry it cannot evaluate
-  std::vector<int> updateActiveSet(const Vector& u);
+  std::vector<int> updateActiveSet(const Vector& u, bool everySlot = true);
   /// ContactComponent::beginStep(): a step (Newton's increment) starts
   /// from u. Without contact: nothing to do.
   void beginContactStep(const Vector& u) {
@@ -309,6 +311,13 @@ class Model {
   }
   std::array<long, 3> searchCounters() const;
   long bytesExchanged() const { return contact_ ? contact_->bytesExchanged() : 0; }
+  /// ContactComponent::valueBytesReceived() and valueUpdates() (0 without contact).
+  std::array<long, 2> contactValueBytesReceived() const {
+    return contact_ ? contact_->valueBytesReceived() : std::array<long, 2>{0, 0};
+  }
+  std::array<long, 2> contactValueUpdates() const {
+    return contact_ ? contact_->valueUpdates() : std::array<long, 2>{0, 0};
+  }
 
  private:
   /// One assemble() call's buffers and passes (DDC_ModelAssembly.cpp).

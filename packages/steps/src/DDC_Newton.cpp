@@ -262,7 +262,7 @@ bool Newton::updateContact(const Vector& u, bool conventional, Iteration& i, Ste
   // iteration, which the step controller bisects, as in assemble().
   try {
     if (conventional && !pairingFrozen_) i.pairingChanged = model_.updatePairing(u, false, false, &i.repaired);
-    i.changed = model_.updateActiveSet(u);
+    i.changed = model_.updateActiveSet(u, /*everySlot=*/false);
   } catch (const InadmissibleDeformation& e) {
     return fail(std::string("Newton iteration ") + std::to_string(i.it) + ", contact update: " + e.what(), rec);
   }

@@ -13,6 +13,10 @@ struct RunTiming {
   double linearSolve = 0.0;  ///< triangular solves / Krylov iterations
   int linearSolves = 0;        ///< number of linear solves (Newton iterations)
   double peakMemoryMiB = 0.0;  ///< peak resident memory, max over ranks
+  /// Bytes received in the contact active-set updates of Newton iterations
+  /// and of step ends, each the max over ranks
+  /// (ContactComponent::valueBytesReceived(); decomposed element).
+  std::array<long long, 2> contactValueBytes{{0, 0}};
   /// FETI-DP breakdown (this rank): local, coarse, Dirichlet factorisation;
   /// local solves, coarse solves, preconditioner applications.
   std::array<double, 6> feti{{0, 0, 0, 0, 0, 0}};

@@ -344,6 +344,9 @@ void StepLoop::reduceTiming() {
   double t[3] = {timing_.assembly, timing_.linearSetup, timing_.linearSolve}, tmax[3];
   Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 3, t, tmax);
   timing_.assembly = tmax[0], timing_.linearSetup = tmax[1], timing_.linearSolve = tmax[2];
+  const auto b = model_->contactValueBytesReceived();
+  const long long bytes[2] = {b[0], b[1]};
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_MAX, 2, bytes, timing_.contactValueBytes.data());
 }
 
 }  // namespace ddc
