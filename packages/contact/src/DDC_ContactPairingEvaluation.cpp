@@ -4,7 +4,6 @@
 // contributions.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <sstream>
 
 #include "DDC_NodeToSurface.hpp"
@@ -553,32 +552,38 @@ std::vector<int> ContactPairing::decideOnOwners(bool everySlot) {
   MPI_Allreduce(MPI_IN_PLACE, &lmax, 1, MPI_DOUBLE, MPI_MAX, comm);
   std::vector<int> changed, activated;
   std::string fault;
-  int faultSlot = std::numeric_limits<int>::max();
+  int faultSlot = -1;
   for (int k : topo_.ownedSlots()) {
     const std::string why = applyContactRules(k, lmax, changed, activated);
     if (!why.empty() && fault.empty()) fault = why, faultSlot = k;
   }
-  // A fully prescribed slot that penetrates: the message of the first such slot.
-  int first = faultSlot;
-  MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, comm);
-  raiseCollectively<InputError>(comm, faultSlot == first ? fault : std::string());
   if (topo_.frictional()) slipNewContactsOfSlidingPairs(activated, /*owned=*/true);
+  // The changed states to every rank, with a record of this rank's first
+  // fully prescribed slot that penetrates, if any (friction = -1).
   struct Change {
     int slot;
-    char active, friction;
+    signed char active, friction;
   };
   std::vector<Change> mine;
-  for (int k : changed) mine.push_back({k, char(slots_[k].active), char(slots_[k].friction)});
+  for (int k : changed) mine.push_back({k, static_cast<signed char>(slots_[k].active),
+                                        static_cast<signed char>(slots_[k].friction)});
+  if (faultSlot >= 0) mine.push_back({faultSlot, 0, -1});
   const std::vector<Change> all = allGather(comm, mine);
   valueBytes_[everySlot] += long((all.size() - mine.size()) * sizeof(Change));
   const int me = topo_.comm()->getRank();
+  int first = -1;  // the first fully prescribed slot that penetrates, on any rank
   changed.clear();
   for (const Change& c : all) {
+    if (c.friction < 0) {
+      if (first < 0 || c.slot < first) first = c.slot;
+      continue;
+    }
     changed.push_back(c.slot);
     if (topo_.slotOwner(c.slot) == me) continue;
     slots_[c.slot].active = c.active != 0;
     slots_[c.slot].friction = FrictionState(c.friction);
   }
+  if (first >= 0) raiseCollectively<InputError>(comm, faultSlot == first ? fault : std::string());
   std::sort(changed.begin(), changed.end());
   // The slip of the slots whose values are current here.
   auto slip = [this](int k) {
