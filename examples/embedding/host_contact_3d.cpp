@@ -149,7 +149,7 @@ int main(int argc, char** argv) {
         ++failures, std::cerr << contact.describeSlot(static_cast<int>(k)) << ": gap " << gaps[k] << ", expected "
                               << kGap0 - kPush << "\n";
     if (me == 0)
-      std::cout << "host contact 3d: " << numSlots << " slots, " << contact.summary().active << " active, gap "
+      std::cout << "host contact 3d: " << numSlots << " slots, " << contact.numActive() << " active, gap "
                 << (numSlots ? gaps[0] : 0.0) << " on " << P << " ranks\n";
   } catch (const std::exception& e) {
     std::cerr << "host contact 3d: " << e.what() << "\n";

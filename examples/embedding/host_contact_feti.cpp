@@ -194,7 +194,7 @@ class Host {
       // Step end: read the converged contact state, then refresh the pairing
       // (one exchange) and freeze the next step's projections and normals.
       contact_->updateActiveSet(*u, &lambda);
-      const auto summary = contact_->summary();
+      const auto summary = contact_->reduceSummary();
       out.push_back({assemble(*u, lambda, nullptr, nullptr), summary.force[1], summary.active});
       contact_->updatePairing(*u, true, true);
     }

@@ -19,6 +19,32 @@ std::vector<int> slaveSlotOfNode(const Model& model) {
   return slotOf;
 }
 
+/// The contact slots as output writes them: the values of the slave nodes
+/// of this rank's elements brought from the slots' owners (an active-set
+/// update leaves them current only where a slot is evaluated), and the slot
+/// of each mesh node. Collective.
+struct OutputSlots {
+  std::vector<ContactSlot> slots;
+  std::vector<int> slotOf;  ///< slaveSlotOfNode()
+};
+
+OutputSlots outputSlots(const Model& model) {
+  OutputSlots o;
+  o.slotOf = slaveSlotOfNode(model);
+  if (!model.hasContact()) return o;
+  o.slots = model.contactSlots();
+  std::vector<char> written(o.slots.size(), 0);
+  const Mesh& mesh = model.mesh();
+  for (int e : model.localElements())
+    for (int i = 0; i < mesh.elementNumNodes(e); ++i)
+      if (const int k = o.slotOf[size_t(mesh.elementNodes(e)[i])]; k >= 0) written[size_t(k)] = 1;
+  std::vector<int> wanted;
+  for (size_t k = 0; k < written.size(); ++k)
+    if (written[k]) wanted.push_back(int(k));
+  model.contact()->shareSlotValues(o.slots, wanted);
+  return o;
+}
+
 }  // namespace
 
 void forEachLocalElementOutput(const Model& model, const Vector& uOverlap,
@@ -61,7 +87,8 @@ void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int st
       extra.emplace_back(name, keep.back()->getData());
     }
   const auto& ovMap = *model.overlapMap();
-  const auto slotOf = slaveSlotOfNode(model);
+  const OutputSlots contactSlots = outputSlots(model);
+  const auto& slotOf = contactSlots.slotOf;
   const bool contact = model.hasContact();
   std::map<int, VtkPiece> pieces;
   std::map<int, std::map<int, int>> pointIndex;  // subdomain -> (mesh node -> piece point)
@@ -93,7 +120,7 @@ void writeVtkStep(VtkWriter& writer, const Model& model, const Vector& u, int st
         auto& d = p.pointData[0].values;
         for (int c = 0; c < 3; ++c) d.push_back(c < dim ? o.ue(i, c) : 0.0);
         if (contact) {
-          const ContactSlot* slot = slotOf[en[i]] >= 0 ? &model.contactSlots()[size_t(slotOf[en[i]])] : nullptr;
+          const ContactSlot* slot = slotOf[en[i]] >= 0 ? &contactSlots.slots[size_t(slotOf[en[i]])] : nullptr;
           p.pointData[1].values.push_back(slot && slot->paired() ? slot->gap : 0.0);
           p.pointData[2].values.push_back(slot ? slot->pressure() : 0.0);
         }
@@ -148,8 +175,9 @@ void writeExodusStep(ExodusWriter& writer, const Model& model, double time, cons
       keep.push_back(model.toOverlap(*f));
       fields.push_back(keep.back()->getData());
     }
-  const auto slotOf = slaveSlotOfNode(model);
-  const auto& slots = model.contactSlots();
+  const OutputSlots contactSlots = outputSlots(model);
+  const auto& slotOf = contactSlots.slotOf;
+  const auto& slots = contactSlots.slots;
   ExodusStepValues values;
   values.global = globals;
   std::vector<char> seen(mesh.numNodes(), 0);

@@ -146,12 +146,16 @@ void ExodusObserver::finished(const StepLoop&) { writer_->close(); }
 void ContactNodesObserver::finished(const StepLoop& loop) {
   const Model& model = loop.model();
   std::string error;
-  if (model.comm()->getRank() == 0) {
+  // The converged values, from the slots' owners to rank 0, which writes.
+  std::vector<ContactSlot> slots = loop.state().convergedSlots;
+  const bool writer = model.comm()->getRank() == 0;
+  model.contact()->shareSlotValues(slots, writer ? slotIndices(slots.size()) : std::vector<int>());
+  if (writer) {
     std::ostringstream os;
     os << "pair,node,x,y,z,gap,multiplier,tributary_area,pressure,active,tangential_x,tangential_y,tangential_z,"
           "slip,state\n";
     os.precision(17);
-    for (const auto& s : loop.state().convergedSlots) {
+    for (const auto& s : slots) {
       const Eigen::Vector3d X = model.contactNodeReference(s.slaveNode);  // rank 0 may not hold the node
       const Eigen::Vector3d t = s.tangentialForce() + Eigen::Vector3d::Zero();  // + 0: no "-0" when zero
       os << s.pair << ',' << s.slaveNode << ',' << X[0] << ',' << X[1] << ',' << (model.dim() == 3 ? X[2] : 0.0)
@@ -242,8 +246,8 @@ void ProgressObserver::finished(const StepLoop& loop) {
     if (model.decomposedContact()) {
       const auto n = model.contactValueUpdates();
       const auto& b = loop.timing().contactValueBytes;
-      os << "; active-set updates: " << n[0] << " in Newton iterations (at most " << b[0]
-         << " bytes received by a rank), " << n[1] << " at step ends (at most " << b[1] << ")";
+      os << "; active-set updates: " << n[0] << " with the evaluated slots' values (at most " << b[0]
+         << " bytes received by a rank), " << n[1] << " with every slot's (at most " << b[1] << ")";
     }
     progress_(os.str());
     for (const auto& pair : model.neverPairedPairs())

@@ -81,8 +81,13 @@ void writeRunCheckpoint(const std::string& path, const StepLoop& loop, const Teu
     put("acceleration", d->integrator().accelerationNow());
   }
   if (model.hasContact()) {
-    w.putDoubles("contact slots", packSlots(model.contactSlots()));
-    w.putDoubles("converged contact slots", packSlots(st.convergedSlots));
+    // The slots' values from their owners to rank 0, whose sections are written.
+    std::vector<ContactSlot> slots = model.contactSlots(), converged = st.convergedSlots;
+    const std::vector<int> wanted = model.comm()->getRank() == 0 ? slotIndices(slots.size()) : std::vector<int>();
+    model.contact()->shareSlotValues(slots, wanted);
+    model.contact()->shareSlotValues(converged, wanted);
+    w.putDoubles("contact slots", packSlots(slots));
+    w.putDoubles("converged contact slots", packSlots(converged));
     const auto paired = model.contact()->pairedRecord();
     w.putBytes("paired contact pairs", std::string(paired.begin(), paired.end()));
   }

@@ -60,6 +60,16 @@ FrozenGeometryError ContactComponent::frozenGeometryError(const std::vector<Cont
   return pairing_->frozenGeometryError(converged);
 }
 
+double ContactComponent::frictionalWork(const std::vector<ContactSlot>& converged) const {
+  return pairing_->frictionalWork(converged);
+}
+
+void ContactComponent::shareSlotValues(std::vector<ContactSlot>& slots, const std::vector<int>& wanted) const {
+  pairing_->shareSlotValues(slots, wanted);
+}
+
+void ContactComponent::shareEverySlotsValues() { pairing_->shareEverySlotsValues(); }
+
 bool ContactComponent::restoreSlots(const std::vector<ContactSlot>& saved) { return pairing_->restoreSlots(saved); }
 
 // ---- what the host assembles or solves with ------------------------------------------------
@@ -130,7 +140,9 @@ GO ContactComponent::surfaceNodeDof(int id, int c) const {
 
 int ContactComponent::dim() const { return topology_->dim(); }
 
-ContactSummary ContactComponent::summary() const { return pairing_->summary(); }
+ContactSummary ContactComponent::reduceSummary() const { return pairing_->reduceSummary(); }
+
+int ContactComponent::numActive() const { return pairing_->numActive(); }
 
 std::string ContactComponent::describeSlot(int k) const { return topology_->describeSlot(k); }
 

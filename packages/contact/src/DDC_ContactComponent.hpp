@@ -27,8 +27,10 @@
 //    in its bounding box (one exchange); the contact state is checked on the
 //    multiplier map (partial gaps of the two counterparts summed there, and
 //    decided by the slot's owner), with no geometry moving; in a Newton
-//    iteration only the evaluated slots' values come back, at a step's end
-//    every slot's (updateActiveSet(); doc/contact.md).
+//    iteration and at a step's end only the evaluated slots' values come
+//    back (updateActiveSet(); doc/contact.md): the step's sums are taken
+//    on the slots' owners, and output brings the values it writes from
+//    there (shareSlotValues()).
 //
 // Facets. A pair's facets are of one cell type per surface
 // (ContactPairSurfaces::masterFacetType / slaveFacetType): Line2 or Line3
@@ -169,22 +171,45 @@ class ContactComponent {
   /// replicated. With `everySlot` (the default) every rank also receives
   /// every slot's gap, slips and multipliers; without it only the slots
   /// whose counterparts it evaluates (ownedSlots(), localMasterSlots()):
-  /// what a Newton iteration needs, with bytes that grow with the rank's
-  /// part of the contact zone, not with the surface. The other slots'
-  /// values then stay as the last update with `everySlot` left them: a
-  /// host reads every slot's values (summary(), slots()) after such an
-  /// update (at the step's end). The conventional element gathers the
-  /// surface either way, and every rank decides every slot.
+  /// what a Newton iteration or a step's end needs, with bytes that grow
+  /// with the rank's part of the contact zone, not with the surface. The
+  /// other slots' values then stay as an earlier update left them: the
+  /// sums over the slots (reduceSummary(), frictionalWork(),
+  /// frozenGeometryError()) are taken on the owners, and a host that reads
+  /// other slots' values brings them from their owners (shareSlotValues()).
+  /// The conventional element gathers the surface either way, and every
+  /// rank decides every slot and holds every value.
   /// \throws InputError (every rank) if a fully prescribed slot penetrates
   ///         (the message of the first such slot).
   std::vector<int> updateActiveSet(const Vector& u, const Vector* multipliers = nullptr, bool everySlot = true);
   /// Decomposed element, after the step-end pairing: the frozen-geometry
-  /// error of the step, from `converged` (the slots after the step's last
-  /// active-set update, before the pairing) and the slots now. Replicated
-  /// data: the same numbers on every rank, no exchange, not collective.
-  /// \throws std::invalid_argument if `converged` is not a list of this
-  ///         component's slots
+  /// error of the step, from `converged` (a copy of slots() after the
+  /// step's last active-set update, before the pairing) and the slots now,
+  /// summed over the slots' owners: the same numbers on every rank.
+  /// Collective.
+  /// \throws std::invalid_argument (every rank) if `converged` is not a
+  ///         list of this component's slots
   FrozenGeometryError frozenGeometryError(const std::vector<ContactSlot>& converged) const;
+  /// The work of the friction forces against the slip of a step, Σ λ_t·u_t
+  /// over the active slots of `converged` (as for frozenGeometryError()),
+  /// summed over the slots' owners; 0 without friction. Collective.
+  /// \throws std::invalid_argument as frozenGeometryError()
+  double frictionalWork(const std::vector<ContactSlot>& converged) const;
+  /// Bring the values of the `wanted` slots of `slots` (a copy of slots(),
+  /// or slots() itself through the host's copy, laid out alike) from their
+  /// owners' copies into this rank's: the multipliers, gap, slips, normal
+  /// and tangent basis an update without everySlot left current only where
+  /// the slot is evaluated (updateActiveSet()). `wanted` may differ per
+  /// rank (e.g. the slave nodes a rank writes, or every slot on the rank
+  /// that writes a file). Nothing moves for the conventional element.
+  /// Collective (two exchanges of records).
+  /// \throws std::invalid_argument (every rank) if `slots` is not a list of
+  ///         this component's slots, or if some rank's `wanted` names a slot that does not exist
+  void shareSlotValues(std::vector<ContactSlot>& slots, const std::vector<int>& wanted) const;
+  /// shareSlotValues() of every slot of slots() into slots(): every rank
+  /// holds every value, as after an update with everySlot (once, e.g. at
+  /// the end of a run, for a host that reads them). Collective.
+  void shareEverySlotsValues();
   /// Restore slots saved before a failed increment (pairing and state).
   /// \return true if the pairing differs from the current one (new topology).
   bool restoreSlots(const std::vector<ContactSlot>& saved);
@@ -226,7 +251,9 @@ class ContactComponent {
   const ContactComponentOptions& options() const;
   /// Number of registered pairs.
   int numPairs() const;
-  /// Every slot (one per slave node of every pair), replicated on every rank.
+  /// Every slot (one per slave node of every pair), replicated on every
+  /// rank: the pairing and the states are the same everywhere; the values
+  /// are current where the slot is evaluated (updateActiveSet()).
   const std::vector<ContactSlot>& slots() const;
   /// Owner rank of slot k (the owner of its slave node).
   int slotOwner(int k) const;
@@ -267,9 +294,11 @@ class ContactComponent {
   GO surfaceNodeDof(int id, int c) const;
   /// Space dimension of the contact surfaces (2 or 3; known after commit()).
   int dim() const;
-  /// Active slots and the resultant contact force, from the replicated slots
-  /// (the same on every rank; not collective).
-  ContactSummary summary() const;
+  /// Active slots (replicated) and the resultant contact force, summed over
+  /// the slots' owners: the same on every rank. Collective.
+  ContactSummary reduceSummary() const;
+  /// The active paired slots (replicated data: any rank, not collective).
+  int numActive() const;
   /// "pair 'P' slave node n at (x, y[, z])" for messages.
   std::string describeSlot(int k) const;
   /// The pair's registered name (messages).

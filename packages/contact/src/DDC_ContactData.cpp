@@ -1,6 +1,7 @@
-// Checkpoint form of the contact slots (see DDC_ContactData.hpp).
+// Checkpoint form of the contact slots, and slot lists (see DDC_ContactData.hpp).
 #include "DDC_ContactData.hpp"
 
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -10,6 +11,12 @@ namespace {
 /// Numbers per slot in packSlots().
 constexpr size_t kPackedSlot = 48;
 }  // namespace
+
+std::vector<int> slotIndices(size_t count) {
+  std::vector<int> out(count);
+  std::iota(out.begin(), out.end(), 0);
+  return out;
+}
 
 std::vector<double> packSlots(const std::vector<ContactSlot>& slots) {
   std::vector<double> out;

@@ -94,6 +94,10 @@ struct ContactSlot {
   }
 };
 
+/// 0, 1, ..., count − 1: every slot of a list of `count` slots (e.g. the
+/// `wanted` slots of ContactComponent::shareSlotValues()).
+std::vector<int> slotIndices(size_t count);
+
 /// The slots as numbers, for a checkpoint (every field; integers exactly).
 std::vector<double> packSlots(const std::vector<ContactSlot>& slots);
 /// The slots packSlots() gave.

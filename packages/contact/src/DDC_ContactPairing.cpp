@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -354,40 +353,6 @@ bool ContactPairing::restoreSlots(const std::vector<ContactSlot>& saved) {
   return changed;
 }
 
-FrozenGeometryError ContactPairing::frozenGeometryError(const std::vector<ContactSlot>& converged) const {
-  if (converged.size() != slots_.size())
-    throw std::invalid_argument("frozenGeometryError: " + std::to_string(converged.size()) + " slots for " +
-                                std::to_string(slots_.size()));
-  const int dim = topo_.dim();
-  // Reference position of facet point xi on the master facet with `nodes`.
-  auto referencePoint = [&](CellType type, const ContactSlot& s, const std::array<double, 2>& xi) {
-    Eigen::MatrixXd X(s.numMaster, dim);
-    for (int a = 0; a < s.numMaster; ++a) X.row(a) = topo_.referencePosition(s.master[a]).head(dim).transpose();
-    Eigen::Vector3d point, normal;
-    return facetPointAndNormal(type, X, xi, point, normal) ? std::optional<Eigen::Vector3d>(point) : std::nullopt;
-  };
-  double gapWork = 0.0, normalWork = 0.0, tangentWork = 0.0;
-  for (size_t k = 0; k < slots_.size(); ++k) {
-    const ContactSlot& before = converged[k];
-    const ContactSlot& now = slots_[k];
-    if (!before.active || !before.paired()) continue;
-    const double lambda = before.state.multiplier;
-    gapWork += lambda * (now.gap - before.gap);
-    if (!now.paired()) continue;
-    const CellType type = topo_.pair(before.pair).masterType;
-    const auto from = referencePoint(type, before, before.frozen.xi);
-    const auto to = referencePoint(type, now, now.frozen.xi);
-    if (!(from && to)) continue;
-    const double s = (*to - *from).norm();
-    normalWork += std::abs(lambda) * (now.normal - before.frozen.normal).norm() * s;
-    // Friction: the tangential force along the frozen basis, across the updated one.
-    for (int a = 0; a + 1 < dim; ++a)
-      if (before.tangential[a] != 0.0)
-        tangentWork += std::abs(before.tangential[a]) * (now.frozen.tangent[a] - before.frozen.tangent[a]).norm() * s;
-  }
-  return {std::abs(gapWork), normalWork, tangentWork};
-}
-
 // ---- queries -------------------------------------------------------------------------------------
 
 bool ContactPairing::fullyPrescribed(int k) const {
@@ -397,21 +362,6 @@ bool ContactPairing::fullyPrescribed(int k) const {
   for (int a = 0; a < s.numMaster; ++a)
     if (!topo_.nodePrescribed(s.master[a])) return false;
   return true;
-}
-
-ContactSummary ContactPairing::summary() const {
-  ContactSummary c;
-  for (const auto& s : slots_) {
-    if (!s.active || !s.paired()) continue;
-    ++c.active;
-    // The slave feels −λ n (compression: λ < 0 pushes it along +n), and
-    // in a frictional pair −λ_t·τ along the surface.
-    const Eigen::Vector3d t = s.tangentialForce();
-    for (int d = 0; d < 3; ++d) c.force[d] -= s.state.multiplier * s.normal[d];
-    if (s.tangential[0] != 0.0 || s.tangential[1] != 0.0)
-      for (int d = 0; d < 3; ++d) c.force[d] += t[d];
-  }
-  return c;
 }
 
 }  // namespace ddc

@@ -21,7 +21,11 @@
 //   evaluation    the active set, the gaps, the constraint rows and the
 //                 element contributions on the maps of the counterparts this
 //                 rank evaluates (DDC_ContactPairingEvaluation.cpp);
-//   step control  the frozen-geometry error, and restoring saved slots.
+//   step control  restoring saved slots;
+//   values        what a step's end and the output read of the slots'
+//                 values: sums over the slots' owners (the summary, the
+//                 frictional work, the frozen-geometry error) and values
+//                 brought from the owners (DDC_ContactSlotValues.cpp).
 #pragma once
 
 #include <Eigen/Dense>
@@ -84,8 +88,16 @@ class ContactPairing {
                 const std::function<void(const std::vector<GO>& dofs, ElementResult& result)>& add) const;
 
   // ---- step control --------------------------------------------------------------
-  FrozenGeometryError frozenGeometryError(const std::vector<ContactSlot>& converged) const;
   bool restoreSlots(const std::vector<ContactSlot>& saved);
+
+  // ---- the values across ranks (DDC_ContactSlotValues.cpp) ---------------------------
+  FrozenGeometryError frozenGeometryError(const std::vector<ContactSlot>& converged) const;
+  ContactSummary reduceSummary() const;
+  int numActive() const;
+  double frictionalWork(const std::vector<ContactSlot>& converged) const;
+  void shareSlotValues(std::vector<ContactSlot>& slots, const std::vector<int>& wanted) const;
+  /// Every slot's values from its owner into this rank's slots (collective).
+  void shareEverySlotsValues();
 
   // ---- queries ---------------------------------------------------------------------
   const std::vector<ContactSlot>& slots() const { return slots_; }
@@ -94,7 +106,6 @@ class ContactPairing {
   std::vector<GO> slaveSideDofs(int k) const;
   std::vector<GO> masterSideDofs(int k) const;
   bool fullyPrescribed(int k) const;
-  ContactSummary summary() const;
 
  private:
   using Pair = ContactTopology::Pair;
@@ -190,6 +201,8 @@ class ContactPairing {
   bool updateFriction(int k);
   /// Throws std::logic_error before the first updatePairing().
   void requirePaired(const char* what) const;
+  /// Throws std::invalid_argument naming `what` unless `slots` has one entry per slot.
+  void requireSlotList(const std::vector<ContactSlot>& slots, const char* what) const;
 
   const ContactTopology& topo_;
   std::vector<ContactSlot> slots_;

@@ -188,6 +188,51 @@ TEST(ContactComponent, ANewtonIterationsActiveSetMovesOnlyTheEvaluatedSlotsValue
   for (const auto& s : c->slots()) EXPECT_FALSE(s.active);
 }
 
+TEST(ContactComponent, AStepsSumsAndItsOutputReadTheOwnersValues) {
+  // After updates without everySlot only the evaluating ranks hold the
+  // multipliers (on 3 ranks rank 1 keeps λ = 0): the summary's force is
+  // still the same on every rank (summed on the owners), and the values
+  // come to any rank that asks the owners for them.
+  Host h;
+  auto c = registered(h, true);
+  auto map = h.map();
+  c->setDofs(map, dofsOf(h));
+  c->updatePairing(*state(h, map, 0.0), /*global=*/true, /*freeze=*/true);
+  ddc::Vector lambda(c->multiplierMap());
+  auto pushed = state(h, map, 0.15);
+  c->updateActiveSet(*pushed, &lambda, /*everySlot=*/false);  // both penetrate: active
+  lambda.putScalar(-1.0);
+  c->updateActiveSet(*pushed, &lambda, /*everySlot=*/false);  // compression: stored where evaluated
+  const bool evaluates = h.ownsMaster() || h.ownsSlave();
+  for (const auto& s : c->slots()) EXPECT_EQ(s.state.multiplier, evaluates ? -1.0 : 0.0);
+  const ddc::ContactSummary sum = c->reduceSummary();
+  EXPECT_EQ(sum.active, 2);
+  EXPECT_EQ(c->numActive(), 2);
+  const Eigen::Vector3d n = c->slots()[0].frozen.normal;  // the frozen normal, replicated
+  for (int d = 0; d < 3; ++d) EXPECT_NEAR(sum.force[d], 2.0 * n[d], kRoundoff) << "Σ −λ n of both slots, every rank";
+
+  // Every rank asks for slot 1 only, rank 0 for both.
+  std::vector<ddc::ContactSlot> slots = c->slots();
+  const std::vector<int> wanted = h.me == 0 ? std::vector<int>{0, 1} : std::vector<int>{1};
+  c->shareSlotValues(slots, wanted);
+  for (int k : {0, 1}) {
+    const bool asked = std::count(wanted.begin(), wanted.end(), k) > 0;
+    EXPECT_EQ(slots[k].state.multiplier, asked || evaluates ? -1.0 : 0.0) << "slot " << k;
+    EXPECT_NEAR(slots[k].gap, asked || evaluates ? kGap0 - 0.15 : kGap0, kRoundoff) << "slot " << k;
+    EXPECT_EQ(slots[k].normal, c->slots()[k].frozen.normal) << "slot " << k;
+  }
+  EXPECT_EQ(c->slots()[1].state.multiplier, evaluates ? -1.0 : 0.0) << "the component's own slots are not touched";
+  // A wrong slot or list stops every rank.
+  EXPECT_THROW(c->shareSlotValues(slots, h.me == 0 ? std::vector<int>{2} : std::vector<int>{}), std::invalid_argument);
+  std::vector<ddc::ContactSlot> none;
+  EXPECT_THROW(c->shareSlotValues(none, {}), std::invalid_argument);
+  EXPECT_THROW(c->frictionalWork(none), std::invalid_argument);
+  EXPECT_EQ(c->frictionalWork(c->slots()), 0.0) << "no friction";
+  // Once per run: every value on every rank.
+  c->shareEverySlotsValues();
+  for (const auto& s : c->slots()) EXPECT_EQ(s.state.multiplier, -1.0);
+}
+
 TEST(ContactComponent, AFullyPrescribedSlotThatPenetratesStopsEveryRank) {
   // Slave node 11 and its master facet (nodes 1, 2) fully prescribed: the
   // owner of its slot finds it, and every rank throws its message, in a

@@ -250,8 +250,8 @@ class Model {
   /// ContactComponent::fullyPrescribed().
   bool fullyPrescribed(int k) const;
   /// ContactComponent::updateActiveSet() with the multipliers of u
-  /// (`everySlot`: every slot's values to every rank, as a step's end
-  /// reads them; a Newton iteration needs only the evaluated slots').
+  /// (`everySlot`: every slot's values to every rank; a Newton iteration
+  /// and a step's end need only the evaluated slots').
   /// Without contact: nothing to do, returns no slots. Collective.
   /// \throws InadmissibleDeformation on every rank when some rank meets a
   ///         geometry it cannot evaluate
@@ -286,7 +286,15 @@ class Model {
   /// The reference coordinates of contact surface node `id` (an id in the
   /// whole mesh, as ContactSlot::slaveNode), known on every rank.
   Eigen::Vector3d contactNodeReference(int id) const { return contact_->referencePosition(id); }
-  ContactSummary contactSummary() const { return contact_ ? contact_->summary() : ContactSummary(); }
+  /// ContactComponent::reduceSummary(); none without contact. Collective.
+  ContactSummary reduceContactSummary() const { return contact_ ? contact_->reduceSummary() : ContactSummary(); }
+  /// The active contact slots (ContactComponent::numActive(); not collective).
+  int activeContacts() const { return contact_ ? contact_->numActive() : 0; }
+  /// ContactComponent::shareEverySlotsValues(): every slot's values on
+  /// every rank, for a host that reads contactSlots() after a run. Collective.
+  void shareContactValues() {
+    if (contact_) contact_->shareEverySlotsValues();
+  }
   /// Restore slots saved before a failed increment (pairing and state);
   /// rebuilds the topology if the pairing differs.
   void restoreContactState(const std::vector<ContactSlot>& saved);

@@ -251,7 +251,7 @@ void Newton::printIteration(const Iteration& i) const {
     line += buf;
   }
   if (model_.hasContact())
-    line += "  active " + std::to_string(model_.contactSummary().active) + " (" + std::to_string(i.changed.size()) +
+    line += "  active " + std::to_string(model_.activeContacts()) + " (" + std::to_string(i.changed.size()) +
             " changed" + (i.pairingChanged ? ", new pairing" : "") + ")";
   std::cout << line << std::endl;
 }

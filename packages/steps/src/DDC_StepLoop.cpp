@@ -61,19 +61,6 @@ StepLoop::StepLoop(std::shared_ptr<Model> model, SolutionStrategy& strategy, Dyn
 
 StepLoop::~StepLoop() = default;
 
-namespace {
-
-/// The work of the friction forces against the slip of a step: Σ λ_t·u_t
-/// over the slave nodes in contact (zero without friction).
-double frictionalWork(const std::vector<ContactSlot>& slots) {
-  double w = 0.0;
-  for (const ContactSlot& s : slots)
-    if (s.active) w += s.tangential[0] * s.tangentialSlip[0] + s.tangential[1] * s.tangentialSlip[1];
-  return w;
-}
-
-}  // namespace
-
 RunKind StepLoop::kind() const {
   return RunKind{dynamics_ != nullptr, model_->decomposedContact(), model_->dim(),
                  model_->hasContact() && model_->contactOptions().frictional()};
@@ -141,6 +128,9 @@ void StepLoop::run() {
     throw SolverError(os.str());
   }
   reduceTiming();
+  // Every slot's values on every rank, once per run, for a host that reads
+  // contactSlots() after the run.
+  if (contact) model_->shareContactValues();
   for (StepObserver* o : observers_) o->finished(*this);
 }
 
@@ -206,9 +196,11 @@ StepLoop::Measured StepLoop::measure(const StepProposal& p, StepRecord& rec) {
   // decomposed element freezes the new projections and normals.
   // Multipliers, gaps and normals of the converged state are read first:
   // after re-pairing, the decomposed slots hold the next step's normals.
+  // Their values are current on the slots' owners, where the sums over
+  // the slots are taken (ContactComponent::updateActiveSet()).
   const bool decomposed = model_->decomposedContact();
-  model_->updateActiveSet(*trial_);
-  m.contact = model_->contactSummary();
+  model_->updateActiveSet(*trial_, /*everySlot=*/false);
+  m.contact = model_->reduceContactSummary();
   m.convergedSlots = model_->contactSlots();
   model_->updatePairing(*trial_, true, decomposed);
   contactWarnings();
@@ -277,7 +269,7 @@ void StepLoop::accept(const StepProposal& p, StepRecord& rec, Measured& m) {
   if (model_->hasContact()) {
     state_.convergedSlots = std::move(m.convergedSlots);
     rec.frictionalDissipation = (state_.history.empty() ? 0.0 : state_.history.back().frictionalDissipation) +
-                                frictionalWork(state_.convergedSlots);
+                                model_->contact()->frictionalWork(state_.convergedSlots);
     rec.activeContacts = m.contact.active;
     for (int c = 0; c < 3; ++c) rec.contactForce[c] = m.contact.force[c];
     rec.contactExchanges = model_->exchanges() - att.exchanges0;
