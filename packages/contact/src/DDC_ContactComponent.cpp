@@ -70,6 +70,8 @@ void ContactComponent::shareSlotValues(std::vector<ContactSlot>& slots, const st
 
 void ContactComponent::shareEverySlotsValues() { pairing_->shareEverySlotsValues(); }
 
+long ContactComponent::sharedSlotBytes() { return ContactPairing::sharedSlotBytes(); }
+
 bool ContactComponent::restoreSlots(const std::vector<ContactSlot>& saved) { return pairing_->restoreSlots(saved); }
 
 // ---- what the host assembles or solves with ------------------------------------------------

@@ -16,17 +16,21 @@
 //
 // Data layout. The surfaces are small against the bodies, so after commit()
 // every rank holds every surface node's reference coordinates, DOF ids and
-// owner, and every contact slot (one per slave node: its pairing, state,
-// frozen projection and normal) — the same numbers on every rank. Field
+// owner, and every contact slot (one per slave node: its pairing and state
+// the same on every rank; its frozen projection and normal, see below). Field
 // values (displacements, multipliers) stay distributed in the host's map and
 // move only in the counted exchanges (exchanges(), bytesExchanged()):
 //  - conventional element: the surface positions are gathered to every rank
 //    at each pairing and active-set update;
 //  - decomposed element: at step ends the owner of each slave node searches
 //    over the master-surface nodes the other ranks send it because they lie
-//    in its bounding box (one exchange); the contact state is checked on the
-//    multiplier map (partial gaps of the two counterparts summed there, and
-//    decided by the slot's owner), with no geometry moving; in a Newton
+//    in its bounding box, and sends the frozen projection and normal to the
+//    rank of the master facet, and to every rank only if the slot's facet
+//    changed (one exchange; the frozen values of a slot are current where
+//    it is evaluated, the pairing is the same everywhere); the contact
+//    state is checked on the multiplier map (partial gaps of the two
+//    counterparts summed there, and decided by the slot's owner), with no
+//    geometry moving; in a Newton
 //    iteration and at a step's end only the evaluated slots' values come
 //    back (updateActiveSet(); doc/contact.md): the step's sums are taken
 //    on the slots' owners, and output brings the values it writes from
@@ -129,8 +133,10 @@ class ContactComponent {
   /// map; tracking from the previous pairing, a global search when
   /// `global`). With `freeze`, the decomposed element's projection ξ^p and
   /// normal n^p are taken from this configuration. Decomposed + global: the
-  /// bounding-box-limited exchange; otherwise the surface positions are
-  /// gathered. One counted exchange either way.
+  /// bounding-box-limited exchange, after which a slot's projection,
+  /// normal and gap are current on its owner and its master facet's rank
+  /// (and on every rank for a slot whose facet changed); otherwise the
+  /// surface positions are gathered. One counted exchange either way.
   /// \return true if any slave changed its master facet (new topology);
   ///         the slots that did are appended to `changedSlots` when given.
   bool updatePairing(const Vector& u, bool global, bool freeze, std::vector<int>* changedSlots = nullptr);
@@ -168,9 +174,10 @@ class ContactComponent {
   /// Decomposed element: the owner of a slot decides it from the partial
   /// gaps summed on the multiplier map, and every rank takes the states
   /// (active, stick/slip) of the changed slots, so the active set is
-  /// replicated. With `everySlot` (the default) every rank also receives
-  /// every slot's gap, slips and multipliers; without it only the slots
-  /// whose counterparts it evaluates (ownedSlots(), localMasterSlots()):
+  /// replicated. With `everySlot` (the default) every rank then also
+  /// receives every slot's values from its owner (shareEverySlotsValues());
+  /// without it only the slots whose counterparts it evaluates
+  /// (ownedSlots(), localMasterSlots()):
   /// what a Newton iteration or a step's end needs, with bytes that grow
   /// with the rank's part of the contact zone, not with the surface. The
   /// other slots' values then stay as an earlier update left them: the
@@ -206,6 +213,9 @@ class ContactComponent {
   /// \throws std::invalid_argument (every rank) if `slots` is not a list of
   ///         this component's slots, or if some rank's `wanted` names a slot that does not exist
   void shareSlotValues(std::vector<ContactSlot>& slots, const std::vector<int>& wanted) const;
+  /// The bytes a rank receives per slot whose values it asks for
+  /// (shareSlotValues()).
+  static long sharedSlotBytes();
   /// shareSlotValues() of every slot of slots() into slots(): every rank
   /// holds every value, as after an update with everySlot (once, e.g. at
   /// the end of a run, for a host that reads them). Collective.

@@ -75,6 +75,7 @@ bool ContactPairing::updatePairing(const Vector& u, bool global, bool freeze, st
     const Pair& pair = topo_.pair(p);
     for (size_t i = 0; i < found[p].size(); ++i) {
       ContactSlot& s = slots_[pair.slots[i]];
+      if (!found[p][i].known) continue;  // unchanged, evaluated elsewhere
       if (!distributed && !global && keepPreviousFacet(pair, s, found[p][i], position, freeze)) continue;
       if (assignFacet(pair, s, found[p][i], freeze)) {
         changed = true;
@@ -119,13 +120,16 @@ bool ContactPairing::keepPreviousFacet(const Pair& pair, ContactSlot& s, const F
 }
 
 void ContactPairing::freezeGeometry(const Pair& pair, ContactSlot& s, const std::array<double, 2>& xi,
-                                    const Eigen::Vector3d& normal) const {
+                                    const Eigen::Vector3d& normal, const Eigen::Vector3d& tangent) const {
   // ξ^p and n^p (paper eq. 1), and for a frictional pair the tangent basis
-  // τ^p rotated least from the last step's (tangentBasis()).
+  // τ^p rotated least from the last step's (tangentBasis()), which only
+  // the slot's owner is sure to hold: another rank takes the owner's τ_1.
   const Eigen::Vector3d previous = s.frozen.tangent[0];
   s.frozen.xi = xi;
   s.frozen.normal = normal;
-  if (pair.friction > 0.0) s.frozen.tangent = tangentBasis(topo_.dim(), normal, previous);
+  if (pair.friction > 0.0)
+    s.frozen.tangent = tangent.isZero(0.0) ? tangentBasis(topo_.dim(), normal, previous)
+                                           : std::array<Eigen::Vector3d, 2>{tangent, normal.cross(tangent)};
 }
 
 bool ContactPairing::assignFacet(const Pair& pair, ContactSlot& s, const Found& c, bool freeze) const {
@@ -146,7 +150,7 @@ bool ContactPairing::assignFacet(const Pair& pair, ContactSlot& s, const Found& 
   s.masterElement = r.element;
   s.gap = c.gap;
   s.normal = c.normal;
-  if (freeze) freezeGeometry(pair, s, c.xi, c.normal);
+  if (freeze) freezeGeometry(pair, s, c.xi, c.normal, c.tangent);
   return changed;
 }
 

@@ -4,18 +4,22 @@
 //
 //   slots         one per topology slot, replicated: its master facet, the
 //                 frozen projection ξ^p and normal n^p, the gap, the
-//                 multiplier and whether it is active. The pairing and the
-//                 states are the same on every rank; the decomposed
-//                 element's values (gap, slips, multipliers) are current
-//                 where the slot is evaluated, and on every rank after an
-//                 update with everySlot (updateActiveSet());
+//                 multiplier and whether it is active. The pairing (master
+//                 facet and nodes) and the states are the same on every
+//                 rank; the decomposed element's values (frozen projection
+//                 and basis, gap, slips, multipliers) are current where the
+//                 slot is evaluated (its owner, its master facet's rank),
+//                 and elsewhere once brought from the owner
+//                 (shareSlotValues(), or updateActiveSet() with everySlot);
 //   pairing       updatePairing(): the search and tracking over each pair's
 //                 master facets (FacetSearch), with the facing and
 //                 free-boundary rules (doc/contact.md, "Which slave nodes
 //                 pair" and "Curved facets and 3-D") — replicated on gathered
 //                 surface positions, or, for the decomposed element at step
 //                 ends, by the owners of the slave nodes after one
-//                 bounding-box-limited exchange (DDC_ContactPairingSearch.cpp);
+//                 bounding-box-limited exchange, the results going to the
+//                 master facets' ranks, and to every rank only where a
+//                 slot's facet changes (DDC_ContactPairingSearch.cpp);
 //                 the exchanges and bytes moved; the warnings and the record
 //                 of the pairs that ever paired;
 //   evaluation    the active set, the gaps, the constraint rows and the
@@ -98,6 +102,7 @@ class ContactPairing {
   void shareSlotValues(std::vector<ContactSlot>& slots, const std::vector<int>& wanted) const;
   /// Every slot's values from its owner into this rank's slots (collective).
   void shareEverySlotsValues();
+  static long sharedSlotBytes();
 
   // ---- queries ---------------------------------------------------------------------
   const std::vector<ContactSlot>& slots() const { return slots_; }
@@ -122,6 +127,13 @@ class ContactPairing {
     /// Not paired only because of the facing rule's normal test: a master
     /// facet within the search radius does not face the slave surface.
     bool notFacing = false;
+    /// Distributed search, 3-D frictional pairs: τ_1 of the tangent basis
+    /// the slot's owner froze (zero: freeze it here, freezeGeometry()).
+    Eigen::Vector3d tangent = Eigen::Vector3d::Zero();
+    /// False: this rank did not learn the slot's pairing (the distributed
+    /// search sends it only where the slot is evaluated or changes); the
+    /// slot keeps its pairing.
+    bool known = true;
   };
   /// Per pair, per slave node (the pair's slot order).
   using FoundAll = std::vector<std::vector<Found>>;
@@ -148,8 +160,9 @@ class ContactPairing {
   bool keepPreviousFacet(const Pair& pair, ContactSlot& s, const Found& c, const Position& position,
                          bool freeze) const;
   bool assignFacet(const Pair& pair, ContactSlot& s, const Found& c, bool freeze) const;
+  /// `tangent`: τ_1 as the slot's owner froze it, or zero.
   void freezeGeometry(const Pair& pair, ContactSlot& s, const std::array<double, 2>& xi,
-                      const Eigen::Vector3d& normal) const;
+                      const Eigen::Vector3d& normal, const Eigen::Vector3d& tangent = Eigen::Vector3d::Zero()) const;
   void notePairing(const FoundAll& found);
   std::string whyNotPaired(const Pair& pair, int node, double& depth) const;
 
@@ -157,17 +170,17 @@ class ContactPairing {
   void gatherSurface(const Vector& u, const Vector* multipliers, std::vector<double>& values) const;
   void refreshSlotGeometry(const std::vector<double>& surfaceValues);
   /// Decomposed element: the summed gaps (and slips) and the multipliers
-  /// into the slots this rank evaluates (owned and master counterparts),
-  /// or into every slot with `everySlot`.
-  void assembleFrozenGaps(const Vector& u, const Vector* multipliers, bool everySlot);
+  /// into the slots this rank evaluates (owned and master counterparts);
+  /// the bytes received count in valueBytes_[counter].
+  void assembleFrozenGaps(const Vector& u, const Vector* multipliers, int counter);
   /// Slot k's multipliers, gap and slips from summed values `g` and
   /// multipliers `lam`, indexed by at(multiplier id).
   template <class At>
   void takeFrozenValues(int k, const double* g, const double* lam, const At& at);
   /// Decomposed element: the owners decide their slots (applyContactRules()),
   /// every rank takes the changed states; returns every changed slot,
-  /// ascending. Collective.
-  std::vector<int> decideOnOwners(bool everySlot);
+  /// ascending. The bytes received count in valueBytes_[counter]. Collective.
+  std::vector<int> decideOnOwners(int counter);
   /// The contact-state rules for slot k (ContactComponent::updateActiveSet()),
   /// with lmax the largest |λ| of all slots; appends k to `changed` (and to
   /// `activated`). Returns the message of a fully prescribed slot that
@@ -201,6 +214,8 @@ class ContactPairing {
   bool updateFriction(int k);
   /// Throws std::logic_error before the first updatePairing().
   void requirePaired(const char* what) const;
+  /// shareSlotValues(); returns the bytes this rank received.
+  long shareValues(std::vector<ContactSlot>& slots, const std::vector<int>& wanted) const;
   /// Throws std::invalid_argument naming `what` unless `slots` has one entry per slot.
   void requireSlotList(const std::vector<ContactSlot>& slots, const char* what) const;
 

@@ -329,6 +329,7 @@ std::vector<ContactRowEntry> ContactPairing::contactRows() const {
 
 void ContactPairing::gatherSurface(const Vector& u, const Vector* multipliers, std::vector<double>& values) const {
   // Surface DOFs, then every slot's multiplier: one exchange.
+  DDC_CHECK(!topo_.options().decomposed, "gatherSurface: the conventional element's gather");
   Vector s(topo_.surfaceMap());
   s.doImport(u, *topo_.surfaceImporter(), Tpetra::INSERT);
   const Map& allMap = *topo_.multiplierAllMap();
@@ -441,11 +442,11 @@ void ContactPairing::takeFrozenValues(int k, const double* g, const double* lam,
   }
 }
 
-void ContactPairing::assembleFrozenGaps(const Vector& u, const Vector* multipliers, bool everySlot) {
+void ContactPairing::assembleFrozenGaps(const Vector& u, const Vector* multipliers, int counter) {
   // Partial gaps (and slips, frictional pairs) of the counterparts at their
-  // multipliers, summed on the multiplier map (Export ADD). Then (value,
-  // multiplier) back to the slots this rank evaluates (everySlot: to every
-  // rank for every slot). Only multiplier-map values travel, no geometry.
+  // multipliers, summed on the multiplier map (Export ADD), then back to the
+  // counterparts' map, where the multipliers already are (the field). Only
+  // multiplier-map values travel, no geometry.
   const Field f = gatherField(u, multipliers);
   const auto& local = topo_.ownedSlots();
   Vector gOv(lmOverlapMap_), gOwned(topo_.multiplierMap());
@@ -464,39 +465,19 @@ void ContactPairing::assembleFrozenGaps(const Vector& u, const Vector* multiplie
     for (int k : localMasterSlots_) addRows(k, SurfaceContactRole::Master);
   }
   gOwned.doExport(gOv, *lmExporter_, Tpetra::ADD);
-  // Received so far: the field at the counterparts (and at the step start)
-  // and the partial gaps at the owners.
+  Vector gHeld(lmOverlapMap_);
+  gHeld.doImport(gOwned, *lmImporter_, Tpetra::INSERT);
+  // Received: the field at the counterparts (and at the step start), the
+  // partial gaps at the owners and the summed values back.
   const auto& lmIn = multipliers ? lmImporter_ : lmHostImporter_;
-  valueBytes_[everySlot] += long((dofImporter_->getNumRemoteIDs() * (stepStart_.is_null() ? 1 : 2) +
-                                  lmIn->getNumRemoteIDs() + lmExporter_->getNumRemoteIDs()) *
-                                 sizeof(double));
-  if (!everySlot) {
-    // The summed values back on the counterparts' map: the multipliers are
-    // there already (the field).
-    Vector gHeld(lmOverlapMap_);
-    gHeld.doImport(gOwned, *lmImporter_, Tpetra::INSERT);
-    valueBytes_[0] += long(lmImporter_->getNumRemoteIDs() * sizeof(double));
-    auto g = gHeld.getData();
-    auto at = [&](GO id) { return lmOverlapMap_->getLocalElement(id); };
-    for (int k : local) takeFrozenValues(k, g.getRawPtr(), f.l.getRawPtr(), at);
-    for (int k : localMasterSlots_) takeFrozenValues(k, g.getRawPtr(), f.l.getRawPtr(), at);
-    return;
-  }
-  const Map& ownedMap = *topo_.multiplierMap();
-  MultiVector owned(topo_.multiplierMap(), 2), all(topo_.multiplierAllMap(), 2);
-  {
-    auto g = gOwned.getData();
-    for (size_t i = 0; i < ownedMap.getNodeNumElements(); ++i) {
-      owned.replaceLocalValue(LO(i), 0, g[i]);
-      owned.replaceLocalValue(LO(i), 1, f.l[lmOverlapMap_->getLocalElement(ownedMap.getGlobalElement(LO(i)))]);
-    }
-  }
-  all.doImport(owned, *topo_.multiplierAllImporter(), Tpetra::INSERT);
-  valueBytes_[1] += long(topo_.multiplierAllImporter()->getNumRemoteIDs() * 2 * sizeof(double));
-  auto g = all.getData(0), lam = all.getData(1);
-  const Map& allMap = *topo_.multiplierAllMap();
-  auto at = [&](GO id) { return allMap.getLocalElement(id); };
-  for (size_t k = 0; k < slots_.size(); ++k) takeFrozenValues(int(k), g.getRawPtr(), lam.getRawPtr(), at);
+  valueBytes_[counter] += long((dofImporter_->getNumRemoteIDs() * (stepStart_.is_null() ? 1 : 2) +
+                                lmIn->getNumRemoteIDs() + lmExporter_->getNumRemoteIDs() +
+                                lmImporter_->getNumRemoteIDs()) *
+                               sizeof(double));
+  auto g = gHeld.getData();
+  auto at = [&](GO id) { return lmOverlapMap_->getLocalElement(id); };
+  for (int k : local) takeFrozenValues(k, g.getRawPtr(), f.l.getRawPtr(), at);
+  for (int k : localMasterSlots_) takeFrozenValues(k, g.getRawPtr(), f.l.getRawPtr(), at);
 }
 
 FrictionState ContactPairing::newContactState(const ContactSlot& s) const {
@@ -520,9 +501,13 @@ void ContactPairing::activateAllPaired() {
 std::vector<int> ContactPairing::updateActiveSet(const Vector& u, const Vector* multipliers, bool everySlot) {
   topo_.requireCommitted("updateActiveSet");
   if (topo_.options().decomposed) {
+    // The values where the slots are evaluated; with everySlot, then from
+    // the owners to every rank.
     ++valueUpdates_[everySlot];
     assembleFrozenGaps(u, multipliers, everySlot);
-    return decideOnOwners(everySlot);
+    std::vector<int> changed = decideOnOwners(everySlot);
+    if (everySlot) valueBytes_[1] += shareValues(slots_, slotIndices(slots_.size()));
+    return changed;
   }
   std::vector<double> v;
   gatherSurface(u, multipliers, v);
@@ -539,13 +524,12 @@ std::vector<int> ContactPairing::updateActiveSet(const Vector& u, const Vector* 
   return changed;
 }
 
-std::vector<int> ContactPairing::decideOnOwners(bool everySlot) {
+std::vector<int> ContactPairing::decideOnOwners(int counter) {
   // The owner of a slot decides it from the values summed on its multiplier
   // map; the ranks agree on the largest multiplier (the tension threshold)
   // and, in frictional pairs, on each pair's contacts, and every rank then
   // takes the changed slots' states. So the active set is the same on every
-  // rank while the values of a slot are current only where it is evaluated
-  // (everywhere with everySlot).
+  // rank while the values of a slot are current only where it is evaluated.
   const MPI_Comm comm = rawComm(topo_.comm());
   double lmax = 0.0;
   for (int k : topo_.ownedSlots()) lmax = std::max(lmax, std::abs(slots_[k].state.multiplier));
@@ -569,7 +553,7 @@ std::vector<int> ContactPairing::decideOnOwners(bool everySlot) {
                                         static_cast<signed char>(slots_[k].friction)});
   if (faultSlot >= 0) mine.push_back({faultSlot, 0, -1});
   const std::vector<Change> all = allGather(comm, mine);
-  valueBytes_[everySlot] += long((all.size() - mine.size()) * sizeof(Change));
+  valueBytes_[counter] += long((all.size() - mine.size()) * sizeof(Change));
   const int me = topo_.comm()->getRank();
   int first = -1;  // the first fully prescribed slot that penetrates, on any rank
   changed.clear();
@@ -585,15 +569,10 @@ std::vector<int> ContactPairing::decideOnOwners(bool everySlot) {
   }
   if (first >= 0) raiseCollectively<InputError>(comm, faultSlot == first ? fault : std::string());
   std::sort(changed.begin(), changed.end());
-  // The slip of the slots whose values are current here.
-  auto slip = [this](int k) {
+  // The slip of the master counterparts' slots (the owners' is set).
+  for (int k : localMasterSlots_) {
     ContactSlot& s = slots_[k];
     if (s.paired()) s.slip = s.active ? std::hypot(s.tangentialSlip[0], s.tangentialSlip[1]) : 0.0;
-  };
-  if (everySlot) {
-    for (size_t k = 0; k < slots_.size(); ++k) slip(int(k));
-  } else {
-    for (int k : localMasterSlots_) slip(k);
   }
   return changed;
 }

@@ -9,6 +9,7 @@
 
 #include "DDC_ContactPairing.hpp"
 #include "DDC_Error.hpp"
+#include "DDC_Friction.hpp"
 #include "DDC_MpiRecords.hpp"
 
 namespace ddc {
@@ -21,12 +22,14 @@ struct NodePosition {
   int node;
   double x[D];
 };
-/// The pairing of one slot, found by the owner of its slave node.
+/// The pairing of one slot, found by the owner of its slave node, with the
+/// first vector of the tangent basis the owner froze from its last one
+/// (3-D; in 2-D the basis follows from the normal).
 template <int D>
 struct SlotPairing {
   enum Flag { kPastFreeEnd = 1, kViaCorner = 2, kNotFacing = 4 };
   int slot, facet, flags;
-  double xi[D - 1], gap, distance, n[D];
+  double xi[D - 1], gap, distance, n[D], t1[D == 3 ? 3 : 1];
 };
 }  // namespace
 
@@ -270,31 +273,23 @@ std::vector<std::pair<int, ContactPairing::Found>> ContactPairing::searchOwnedSl
 
 template <int D>
 long ContactPairing::shareFound(const std::vector<std::pair<int, Found>>& mine, FoundAll& found) const {
-  // 4. Every rank learns every slot's pairing (the slots are replicated).
+  // 4. Each slot's pairing to the ranks that evaluate it: its owner (here)
+  //    and the rank of its master facet. Every rank learns the slots whose
+  //    facet changed (the pairing itself, segment and master nodes, stays
+  //    replicated), and, while a pair has paired no slave node and has not
+  //    been warned of, the slots a facet does not face (notePairing()).
   const MPI_Comm mpi = rawComm(topo_.comm());
   const int me = topo_.comm()->getRank(), P = topo_.comm()->getSize();
-  std::vector<std::vector<SlotPairing<D>>> results(P);
-  for (const auto& [slot, f] : mine) {
-    const int flags = (f.pastFreeEnd ? SlotPairing<D>::kPastFreeEnd : 0) |
-                      (f.viaCorner ? SlotPairing<D>::kViaCorner : 0) | (f.notFacing ? SlotPairing<D>::kNotFacing : 0);
-    SlotPairing<D> rec{slot, f.facet, flags, {}, f.gap, f.distance, {}};
-    for (int a = 0; a < D - 1; ++a) rec.xi[a] = f.xi[a];
-    for (int c = 0; c < D; ++c) rec.n[c] = f.normal[c];
-    for (int r = 0; r < P; ++r) results[r].push_back(rec);
-  }
-  long bytes = 0;
-  for (int r = 0; r < P; ++r)
-    if (r != me) bytes += long(results[r].size() * sizeof(SlotPairing<D>));
-  const std::vector<SlotPairing<D>> all = exchangeRecords(mpi, results);
   found.assign(topo_.numPairs(), {});
   std::vector<int> indexInPair(slots_.size(), -1);
   for (int p = 0; p < topo_.numPairs(); ++p) {
     const auto& slots = topo_.pair(p).slots;
     found[p].assign(slots.size(), Found{});
-    for (size_t i = 0; i < slots.size(); ++i) indexInPair[slots[i]] = int(i);
+    for (size_t i = 0; i < slots.size(); ++i) indexInPair[slots[i]] = int(i), found[p][i].known = false;
   }
-  for (const auto& a : all) {
+  auto take = [&](const SlotPairing<D>& a) {
     Found& f = found[slots_[a.slot].pair][indexInPair[a.slot]];
+    f.known = true;
     f.facet = a.facet;
     f.pastFreeEnd = (a.flags & SlotPairing<D>::kPastFreeEnd) != 0;
     f.viaCorner = (a.flags & SlotPairing<D>::kViaCorner) != 0;
@@ -303,7 +298,34 @@ long ContactPairing::shareFound(const std::vector<std::pair<int, Found>>& mine, 
     f.gap = a.gap;
     f.distance = a.distance;
     for (int c = 0; c < D; ++c) f.normal[c] = a.n[c];
+    if constexpr (D == 3) f.tangent = Eigen::Vector3d(a.t1[0], a.t1[1], a.t1[2]);
+  };
+  std::vector<std::vector<SlotPairing<D>>> toMaster(P);
+  std::vector<SlotPairing<D>> changes;
+  for (const auto& [slot, f] : mine) {
+    const int flags = (f.pastFreeEnd ? SlotPairing<D>::kPastFreeEnd : 0) |
+                      (f.viaCorner ? SlotPairing<D>::kViaCorner : 0) | (f.notFacing ? SlotPairing<D>::kNotFacing : 0);
+    SlotPairing<D> rec{slot, f.facet, flags, {}, f.gap, f.distance, {}, {}};
+    for (int a = 0; a < D - 1; ++a) rec.xi[a] = f.xi[a];
+    for (int c = 0; c < D; ++c) rec.n[c] = f.normal[c];
+    const int p = slots_[slot].pair;
+    const Pair& pair = topo_.pair(p);
+    const int facet = f.facet >= 0 && !f.pastFreeEnd ? f.facet : -1;
+    if constexpr (D == 3)
+      if (facet >= 0 && pair.friction > 0.0) {
+        const Eigen::Vector3d t1 = tangentBasis(D, f.normal, slots_[slot].frozen.tangent[0])[0];
+        for (int c = 0; c < D; ++c) rec.t1[c] = t1[c];
+      }
+    take(rec);
+    if (facet >= 0 && pair.masterFacets[facet].rank != me) toMaster[pair.masterFacets[facet].rank].push_back(rec);
+    const bool unwarned = (size_t(p) >= everPaired_.size() || !everPaired_[p]) &&
+                          (size_t(p) >= facingReported_.size() || !facingReported_[p]);
+    if (facet != slots_[slot].segment || (f.notFacing && unwarned)) changes.push_back(rec);
   }
+  long bytes = long(changes.size() * size_t(P - 1) * sizeof(SlotPairing<D>));
+  for (int r = 0; r < P; ++r) bytes += long(toMaster[r].size() * sizeof(SlotPairing<D>));
+  for (const auto& a : exchangeRecords(mpi, toMaster)) take(a);
+  for (const auto& a : allGather(mpi, changes)) take(a);
   return bytes;
 }
 

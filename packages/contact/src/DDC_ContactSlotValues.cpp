@@ -20,14 +20,16 @@ namespace ddc {
 
 namespace {
 
-/// What an update without everySlot leaves current only where the slot is
-/// evaluated: the multipliers, the gap and the slips, and the normal and
-/// tangent basis the element used (the frozen ones of the decomposed
-/// element; a step-end pairing replaces the frozen ones but not these).
+/// What is current only where a slot is evaluated (its owner and the rank
+/// of its master facet): from an active-set update the multipliers, the gap
+/// and the slips, and the normal and tangent basis the element used; from
+/// the step-end pairing the frozen projection, normal and tangent basis.
 struct SlotValueRecord {
   int slot = -1;
   double multiplier = 0.0, tangential[2] = {0.0, 0.0}, gap = 0.0, slip = 0.0, tangentialSlip[2] = {0.0, 0.0};
   double normal[3] = {0.0, 0.0, 0.0}, tangent[2][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+  double frozenXi[2] = {0.0, 0.0}, frozenNormal[3] = {0.0, 0.0, 0.0};
+  double frozenTangent[2][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
 };
 
 SlotValueRecord valuesOf(const ContactSlot& s, int k) {
@@ -39,9 +41,10 @@ SlotValueRecord valuesOf(const ContactSlot& s, int k) {
   for (int a = 0; a < 2; ++a) {
     r.tangential[a] = s.tangential[a];
     r.tangentialSlip[a] = s.tangentialSlip[a];
-    for (int c = 0; c < 3; ++c) r.tangent[a][c] = s.tangent[a][c];
+    r.frozenXi[a] = s.frozen.xi[a];
+    for (int c = 0; c < 3; ++c) r.tangent[a][c] = s.tangent[a][c], r.frozenTangent[a][c] = s.frozen.tangent[a][c];
   }
-  for (int c = 0; c < 3; ++c) r.normal[c] = s.normal[c];
+  for (int c = 0; c < 3; ++c) r.normal[c] = s.normal[c], r.frozenNormal[c] = s.frozen.normal[c];
   return r;
 }
 
@@ -52,9 +55,10 @@ void takeValues(const SlotValueRecord& r, ContactSlot& s) {
   for (int a = 0; a < 2; ++a) {
     s.tangential[a] = r.tangential[a];
     s.tangentialSlip[a] = r.tangentialSlip[a];
-    for (int c = 0; c < 3; ++c) s.tangent[a][c] = r.tangent[a][c];
+    s.frozen.xi[a] = r.frozenXi[a];
+    for (int c = 0; c < 3; ++c) s.tangent[a][c] = r.tangent[a][c], s.frozen.tangent[a][c] = r.frozenTangent[a][c];
   }
-  for (int c = 0; c < 3; ++c) s.normal[c] = r.normal[c];
+  for (int c = 0; c < 3; ++c) s.normal[c] = r.normal[c], s.frozen.normal[c] = r.frozenNormal[c];
 }
 
 }  // namespace
@@ -66,6 +70,10 @@ void ContactPairing::requireSlotList(const std::vector<ContactSlot>& slots, cons
 }
 
 void ContactPairing::shareSlotValues(std::vector<ContactSlot>& slots, const std::vector<int>& wanted) const {
+  shareValues(slots, wanted);
+}
+
+long ContactPairing::shareValues(std::vector<ContactSlot>& slots, const std::vector<int>& wanted) const {
   requireSlotList(slots, "shareSlotValues");
   const MPI_Comm comm = rawComm(topo_.comm());
   std::string bad;
@@ -74,7 +82,7 @@ void ContactPairing::shareSlotValues(std::vector<ContactSlot>& slots, const std:
       bad = "shareSlotValues: slot " + std::to_string(k) + " wanted of " + std::to_string(slots_.size());
   raiseCollectively<std::invalid_argument>(comm, bad);
   // The conventional element's values are on every rank after every update.
-  if (!topo_.options().decomposed) return;
+  if (!topo_.options().decomposed) return 0;
   // Two exchanges: the slots each rank wants to their owners, the values back.
   const int me = commRank(comm);
   struct Request {
@@ -84,9 +92,14 @@ void ContactPairing::shareSlotValues(std::vector<ContactSlot>& slots, const std:
   for (int k : wanted)
     if (topo_.slotOwner(k) != me) ask[size_t(topo_.slotOwner(k))].push_back({k, me});
   std::vector<std::vector<SlotValueRecord>> answer(ask.size());
-  for (const Request& r : exchangeRecords(comm, ask)) answer[size_t(r.rank)].push_back(valuesOf(slots[r.slot], r.slot));
-  for (const SlotValueRecord& r : exchangeRecords(comm, answer)) takeValues(r, slots[r.slot]);
+  const std::vector<Request> asked = exchangeRecords(comm, ask);
+  for (const Request& r : asked) answer[size_t(r.rank)].push_back(valuesOf(slots[r.slot], r.slot));
+  const std::vector<SlotValueRecord> values = exchangeRecords(comm, answer);
+  for (const SlotValueRecord& r : values) takeValues(r, slots[r.slot]);
+  return long(asked.size() * sizeof(Request) + values.size() * sizeof(SlotValueRecord));
 }
+
+long ContactPairing::sharedSlotBytes() { return long(sizeof(SlotValueRecord)); }
 
 void ContactPairing::shareEverySlotsValues() { shareSlotValues(slots_, slotIndices(slots_.size())); }
 

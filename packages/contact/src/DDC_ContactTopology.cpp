@@ -527,8 +527,13 @@ void ContactTopology::buildMultiplierMaps(const std::vector<GO>& multiplierDofs)
   for (int k : localSlots_)
     for (int c = 0; c < numMultipliers(k); ++c) ownedLm.push_back(multiplierId(k, c));
   multiplierMap_ = mapOf(ownedLm, comm_);
-  multiplierAllMap_ = mapOf(lmGid_, comm_);
-  lmAllImporter_ = Teuchos::rcp(new TpetraImport(multiplierMap_, multiplierAllMap_));
+  // Every multiplier on every rank: the conventional element's gather only
+  // (the decomposed element moves a slot's multipliers to where it is
+  // evaluated).
+  if (!options_.decomposed) {
+    multiplierAllMap_ = mapOf(lmGid_, comm_);
+    lmAllImporter_ = Teuchos::rcp(new TpetraImport(multiplierMap_, multiplierAllMap_));
+  }
 }
 
 void ContactTopology::buildSurfaceMap() {

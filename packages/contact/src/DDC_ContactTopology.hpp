@@ -152,6 +152,8 @@ class ContactTopology {
   const Teuchos::RCP<const Map>& hostMap() const { return hostMap_; }
   const Teuchos::RCP<const Map>& multiplierMap() const { return multiplierMap_; }
   /// Every slot's multiplier on every rank.
+  /// Every multiplier id, on every rank (the conventional element's
+  /// gather; null for the decomposed element).
   const Teuchos::RCP<const Map>& multiplierAllMap() const { return multiplierAllMap_; }
   const Teuchos::RCP<const Tpetra::Import<LO, GO, Node>>& multiplierAllImporter() const { return lmAllImporter_; }
   /// Every surface DOF on every rank (the gathers of the replicated pairing).

@@ -8,6 +8,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <Teuchos_DefaultComm.hpp>
 #include <Tpetra_Core.hpp>
 #include <cmath>
@@ -15,6 +16,7 @@
 
 #include "DDC_ContactComponent.hpp"
 #include "DDC_Error.hpp"
+#include "DDC_Friction.hpp"
 #include "DDC_TestErrors.hpp"
 #include "DDC_TestTolerances.hpp"
 
@@ -150,7 +152,8 @@ TEST(ContactComponent, ANewtonIterationsActiveSetMovesOnlyTheEvaluatedSlotsValue
   // evaluated on rank 0; on 3 ranks, rank 1 evaluates nothing. An update
   // without everySlot (a Newton iteration's) gives every rank the changed
   // states but the values only to the ranks that evaluate the slots; an
-  // update with it (a step's end) gives every rank every value.
+  // update with it (a host's) then gives every rank every value, from the
+  // slots' owners.
   Host h;
   auto c = registered(h, true);
   auto map = h.map();
@@ -169,7 +172,7 @@ TEST(ContactComponent, ANewtonIterationsActiveSetMovesOnlyTheEvaluatedSlotsValue
     EXPECT_NEAR(s.gap, evaluates ? kGap0 - 0.15 : kGap0, kRoundoff)
         << "the summed gap reaches the evaluating ranks only; elsewhere the pairing's stays";
   }
-  // The step's end: every value to every rank; nothing changes.
+  // With everySlot: every value to every rank; nothing changes.
   changed = c->updateActiveSet(*pushed, &lambda, /*everySlot=*/true);
   EXPECT_TRUE(changed.empty());
   const long every = c->valueBytesReceived()[1] - bytes0[1];
@@ -177,7 +180,8 @@ TEST(ContactComponent, ANewtonIterationsActiveSetMovesOnlyTheEvaluatedSlotsValue
   EXPECT_EQ(c->valueUpdates(), (std::array<long, 2>{1, 1}));
   for (const auto& s : c->slots()) EXPECT_NEAR(s.gap, kGap0 - 0.15, kRoundoff) << "every rank holds every value now";
   if (!evaluates) {
-    EXPECT_EQ(every, long(2 * 2 * sizeof(double))) << "a bystander receives (gap, λ) of both slots at the step's end";
+    EXPECT_EQ(every, 2 * ddc::ContactComponent::sharedSlotBytes())
+        << "a bystander receives the values of both slots from their owner, nothing else";
     EXPECT_LT(lean, every) << "and in a Newton iteration only the other ranks' changed states";
   }
   if (h.comm->getSize() == 1) EXPECT_EQ(lean + every, 0) << "one rank receives nothing";
@@ -526,7 +530,11 @@ const double kX3[10][3] = {{0, 0, 0},   {1, 0, 0},     {2, 0, 0},         {0, 2,
                            {2, 2, 0},   {0.5, 0.5, kGap0}, {1.5, 0.5, kGap0}, {1.5, 1.5, kGap0}, {0.5, 1.5, kGap0}};
 
 struct Host3 : Host {
-  bool owns3(int i) const { return i < 6 ? ownsMaster() : ownsSlave(); }
+  /// The rank that registers the second master facet and its nodes 2 and 5
+  /// (-1: the master rank, with the first).
+  int rightFacetRank = -1;
+  bool ownsRight() const { return rightFacetRank < 0 ? ownsMaster() : me == rightFacetRank; }
+  bool owns3(int i) const { return i >= 6 ? ownsSlave() : (i == 2 || i == 5) ? ownsRight() : ownsMaster(); }
   Teuchos::RCP<const ddc::Map> map3() const {
     std::vector<GO> gids;
     for (int i = 0; i < 10; ++i)
@@ -550,10 +558,8 @@ std::unique_ptr<ContactComponent> registered3(const Host3& h,
   ddc::ContactPairSurfaces pair;
   pair.name = "P3";
   pair.slaveFacetType = pair.masterFacetType = ddc::CellType::Quad4;
-  if (h.ownsMaster()) {
-    pair.masterFacets.push_back({0, {0, 1, 4, 3}, 100, 0, 1.0});
-    pair.masterFacets.push_back({1, {1, 2, 5, 4}, 101, 0, 1.0});
-  }
+  if (h.ownsMaster()) pair.masterFacets.push_back({0, {0, 1, 4, 3}, 100, 0, 1.0});
+  if (h.ownsRight()) pair.masterFacets.push_back({1, {1, 2, 5, 4}, 101, h.rightFacetRank < 0 ? 0 : 1, 1.0});
   if (h.ownsSlave()) {
     pair.slaveFacets.push_back({0, {10, 13, 12, 11}, 200, 1, 0.0});
     pair.slaveNodes = {10, 11, 12, 13};
@@ -603,6 +609,70 @@ TEST(ContactComponent3D, DecomposedRowsGapsAndActiveSetOnQuad4Facets) {
     if (h.owns3(i)) u.replaceGlobalValue(GO(3 * i + 2), -0.15);
   EXPECT_EQ(c->updateActiveSet(u, &lambda).size(), 4u);
   for (const auto& s : c->slots()) EXPECT_NEAR(s.gap, kGap0 - 0.15, kRoundoff);
+}
+
+TEST(ContactComponent3D, ANewMasterRankTakesTheOwnersFrozenTangentBasis) {
+  // Facet 0 (x in 0..1) registered by rank 0, facet 1 (x in 1..2) by rank
+  // 1, the slave facet by the last rank; a frictional pair. The bodies
+  // turn rigidly about y, so the owner rotates the slots' tangent basis
+  // (tangentBasis(): least rotation from the last step's) while rank 1,
+  // which evaluates nothing of them, keeps the first. Then they turn about
+  // x and the slave slides onto facet 1: its new master rank must freeze
+  // the owner's basis, not rotate its stale one.
+  Host3 h;
+  h.rightFacetRank = std::min(1, h.last);
+  auto c = registered3(h, [](ddc::ContactPairSurfaces& p) {
+    p.friction = 0.3;
+    p.frictionStiffness = 10.0;
+  });
+  auto map = h.map3();
+  std::vector<ddc::ContactNodeDofs> dofs;
+  for (int i = 0; i < 10; ++i)
+    if (h.owns3(i)) dofs.push_back({kNodes3[i], {{GO(3 * i), GO(3 * i + 1), GO(3 * i + 2)}}, {{false, false, false}}});
+  c->setDofs(map, dofs);
+  // u = R X + shift − X, the slave nodes shifted by `slide` along R e_x, the
+  // slave's reference corners moved to x in 0.1..0.4 (on facet 0).
+  auto moved = [&](const Eigen::Matrix3d& R, double slide) {
+    ddc::Vector u(map);
+    for (int i = 0; i < 10; ++i) {
+      if (!h.owns3(i)) continue;
+      const Eigen::Vector3d X(kX3[i][0], kX3[i][1], kX3[i][2]);
+      Eigen::Vector3d x = X;
+      if (i >= 6) x.x() = 0.1 + 0.3 * (X.x() - 0.5) + slide, x.y() = 0.1 + 0.3 * (X.y() - 0.5);
+      const Eigen::Vector3d d = R * x - X;
+      for (int k = 0; k < 3; ++k) u.replaceGlobalValue(GO(3 * i + k), d[k]);
+    }
+    return u;
+  };
+  const Eigen::Matrix3d Ry = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const Eigen::Matrix3d Rxy = Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitX()).toRotationMatrix() * Ry;
+  c->updatePairing(moved(Eigen::Matrix3d::Identity(), 0.0), true, true);
+  const Eigen::Vector3d first = c->slots()[0].frozen.tangent[0];  // every rank: the first pairing
+  c->updatePairing(moved(Ry, 0.0), true, true);
+  const bool bystander = h.comm->getSize() == 3 && h.me == 1;
+  for (const auto& s : c->slots()) {
+    ASSERT_EQ(s.masterElement, 100);
+    if (bystander) EXPECT_EQ(s.frozen.tangent[0], first) << "an unchanged pairing goes only where it is evaluated";
+  }
+  c->updatePairing(moved(Rxy, 1.0), true, true);
+  // The owner's basis against the one of every rank that evaluates the slots.
+  std::vector<double> mine(12, 0.0), owners(12);
+  for (int k = 0; k < 4; ++k) {
+    const auto& s = c->slots()[k];
+    ASSERT_EQ(s.masterElement, 101) << c->describeSlot(k);
+    if (h.ownsSlave())
+      for (int d = 0; d < 3; ++d) mine[size_t(3 * k + d)] = s.frozen.tangent[0][d];
+  }
+  Teuchos::reduceAll(*h.comm, Teuchos::REDUCE_SUM, 12, mine.data(), owners.data());
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector3d owner(owners[size_t(3 * k)], owners[size_t(3 * k + 1)], owners[size_t(3 * k + 2)]);
+    const auto& s = c->slots()[k];
+    EXPECT_NEAR((s.frozen.normal - Rxy.col(2)).norm(), 0.0, kRoundoff);
+    EXPECT_GT((ddc::tangentBasis(3, s.frozen.normal, first)[0] - owner).norm(), 1e-3)
+        << "a basis rotated from the first pairing's differs: the case tests the owner's";
+    if (h.ownsRight() || h.ownsSlave())
+      EXPECT_NEAR((s.frozen.tangent[0] - owner).norm(), 0.0, kRoundoff) << "slot " << k << " on rank " << h.me;
+  }
 }
 
 TEST(ContactComponent3D, TheHostsElementSourceGivesTheElements) {

@@ -15,7 +15,10 @@ InitialPenetration initialPenetration(const Model& model) {
   const double tol = model.contactOptions().penetrationTolerance;
   double deepest = 0.0;
   int node = std::numeric_limits<int>::max(), pair = -1;
-  for (const ContactSlot& s : model.contactSlots()) {
+  // A slot's gap is current on its owner (the pairing's results go only
+  // where a slot is evaluated).
+  for (int k : model.ownedSlots()) {
+    const ContactSlot& s = model.contactSlots()[size_t(k)];
     if (!s.paired() || !(s.gap < -tol)) continue;
     if (-s.gap < deepest || (-s.gap == deepest && s.slaveNode >= node)) continue;
     deepest = -s.gap;
