@@ -210,8 +210,9 @@ class ContactComponent {
   /// rank (e.g. the slave nodes a rank writes, or every slot on the rank
   /// that writes a file). Nothing moves for the conventional element.
   /// Collective (two exchanges of records).
-  /// \throws std::invalid_argument (every rank) if `slots` is not a list of
-  ///         this component's slots, or if some rank's `wanted` names a slot that does not exist
+  /// \throws std::invalid_argument (every rank) if some rank's `slots` is
+  ///         not a list of this component's slots or its `wanted` names a
+  ///         slot that does not exist
   void shareSlotValues(std::vector<ContactSlot>& slots, const std::vector<int>& wanted) const;
   /// The bytes a rank receives per slot whose values it asks for
   /// (shareSlotValues()).

@@ -24,7 +24,9 @@ namespace ddc {
 enum class FrictionState : int { Open = 0, Stick = 1, Slip = 2 };
 
 /// One contact slot: a slave node of a pair, its multiplier, and its
-/// current pairing and state. Replicated on every rank.
+/// current pairing and state. Every rank holds every slot: the pairing and
+/// the state are the same everywhere, the decomposed element's values where
+/// the slot is evaluated (ContactComponent::slots(), shareSlotValues()).
 struct ContactSlot {
   /// Most nodes a master facet has (Quad9).
   static constexpr int kMaxFacetNodes = 9;

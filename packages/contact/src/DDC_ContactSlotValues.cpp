@@ -74,9 +74,12 @@ void ContactPairing::shareSlotValues(std::vector<ContactSlot>& slots, const std:
 }
 
 long ContactPairing::shareValues(std::vector<ContactSlot>& slots, const std::vector<int>& wanted) const {
-  requireSlotList(slots, "shareSlotValues");
+  // Checked on every rank together: a wrong list on one rank must not leave
+  // the others waiting in the exchange.
   const MPI_Comm comm = rawComm(topo_.comm());
   std::string bad;
+  if (slots.size() != slots_.size())
+    bad = "shareSlotValues: " + std::to_string(slots.size()) + " slots for " + std::to_string(slots_.size());
   for (int k : wanted)
     if (bad.empty() && (k < 0 || size_t(k) >= slots_.size()))
       bad = "shareSlotValues: slot " + std::to_string(k) + " wanted of " + std::to_string(slots_.size());

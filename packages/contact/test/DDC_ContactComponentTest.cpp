@@ -230,6 +230,8 @@ TEST(ContactComponent, AStepsSumsAndItsOutputReadTheOwnersValues) {
   EXPECT_THROW(c->shareSlotValues(slots, h.me == 0 ? std::vector<int>{2} : std::vector<int>{}), std::invalid_argument);
   std::vector<ddc::ContactSlot> none;
   EXPECT_THROW(c->shareSlotValues(none, {}), std::invalid_argument);
+  std::vector<ddc::ContactSlot> wrongHere = h.me == 0 ? none : slots;  // a wrong list on rank 0 only
+  EXPECT_THROW(c->shareSlotValues(wrongHere, {}), std::invalid_argument) << "every rank, no rank waiting";
   EXPECT_THROW(c->frictionalWork(none), std::invalid_argument);
   EXPECT_EQ(c->frictionalWork(c->slots()), 0.0) << "no friction";
   // Once per run: every value on every rank.
