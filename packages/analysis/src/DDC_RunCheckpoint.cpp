@@ -3,10 +3,12 @@
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_XMLParameterListHelpers.hpp>
 
+#include <climits>
 #include <csignal>
 #include <sstream>
 
 #include "DDC_Error.hpp"
+#include "DDC_MpiRecords.hpp"
 #include "DDC_OutputObservers.hpp"
 #include "DDC_StopRequest.hpp"
 
@@ -19,7 +21,10 @@ namespace {
 /// the step records' fields are those the "history fields" section names.
 /// Layout 3: the section kInputFilesSection identifies the mesh and
 /// element-map files the run read.
-constexpr double kCheckpointLayout = 5.0;  // 4: the contact slots carry Coulomb friction's state; 5: their master facets in the order of (element id, side)
+/// Layout 4: the contact slots carry Coulomb friction's state; 5: their
+/// master facets in the order of (element id, side); 6: the slots are
+/// vectors written by their owners (ownedSlotsVector()).
+constexpr double kCheckpointLayout = 6.0;
 /// The first layout that records the input files.
 constexpr double kFirstLayoutWithInputFiles = 3.0;
 
@@ -37,6 +42,54 @@ Teuchos::RCP<Vector> partitionFreeVector(const Model& model, const Vector& v) {
   auto dst = out->getDataNonConst();
   for (size_t i = 0; i < ids.size(); ++i) dst[i] = src[i];
   return out;
+}
+
+/// The slots this rank owns (ContactComponent::ownedSlots()) of `slots` as
+/// a distributed vector: entry k L + j is number j of slot k's packSlots()
+/// record (L = packedSlotSize()). Each owner writes its own slots, whose
+/// values are current there, so no rank gathers the contact surface.
+Teuchos::RCP<Vector> ownedSlotsVector(const Model& model, const std::vector<ContactSlot>& slots) {
+  const std::vector<int>& owned = model.contact()->ownedSlots();
+  const size_t L = packedSlotSize();
+  DDC_CHECK(slots.size() == model.contactSlots().size(),
+            "checkpoint: " << slots.size() << " contact slots for the model's " << model.contactSlots().size());
+  std::vector<ContactSlot> mine;
+  for (int k : owned) mine.push_back(slots[size_t(k)]);
+  const std::vector<double> packed = packSlots(mine);
+  std::vector<GO> ids(packed.size());
+  for (size_t i = 0; i < owned.size(); ++i)
+    for (size_t j = 0; j < L; ++j) ids[i * L + j] = GO(owned[i]) * GO(L) + GO(j);
+  const Teuchos::ArrayView<const GO> view(ids.data(), ids.size());
+  auto map = Teuchos::rcp(new Map(GO(slots.size() * L), view, 0, model.comm()));
+  auto v = Teuchos::rcp(new Vector(map));
+  auto dst = v->getDataNonConst();
+  for (size_t i = 0; i < packed.size(); ++i) dst[i] = packed[i];
+  return v;
+}
+
+/// Every one of the `count` slots of the checkpoint's vector `name`
+/// (ownedSlotsVector()), on every rank: each rank reads an even range of
+/// the slots, and the ranges are gathered, because every rank holds every
+/// slot (ContactComponent::slots()). Collective.
+std::vector<ContactSlot> readSlots(const Model& model, const CheckpointReader& c, const std::string& name,
+                                   size_t count) {
+  const int P = model.comm()->getSize(), r = model.comm()->getRank();
+  const size_t L = packedSlotSize();
+  DDC_CHECK(count * L <= size_t(INT_MAX), "checkpoint: " << count << " contact slots are too many to gather");
+  auto first = [&](int q) { return count * size_t(q) / size_t(P); };
+  std::vector<GO> ids;
+  for (size_t k = first(r); k < first(r + 1); ++k)
+    for (size_t j = 0; j < L; ++j) ids.push_back(GO(k * L + j));
+  const Teuchos::ArrayView<const GO> view(ids.data(), ids.size());
+  Vector v(Teuchos::rcp(new Map(GO(count * L), view, 0, model.comm())));
+  c.vector(name, v);
+  std::vector<int> sizes(P), offsets(P);
+  for (int q = 0; q < P; ++q) sizes[q] = int((first(q + 1) - first(q)) * L), offsets[q] = int(first(q) * L);
+  std::vector<double> all(count * L);
+  auto mine = v.getData();
+  MPI_Allgatherv(mine.getRawPtr(), sizes[r], MPI_DOUBLE, all.data(), sizes.data(), offsets.data(), MPI_DOUBLE,
+                 rawComm(model.comm()));
+  return unpackSlots(all);
 }
 
 /// The names of checkpointFieldNames() joined by ','.
@@ -81,13 +134,9 @@ void writeRunCheckpoint(const std::string& path, const StepLoop& loop, const Teu
     put("acceleration", d->integrator().accelerationNow());
   }
   if (model.hasContact()) {
-    // The slots' values from their owners to rank 0, whose sections are written.
-    std::vector<ContactSlot> slots = model.contactSlots(), converged = st.convergedSlots;
-    const std::vector<int> wanted = model.comm()->getRank() == 0 ? slotIndices(slots.size()) : std::vector<int>();
-    model.contact()->shareSlotValues(slots, wanted);
-    model.contact()->shareSlotValues(converged, wanted);
-    w.putDoubles("contact slots", packSlots(slots));
-    w.putDoubles("converged contact slots", packSlots(converged));
+    w.putDoubles("contact slot count", {double(model.contactSlots().size())});
+    w.putVector("contact slots", *ownedSlotsVector(model, model.contactSlots()));
+    w.putVector("converged contact slots", *ownedSlotsVector(model, st.convergedSlots));
     const auto paired = model.contact()->pairedRecord();
     w.putBytes("paired contact pairs", std::string(paired.begin(), paired.end()));
   }
@@ -99,14 +148,17 @@ namespace {
 /// The contact state of a checkpoint into `model`.
 void restoreContact(Model& model, RunState& st, const CheckpointReader& c) {
   const std::string& file = c.path();
-  auto slots = unpackSlots(c.doubles("contact slots"));
   const auto& now = model.contactSlots();
-  bool same = slots.size() == now.size();
+  const std::vector<double> count = c.doubles("contact slot count");
+  DDC_INPUT_REQUIRE(count.size() == 1 && count[0] == double(now.size()),
+                    "checkpoint '" << file << "': its contact slave nodes are not this model's");
+  auto slots = readSlots(model, c, "contact slots", now.size());
+  bool same = true;
   for (size_t k = 0; same && k < slots.size(); ++k)
     same = slots[k].pair == now[k].pair && slots[k].slaveNode == now[k].slaveNode;
   DDC_INPUT_REQUIRE(same, "checkpoint '" << file << "': its contact slave nodes are not this model's");
   model.restoreContactState(slots);
-  st.convergedSlots = unpackSlots(c.doubles("converged contact slots"));
+  st.convergedSlots = readSlots(model, c, "converged contact slots", now.size());
   const std::string& paired = c.bytes("paired contact pairs");
   DDC_INPUT_REQUIRE(paired.size() == model.contact()->pairedRecord().size(),
                     "checkpoint '" << file << "': its contact pairs are not this model's");

@@ -12,6 +12,8 @@ namespace {
 constexpr size_t kPackedSlot = 48;
 }  // namespace
 
+size_t packedSlotSize() { return kPackedSlot; }
+
 std::vector<int> slotIndices(size_t count) {
   std::vector<int> out(count);
   std::iota(out.begin(), out.end(), 0);

@@ -100,8 +100,11 @@ struct ContactSlot {
 /// `wanted` slots of ContactComponent::shareSlotValues()).
 std::vector<int> slotIndices(size_t count);
 
-/// The slots as numbers, for a checkpoint (every field; integers exactly).
+/// The slots as numbers, for a checkpoint (every field; integers exactly):
+/// packedSlotSize() numbers per slot, in the slots' order.
 std::vector<double> packSlots(const std::vector<ContactSlot>& slots);
+/// The numbers packSlots() gives a slot.
+size_t packedSlotSize();
 /// The slots packSlots() gave.
 /// \throws std::invalid_argument if `packed` is not a whole number of slots
 std::vector<ContactSlot> unpackSlots(const std::vector<double>& packed);
