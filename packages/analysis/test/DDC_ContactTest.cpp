@@ -804,6 +804,12 @@ PL stripDeck(const std::string& formulation, bool selfPair, bool block, int step
     c.sublist("Pairs").sublist("Block").set("Master", std::string("Strip/top"));
   }
   setRunOptions(deck, steps);
+  // FacingRuleRun compares the strip with an unpaired pair to the strip
+  // alone within kSameModel: the same elimination order of their common
+  // DOFs, which MUMPS' own choice (Auto) gives and METIS' nested dissection
+  // (the monolithic default) does not (it reorders around the multiplier
+  // rows; 3e-11 apart on this thin strip).
+  deck.sublist("Solver").sublist("Linear Solver").sublist("MUMPS").set("Ordering", std::string("Auto"));
   return deck;
 }
 

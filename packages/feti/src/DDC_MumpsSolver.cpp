@@ -2,6 +2,7 @@
 #include "DDC_MumpsSolver.hpp"
 
 #include <dmumps_c.h>
+#include <metis.h>
 #include <mpi.h>
 
 #include <Teuchos_DefaultMpiComm.hpp>
@@ -24,14 +25,18 @@ namespace {
 inline MUMPS_INT& icntl(DMUMPS_STRUC_C& id, int i) { return id.icntl[i - 1]; }
 inline MUMPS_INT infog(const DMUMPS_STRUC_C& id, int i) { return id.infog[i - 1]; }
 
+/// ICNTL(7) = 1: the ordering is given in PERM_IN (METIS's, computed here).
+constexpr int kUserOrdering = 1;
+
 const std::vector<std::string>& orderingNames() {
-  static const std::vector<std::string> names{"Auto", "AMD", "AMF", "QAMD", "PORD"};
+  static const std::vector<std::string> names{"Auto", "AMD", "AMF", "QAMD", "PORD", "METIS"};
   return names;
 }
 
 /// ICNTL(7) value for an "Ordering" name (MUMPS user guide §6.1).
 int orderingCode(const std::string& o) {
   if (o == "AMD") return 0;
+  if (o == "METIS") return kUserOrdering;
   if (o == "AMF") return 2;
   if (o == "PORD") return 4;
   if (o == "QAMD") return 6;
@@ -79,6 +84,7 @@ struct MumpsSolver::Impl {
   std::vector<double> a;
   std::vector<int> rowCounts, rowFirst;  // per rank: owned rows, first GID (gather layout)
   std::vector<double> rhs;               // centralised RHS / solution on rank 0 (one column)
+  std::vector<MUMPS_INT> permIn;         // "METIS": PERM_IN on rank 0 (1-based pivot position per variable)
 
   // Schur complement (setSchurIndices): 1-based rows, S (column-major), and
   // the RHS / reduced RHS kept from condense() for expand()
@@ -133,6 +139,61 @@ struct MumpsSolver::Impl {
     icntl(id, 20) = 0;  // dense centralised right-hand side
     icntl(id, 21) = 0;  // centralised solution (overwrites rhs on the host)
     icntl(id, 28) = 1;  // sequential analysis: ICNTL(7) applies (no ParMETIS/PT-SCOTCH)
+  }
+
+  /// "METIS": a nested-dissection ordering of the matrix's graph by METIS
+  /// (METIS_NodeND) on rank 0, handed to MUMPS as PERM_IN (ICNTL(7) = 1),
+  /// because Debian's MUMPS has no METIS inside. The pattern is gathered to
+  /// rank 0, as MUMPS' own sequential analysis (ICNTL(28) = 1) does; the
+  /// Schur variables, if any, are ordered last. Collective.
+  void orderByMetis() {
+    const int mine = static_cast<int>(irn.size());
+    std::vector<int> counts(static_cast<size_t>(size)), displs(static_cast<size_t>(size), 0);
+    MPI_Gather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
+    for (int r = 1; r < size; ++r) displs[size_t(r)] = displs[size_t(r) - 1] + counts[size_t(r) - 1];
+    const size_t total = rank == 0 ? size_t(displs.back()) + size_t(counts.back()) : 0;
+    std::vector<MUMPS_INT> rows(std::max<size_t>(total, 1)), cols(std::max<size_t>(total, 1));
+    MPI_Gatherv(irn.data(), mine, MPI_INT, rows.data(), counts.data(), displs.data(), MPI_INT, 0, comm);
+    MPI_Gatherv(jcn.data(), mine, MPI_INT, cols.data(), counts.data(), displs.data(), MPI_INT, 0, comm);
+    permIn.clear();
+    if (rank != 0) return;
+    // The symmetric graph without the diagonal, in CSR (idx_t, 0-based).
+    std::vector<idx_t> ptr(size_t(n) + 1, 0);
+    for (size_t k = 0; k < total; ++k)
+      if (rows[k] != cols[k]) ++ptr[size_t(rows[k])], ++ptr[size_t(cols[k])];
+    for (size_t i = 0; i < size_t(n); ++i) ptr[i + 1] += ptr[i];
+    std::vector<idx_t> adj(size_t(ptr[size_t(n)]));
+    std::vector<idx_t> fill(ptr.begin(), ptr.end() - 1);
+    for (size_t k = 0; k < total; ++k)
+      if (rows[k] != cols[k]) {
+        adj[size_t(fill[size_t(rows[k] - 1)]++)] = cols[k] - 1;
+        adj[size_t(fill[size_t(cols[k] - 1)]++)] = rows[k] - 1;
+      }
+    std::vector<MUMPS_INT>().swap(rows), std::vector<MUMPS_INT>().swap(cols);
+    // Each neighbour once (an unsymmetric pattern gives both (i, j) and (j, i)).
+    idx_t out = 0;
+    for (size_t i = 0; i < size_t(n); ++i) {
+      const idx_t b = ptr[i], e = ptr[i + 1];
+      std::sort(adj.begin() + b, adj.begin() + e);
+      ptr[i] = out;
+      for (idx_t k = b; k < e; ++k)
+        if (k == b || adj[size_t(k)] != adj[size_t(k) - 1]) adj[size_t(out++)] = adj[size_t(k)];
+    }
+    ptr[size_t(n)] = out;
+    idx_t nv = n;
+    std::vector<idx_t> perm(static_cast<size_t>(n)), iperm(static_cast<size_t>(n));
+    const int status = METIS_NodeND(&nv, ptr.data(), adj.data(), nullptr, nullptr, perm.data(), iperm.data());
+    if (status != METIS_OK) DDC_THROW(SolverError, "MUMPS: METIS_NodeND failed (status " << status << "), N = " << n);
+    // PERM_IN(i) = the pivot position of variable i (perm[k]: the variable
+    // METIS puts at position k, METIS manual 5.1 §5.8); the Schur rows last,
+    // in their given order (MUMPS refuses another, INFOG(1) = -4).
+    std::vector<char> schur(size_t(n), 0);
+    for (MUMPS_INT r : schurRows) schur[size_t(r - 1)] = 1;
+    permIn.resize(size_t(n));
+    MUMPS_INT next = 1;
+    for (size_t k = 0; k < size_t(n); ++k)
+      if (!schur[size_t(perm[k])]) permIn[size_t(perm[k])] = next++;
+    for (MUMPS_INT r : schurRows) permIn[size_t(r - 1)] = next++;
   }
 
   /// INFOG(1) is the same on every rank, so every rank throws together.
@@ -207,7 +268,8 @@ Teuchos::RCP<const Teuchos::ParameterList> MumpsSolver::getValidParameters() {
             "full matrix (SYM=0).");
     pl->set("Ordering", std::string("Auto"),
             "Fill-reducing ordering, MUMPS ICNTL(7): Auto (7, MUMPS chooses), AMD (0), AMF (2), QAMD (6), "
-            "PORD (4). Debian's MUMPS has no METIS/SCOTCH inside, so Auto picks among these.",
+            "PORD (4), or METIS: METIS_NodeND's nested dissection, computed on rank 0 and given to MUMPS "
+            "(ICNTL(7) = 1), because Debian's MUMPS has no METIS/SCOTCH inside (Auto picks among the others).",
             enumValidator(orderingNames(), "Ordering"));
     pl->set("Memory Relaxation Percent", 30,
             "MUMPS ICNTL(14): percentage added to the estimated working space. On INFOG(1) = -8/-9 the "
@@ -309,6 +371,10 @@ void MumpsSolver::symbolic(const Teuchos::RCP<const CrsMatrix>& A) {
   icntl(id, 26) = 0;
   m.condensed = false;
   m.analysed = m.factored = false;
+  if (m.ordering == kUserOrdering) {
+    m.orderByMetis();
+    id.perm_in = m.rank == 0 ? m.permIn.data() : nullptr;
+  }
   m.run(1, "analysis (JOB=1)");
   m.analysed = true;
   ++m.nSymbolic;

@@ -397,8 +397,10 @@ TEST(MumpsSolver, RejectsNonContiguousNumbering) {
 }
 
 TEST(MumpsSolver, EveryOrderingSolves) {
-  // INFOG(7) reports the ordering MUMPS used (user guide: 0 AMD, 2 AMF, 4 PORD, 6 QAMD).
-  const std::vector<std::pair<std::string, int>> orderings{{"AMD", 0}, {"AMF", 2}, {"PORD", 4}, {"QAMD", 6}};
+  // INFOG(7) reports the ordering MUMPS used (user guide: 0 AMD, 1 given by the user, 2 AMF, 4 PORD,
+  // 6 QAMD); METIS's is given (on 1 and 2 ranks: the pattern is gathered to rank 0).
+  const std::vector<std::pair<std::string, int>> orderings{
+      {"AMD", 0}, {"AMF", 2}, {"PORD", 4}, {"QAMD", 6}, {"METIS", 1}};
   auto A = saddlePoint(worldComm(), 14, 10, 20);
   for (const auto& [name, code] : orderings) {
     Teuchos::ParameterList p;
@@ -434,13 +436,17 @@ TEST(MumpsSolver, MemoryRelaxationRetry) {
 // with S / expand() solve A x = b. Interior rows (A x)_i = b_i, Schur rows
 // agree with S up to round-off in the entries of S (|S_ij| <= 4).
 TEST(MumpsSolver, SchurComplementAndCondensedSolves) {
+  // METIS's ordering is given to MUMPS with the Schur rows last.
+  for (const std::string ordering : {"Auto", "METIS"})
   for (const bool symmetric : {true, false}) {
+    SCOPED_TRACE(ordering);
     auto A = laplacian(selfComm(), 7, 6, symmetric ? 0.0 : 0.3);
     const LO n = LO(A->getNodeNumRows());
     const std::vector<LO> rows{29, 3, 17, 10, 41};  // deliberately unsorted
     const size_t ns = rows.size();
     Teuchos::ParameterList p;
     p.set("Symmetric", symmetric);
+    p.set("Ordering", ordering);
     ddc::MumpsSolver s(p);
     ASSERT_TRUE(s.setSchurIndices(rows));
     s.symbolic(A);
@@ -878,8 +884,8 @@ TEST(DirectSolverFactory, MisspeltParametersNamePath) {
   {
     Teuchos::ParameterList p;
     p.set("Type", "MUMPS");
-    p.sublist("MUMPS").set("Ordering", "METIS");
-    expectThrowWith<ddc::InputError>([&] { f.create(p, "S"); }, {"S/MUMPS/Ordering", "METIS", "PORD"});
+    p.sublist("MUMPS").set("Ordering", "SCOTCH");  // not inside Debian's MUMPS
+    expectThrowWith<ddc::InputError>([&] { f.create(p, "S"); }, {"S/MUMPS/Ordering", "SCOTCH", "PORD", "METIS"});
   }
   {
     Teuchos::ParameterList p;

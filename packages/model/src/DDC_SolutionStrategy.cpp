@@ -30,8 +30,9 @@ class Lap {
 class MonolithicStrategy : public SolutionStrategy {
  public:
   explicit MonolithicStrategy(Teuchos::ParameterList& solverParams) {
-    solver_ = DirectSolverFactory::withIterativeSolvers().create(solverParams.sublist("Linear Solver"),
-                                                                 "Solver/Linear Solver");
+    Teuchos::ParameterList& linear = solverParams.sublist("Linear Solver");
+    if (!linear.sublist("MUMPS").isParameter("Ordering")) linear.sublist("MUMPS").set("Ordering", monolithicMumpsOrdering());
+    solver_ = DirectSolverFactory::withIterativeSolvers().create(linear, "Solver/Linear Solver");
   }
 
   std::string name() const override { return "Monolithic"; }
