@@ -156,7 +156,15 @@ struct MumpsSolver::Impl {
     MPI_Gatherv(irn.data(), mine, MPI_INT, rows.data(), counts.data(), displs.data(), MPI_INT, 0, comm);
     MPI_Gatherv(jcn.data(), mine, MPI_INT, cols.data(), counts.data(), displs.data(), MPI_INT, 0, comm);
     permIn.clear();
-    if (rank != 0) return;
+    int status = rank == 0 ? metisOnRoot(total, rows, cols) : METIS_OK;
+    // Every rank throws, or none: the analysis that follows is collective.
+    MPI_Bcast(&status, 1, MPI_INT, 0, comm);
+    if (status != METIS_OK) DDC_THROW(SolverError, "MUMPS: METIS_NodeND failed (status " << status << "), N = " << n);
+  }
+
+  /// orderByMetis() on rank 0: PERM_IN from the gathered pattern (1-based
+  /// rows / cols of `total` entries). Returns METIS' status.
+  int metisOnRoot(size_t total, std::vector<MUMPS_INT>& rows, std::vector<MUMPS_INT>& cols) {
     // The symmetric graph without the diagonal, in CSR (idx_t, 0-based).
     std::vector<idx_t> ptr(size_t(n) + 1, 0);
     for (size_t k = 0; k < total; ++k)
@@ -183,7 +191,7 @@ struct MumpsSolver::Impl {
     idx_t nv = n;
     std::vector<idx_t> perm(static_cast<size_t>(n)), iperm(static_cast<size_t>(n));
     const int status = METIS_NodeND(&nv, ptr.data(), adj.data(), nullptr, nullptr, perm.data(), iperm.data());
-    if (status != METIS_OK) DDC_THROW(SolverError, "MUMPS: METIS_NodeND failed (status " << status << "), N = " << n);
+    if (status != METIS_OK) return status;
     // PERM_IN(i) = the pivot position of variable i (perm[k]: the variable
     // METIS puts at position k, METIS manual 5.1 §5.8); the Schur rows last,
     // in their given order (MUMPS refuses another, INFOG(1) = -4).
@@ -194,6 +202,7 @@ struct MumpsSolver::Impl {
     for (size_t k = 0; k < size_t(n); ++k)
       if (!schur[size_t(perm[k])]) permIn[size_t(perm[k])] = next++;
     for (MUMPS_INT r : schurRows) permIn[size_t(r - 1)] = next++;
+    return status;
   }
 
   /// INFOG(1) is the same on every rank, so every rank throws together.

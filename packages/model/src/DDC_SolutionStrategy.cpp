@@ -31,7 +31,8 @@ class MonolithicStrategy : public SolutionStrategy {
  public:
   explicit MonolithicStrategy(Teuchos::ParameterList& solverParams) {
     Teuchos::ParameterList& linear = solverParams.sublist("Linear Solver");
-    if (!linear.sublist("MUMPS").isParameter("Ordering")) linear.sublist("MUMPS").set("Ordering", monolithicMumpsOrdering());
+    Teuchos::ParameterList& mumps = linear.sublist("MUMPS");
+    if (!mumps.isParameter("Ordering")) mumps.set("Ordering", std::string(monolithicMumpsOrdering()));
     solver_ = DirectSolverFactory::withIterativeSolvers().create(linear, "Solver/Linear Solver");
   }
 
