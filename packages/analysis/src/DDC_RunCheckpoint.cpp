@@ -143,20 +143,28 @@ void writeRunCheckpoint(const std::string& path, const StepLoop& loop, const Teu
   w.write(path);
 }
 
+void requireContactSlotCount(const std::vector<double>& count, size_t now, const std::string& file) {
+  DDC_INPUT_REQUIRE(count.size() == 1 && count[0] == double(now),
+                    "checkpoint '" << file << "': its contact slave nodes are not this model's");
+}
+
+void requireSameContactSlots(const std::vector<ContactSlot>& saved, const std::vector<ContactSlot>& now,
+                             const std::string& file) {
+  bool same = saved.size() == now.size();
+  for (size_t k = 0; same && k < saved.size(); ++k)
+    same = saved[k].pair == now[k].pair && saved[k].slaveNode == now[k].slaveNode;
+  DDC_INPUT_REQUIRE(same, "checkpoint '" << file << "': its contact slave nodes are not this model's");
+}
+
 namespace {
 
 /// The contact state of a checkpoint into `model`.
 void restoreContact(Model& model, RunState& st, const CheckpointReader& c) {
   const std::string& file = c.path();
   const auto& now = model.contactSlots();
-  const std::vector<double> count = c.doubles("contact slot count");
-  DDC_INPUT_REQUIRE(count.size() == 1 && count[0] == double(now.size()),
-                    "checkpoint '" << file << "': its contact slave nodes are not this model's");
+  requireContactSlotCount(c.doubles("contact slot count"), now.size(), file);
   auto slots = readSlots(model, c, "contact slots", now.size());
-  bool same = true;
-  for (size_t k = 0; same && k < slots.size(); ++k)
-    same = slots[k].pair == now[k].pair && slots[k].slaveNode == now[k].slaveNode;
-  DDC_INPUT_REQUIRE(same, "checkpoint '" << file << "': its contact slave nodes are not this model's");
+  requireSameContactSlots(slots, now, file);
   model.restoreContactState(slots);
   st.convergedSlots = readSlots(model, c, "converged contact slots", now.size());
   const std::string& paired = c.bytes("paired contact pairs");

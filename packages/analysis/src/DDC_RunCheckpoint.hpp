@@ -34,6 +34,17 @@ void writeRunCheckpoint(const std::string& path, const StepLoop& loop, const Teu
 /// \throws InputError
 void requireCheckpointLayout(const CheckpointReader& c);
 
+/// Refuse a checkpoint whose "contact slot count" section (`count`) is not
+/// the model's number of slots, `now`.
+/// \throws InputError naming the file
+void requireContactSlotCount(const std::vector<double>& count, size_t now, const std::string& file);
+
+/// Refuse a checkpoint whose contact slots (`saved`) are not the model's
+/// (`now`): another number of slots, or a slot of another pair or slave node.
+/// \throws InputError naming the file
+void requireSameContactSlots(const std::vector<ContactSlot>& saved, const std::vector<ContactSlot>& now,
+                             const std::string& file);
+
 /// The last converged step the checkpoint holds.
 /// \throws InputError naming the file if it holds none
 StepRecord checkpointLastStep(const CheckpointReader& c);

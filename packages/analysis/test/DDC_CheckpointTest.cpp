@@ -6,7 +6,7 @@
 // bit for bit (packSlots()), a deck may change only the parameters
 // restartChangeableParameters() names, the files a run read must be
 // unchanged, the final load factor not below the checkpoint's, and a
-// checkpoint of an older layout is refused.
+// checkpoint of an older layout or of other contact slots is refused.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -325,6 +325,33 @@ TEST(Checkpoint, ContactSlotsRoundTripBitForBit) {
   EXPECT_EQ(back[1].slaveNode, -1);
   EXPECT_THROW(ddc::unpackSlots(std::vector<double>(31, 0.0)), std::invalid_argument);
   EXPECT_THROW(ddc::unpackSlots(std::vector<double>(30, 0.0)), std::invalid_argument) << "the frictionless layout";
+}
+
+// A checkpoint of another model's contact slots (only a host code or an
+// edited file gets past the deck and input-file checks to here): another
+// slot count, another slave node or pair in a slot, another number of slots
+// read; each names the checkpoint.
+TEST(Restart, ACheckpointOfOtherContactSlotsIsRefused) {
+  const std::string file = "run/checkpoint.ddc";
+  const std::string message = "checkpoint 'run/checkpoint.ddc': its contact slave nodes are not this model's";
+  std::vector<ddc::ContactSlot> now(3);
+  for (int k = 0; k < 3; ++k) {
+    now[k].pair = k / 2;
+    now[k].slaveNode = 10 + k;
+  }
+  EXPECT_NO_THROW(ddc::requireContactSlotCount({3.0}, now.size(), file));
+  EXPECT_NO_THROW(ddc::requireSameContactSlots(now, now, file));
+  for (const std::vector<double>& count : {std::vector<double>{4.0}, std::vector<double>{}, std::vector<double>{3.0, 3.0}})
+    EXPECT_THAT(ddc::test::inputErrorOf([&] { ddc::requireContactSlotCount(count, now.size(), file); }),
+                HasSubstr(message));
+  auto node = now;
+  node[2].slaveNode = 11;
+  EXPECT_THAT(ddc::test::inputErrorOf([&] { ddc::requireSameContactSlots(node, now, file); }), HasSubstr(message));
+  auto pair = now;
+  pair[1].pair = 1;
+  EXPECT_THAT(ddc::test::inputErrorOf([&] { ddc::requireSameContactSlots(pair, now, file); }), HasSubstr(message));
+  const std::vector<ddc::ContactSlot> fewer(now.begin(), now.end() - 1);
+  EXPECT_THAT(ddc::test::inputErrorOf([&] { ddc::requireSameContactSlots(fewer, now, file); }), HasSubstr(message));
 }
 
 TEST(Restart, ADeckMayChangeOnlyTheStepsTheSolutionMethodAndTheOutput) {
