@@ -19,7 +19,11 @@ set(DDC_TEST_ENVIRONMENT
   # (UCX, OFI, PSM, openib, TCP) took 0.2 s of every launch's 0.4 s, and the
   # suite launches mpirun about a thousand times.
   "OMPI_MCA_pml=ob1"
-  "OMPI_MCA_btl=self,vader")
+  "OMPI_MCA_btl=self,vader"
+  # No binding of ranks to cores: each mpirun binds its ranks from core 0 on
+  # without knowing of the others, so two one-rank tests that ctest runs side
+  # by side shared core 0 and each took twice its time.
+  "OMPI_MCA_hwloc_base_binding_policy=none")
 # Per-test time limits (a hang fails instead of stalling the suite).
 set(DDC_TEST_TIMEOUT 600)
 set(DDC_TEST_TIMEOUT_LONG 900)
