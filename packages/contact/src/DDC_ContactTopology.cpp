@@ -424,7 +424,8 @@ void ContactTopology::setDofs(Teuchos::RCP<const Map> hostMap, const std::vector
   multipliersInHost_ = anyHost;
   replicateDofs(nodeDofs);
   buildMultiplierMaps(multiplierDofs);
-  buildSurfaceMap();
+  surfaceMap_ = Teuchos::null;  // new DOFs: rebuilt on first use
+  surfaceImporter_ = Teuchos::null;
   hasDofs_ = true;
 }
 
@@ -536,9 +537,25 @@ void ContactTopology::buildMultiplierMaps(const std::vector<GO>& multiplierDofs)
   }
 }
 
-void ContactTopology::buildSurfaceMap() {
+const Teuchos::RCP<const Map>& ContactTopology::surfaceMap() const {
+  if (surfaceMap_.is_null()) buildSurfaceMap();
+  return surfaceMap_;
+}
+
+const Teuchos::RCP<const Tpetra::Import<LO, GO, Node>>& ContactTopology::surfaceImporter() const {
+  if (surfaceImporter_.is_null()) buildSurfaceMap();
+  return surfaceImporter_;
+}
+
+long ContactTopology::bytesPerExchange() const {
+  if (surfaceMap_.is_null()) buildSurfaceMap();
+  return bytesPerExchange_;
+}
+
+void ContactTopology::buildSurfaceMap() const {
   // Replicated map of every surface DOF: the gather of the conventional
   // element and of the pairing outside step ends.
+  requireCommitted("surfaceMap");
   const int me = comm_->getRank();
   std::vector<GO> gids;
   for (const auto& d : dofs_) gids.insert(gids.end(), d.begin(), d.begin() + dim_);

@@ -156,11 +156,16 @@ class ContactTopology {
   /// gather; null for the decomposed element).
   const Teuchos::RCP<const Map>& multiplierAllMap() const { return multiplierAllMap_; }
   const Teuchos::RCP<const Tpetra::Import<LO, GO, Node>>& multiplierAllImporter() const { return lmAllImporter_; }
-  /// Every surface DOF on every rank (the gathers of the replicated pairing).
-  const Teuchos::RCP<const Map>& surfaceMap() const { return surfaceMap_; }
-  const Teuchos::RCP<const Tpetra::Import<LO, GO, Node>>& surfaceImporter() const { return surfaceImporter_; }
-  /// Bytes one gather of the surface moves between ranks.
-  long bytesPerExchange() const { return bytesPerExchange_; }
+  /// Every surface DOF on every rank (the gathers of the replicated pairing:
+  /// the conventional element, and the decomposed element's tracking
+  /// outside step ends). Built by the first call, which is collective: the
+  /// decomposed element's runs, which pair at step ends only
+  /// (ContactPairing::distributedSearch()), never build it.
+  const Teuchos::RCP<const Map>& surfaceMap() const;
+  const Teuchos::RCP<const Tpetra::Import<LO, GO, Node>>& surfaceImporter() const;
+  /// Bytes one gather of the surface moves between ranks (collective on
+  /// the first call, as surfaceMap()).
+  long bytesPerExchange() const;
 
   // ---- the decomposed pairing's exchange ----------------------------------------
   /// Nodes of the master surfaces (may repeat across pairs).
@@ -192,7 +197,7 @@ class ContactTopology {
                                   const std::vector<GO>& multiplierDofs) const;
   void replicateDofs(const std::vector<ContactNodeDofs>& nodeDofs);
   void buildMultiplierMaps(const std::vector<GO>& multiplierDofs);
-  void buildSurfaceMap();
+  void buildSurfaceMap() const;
 
   Teuchos::RCP<const Teuchos::Comm<int>> comm_;
   ContactComponentOptions options_;
@@ -223,11 +228,12 @@ class ContactTopology {
   std::vector<int> lmStart_;  ///< slot k's ids are lmGid_[lmStart_[k] .. lmStart_[k + 1])
   bool frictional_ = false;
   Teuchos::RCP<const Map> hostMap_;
-  Teuchos::RCP<const Map> surfaceMap_;
-  Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> surfaceImporter_;
+  // The replicated surface map (surfaceMap()), built on first use.
+  mutable Teuchos::RCP<const Map> surfaceMap_;
+  mutable Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> surfaceImporter_;
+  mutable long bytesPerExchange_ = 0;
   Teuchos::RCP<const Map> multiplierMap_, multiplierAllMap_;
   Teuchos::RCP<const Tpetra::Import<LO, GO, Node>> lmAllImporter_;  ///< multiplierMap_ -> multiplierAllMap_
-  long bytesPerExchange_ = 0;
 };
 
 }  // namespace ddc
