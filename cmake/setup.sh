@@ -25,6 +25,7 @@ packages=(
   doxygen                               # API reference of the public headers (target doc, ctest)
   libexodusii-dev                       # Exodus II results (Output/Exodus)
   python3-vtk9 python3-meshio python3-netcdf4  # tests: independent readers of the Exodus output
+  python3-scipy                         # test/benchmark/cluster_iterations.py (a study, not a test)
 )
 missing=()
 for p in "${packages[@]}"; do
