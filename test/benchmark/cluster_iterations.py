@@ -122,219 +122,249 @@ class Model:
                              shape=(3 * self.nn, 3 * self.nn))
 
 
-def solve(model, cluster_size, tols, dirichlet=True, maxit=1000):
-    """FETI-DP (cluster_size = k: one cluster) or clusters of cluster_size^3 subdomains."""
-    M, k = model, model.k
-    ncl = k // cluster_size
-    cl_of = lambda box: (box[0] // cluster_size) + ncl * ((box[1] // cluster_size) + ncl * (box[2] // cluster_size))
-    # the partially assembled space: a subdomain's own copy of each non-primal
-    # DOF, a cluster's copy of each primal DOF
-    ncols = 0
-    primal_col = {}  # (cluster, node) -> first column
-    col_of = []      # per subdomain: column of each local DOF (-1: fixed)
-    owner = []       # per column: subdomain (>= 0) or -1 - cluster
-    col_node = []
-    for si, s in enumerate(M.subs):
-        c = cl_of(s["box"])
-        cols = np.full(3 * len(s["node"]), -1)
-        for q, g in enumerate(s["node"]):
-            if M.fixed[g]:
-                continue
-            if M.primal[g]:
-                key = (c, g)
-                if key not in primal_col:
-                    primal_col[key] = ncols
-                    ncols += 3
-                    owner += [-1 - c] * 3
-                    col_node += [g] * 3
-                cols[3 * q:3 * q + 3] = primal_col[key] + np.arange(3)
-            else:
-                cols[3 * q:3 * q + 3] = ncols + np.arange(3)
-                ncols += 3
-                owner += [si] * 3
-                col_node += [g] * 3
-        col_of.append(cols)
-    owner, col_node = np.array(owner), np.array(col_node)
-    col_cluster = np.array([cl_of(M.subs[o]["box"]) if o >= 0 else -1 - o for o in owner])
-    # K~ and f~ (f at each copy divided by the copies: the sum is f)
-    Kc = M.Ks.tocoo()
-    rows, cols_, vals = [], [], []
-    for si, s in enumerate(M.subs):
-        cm = col_of[si]
-        keep = (cm[Kc.row] >= 0) & (cm[Kc.col] >= 0)
-        rows.append(cm[Kc.row[keep]]), cols_.append(cm[Kc.col[keep]]), vals.append(Kc.data[keep])
-    Kt = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols_))), shape=(ncols, ncols))
-    copies = np.zeros(3 * M.nn)
-    for d in range(3):
-        np.add.at(copies, 3 * col_node[d::3] + d, 1)
-    gdof = 3 * col_node + np.tile(np.arange(3), ncols // 3)
-    ft = M.f[gdof] / copies[gdof]
-    # B: fully redundant, one row per pair of copies of a DOF
-    by_dof = {}
-    for j in range(ncols):
-        by_dof.setdefault(gdof[j], []).append(j)
-    br, bc, bv, bd = [], [], [], []
-    nl = 0
-    for g, cs in by_dof.items():
-        m = len(cs)
-        for a, b in itertools.combinations(cs, 2):
-            br += [nl, nl]
-            bc += [a, b]
-            bv += [1.0, -1.0]
-            bd += [1.0 / m, -1.0 / m]
-            nl += 1
-    B = sp.csr_matrix((bv, (br, bc)), shape=(nl, ncols))
-    BD = sp.csr_matrix((bd, (br, bc)), shape=(nl, ncols))
-    # floating clusters: rigid-body modes R, and 6 DOFs fixed for a generalised inverse
-    Rcols, fixdofs = [], []
-    for c in range(ncl**3):
-        js = np.nonzero(col_cluster == c)[0]
-        touches = any(M.fixed[s["node"]].any() for s in M.subs if cl_of(s["box"]) == c)
-        if touches:
-            continue
-        X = M.xyz[col_node[js]] - M.xyz[col_node[js]].mean(axis=0)
-        d = np.tile(np.arange(3), len(js) // 3)
-        Rc = np.zeros((len(js), 6))
-        for t in range(3):
-            Rc[d == t, t] = 1
-        x, y, z = X[:, 0], X[:, 1], X[:, 2]
-        Rc[d == 1, 3], Rc[d == 2, 3] = -z[d == 1], y[d == 2]
-        Rc[d == 0, 4], Rc[d == 2, 4] = z[d == 0], -x[d == 2]
-        Rc[d == 0, 5], Rc[d == 1, 5] = -y[d == 0], x[d == 1]
-        Rc, _ = np.linalg.qr(Rc)
-        prim = np.nonzero(owner[js] < 0)[0]  # fix 6 of the cluster's primal DOFs
-        _, _, piv = la.qr(Rc[prim].T, pivoting=True)
-        fixdofs += list(js[prim[piv[:6]]])
-        R = sp.csc_matrix((Rc.ravel(), (np.repeat(js, 6), np.tile(np.arange(6), len(js)))), shape=(ncols, 6))
-        Rcols.append(R)
-    fixdofs = np.array(fixdofs, int)
-    R = sp.hstack(Rcols).tocsc() if Rcols else sp.csc_matrix((ncols, 0))
-    kernel_residual = spla.norm(Kt @ R) / spla.norm(Kt) if R.shape[1] else 0.0
-    # K^+ by condensation on the primal columns, as FETI-DP applies K~^{-1}:
-    # per subdomain K_rr (dense; subdomains of one pattern share it), the
-    # primal problem sum_s S_PiPi^s, with the fixed DOFs' rows and columns
-    # replaced by the identity
-    groups = {}
-    for si, s in enumerate(M.subs):
-        cm = col_of[si]
-        loc = np.nonzero(cm >= 0)[0]
-        rl, pl = loc[owner[cm[loc]] >= 0], loc[owner[cm[loc]] < 0]
-        key = (rl.tobytes(), pl.tobytes())
-        groups.setdefault(key, (rl, pl, []))[2].append(cm)
-    Kd = M.Ks.toarray()
-    parts = []
-    srow, scol, sval = [], [], []
-    for rl, pl, cms in groups.values():
-        cms = np.array(cms).T  # local DOF x subdomain
-        Krr = la.cho_factor(Kd[np.ix_(rl, rl)])
-        KrP = Kd[np.ix_(rl, pl)]
-        S = Kd[np.ix_(pl, pl)] - KrP.T @ la.cho_solve(Krr, KrP)
-        Rc_, Pc_ = cms[rl], cms[pl]
-        parts.append((Krr, KrP, Rc_, Pc_))
-        for b in range(Pc_.shape[1]):
-            srow.append(np.repeat(Pc_[:, b], len(pl))), scol.append(np.tile(Pc_[:, b], len(pl)))
-            sval.append(S.ravel())
-    pcols = np.nonzero(owner < 0)[0]
-    pidx = np.full(ncols, -1)
-    pidx[pcols] = np.arange(len(pcols))
-    Sc = sp.csr_matrix((np.concatenate(sval), (pidx[np.concatenate(srow)], pidx[np.concatenate(scol)])),
-                       shape=(len(pcols), len(pcols)))
-    keep = np.ones(len(pcols))
-    keep[pidx[fixdofs]] = 0
-    Dk = sp.diags(keep)
-    coarse = spla.splu((Dk @ Sc @ Dk + sp.diags(1 - keep)).tocsc(), permc_spec="MMD_AT_PLUS_A")
+class Decomposition:
+    """FETI-DP (cluster_size = k: one cluster), clusters of cluster_size^3
+    subdomains, or total FETI (cluster_size = 1) on one model."""
 
-    def Kplus(v):
-        out = np.zeros(ncols)
-        g = v[pcols].copy()
+    def __init__(self, model, cluster_size):
+        self.M = model
+        ncl = model.k // cluster_size
+        self.nclusters = ncl**3
+        self.cl_of = lambda box: (box[0] // cluster_size) + ncl * ((box[1] // cluster_size) + ncl * (box[2] // cluster_size))
+        self._space()
+        self._jumps()
+        self._kernels()
+        self._condensation()
+        self._preconditioner()
+        self.G = (self.B @ self.R).tocsc()
+        if self.G.shape[1]:
+            self.GtG = la.cho_factor((self.G.T @ self.G).toarray())
+
+    def _space(self):
+        """The partially assembled space: a subdomain's own copy of each
+        non-primal DOF, a cluster's copy of each primal DOF; K~ and f~ (f at
+        each copy divided by the copies: the sum is f)."""
+        M = self.M
+        ncols = 0
+        primal_col = {}  # (cluster, node) -> first column
+        self.col_of = []  # per subdomain: column of each local DOF (-1: fixed)
+        owner = []  # per column: subdomain (>= 0) or -1 - cluster
+        col_node = []
+        for si, s in enumerate(M.subs):
+            c = self.cl_of(s["box"])
+            cols = np.full(3 * len(s["node"]), -1)
+            for q, g in enumerate(s["node"]):
+                if M.fixed[g]:
+                    continue
+                if M.primal[g]:
+                    if (c, g) not in primal_col:
+                        primal_col[(c, g)] = ncols
+                        ncols += 3
+                        owner += [-1 - c] * 3
+                        col_node += [g] * 3
+                    cols[3 * q:3 * q + 3] = primal_col[(c, g)] + np.arange(3)
+                else:
+                    cols[3 * q:3 * q + 3] = ncols + np.arange(3)
+                    ncols += 3
+                    owner += [si] * 3
+                    col_node += [g] * 3
+            self.col_of.append(cols)
+        self.ncols, self.owner, self.col_node = ncols, np.array(owner), np.array(col_node)
+        self.col_cluster = np.array([self.cl_of(M.subs[o]["box"]) if o >= 0 else -1 - o for o in self.owner])
+        Kc = M.Ks.tocoo()
+        rows, cols_, vals = [], [], []
+        for cm in self.col_of:
+            keep = (cm[Kc.row] >= 0) & (cm[Kc.col] >= 0)
+            rows.append(cm[Kc.row[keep]]), cols_.append(cm[Kc.col[keep]]), vals.append(Kc.data[keep])
+        self.Kt = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols_))),
+                                shape=(ncols, ncols))
+        self.copies = np.zeros(3 * M.nn)
+        for d in range(3):
+            np.add.at(self.copies, 3 * self.col_node[d::3] + d, 1)
+        self.gdof = 3 * self.col_node + np.tile(np.arange(3), ncols // 3)
+        self.ft = M.f[self.gdof] / self.copies[self.gdof]
+
+    def _jumps(self):
+        """B, fully redundant (one row per pair of copies of a DOF), and B_D
+        with multiplicity scaling."""
+        by_dof = {}
+        for j in range(self.ncols):
+            by_dof.setdefault(self.gdof[j], []).append(j)
+        br, bc, bv, bd = [], [], [], []
+        nl = 0
+        for cs in by_dof.values():
+            m = len(cs)
+            for a, b in itertools.combinations(cs, 2):
+                br += [nl, nl]
+                bc += [a, b]
+                bv += [1.0, -1.0]
+                bd += [1.0 / m, -1.0 / m]
+                nl += 1
+        self.nl = nl
+        self.B = sp.csr_matrix((bv, (br, bc)), shape=(nl, self.ncols))
+        self.BD = sp.csr_matrix((bd, (br, bc)), shape=(nl, self.ncols))
+
+    def _kernels(self):
+        """R: the rigid-body modes of each floating cluster; 6 of its primal
+        DOFs fixed for a generalised inverse."""
+        M = self.M
+        Rcols, fixdofs = [], []
+        for c in range(self.nclusters):
+            if any(M.fixed[s["node"]].any() for s in M.subs if self.cl_of(s["box"]) == c):
+                continue
+            js = np.nonzero(self.col_cluster == c)[0]
+            Rc = rigid_body_modes(M.xyz[self.col_node[js]])
+            prim = np.nonzero(self.owner[js] < 0)[0]
+            _, _, piv = la.qr(Rc[prim].T, pivoting=True)
+            fixdofs += list(js[prim[piv[:6]]])
+            Rcols.append(sp.csc_matrix((Rc.ravel(), (np.repeat(js, 6), np.tile(np.arange(6), len(js)))),
+                                       shape=(self.ncols, 6)))
+        self.fixdofs = np.array(fixdofs, int)
+        self.R = sp.hstack(Rcols).tocsc() if Rcols else sp.csc_matrix((self.ncols, 0))
+        self.kernel_residual = spla.norm(self.Kt @ self.R) / spla.norm(self.Kt) if self.R.shape[1] else 0.0
+
+    def _condensation(self):
+        """K^+ by condensation on the primal columns, as FETI-DP applies
+        K~^{-1}: per subdomain K_rr (dense; subdomains of one pattern share
+        it), the primal problem sum_s S_PiPi^s with the fixed DOFs' rows and
+        columns replaced by the identity."""
+        M = self.M
+        groups = {}
+        for cm in self.col_of:
+            loc = np.nonzero(cm >= 0)[0]
+            rl, pl = loc[self.owner[cm[loc]] >= 0], loc[self.owner[cm[loc]] < 0]
+            groups.setdefault((rl.tobytes(), pl.tobytes()), (rl, pl, []))[2].append(cm)
+        Kd = M.Ks.toarray()
+        self.parts = []
+        srow, scol, sval = [], [], []
+        for rl, pl, cms in groups.values():
+            cms = np.array(cms).T  # local DOF x subdomain
+            Krr = la.cho_factor(Kd[np.ix_(rl, rl)])
+            KrP = Kd[np.ix_(rl, pl)]
+            S = Kd[np.ix_(pl, pl)] - KrP.T @ la.cho_solve(Krr, KrP)
+            self.parts.append((Krr, KrP, cms[rl], cms[pl]))
+            for b in range(cms.shape[1]):
+                srow.append(np.repeat(cms[pl, b], len(pl))), scol.append(np.tile(cms[pl, b], len(pl)))
+                sval.append(S.ravel())
+        self.pcols = np.nonzero(self.owner < 0)[0]
+        self.pidx = np.full(self.ncols, -1)
+        self.pidx[self.pcols] = np.arange(len(self.pcols))
+        n = len(self.pcols)
+        Sc = sp.csr_matrix((np.concatenate(sval), (self.pidx[np.concatenate(srow)], self.pidx[np.concatenate(scol)])),
+                           shape=(n, n))
+        self.keep = np.ones(n)
+        self.keep[self.pidx[self.fixdofs]] = 0
+        Dk = sp.diags(self.keep)
+        self.coarse = spla.splu((Dk @ Sc @ Dk + sp.diags(1 - self.keep)).tocsc(), permc_spec="MMD_AT_PLUS_A")
+
+    def Kplus(self, v):
+        out = np.zeros(self.ncols)
+        g = v[self.pcols].copy()
         ys = []
-        for Krr, KrP, Rc_, Pc_ in parts:
-            y = la.cho_solve(Krr, v[Rc_])
-            np.add.at(g, pidx[Pc_], -(KrP.T @ y))
+        for Krr, KrP, Rc, Pc in self.parts:
+            y = la.cho_solve(Krr, v[Rc])
+            np.add.at(g, self.pidx[Pc], -(KrP.T @ y))
             ys.append(y)
-        up = keep * coarse.solve(keep * g)
-        out[pcols] = up
-        for (Krr, KrP, Rc_, Pc_), y in zip(parts, ys):
-            out[Rc_] = y - la.cho_solve(Krr, KrP @ up[pidx[Pc_]])
+        up = self.keep * self.coarse.solve(self.keep * g)
+        out[self.pcols] = up
+        for (Krr, KrP, Rc, Pc), y in zip(self.parts, ys):
+            out[Rc] = y - la.cho_solve(Krr, KrP @ up[self.pidx[Pc]])
         return out
 
-    F = lambda lam: B @ Kplus(B.T @ lam)
-    d = B @ Kplus(ft)
-    # the Dirichlet preconditioner: per subdomain, S on the DOFs with rows
-    # (its dual DOFs, and the primal DOFs its cluster shares with another)
-    has_rows = np.diff(BD.tocsc().indptr) > 0
-    blocks, allcols = [], []
-    for si, s in enumerate(M.subs):
-        cm = col_of[si]
-        loc = np.nonzero(cm >= 0)[0]
-        rowed = has_rows[cm[loc]]
-        interior = M.mult[s["node"][loc // 3]] == 1
-        Dl, Il = loc[rowed], loc[interior & ~rowed]
+    def F(self, lam):
+        return self.B @ self.Kplus(self.B.T @ lam)
+
+    def _preconditioner(self):
+        """The Dirichlet preconditioner: per subdomain, S on the DOFs with
+        rows (its dual DOFs, and the primal DOFs its cluster shares with
+        another). A cluster's primal column is shared by its subdomains
+        there: each applies the whole jump and the reactions add up, as in
+        the cluster's own (partially assembled) Schur complement. Splitting
+        the entry over them (weights 1/n) took 3 times the iterations."""
+        M = self.M
+        has_rows = np.diff(self.BD.tocsc().indptr) > 0
+        self.blocks, allcols = [], []
         K = M.Ks
-        KII = K[Il][:, Il].toarray()
-        KID = K[Il][:, Dl].toarray()
-        S = K[Dl][:, Dl].toarray() - KID.T @ la.solve(KII, KID, assume_a="pos")
-        # A cluster's primal column is shared by its subdomains there: each
-        # applies the whole jump and the reactions add up, as in the
-        # cluster's own (partially assembled) Schur complement. Splitting
-        # the entry over them (weights 1/n) took 3 times the iterations.
-        blocks.append(S), allcols.append(cm[Dl])
-    offsets = np.cumsum([0] + [len(x) for x in allcols])
-    Bcat = BD[:, np.concatenate(allcols)].tocsr()
-    BcatT = Bcat.T.tocsr()
+        for s, cm in zip(M.subs, self.col_of):
+            loc = np.nonzero(cm >= 0)[0]
+            rowed = has_rows[cm[loc]]
+            interior = M.mult[s["node"][loc // 3]] == 1
+            Dl, Il = loc[rowed], loc[interior & ~rowed]
+            KID = K[Il][:, Dl].toarray()
+            self.blocks.append(K[Dl][:, Dl].toarray() - KID.T @ la.solve(K[Il][:, Il].toarray(), KID, assume_a="pos"))
+            allcols.append(cm[Dl])
+        self.offsets = np.cumsum([0] + [len(x) for x in allcols])
+        self.Bcat = self.BD[:, np.concatenate(allcols)].tocsr()
+        self.BcatT = self.Bcat.T.tocsr()
 
-    def precond(r):
-        if not dirichlet:
-            return r.copy()
-        v = BcatT @ r
+    def dirichlet(self, r):
+        v = self.BcatT @ r
         y = np.empty_like(v)
-        for b, S in enumerate(blocks):
-            y[offsets[b]:offsets[b + 1]] = S @ v[offsets[b]:offsets[b + 1]]
-        return Bcat @ y
+        for b, S in enumerate(self.blocks):
+            y[self.offsets[b]:self.offsets[b + 1]] = S @ v[self.offsets[b]:self.offsets[b + 1]]
+        return self.Bcat @ y
 
-    G = (B @ R).tocsc()
-    if G.shape[1]:
-        GtG = la.cho_factor((G.T @ G).toarray())
-        natural = spla.splu((G.T @ G).tocsc(), permc_spec="MMD_AT_PLUS_A")
-        P = lambda v: v - G @ la.cho_solve(GtG, G.T @ v)
-        e = R.T @ ft
-        lam = G @ la.cho_solve(GtG, e)
-    else:
-        P = lambda v: v
-        lam = np.zeros(nl)
-    r = P(d - F(lam))
-    r0 = np.linalg.norm(r)
-    z = P(precond(r))
-    p = z.copy()
-    rz = r @ z
-    its = 0
-    reached = {}  # tolerance -> the iteration that met it
-    while its < maxit:
-        for t in tols:
-            if t not in reached and np.linalg.norm(r) <= t * r0:
-                reached[t] = its
-        if len(reached) == len(tols):
-            break
-        q = P(F(p))
-        a = rz / (p @ q)
-        lam += a * p
-        r -= a * q
-        z = P(precond(r))
-        rz, rz_old = r @ z, rz
-        p = z + rz / rz_old * p
-        its += 1
-    # the solution, and its residual in the assembled problem
-    res = d - F(lam)
-    alpha = -la.cho_solve(GtG, G.T @ res) if G.shape[1] else np.zeros(0)
-    u = Kplus(ft - B.T @ lam) + R @ alpha
-    ug = np.zeros(3 * M.nn)
-    np.add.at(ug, gdof, u / copies[gdof])
-    jump = np.linalg.norm(B @ u) / np.linalg.norm(u)
-    # the problem every rank would share: S_PiPi for FETI-DP, G^T G for clusters
-    glob = natural if G.shape[1] else coarse
-    coarse_dofs = G.shape[1] if G.shape[1] else len(pcols)
-    return dict(coarse_dofs=coarse_dofs, coarse_factor=glob.L.nnz, its=[reached.get(t, -1) for t in tols], nl=nl,
-                floating=R.shape[1] // 6, u=ug, jump=jump, kernel=kernel_residual)
+    def P(self, v):
+        return v - self.G @ la.cho_solve(self.GtG, self.G.T @ v) if self.G.shape[1] else v
+
+    def pcg(self, tols, dirichlet=True, maxit=1000):
+        """Projected CG; returns lambda and, per tolerance, the iteration
+        that met it (-1: not within maxit)."""
+        precond = self.dirichlet if dirichlet else np.copy
+        d = self.B @ self.Kplus(self.ft)
+        lam = self.G @ la.cho_solve(self.GtG, self.R.T @ self.ft) if self.G.shape[1] else np.zeros(self.nl)
+        r = self.P(d - self.F(lam))
+        r0 = np.linalg.norm(r)
+        z = self.P(precond(r))
+        p = z.copy()
+        rz = r @ z
+        its = 0
+        reached = {}
+        while its < maxit:
+            for t in tols:
+                if t not in reached and np.linalg.norm(r) <= t * r0:
+                    reached[t] = its
+            if len(reached) == len(tols):
+                break
+            q = self.P(self.F(p))
+            a = rz / (p @ q)
+            lam += a * p
+            r -= a * q
+            z = self.P(precond(r))
+            rz, rz_old = r @ z, rz
+            p = z + rz / rz_old * p
+            its += 1
+        return lam, [reached.get(t, -1) for t in tols]
+
+    def displacement(self, lam):
+        """u assembled (copies averaged) and the relative jump of the copies."""
+        res = self.B @ self.Kplus(self.ft) - self.F(lam)
+        alpha = -la.cho_solve(self.GtG, self.G.T @ res) if self.G.shape[1] else np.zeros(0)
+        u = self.Kplus(self.ft - self.B.T @ lam) + self.R @ alpha
+        ug = np.zeros(3 * self.M.nn)
+        np.add.at(ug, self.gdof, u / self.copies[self.gdof])
+        return ug, np.linalg.norm(self.B @ u) / np.linalg.norm(u)
+
+    def shared_coarse(self):
+        """The problem every rank would share, S_PiPi for FETI-DP and G^T G
+        otherwise: its DOFs and the entries of its factor."""
+        if self.G.shape[1]:
+            return self.G.shape[1], spla.splu((self.G.T @ self.G).tocsc(), permc_spec="MMD_AT_PLUS_A").L.nnz
+        return len(self.pcols), self.coarse.L.nnz
+
+
+def rigid_body_modes(X):
+    """The six rigid-body modes (orthonormal columns) of nodes at X, three DOFs each."""
+    X = X - X.mean(axis=0)
+    d = np.tile(np.arange(3), len(X) // 3)
+    R = np.zeros((len(X), 6))
+    for t in range(3):
+        R[d == t, t] = 1
+    x, y, z = X[:, 0], X[:, 1], X[:, 2]
+    R[d == 1, 3], R[d == 2, 3] = -z[d == 1], y[d == 2]
+    R[d == 0, 4], R[d == 2, 4] = z[d == 0], -x[d == 2]
+    R[d == 0, 5], R[d == 1, 5] = -y[d == 0], x[d == 1]
+    return np.linalg.qr(R)[0]
 
 
 def main():
@@ -361,13 +391,16 @@ def main():
     for c in [a.k] + a.c:
         if a.k % c:
             sys.exit(f"--c {c}: must divide --k {a.k}")
-        r = solve(M, c, tols, a.preconditioner == "Dirichlet")
-        res = np.linalg.norm(Kf @ r["u"][free] - M.f[free]) / np.linalg.norm(M.f[free])
-        base = base or r["its"]
+        D = Decomposition(M, c)
+        lam, counts = D.pcg(tols, a.preconditioner == "Dirichlet")
+        u, jump = D.displacement(lam)
+        res = np.linalg.norm(Kf @ u[free] - M.f[free]) / np.linalg.norm(M.f[free])
+        base = base or counts
         name = "FETI-DP" if c == a.k else "total FETI" if c == 1 else f"clusters of {c}^3"
-        its = " | ".join(f"{n} ({n / b:.2f})" for n, b in zip(r["its"], base))
-        print(f"| {name} | {(a.k // c)**3} | {r['floating']} | {r['nl']} | {r['coarse_dofs']} | {r['coarse_factor']} | "
-              f"{its} | {res:.1e} | {r['jump']:.1e} | {r['kernel']:.0e} |", flush=True)
+        its = " | ".join(f"{n} ({n / b:.2f})" for n, b in zip(counts, base))
+        dofs, entries = D.shared_coarse()
+        print(f"| {name} | {D.nclusters} | {D.R.shape[1] // 6} | {D.nl} | {dofs} | {entries} | "
+              f"{its} | {res:.1e} | {jump:.1e} | {D.kernel_residual:.0e} |", flush=True)
 
 
 if __name__ == "__main__":
