@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Dual iterations of FETI-DP, clusters of subdomains and total FETI, on a model problem.
+"""Dual iterations of FETI-DP, clusters of subdomains, total FETI and three-level BDDC, on a model problem.
 
 A study, not a solver: how many dual iterations subdomains grouped into
 clusters cost (hybrid total FETI, HTFETI: the primal nodes inside a cluster
@@ -21,9 +21,14 @@ iterations until the (projected) dual residual has fallen by each
 tolerance. Each solution is checked against the assembled problem (the
 relative residual of K u = f) and each kernel against its cluster's matrix.
 
+With --bddc, also BDDC (Dohrmann 2003) on the assembled interface problem
+with the FETI-DP primal space, and three-level BDDC (Tu 2007): its coarse
+solve replaced by one BDDC application to S_PiPi with clusters of c^3
+subdomains as its subdomains.
+
 Prints a markdown table; needs python3-scipy (Debian, cmake/setup.sh).
 
-    /usr/bin/python3 test/benchmark/cluster_iterations.py --k 8 --H 4 --c 1 2 4 [--primal corners]
+    /usr/bin/python3 test/benchmark/cluster_iterations.py --k 8 --H 4 --c 1 2 4 [--primal corners] [--bddc 2 4]
 """
 import argparse
 import itertools
@@ -230,32 +235,36 @@ class Decomposition:
         columns replaced by the identity."""
         M = self.M
         groups = {}
-        for cm in self.col_of:
+        for si, cm in enumerate(self.col_of):
             loc = np.nonzero(cm >= 0)[0]
             rl, pl = loc[self.owner[cm[loc]] >= 0], loc[self.owner[cm[loc]] < 0]
-            groups.setdefault((rl.tobytes(), pl.tobytes()), (rl, pl, []))[2].append(cm)
+            g = groups.setdefault((rl.tobytes(), pl.tobytes()), (rl, pl, [], []))
+            g[2].append(cm), g[3].append(si)
         Kd = M.Ks.toarray()
         self.parts = []
         srow, scol, sval = [], [], []
-        for rl, pl, cms in groups.values():
+        self.sub_S = []  # per subdomain: (index, its primal columns, S_PiPi^s)
+        for rl, pl, cms, sis in groups.values():
             cms = np.array(cms).T  # local DOF x subdomain
             Krr = la.cho_factor(Kd[np.ix_(rl, rl)])
             KrP = Kd[np.ix_(rl, pl)]
             S = Kd[np.ix_(pl, pl)] - KrP.T @ la.cho_solve(Krr, KrP)
             self.parts.append((Krr, KrP, cms[rl], cms[pl]))
             for b in range(cms.shape[1]):
+                self.sub_S.append((sis[b], cms[pl, b], S))
                 srow.append(np.repeat(cms[pl, b], len(pl))), scol.append(np.tile(cms[pl, b], len(pl)))
                 sval.append(S.ravel())
         self.pcols = np.nonzero(self.owner < 0)[0]
         self.pidx = np.full(self.ncols, -1)
         self.pidx[self.pcols] = np.arange(len(self.pcols))
         n = len(self.pcols)
-        Sc = sp.csr_matrix((np.concatenate(sval), (self.pidx[np.concatenate(srow)], self.pidx[np.concatenate(scol)])),
+        self.Sc = Sc = sp.csr_matrix((np.concatenate(sval), (self.pidx[np.concatenate(srow)], self.pidx[np.concatenate(scol)])),
                            shape=(n, n))
         self.keep = np.ones(n)
         self.keep[self.pidx[self.fixdofs]] = 0
         Dk = sp.diags(self.keep)
         self.coarse = spla.splu((Dk @ Sc @ Dk + sp.diags(1 - self.keep)).tocsc(), permc_spec="MMD_AT_PLUS_A")
+        self.coarse_solve = self.coarse.solve
 
     def Kplus(self, v):
         out = np.zeros(self.ncols)
@@ -265,7 +274,7 @@ class Decomposition:
             y = la.cho_solve(Krr, v[Rc])
             np.add.at(g, self.pidx[Pc], -(KrP.T @ y))
             ys.append(y)
-        up = self.keep * self.coarse.solve(self.keep * g)
+        up = self.keep * self.coarse_solve(self.keep * g)
         out[self.pcols] = up
         for (Krr, KrP, Rc, Pc), y in zip(self.parts, ys):
             out[Rc] = y - la.cho_solve(Krr, KrP @ up[self.pidx[Pc]])
@@ -353,6 +362,156 @@ class Decomposition:
         return len(self.pcols), self.coarse.L.nnz
 
 
+def pcg(A, b, precond, tols, maxit=1000):
+    """CG on A x = b from x = 0; x and, per tolerance, the iteration that met it."""
+    x = np.zeros_like(b)
+    r = b.copy()
+    r0 = np.linalg.norm(r)
+    z = precond(r)
+    p = z.copy()
+    rz = r @ z
+    its, reached = 0, {}
+    while its < maxit:
+        for t in tols:
+            if t not in reached and np.linalg.norm(r) <= t * r0:
+                reached[t] = its
+        if len(reached) == len(tols):
+            break
+        q = A(p)
+        a = rz / (p @ q)
+        x += a * p
+        r -= a * q
+        z = precond(r)
+        rz, rz_old = r @ z, rz
+        p = z + rz / rz_old * p
+        its += 1
+    return x, [reached.get(t, -1) for t in tols]
+
+
+class Bddc:
+    """BDDC on the assembled interface problem S u_G = g (Dohrmann 2003),
+    its preconditioner R_D^T S~^{-1} R_D applied by the FETI-DP
+    decomposition's K~^{-1} (the same primal space; multiplicity scaling)."""
+
+    def __init__(self, D):
+        M = D.M
+        self.D = D
+        free = np.repeat(~M.fixed, 3)
+        K = M.assembled()[free][:, free].tocsr()
+        gid = np.full(3 * M.nn, -1)
+        gid[free] = np.arange(free.sum())
+        self.gid = gid
+        iface = np.repeat(M.mult >= 2, 3)[free]
+        self.G, self.I = np.nonzero(iface)[0], np.nonzero(~iface)[0]
+        self.KGG, self.KGI = K[self.G][:, self.G], K[self.G][:, self.I]
+        self.KII = spla.splu(K[self.I][:, self.I].tocsc())
+        f = M.f[free]
+        self.fI = f[self.I]
+        self.g = f[self.G] - self.KGI @ self.KII.solve(self.fI)
+        self.gpos = np.full(free.sum(), -1)
+        self.gpos[self.G] = np.arange(len(self.G))
+        cols = np.nonzero(gid[D.gdof] >= 0)[0]
+        at = self.gpos[gid[D.gdof[cols]]]
+        self.cols, self.at = cols[at >= 0], at[at >= 0]  # K~ columns on the interface, their interface index
+        self.w = 1.0 / D.copies[D.gdof[self.cols]]
+        self.free, self.K, self.f = free, K, f
+
+    def S(self, x):
+        return self.KGG @ x - self.KGI @ self.KII.solve(self.KGI.T @ x)
+
+    def precond(self, r):
+        v = np.zeros(self.D.ncols)
+        v[self.cols] = self.w * r[self.at]
+        u = self.D.Kplus(v)
+        z = np.zeros_like(r)
+        np.add.at(z, self.at, self.w * u[self.cols])
+        return z
+
+    def solve(self, tols):
+        x, its = pcg(self.S, self.g, self.precond, tols)
+        u = np.zeros(len(self.f))
+        u[self.G] = x
+        u[self.I] = self.KII.solve(self.fI - self.KGI.T @ x)
+        return u, its
+
+
+class CoarseBddc:
+    """One application of BDDC to the coarse matrix S_PiPi with clusters of
+    cc^3 subdomains as its subdomains: the approximate coarse solve of a
+    three-level BDDC (Tu 2007). At the cluster level the primal DOFs are the
+    coarse DOFs shared by three or more clusters or by two on the mesh
+    boundary; interior DOFs by Dohrmann's correction
+    P_I + (I - P_I A) M (I - A P_I)."""
+
+    def __init__(self, D, cc):
+        M = D.M
+        ncl = M.k // cc
+        cl = lambda box: (box[0] // cc) + ncl * ((box[1] // cc) + ncl * (box[2] // cc))
+        n = len(D.pcols)
+        owners = [set() for _ in range(n)]
+        per_cluster = {}
+        for si, Pc, S in D.sub_S:
+            c = cl(M.subs[si]["box"])
+            ids = D.pidx[Pc]
+            for i in ids:
+                owners[i].add(c)
+            per_cluster.setdefault(c, []).append((ids, S))
+        mc = np.array([len(o) for o in owners])
+        node = D.col_node[D.pcols]
+        outer = np.any((M.xyz[node] == 0) | (M.xyz[node] == M.n), axis=1)
+        prim = (mc >= 3) | ((mc == 2) & outer)
+        # the cluster-level partially assembled space
+        ncols, shared, rows, cols, vals = 0, {}, [], [], []
+        self.copy_of = []  # (coarse DOF, column) pairs
+        for c, items in per_cluster.items():
+            col = {}
+            for ids, _ in items:
+                for i in ids:
+                    if i in col:
+                        continue
+                    if prim[i]:
+                        if i not in shared:
+                            shared[i] = ncols
+                            ncols += 1
+                            self.copy_of.append((i, shared[i]))
+                        col[i] = shared[i]
+                    else:
+                        col[i] = ncols
+                        self.copy_of.append((i, ncols))
+                        ncols += 1
+            for ids, S in items:
+                cc_ = np.array([col[i] for i in ids])
+                rows.append(np.repeat(cc_, len(ids))), cols.append(np.tile(cc_, len(ids))), vals.append(S.ravel())
+        K2 = sp.csc_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(ncols, ncols))
+        self.K2 = spla.splu(K2, permc_spec="MMD_AT_PLUS_A")
+        self.ids = np.array([i for i, _ in self.copy_of])
+        self.cols = np.array([j for _, j in self.copy_of])
+        self.w = np.where(prim[self.ids], 1.0, 1.0 / mc[self.ids])
+        self.ncols = ncols
+        self.A = D.Sc.tocsr()
+        self.I = np.nonzero(mc == 1)[0]
+        self.AII = spla.splu(self.A[self.I][:, self.I].tocsc())
+        self.nprimal = int(prim.sum())
+
+    def PI(self, g):
+        z = np.zeros_like(g)
+        z[self.I] = self.AII.solve(g[self.I])
+        return z
+
+    def MB(self, r):
+        v = np.zeros(self.ncols)
+        np.add.at(v, self.cols, self.w * r[self.ids])
+        u = self.K2.solve(v)
+        z = np.zeros_like(r)
+        np.add.at(z, self.ids, self.w * u[self.cols])
+        return z
+
+    def __call__(self, g):
+        zI = self.PI(g)
+        w = self.MB(g - self.A @ zI)
+        return zI + w - self.PI(self.A @ w)
+
+
 def rigid_body_modes(X):
     """The six rigid-body modes (orthonormal columns) of nodes at X, three DOFs each."""
     X = X - X.mean(axis=0)
@@ -374,6 +533,9 @@ def main():
     ap.add_argument("--c", type=int, nargs="+", default=[1, 2, 4], help="subdomains per cluster and direction")
     ap.add_argument("--tol", type=float, nargs="+", default=[1e-6, 1e-10])
     ap.add_argument("--preconditioner", choices=["Dirichlet", "None"], default="Dirichlet")
+    ap.add_argument("--bddc", type=int, nargs="*", default=None,
+                    help="also BDDC with the exact coarse solve, and with the coarse problem solved by one BDDC "
+                         "application on clusters of these sizes (three-level BDDC)")
     ap.add_argument("--primal", choices=["edges", "corners"], default="edges",
                     help="primal nodes: the solver's rule (nodes shared by 3 or more subdomains, or by 2 on the "
                          "mesh boundary: whole subdomain edges) or the subdomain corners alone")
@@ -401,6 +563,26 @@ def main():
         dofs, entries = D.shared_coarse()
         print(f"| {name} | {D.nclusters} | {D.R.shape[1] // 6} | {D.nl} | {dofs} | {entries} | "
               f"{its} | {res:.1e} | {jump:.1e} | {D.kernel_residual:.0e} |", flush=True)
+    if a.bddc is not None:
+        bddc_rows(M, a, tols, Kf, free, base)
+
+
+def bddc_rows(M, a, tols, Kf, free, base):
+    """BDDC with the FETI-DP primal space: exact coarse solve, then three-level."""
+    D = Decomposition(M, a.k)
+    B = Bddc(D)
+    for cc in [None] + a.bddc:
+        if cc is not None and a.k % cc:
+            sys.exit(f"--bddc {cc}: must divide --k {a.k}")
+        if cc is None:
+            D.coarse_solve, name, dofs = D.coarse.solve, "BDDC, exact coarse solve", len(D.pcols)
+        else:
+            C = CoarseBddc(D, cc)
+            D.coarse_solve, name, dofs = C, f"BDDC, coarse by BDDC on clusters of {cc}^3", C.nprimal
+        u, counts = B.solve(tols)
+        res = np.linalg.norm(Kf @ u - M.f[free]) / np.linalg.norm(M.f[free])
+        its = " | ".join(f"{n} ({n / b:.2f})" for n, b in zip(counts, base))
+        print(f"| {name} | | | {len(B.G)} | {dofs} | | {its} | {res:.1e} | | |", flush=True)
 
 
 if __name__ == "__main__":
