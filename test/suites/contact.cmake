@@ -322,6 +322,14 @@ ddc_add_run_test(contact_half_rings_3d_free RANKS 2
     --output-dir ${DDC_RUNS}/contact_half_rings_3d_free
   FILES ${DDC_RUNS}/contact_half_rings_3d_free/history.csv LABELS example contact feti
   REGEX "CG broke down on the dual problem.*GMRES solved it.*step +40/40 .*contacts 0")
+# The path past step 23 at 1 m depth depends on round-off: with OpenBLAS'
+# AVX-512 kernels (SkylakeX, chosen on a Xeon with AVX-512) the active set
+# cycles in step 23 and every bisection ends in an inadmissible element
+# (the 1 m sway above); with its AVX2 kernels (Haswell, which OpenBLAS
+# picks on the machines this test was written on) the run completes. The
+# kernels are pinned so that the test checks the same path on every x86
+# machine; the 2 m deck (the example as shipped) completes with either.
+set_property(TEST contact_half_rings_3d_free APPEND PROPERTY ENVIRONMENT "OPENBLAS_CORETYPE=Haswell")
 # Contact/Pairing Cycles (doc/contact.md "Search, tracking and the active
 # set"): the conventional element on the 1 m free-face half-rings, 100-step
 # increments up to load 0.32. In step 29, 24 slave nodes switch between two
