@@ -322,28 +322,10 @@ class Decomposition:
         precond = self.dirichlet if dirichlet else np.copy
         d = self.B @ self.Kplus(self.ft)
         lam = self.G @ la.cho_solve(self.GtG, self.R.T @ self.ft) if self.G.shape[1] else np.zeros(self.nl)
-        r = self.P(d - self.F(lam))
-        r0 = np.linalg.norm(r)
-        z = self.P(precond(r))
-        p = z.copy()
-        rz = r @ z
-        its = 0
-        reached = {}
-        while its < maxit:
-            for t in tols:
-                if t not in reached and np.linalg.norm(r) <= t * r0:
-                    reached[t] = its
-            if len(reached) == len(tols):
-                break
-            q = self.P(self.F(p))
-            a = rz / (p @ q)
-            lam += a * p
-            r -= a * q
-            z = self.P(precond(r))
-            rz, rz_old = r @ z, rz
-            p = z + rz / rz_old * p
-            its += 1
-        return lam, [reached.get(t, -1) for t in tols]
+        # lambda = lambda_0 + mu, mu in ker G^T from P F mu = P (d - F lambda_0)
+        mu, its = pcg(lambda v: self.P(self.F(v)), self.P(d - self.F(lam)), lambda r: self.P(precond(r)), tols,
+                      maxit)
+        return lam + mu, its
 
     def displacement(self, lam):
         """u assembled (copies averaged) and the relative jump of the copies."""
