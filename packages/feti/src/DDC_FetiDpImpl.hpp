@@ -21,6 +21,10 @@
 //   Preconditioner                 M^{-1} = sum_s B_D^s S^s B_D^sT, the
 //                                  Dirichlet blocks K_II, K_ID, K_DD
 //                                  (DDC_FetiDpPreconditioner.cpp);
+//   InterfaceProblem               BDDC ("Method" = BDDC): the interface
+//                                  Schur complement S and the solve on it,
+//                                  preconditioned by K~^{-1}
+//                                  (DDC_FetiDpBddc.cpp);
 //   FetiDpSolver::Impl             the parameters and the driver
 //                                  (DDC_FetiDpSolver.cpp), with the
 //                                  edge/face change of basis
@@ -467,6 +471,9 @@ class Preconditioner {
     std::vector<double> vd, wd, vi, wi;
   };
   Kind kind = Kind::Dirichlet;
+  /// Factorise K_II in every subdomain with interior DOFs, also those without
+  /// dual DOFs (BDDC solves with it; the preconditioner needs only those).
+  bool allInteriors = false;
   std::vector<Blocks> blocks;  ///< per local subdomain
   double tApply = 0.0, tDirichletSolve = 0.0;
   int nApply = 0;
@@ -479,6 +486,46 @@ class Preconditioner {
   void factor(const Context& ctx, const std::vector<Subdomain>& subs, bool analysed);
   /// y = D G M^{-1} Gᵀ D x (P M^{-1} P x without coupled rows).
   void apply(const std::vector<Subdomain>& subs, const JumpOperator& jump, const Vector& x, Vector& y);
+};
+
+/// The interior index of local DOF k of s (kNone for interface DOFs: dual
+/// and primal).
+inline LO interiorIndex(const Subdomain& s, LO k) { return s.rIdx[k] == kNone ? kNone : s.iIdx[s.rIdx[k]]; }
+
+/// BDDC on FETI-DP's blocks (DDC_FetiDpBddc.cpp, doc/feti-dp.md "BDDC"):
+/// the interface problem S u_G = g on the DOFs that are not interior to a
+/// subdomain (dual and primal), S = sum_s R^sT (K_GG - K_GI K_II^{-1} K_IG)
+/// R^s applied subdomain by subdomain with the Dirichlet preconditioner's
+/// K_II factorisations; its preconditioner is K~^{-1} between weighted
+/// restrictions (FetiDpSolver::Impl::applyBddcPreconditioner()).
+class InterfaceProblem {
+ public:
+  /// The blocks of one subdomain, in interface (G) and interior (I) index.
+  struct Blocks {
+    std::vector<LO> gDof;                ///< interface index -> local DOF
+    std::vector<LO> gIdx;                ///< local DOF -> interface index (kNone: interior)
+    std::vector<Triplet> KIG, KGI, KGG;  ///< (I, G), (G, I), (G, G)
+    std::vector<double> xg, wg, vi, zi;  ///< work; zi: K_II^{-1} b_I of the current solve()
+  };
+  RCP<const Map> map;        ///< the interface DOFs, owned as in Context::ownedMap
+  std::vector<LO> ownedLid;  ///< interface LID -> ownedMap LID
+  std::vector<Blocks> blocks;  ///< per local subdomain
+  RCP<Vector> owned, ov;       ///< work on Context::ownedMap / dofOvMap
+  double tApply = 0.0;
+  int nApply = 0;
+
+  /// The interface map and index lists (collective). \throws
+  /// std::logic_error if a DOF is interior in one subdomain and shared.
+  void build(const Context& ctx, const std::vector<Subdomain>& subs);
+  /// K_IG, K_GI, K_GG from each subdomain's current K.
+  void refresh(const std::vector<Subdomain>& subs);
+  /// owned = x on the interface, 0 elsewhere; ov = its import.
+  void scatter(const Context& ctx, const Vector& x);
+  /// y = the interface entries of the export (ADD) of yOv.
+  void gather(const Context& ctx, const std::vector<double>& yOv, Vector& y);
+  /// y = S x (collective).
+  void applySchur(const Context& ctx, const std::vector<Subdomain>& subs, Preconditioner& prec, const Vector& x,
+                  Vector& y);
 };
 
 }  // namespace feti_internal
@@ -518,6 +565,27 @@ struct FetiDpSolver::Impl {
   RCP<Operator> fOp, mOp;
 
   bool couplingScaled = false;  ///< RowCoupling::scale is that of the current coupling and factorisation
+  bool bddc = false;            ///< "Method" = BDDC
+  InterfaceProblem iface;       ///< BDDC only
+
+  /// DualOperator::local[].fr, fp from b (DDC_FetiDpSolver.cpp).
+  void loadForces(const Vector& b);
+  /// The coarse right-hand side at the primal vertex DOFs from b.
+  void primalForces(const Vector& b, Vector& fPi) const;
+  /// u from the subdomain solutions and the coarse solution (weighted average).
+  void assembleDisplacement(Vector& u);
+  /// BDDC: z = M^{-1} r on the interface map (DDC_FetiDpBddc.cpp).
+  void applyBddcPreconditioner(const Vector& r, Vector& z);
+  /// FETI-DP: u from b, iterations into info; returns Belos' seconds
+  /// (DDC_FetiDpSolver.cpp).
+  double solveDual(const Vector& b, Vector& u, FetiDpSolver::Info& info);
+  /// BDDC: u from b, iterations into info; returns Belos' seconds
+  /// (DDC_FetiDpBddc.cpp).
+  double solveBddc(const Vector& b, Vector& u, FetiDpSolver::Info& info);
+  /// x from A x = rhs by Belos with the preconditioner M (may be null);
+  /// `system` names it in messages (DDC_FetiDpSolver.cpp).
+  void solveByBelos(const RCP<Operator>& A, const RCP<Operator>& M, const RCP<MultiVector>& rhs,
+                    const RCP<MultiVector>& x, bool symmetric, const std::string& system, FetiDpSolver::Info& info);
 
   std::string param(const std::string& name) const { return ctx.param(name); }
   /// RowCoupling::scale of the compliant rows (DDC_FetiDpCoupling.cpp).

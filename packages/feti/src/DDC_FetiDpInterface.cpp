@@ -303,6 +303,7 @@ void FetiDpSolver::Impl::buildTopology(std::vector<FetiSubdomain> local, RCP<con
   }
   raiseCollectively<std::invalid_argument>(ctx.mpi, msg);
   dofOvWork = rcp(new Vector(ctx.dofOvMap));
+  if (bddc) iface.build(ctx, subs);
   makeOperators();
   haveTopology = true;
 }

@@ -25,7 +25,7 @@ void Preconditioner::build(const std::vector<Subdomain>& subs, const DirectSolve
   for (size_t ls = 0; ls < subs.size(); ++ls) {
     const Subdomain& s = subs[ls];
     Blocks& b = blocks[ls];
-    if (kind == Kind::Dirichlet && s.ni > 0 && s.nd > 0) {
+    if (kind == Kind::Dirichlet && s.ni > 0 && (s.nd > 0 || allInteriors)) {
       Teuchos::ParameterList p(localParams);
       b.solver = factory.create(p, where);
     }

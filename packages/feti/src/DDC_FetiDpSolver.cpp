@@ -47,6 +47,21 @@ const std::vector<std::string>& belosSolverNames() {
   return n;
 }
 
+/// BDDC works on the caller's DOFs with vertices as the primal space and
+/// multiplicity weights (doc/feti-dp.md "BDDC"): the options it cannot
+/// honour are refused by name.
+void checkBddcParameters(const Teuchos::ParameterList& params, const std::string& path) {
+  auto refuse = [&](const std::string& name, const std::string& expected) {
+    DDC_THROW(InputError, "parameter '" << joinPath(path, name) << "' = " << params.get<std::string>(name)
+                                        << " cannot be used with '" << joinPath(path, "Method")
+                                        << "' = BDDC; expected " << expected);
+  };
+  if (params.get<std::string>("Preconditioner") != "Dirichlet") refuse("Preconditioner", "Dirichlet");
+  if (params.get<std::string>("Scaling") == "Stiffness") refuse("Scaling", "Automatic or Multiplicity");
+  const std::string primal = params.get<std::string>("Primal Constraints");
+  if (primal != "Automatic" && primal != "Vertices") refuse("Primal Constraints", "Automatic or Vertices");
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -56,6 +71,14 @@ const std::vector<std::string>& belosSolverNames() {
 Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
   static const RCP<const Teuchos::ParameterList> valid = [] {
     auto pl = rcp(new Teuchos::ParameterList("FETI-DP"));
+    pl->set("Method", std::string("FETI-DP"),
+            "What the Krylov solver iterates on: FETI-DP (the Lagrange multipliers, F lambda = d) or BDDC (the "
+            "displacements of the interface DOFs, S u = g, preconditioned by the same subdomain factorisations, "
+            "coarse problem and Dirichlet blocks; Dohrmann 2003, the same spectrum as FETI-DP by Mandel, Dohrmann "
+            "& Tezaur 2005). BDDC takes no extra rows (contact, ties) and primal vertices only: it needs "
+            "Preconditioner = Dirichlet, Scaling = Automatic or Multiplicity and Primal Constraints = Automatic "
+            "(then Vertices) or Vertices (doc/feti-dp.md, 'BDDC').",
+            enumValidator({"FETI-DP", "BDDC"}, "Method"));
     pl->set("Preconditioner", std::string("Dirichlet"),
             "Preconditioner of F on the LM space, M^{-1} = sum_s B_D^s S^s B_D^sT: Dirichlet (S^s = K_DD - K_DI "
             "K_II^{-1} K_ID, the Schur complement on the subdomain's dual interface DOFs with its primal DOFs fixed; "
@@ -181,10 +204,13 @@ FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramete
                      : sc == "Multiplicity" ? JumpOperator::Scaling::Multiplicity
                                             : JumpOperator::Scaling::Automatic;
   }
+  m.bddc = params.get<std::string>("Method") == "BDDC";
+  if (m.bddc) checkBddcParameters(params, path);
+  m.prec.allInteriors = m.bddc;
   m.dual.singularityThreshold = params.get<double>("Local Singularity Threshold");
   m.dual.localSchur = params.get<bool>("Local Schur Complement");
   m.automaticPrimal = params.get<std::string>("Primal Constraints") == "Automatic";
-  m.primalChoice = m.automaticPrimal ? PrimalConstraints::VerticesAndEdges
+  m.primalChoice = m.automaticPrimal ? (m.bddc ? PrimalConstraints::Vertices : PrimalConstraints::VerticesAndEdges)
                                      : primalConstraintsFromName(params.get<std::string>("Primal Constraints"));
   m.rotations = params.get<bool>("Rotational Constraints");
   // Belos: the entries documented here are validated with their ranges;
@@ -276,6 +302,7 @@ void FetiDpSolver::numeric() {
   // 2. The weights of B_D read the new diagonals; the Dirichlet blocks.
   m.jump.computeWeights(m.ctx, m.subs);
   m.prec.factor(m.ctx, m.subs, m.analysed);
+  if (m.bddc) m.iface.refresh(m.subs);
   const double t2 = MPI_Wtime();
   st.dirichletFactorSeconds = t2 - t1;
 
@@ -331,22 +358,20 @@ void checkSolveVectors(const Impl& m, const Vector& b, const Vector& u) {
   raiseCollectively<std::invalid_argument>(m.ctx.mpi, msg);
 }
 
-/// f~ of each subdomain into DualOperator::local[].fr, fp (and a copy into
-/// frBase, fpBase): interior DOFs as is, dual copies b_j / m_j; the primal
-/// DOFs are assembled directly into the coarse right-hand side
-/// (primalForces()). With edge/face constraints, f^s = T^T (b_j / m_j): the
-/// constraint DOFs get their share in f_Pi^s, summed over the subdomains by
-/// the coarse assembly.
-void subdomainForces(Impl& m, const Vector& b, std::vector<std::vector<double>>& frBase,
-                     std::vector<std::vector<double>>& fpBase) {
-  m.dofOvWork->doImport(b, *m.ctx.dofImport, Tpetra::INSERT);
-  frBase.assign(m.subs.size(), {});
-  fpBase.assign(m.subs.size(), {});
-  auto bo = m.dofOvWork->getData();
+}  // namespace
+
+/// f~ of each subdomain into DualOperator::local[].fr, fp: interior DOFs as
+/// is, dual copies b_j / m_j; the primal DOFs are assembled directly into the
+/// coarse right-hand side (primalForces()). With edge/face constraints, f^s =
+/// T^T (b_j / m_j): the constraint DOFs get their share in f_Pi^s, summed over
+/// the subdomains by the coarse assembly.
+void Impl::loadForces(const Vector& b) {
+  dofOvWork->doImport(b, *ctx.dofImport, Tpetra::INSERT);
+  auto bo = dofOvWork->getData();
   std::vector<double> f;
-  for (size_t ls = 0; ls < m.subs.size(); ++ls) {
-    const Subdomain& s = m.subs[ls];
-    LocalProblem& lp = m.dual.local[ls];
+  for (size_t ls = 0; ls < subs.size(); ++ls) {
+    const Subdomain& s = subs[ls];
+    LocalProblem& lp = dual.local[ls];
     std::fill(lp.fp.begin(), lp.fp.end(), 0.0);
     if (s.cob.active()) {
       f.resize(s.n);
@@ -358,43 +383,44 @@ void subdomainForces(Impl& m, const Vector& b, std::vector<std::vector<double>>&
     } else {
       for (LO r = 0; r < s.nr; ++r) lp.fr[r] = bo[s.ovLid[s.rDof[r]]] * s.invMult[s.rDof[r]];
     }
-    frBase[ls] = lp.fr;
-    fpBase[ls] = lp.fp;
   }
 }
 
 /// The coarse right-hand side of the primal vertex DOFs: b at their owners
 /// (zero at edge/face constraint values).
-void primalForces(const Impl& m, const Vector& b, Vector& fPi) {
+void Impl::primalForces(const Vector& b, Vector& fPi) const {
   auto bv = b.getData();
   auto f = fPi.getDataNonConst();
-  for (size_t k = 0; k < m.coarse.ownedLid.size(); ++k) f[k] = m.coarse.isEdgeFace[k] ? 0.0 : bv[m.coarse.ownedLid[k]];
+  for (size_t k = 0; k < coarse.ownedLid.size(); ++k) f[k] = coarse.isEdgeFace[k] ? 0.0 : bv[coarse.ownedLid[k]];
 }
 
-/// lambda from F lambda = d by Belos (CG, then GMRES if CG breaks down on an
-/// indefinite F and that is allowed); adds the iterations, residual and
-/// condition estimate to `info`. \throws SolverError if it does not converge.
-void solveDualProblem(Impl& m, const RCP<MultiVector>& d, const RCP<MultiVector>& lambda, FetiDpSolver::Info& info) {
+/// x from A x = rhs by Belos (CG, then GMRES if CG breaks down on an
+/// indefinite A and that is allowed; GMRES for a nonsymmetric A); adds the
+/// iterations, residual and condition estimate to `info`. \throws
+/// SolverError naming `system` if it does not converge.
+void Impl::solveByBelos(const RCP<Operator>& A, const RCP<Operator>& M, const RCP<MultiVector>& rhs,
+                        const RCP<MultiVector>& x, bool symmetric, const std::string& system,
+                        FetiDpSolver::Info& info) {
   Belos::SolverFactory<Scalar, MultiVector, Operator> factory;
   auto bp = Teuchos::parameterList();
-  bp->set("Convergence Tolerance", m.solveTol);
-  bp->set("Maximum Iterations", m.belosMaxIt);
-  bp->set("Verbosity", m.belosVerbosity);
-  bp->set("Output Frequency", m.belosOutputFrequency);
-  bp->setParameters(m.belosExtra);
+  bp->set("Convergence Tolerance", solveTol);
+  bp->set("Maximum Iterations", belosMaxIt);
+  bp->set("Verbosity", belosVerbosity);
+  bp->set("Output Frequency", belosOutputFrequency);
+  bp->setParameters(belosExtra);
   Belos::ReturnType ret = Belos::Unconverged;
-  std::string failure, type = m.belosType;
+  std::string failure, type = belosType;
   // Coupled rows with T != Gᵀ make F nonsymmetric: CG and MINRES do not apply.
-  if (!m.jump.coupling.symmetric && type != "GMRES") {
+  if (!symmetric && type != "GMRES") {
     type = "GMRES";
     info.gmresForCoupledRows = true;
   }
   auto run = [&] {
-    lambda->putScalar(0.0);
+    x->putScalar(0.0);
     info.conditionEstimate = -1.0;  // from CG only, and from the last run
     auto solver = factory.create(type, bp);
-    auto problem = rcp(new Belos::LinearProblem<Scalar, MultiVector, Operator>(m.fOp, lambda, d));
-    if (!m.mOp.is_null()) problem->setLeftPrec(m.mOp);
+    auto problem = rcp(new Belos::LinearProblem<Scalar, MultiVector, Operator>(A, x, rhs));
+    if (!M.is_null()) problem->setLeftPrec(M);
     problem->setProblem();
     solver->setProblem(problem);
     failure.clear();
@@ -413,22 +439,22 @@ void solveDualProblem(Impl& m, const RCP<MultiVector>& d, const RCP<MultiVector>
     }
   };
   run();
-  // CG needs F positive definite; an indefinite tangent (past a limit
-  // point) makes it break down on p.F.p <= 0. GMRES does not need it.
-  if (type == "CG" && m.belosGmresOnBreakdown && failure.find("non-positive value for p^H*A*p") != std::string::npos) {
+  // CG needs A positive definite; an indefinite tangent (past a limit
+  // point) makes it break down on p.A.p <= 0. GMRES does not need it.
+  if (type == "CG" && belosGmresOnBreakdown && failure.find("non-positive value for p^H*A*p") != std::string::npos) {
     type = "GMRES";
     info.gmresAfterBreakdown = true;
     run();
   }
   if (!failure.empty() || ret != Belos::Converged) {
     std::ostringstream os;
-    os << "FETI-DP: Belos " << type << " did not converge on F lambda = d (" << m.jump.lmMap->getGlobalNumElements()
-       << " Lagrange multipliers): " << info.iterations << " iterations, achieved relative residual "
-       << std::scientific << info.relativeResidual << ", tolerance " << m.solveTol;
+    os << (bddc ? "BDDC" : "FETI-DP") << ": Belos " << type << " did not converge on " << system << ": "
+       << info.iterations << " iterations, achieved relative residual " << std::scientific << info.relativeResidual
+       << ", tolerance " << solveTol;
     if (!failure.empty()) os << "; Belos reported: " << failure;
-    os << ". Raise '" << m.param("Belos/Maximum Iterations") << "' (" << m.belosMaxIt << "), loosen '"
-       << m.param("Belos/Convergence Tolerance") << "', or change '" << m.param("Preconditioner") << "' / '"
-       << m.param("Belos/Solver Type") << "'";
+    os << ". Raise '" << param("Belos/Maximum Iterations") << "' (" << belosMaxIt << "), loosen '"
+       << param("Belos/Convergence Tolerance") << "', or change '" << param("Preconditioner") << "' / '"
+       << param("Belos/Solver Type") << "'";
     throw SolverError(os.str());
   }
 }
@@ -438,14 +464,14 @@ void solveDualProblem(Impl& m, const RCP<MultiVector>& d, const RCP<MultiVector>
 /// vertex DOFs from the coarse solution. With edge/face constraints, u^s =
 /// T û^s first; the DOFs that held constraint values are then averaged like
 /// dual DOFs.
-void assembleDisplacement(Impl& m, Vector& u) {
-  m.dofOvWork->putScalar(0.0);
+void Impl::assembleDisplacement(Vector& u) {
+  dofOvWork->putScalar(0.0);
   {
-    auto uo = m.dofOvWork->getDataNonConst();
+    auto uo = dofOvWork->getDataNonConst();
     std::vector<double> us;
-    for (size_t ls = 0; ls < m.subs.size(); ++ls) {
-      const Subdomain& s = m.subs[ls];
-      const LocalProblem& lp = m.dual.local[ls];
+    for (size_t ls = 0; ls < subs.size(); ++ls) {
+      const Subdomain& s = subs[ls];
+      const LocalProblem& lp = dual.local[ls];
       if (!s.cob.active()) {
         for (LO r = 0; r < s.nr; ++r) uo[s.ovLid[s.rDof[r]]] += lp.xr[r] * s.invMult[s.rDof[r]];
         continue;
@@ -459,41 +485,33 @@ void assembleDisplacement(Impl& m, Vector& u) {
     }
   }
   u.putScalar(0.0);
-  u.doExport(*m.dofOvWork, *m.ctx.dofExport, Tpetra::ADD);
-  if (m.coarse.n > 0) {
+  u.doExport(*dofOvWork, *ctx.dofExport, Tpetra::ADD);
+  if (coarse.n > 0) {
     auto uv = u.getDataNonConst();
-    auto c = m.coarse.sol->getData();
-    for (size_t k = 0; k < m.coarse.ownedLid.size(); ++k)
-      if (!m.coarse.isEdgeFace[k]) uv[m.coarse.ownedLid[k]] = c[k];
+    auto c = coarse.sol->getData();
+    for (size_t k = 0; k < coarse.ownedLid.size(); ++k)
+      if (!coarse.isEdgeFace[k]) uv[coarse.ownedLid[k]] = c[k];
   }
 }
 
-}  // namespace
-
-FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
-  Impl& m = *impl_;
-  if (!m.factored) throw std::logic_error("FetiDpSolver::solve() called without a successful numeric()");
-  const double t0 = MPI_Wtime();
-  m.dual.tLocalSolve = m.coarse.tSolve = m.prec.tApply = m.prec.tDirichletSolve = 0.0;
-  m.dual.nApply = m.prec.nApply = 0;
-  Info info = m.setup;
-  if (!m.jump.weightsCurrent) m.jump.computeWeights(m.ctx, m.subs);
-  checkSolveVectors(m, b, u);
-
-  std::vector<std::vector<double>> frBase, fpBase;
-  subdomainForces(m, b, frBase, fpBase);
-  Vector fPi(m.coarse.map);
-  primalForces(m, b, fPi);
+/// u from b by the dual problem F lambda = d (doc/feti-dp.md "The dual
+/// problem"); the Belos iterations into `info`. Returns Belos' seconds.
+double Impl::solveDual(const Vector& b, Vector& u, FetiDpSolver::Info& info) {
+  std::vector<std::vector<double>> frBase(subs.size()), fpBase(subs.size());
+  loadForces(b);
+  for (size_t ls = 0; ls < subs.size(); ++ls) frBase[ls] = dual.local[ls].fr, fpBase[ls] = dual.local[ls].fp;
+  Vector fPi(coarse.map);
+  primalForces(b, fPi);
 
   // d = B K~^{-1} f~ (the compatibility constraints have zero right-hand side)
-  auto d = rcp(new MultiVector(m.jump.lmMap, 1));
-  auto lambda = rcp(new MultiVector(m.jump.lmMap, 1));
-  m.dual.applyKtildeInv(m.subs, m.coarse, &fPi);
-  m.dual.gatherB(m.jump, *d->getVectorNonConst(0));
+  auto d = rcp(new MultiVector(jump.lmMap, 1));
+  auto lambda = rcp(new MultiVector(jump.lmMap, 1));
+  dual.applyKtildeInv(subs, coarse, &fPi);
+  dual.gatherB(jump, *d->getVectorNonConst(0));
   // d = G B K~^{-1} f~ - c (G = P without coupled rows; c = 0 on inactive rows)
-  m.jump.equations(*d->getVectorNonConst(0), nullptr);
-  d->getVectorNonConst(0)->update(-1.0, *m.jump.rhs, 1.0);
-  if (!m.couplingScaled) m.scaleCompliantRows(), m.couplingScaled = true;
+  jump.equations(*d->getVectorNonConst(0), nullptr);
+  d->getVectorNonConst(0)->update(-1.0, *jump.rhs, 1.0);
+  if (!couplingScaled) scaleCompliantRows(), couplingScaled = true;
 
   double dNorm = 0.0;
   {
@@ -502,23 +520,40 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
     dNorm = n[0];
   }
   const double tb0 = MPI_Wtime();
-  if (m.jump.lmMap->getGlobalNumElements() > 0 && dNorm > 0.0) solveDualProblem(m, d, lambda, info);
+  if (jump.lmMap->getGlobalNumElements() > 0 && dNorm > 0.0) {
+    std::ostringstream system;
+    system << "F lambda = d (" << jump.lmMap->getGlobalNumElements() << " Lagrange multipliers)";
+    solveByBelos(fOp, mOp, d, lambda, jump.coupling.symmetric, system.str(), info);
+  }
   const double tb1 = MPI_Wtime();
 
   // The multipliers T x (restrained rows exactly zero)
-  m.jump.multipliers(*lambda->getVector(0), *m.jump.lastLambda);
+  jump.multipliers(*lambda->getVector(0), *jump.lastLambda);
 
   // u = K~^{-1} (f~ - B^T lambda)
-  for (size_t ls = 0; ls < m.subs.size(); ++ls) {
-    m.dual.local[ls].fr = frBase[ls];
-    m.dual.local[ls].fp = fpBase[ls];
+  for (size_t ls = 0; ls < subs.size(); ++ls) {
+    dual.local[ls].fr = frBase[ls];
+    dual.local[ls].fp = fpBase[ls];
   }
-  m.dual.scatterBt(m.jump, *m.jump.lastLambda, -1.0);
-  m.dual.applyKtildeInv(m.subs, m.coarse, &fPi);
-  assembleDisplacement(m, u);
+  dual.scatterBt(jump, *jump.lastLambda, -1.0);
+  dual.applyKtildeInv(subs, coarse, &fPi);
+  assembleDisplacement(u);
+  return tb1 - tb0;
+}
+
+FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
+  Impl& m = *impl_;
+  if (!m.factored) throw std::logic_error("FetiDpSolver::solve() called without a successful numeric()");
+  const double t0 = MPI_Wtime();
+  m.dual.tLocalSolve = m.coarse.tSolve = m.prec.tApply = m.prec.tDirichletSolve = m.iface.tApply = 0.0;
+  m.dual.nApply = m.prec.nApply = m.iface.nApply = 0;
+  Info info = m.setup;
+  if (!m.jump.weightsCurrent) m.jump.computeWeights(m.ctx, m.subs);
+  checkSolveVectors(m, b, u);
+  const double belos = m.bddc ? m.solveBddc(b, u, info) : m.solveDual(b, u, info);
 
   const double t1 = MPI_Wtime();
-  double loc[5] = {t1 - t0, tb1 - tb0, m.dual.tLocalSolve, m.coarse.tSolve, m.prec.tApply};
+  double loc[5] = {t1 - t0, belos, m.dual.tLocalSolve, m.coarse.tSolve, m.prec.tApply};
   double glob[5];
   MPI_Allreduce(loc, glob, 5, MPI_DOUBLE, MPI_MAX, m.ctx.mpi);
   info.solveSeconds = glob[0];
@@ -526,7 +561,7 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
   info.localSolveSeconds = glob[2];
   info.coarseSolveSeconds = glob[3];
   info.preconditionerSeconds = glob[4];
-  info.operatorApplications = m.dual.nApply;
+  info.operatorApplications = m.bddc ? m.iface.nApply : m.dual.nApply;
   info.preconditionerApplications = m.prec.nApply;
   return info;
 }
@@ -552,6 +587,9 @@ void FetiDpSolver::setConstraintRows(Teuchos::RCP<const Map> rowMap,
         break;
       }
   raiseCollectively<std::invalid_argument>(m.ctx.mpi, msg);
+  if (m.bddc && rowMap->getGlobalNumElements() > 0)
+    DDC_THROW(InputError, "FetiDpSolver::setConstraintRows: '" << m.param("Method")
+                              << "' = BDDC takes no extra rows (contact, ties); use FETI-DP");
 
   // With edge/face constraints the rows act on û: c^T u = (c^T T) û, row by row.
   std::vector<std::vector<ConstraintEntry>> transformed;
@@ -665,7 +703,7 @@ GO FetiDpSolver::numDualDofs() const { return impl_->jump.nDual; }
 GO FetiDpSolver::numEdgeFaceConstraints() const { return impl_->coarse.nEdgeFace; }
 
 void FetiDpSolver::setAutomaticPrimalConstraints(PrimalConstraints choice) {
-  if (impl_->automaticPrimal) impl_->primalChoice = choice;
+  if (impl_->automaticPrimal && !impl_->bddc) impl_->primalChoice = choice;
 }
 
 PrimalConstraints FetiDpSolver::primalConstraints() const { return impl_->primalChoice; }

@@ -180,6 +180,9 @@ class FetiDpSolver {
   };
 
   /// Every parameter with its default and doc string:
+  ///  - "Method": "FETI-DP" (default: iterate on the multipliers) | "BDDC"
+  ///    (iterate on the interface displacements with the same blocks; no
+  ///    extra rows, vertices only; DDC_FetiDpBddc.cpp);
   ///  - "Preconditioner": "Dirichlet" (default) | "Lumped" | "None";
   ///  - "Scaling": "Automatic" (default: multiplicity on compatibility
   ///    rows, stiffness weights on extra rows) | "Multiplicity" |

@@ -1411,6 +1411,77 @@ TEST(FetiDp, IterationCountsBoundedAtFixedHOverh) {
       << "Dirichlet CG iterations grew from " << d.it[0] << " (4x4) to " << d.it[1] << " (8x8)";
 }
 
+// ---- BDDC -----------------------------------------------------------------------
+
+/// BDDC and FETI-DP with the same primal space and scaling have the same
+/// spectrum but for eigenvalues 1 (Mandel, Dohrmann & Tezaur 2005); they
+/// stop on different residuals (the interface forces against the jumps), so
+/// their CG iteration counts may differ by a few, not by a factor.
+constexpr int kBddcExtraIterations = 3;
+
+/// BDDC ("Method" = BDDC) against the direct solve and FETI-DP's iteration
+/// count, on layouts with floating subdomains and several subdomains per
+/// rank; with CHOLMOD (K_rr and Phi) and MUMPS (Schur rows) as local solver.
+TEST(FetiDpBddc, MatchesDirectSolveInFetiDpsIterations) {
+  for (const Layout L : {Layout{1, 1, 2, false}, Layout{2, 1, 1, false}, Layout{3, 3, 1, false}, Layout{4, 4, 1, true},
+                         Layout{3, 3, 2, true}, Layout{4, 4, 2, false}})
+    for (const char* local : {"CHOLMOD", "MUMPS"}) {
+      Spec s;
+      s.Sx = L.Sx, s.Sy = L.Sy, s.dpn = L.dpn, s.H = 4, s.blockwise = L.blockwise;
+      auto p = fetiParams();
+      p.sublist("Local Solver").set("Type", std::string(local));
+      const FetiRun feti = runFeti(s, p, false);
+      p.set("Method", std::string("BDDC"));
+      const FetiRun bddc = runFeti(s, p);
+      char name[96];
+      std::snprintf(name, sizeof name, "BDDC %s %dx%d %s, %s local (FETI-DP: %d it)",
+                    L.dpn == 1 ? "Laplace" : "elasticity", L.Sx, L.Sy, L.blockwise ? "blockwise" : "round-robin",
+                    local, feti.info.iterations);
+      report(name, bddc);
+      EXPECT_LT(bddc.error, ddc::test::kFetiVsDirect) << name;
+      EXPECT_LE(bddc.info.relativeResidual, ddc::test::kTightBelos) << name;
+      EXPECT_LE(bddc.info.iterations, feti.info.iterations + kBddcExtraIterations) << name;
+      EXPECT_GE(bddc.info.iterations, feti.info.iterations - kBddcExtraIterations) << name;
+      if (L.Sx * L.Sy == 1) EXPECT_EQ(bddc.info.iterations, 0) << name;  // no interface
+    }
+}
+
+/// BDDC iterates on the caller's DOFs with vertices and weights 1/m: the
+/// options it cannot honour, extra rows and DOFs marked for them are
+/// refused by name.
+TEST(FetiDpErrors, BddcRefusesWhatItCannotHonour) {
+  const std::pair<const char*, const char*> bad[] = {
+      {"Preconditioner", "Lumped"}, {"Scaling", "Stiffness"}, {"Primal Constraints", "Vertices and Edges"}};
+  for (const auto& [name, value] : bad) {
+    auto p = fetiParams();
+    p.set("Method", std::string("BDDC"));
+    p.set(name, std::string(value));
+    expectThrowWith<ddc::InputError>([&] { FetiDpSolver f(worldComm(), p, "Solver/FETI-DP"); },
+                                     {std::string("Solver/FETI-DP/") + name, value, "Solver/FETI-DP/Method", "BDDC"});
+  }
+  Spec s;
+  s.Sx = 2, s.Sy = 1, s.H = 2, s.dpn = 1;
+  Problem pb(s);
+  auto p = fetiParams();
+  p.set("Method", std::string("BDDC"));
+  {
+    FetiDpSolver feti(worldComm(), p, "Solver/FETI-DP");
+    auto subs = pb.subdomains();
+    feti.setTopology(subs, pb.ownedMap());
+    auto rowMap = rcp(new Map(1, 0, worldComm()));
+    std::vector<std::vector<ddc::ConstraintEntry>> rows(subs.size());
+    expectThrowWith<ddc::InputError>([&] { feti.setConstraintRows(rowMap, rows); },
+                                     {"Solver/FETI-DP/Method", "BDDC", "extra rows"});
+  }
+  {
+    FetiDpSolver feti(worldComm(), p, "Solver/FETI-DP");
+    auto subs = pb.subdomains();
+    for (auto& sub : subs) sub.constrainable.assign(sub.dofs.size(), 1);
+    expectThrowWith<ddc::InputError>([&] { feti.setTopology(subs, pb.ownedMap()); },
+                                     {"Solver/FETI-DP/Method", "BDDC", "extra rows"});
+  }
+}
+
 // ---- errors -------------------------------------------------------------------
 
 TEST(FetiDpErrors, UnknownBelosSolverNamesThePath) {

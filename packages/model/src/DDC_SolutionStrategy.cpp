@@ -112,9 +112,10 @@ class FetiDpStrategy : public SolutionStrategy {
  public:
   FetiDpStrategy(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::ParameterList& solverParams)
       : feti_(std::make_unique<FetiDpSolver>(comm, solverParams.sublist("FETI-DP"), "Solver/FETI-DP")),
-        primalChoice_(solverParams.sublist("FETI-DP").get<std::string>("Primal Constraints")) {}
+        primalChoice_(solverParams.sublist("FETI-DP").get<std::string>("Primal Constraints")),
+        bddc_(solverParams.sublist("FETI-DP").get<std::string>("Method") == "BDDC") {}
 
-  std::string name() const override { return "FETI-DP"; }
+  std::string name() const override { return bddc_ ? "BDDC" : "FETI-DP"; }
 
   /// "Primal Constraints" = Automatic on many subdomains in 3-D: every node
   /// of a subdomain edge primal, no averages (doc/feti-dp.md "In 3-D").
@@ -142,7 +143,9 @@ class FetiDpStrategy : public SolutionStrategy {
     // (doc/feti-dp.md "In 3-D"); with contact too, now that the contact
     // rows are weighted by the stiffness of their sides and split over the
     // copies of shared DOFs (doc/feti-dp.md "Extra rows").
-    const bool strong = primalChoice_ == "Vertices" || automaticVerticesOnly();
+    // BDDC takes vertices only (doc/feti-dp.md "BDDC"): every subdomain-edge
+    // node primal, whatever the number of subdomains.
+    const bool strong = primalChoice_ == "Vertices" || automaticVerticesOnly() || bddc_;
     if (automaticVerticesOnly()) {
       feti_->setAutomaticPrimalConstraints(PrimalConstraints::Vertices);
       progress("FETI-DP: Primal Constraints = Automatic, on " + std::to_string(model_->partition().numSubdomains) +
@@ -365,6 +368,7 @@ class FetiDpStrategy : public SolutionStrategy {
   std::shared_ptr<Model> model_;
   std::unique_ptr<FetiDpSolver> feti_;
   std::string primalChoice_;  ///< "Solver/FETI-DP/Primal Constraints"
+  bool bddc_ = false;         ///< "Solver/FETI-DP/Method" = BDDC
   std::function<void(const std::string&)> progress_;
   std::vector<SubdomainSystem> subdomains_;  ///< this rank's subdomain problems
   SubdomainSink sink_;
@@ -411,6 +415,10 @@ std::unique_ptr<SolutionStrategy> makeSolutionStrategy(Teuchos::RCP<const Teucho
                       "element couples the slave and master DOFs directly (its projection and normal follow both "
                       "sides), so it cannot be split across subdomains; use Contact/Formulation = Decomposed "
                       "Node-To-Segment with FETI-DP, or Solver/Strategy = Monolithic");
+    DDC_INPUT_REQUIRE(!contact.enabled() || solver.sublist("FETI-DP").get<std::string>("Method", "FETI-DP") != "BDDC",
+                      "Solver/FETI-DP/Method = BDDC with contact pairs: BDDC iterates on the interface "
+                      "displacements and takes no extra rows, so the contact rows cannot join it "
+                      "(doc/feti-dp.md, 'BDDC'); use Solver/FETI-DP/Method = FETI-DP");
     DDC_INPUT_REQUIRE(!solver.isSublist("Linear Solver"),
                       "sublist 'Solver/Linear Solver' does not apply to Solver/Strategy = FETI-DP (its local and "
                       "coarse solvers are set in 'Solver/FETI-DP')");
