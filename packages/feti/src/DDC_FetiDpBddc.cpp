@@ -213,9 +213,8 @@ void Impl::applyBddcPreconditioner(const Vector& r, Vector& z) {
   prec.tApply += MPI_Wtime() - t0;
 }
 
-/// g = b_G - sum_s R^sT K_GI K_II^{-1} b_I^s, keeping z_I^s = K_II^{-1} b_I^s
-/// in InterfaceProblem::Blocks::zi.
-void Impl::eliminateInterior(const Vector& b, Vector& g) {
+double Impl::solveBddc(const Vector& b, Vector& u, FetiDpSolver::Info& info) {
+  // g = b_G - sum_s R^sT K_GI K_II^{-1} b_I^s
   dofOvWork->doImport(b, *ctx.dofImport, Tpetra::INSERT);
   std::vector<double> yOv(dofOvWork->getLocalLength(), 0.0);
   {
@@ -228,19 +227,40 @@ void Impl::eliminateInterior(const Vector& b, Vector& g) {
       solveInterior(prec.blocks[ls], ib.zi);
       std::fill(ib.wg.begin(), ib.wg.end(), 0.0);
       addTriplets(ib.KGI, -1.0, ib.zi.data(), ib.wg.data());
-      for (size_t k = 0; k < ib.gDof.size(); ++k) yOv[s.ovLid[ib.gDof[k]]] += ib.wg[k];
+      for (size_t g = 0; g < ib.gDof.size(); ++g) yOv[s.ovLid[ib.gDof[g]]] += ib.wg[g];
     }
   }
-  iface.gather(ctx, yOv, g);
-  auto gv = g.getDataNonConst();
-  auto bv = b.getData();
-  for (size_t k = 0; k < iface.ownedLid.size(); ++k) gv[k] += bv[iface.ownedLid[k]];
-}
+  auto g = rcp(new MultiVector(iface.map, 1));
+  auto uG = rcp(new MultiVector(iface.map, 1));
+  iface.gather(ctx, yOv, *g->getVectorNonConst(0));
+  {
+    auto gv = g->getDataNonConst(0);
+    auto bv = b.getData();
+    for (size_t k = 0; k < iface.ownedLid.size(); ++k) gv[k] += bv[iface.ownedLid[k]];
+  }
 
-/// u: u_G on the interface, u_I^s = z_I^s - K_II^{-1} K_IG u_G^s inside.
-void Impl::recoverInterior(const Vector& uG, Vector& u) {
-  iface.scatter(ctx, uG);
-  std::vector<double> yOv(iface.ov->getLocalLength(), 0.0);
+  // S u_G = g
+  double gNorm = 0.0;
+  {
+    Teuchos::Array<double> n(1);
+    g->norm2(n());
+    gNorm = n[0];
+  }
+  const double tb0 = MPI_Wtime();
+  if (gNorm > 0.0) {
+    auto S = rcp(new InterfaceOperator(
+        this, [](Impl& m, const Vector& x, Vector& y) { m.iface.applySchur(m.ctx, m.subs, m.prec, x, y); }, "S"));
+    auto M = rcp(new InterfaceOperator(
+        this, [](Impl& m, const Vector& x, Vector& y) { m.applyBddcPreconditioner(x, y); }, "preconditioner"));
+    std::ostringstream system;
+    system << "S u = g (" << iface.map->getGlobalNumElements() << " interface DOFs)";
+    solveByBelos(S, M, g, uG, true, system.str(), info);
+  }
+  const double belosSeconds = MPI_Wtime() - tb0;
+
+  // u_I = z_I - K_II^{-1} K_IG u_G, u_G as solved
+  iface.scatter(ctx, *uG->getVector(0));
+  std::fill(yOv.begin(), yOv.end(), 0.0);
   {
     auto uo = iface.ov->getData();
     for (size_t ls = 0; ls < subs.size(); ++ls) {
@@ -261,43 +281,9 @@ void Impl::recoverInterior(const Vector& uG, Vector& u) {
   u.putScalar(0.0);
   u.doExport(*iface.ov, *ctx.dofExport, Tpetra::ADD);  // interior DOFs: one copy each
   auto uv = u.getDataNonConst();
-  auto ug = uG.getData();
+  auto ug = uG->getData(0);
   for (size_t k = 0; k < iface.ownedLid.size(); ++k) uv[iface.ownedLid[k]] = ug[k];
-}
-
-double Impl::solveBddc(const Vector& b, Vector& u, FetiDpSolver::Info& info) {
-  auto g = rcp(new MultiVector(iface.map, 1));
-  auto uG = rcp(new MultiVector(iface.map, 1));
-  eliminateInterior(b, *g->getVectorNonConst(0));
-  double gNorm = 0.0;
-  {
-    Teuchos::Array<double> n(1);
-    g->norm2(n());
-    gNorm = n[0];
-  }
-  const double tb0 = MPI_Wtime();
-  if (gNorm > 0.0) {
-    auto S = rcp(new InterfaceOperator(
-        this, [](Impl& m, const Vector& x, Vector& y) { m.iface.applySchur(m.ctx, m.subs, m.prec, x, y); }, "S"));
-    auto M = rcp(new InterfaceOperator(
-        this, [](Impl& m, const Vector& x, Vector& y) { m.applyBddcPreconditioner(x, y); }, "preconditioner"));
-    std::ostringstream system;
-    system << "S u = g (" << iface.map->getGlobalNumElements() << " interface DOFs)";
-    solveByBelos(S, M, g, uG, true, system.str(), info);
-  }
-  const double belosSeconds = MPI_Wtime() - tb0;
-  recoverInterior(*uG->getVector(0), u);
   return belosSeconds;
-}
-
-void FetiDpSolver::applyInverseApproximately(const Vector& b, Vector& u) {
-  Impl& m = *impl_;
-  if (!m.bddc || !m.factored)
-    throw std::logic_error("FetiDpSolver::applyInverseApproximately() needs Method = BDDC and a successful numeric()");
-  Vector g(m.iface.map), uG(m.iface.map);
-  m.eliminateInterior(b, g);
-  m.applyBddcPreconditioner(g, uG);
-  m.recoverInterior(uG, u);
 }
 
 }  // namespace ddc

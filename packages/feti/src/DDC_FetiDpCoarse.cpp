@@ -140,14 +140,9 @@ void CoarseProblem::build(const Context& ctx, const std::vector<Subdomain>& subs
     ix.ovLid.resize(ix.gid.size());
     for (size_t p = 0; p < ix.gid.size(); ++p) ix.ovLid[p] = ovMap->getLocalElement(ix.gid[p]);
   }
+  matrix = coarsePattern(ctx, map, sub);
   solver.reset();
-  clusters.reset();
-  matrix = Teuchos::null;
-  if (n > 0 && clusterSize > 0) {
-    clusters = std::make_shared<CoarseClusters>();
-    clusters->build(ctx, *this, factory);
-  } else if (n > 0) {
-    matrix = coarsePattern(ctx, map, sub);
+  if (n > 0) {
     Teuchos::ParameterList p(params);
     solver = factory.create(p, ctx.param("Coarse Solver"));
   }
@@ -162,11 +157,6 @@ void CoarseProblem::build(const Context& ctx, const std::vector<Subdomain>& subs
 /// and factorise it.
 void CoarseProblem::assembleAndFactor(const Context& ctx, std::vector<std::vector<double>>& S, bool analysed) {
   if (n == 0) return;
-  if (clusters) {
-    clusters->numeric(S);
-    for (auto& block : S) std::vector<double>().swap(block);
-    return;
-  }
   matrix->resumeFill();
   matrix->setAllToScalar(0.0);
   std::vector<std::vector<CoarseRecord>> send(ctx.size);
@@ -206,10 +196,7 @@ void CoarseProblem::solve(const Vector* fPi) {
   work->putScalar(0.0);
   work->doExport(*ovWork, *exporter, Tpetra::ADD);
   if (fPi) work->update(1.0, *fPi, 1.0);
-  if (clusters)
-    clusters->inner->applyInverseApproximately(*work, *sol);
-  else
-    solver->solve(*work, *sol);
+  solver->solve(*work, *sol);
   ovWork->doImport(*sol, *import, Tpetra::INSERT);
   tSolve += MPI_Wtime() - t0;
 }

@@ -365,12 +365,9 @@ class JumpOperator {
   void assembleBlocks(const std::vector<Subdomain>& subs, bool weights);
 };
 
-class CoarseClusters;
-
 /// The primal (coarse) problem: the primal DOF map, S_PiPi = sum_s R^T
 /// S_PiPi^s R assembled over it, and its distributed direct solver
-/// (DDC_FetiDpCoarse.cpp); or, with clusters, its approximate solve
-/// (CoarseClusters), which never assembles S_PiPi.
+/// (DDC_FetiDpCoarse.cpp).
 class CoarseProblem {
  public:
   /// Where the primal DOFs of one subdomain go.
@@ -392,9 +389,6 @@ class CoarseProblem {
   std::unique_ptr<DirectSolver> solver;
   RCP<Vector> ovWork, work, sol;
   double tSolve = 0.0;
-  int clusterSize = 0;                     ///< "Coarse Clusters" (0: exact solve)
-  Teuchos::ParameterList clusterParams;    ///< the parameters of CoarseClusters::inner
-  std::shared_ptr<CoarseClusters> clusters;  ///< with clusterSize > 0
 
   /// Maps, the pattern of S_PiPi and the solver (collective).
   void build(const Context& ctx, const std::vector<Subdomain>& subs, const DirectSolverFactory& factory,
@@ -406,32 +400,6 @@ class CoarseProblem {
   /// sol = S_PiPi^{-1} (export of ovWork + fPi), then ovWork = sol on ovMap
   /// (collective).
   void solve(const Vector* fPi);
-};
-
-/// The coarse solve approximated by one BDDC application on clusters of
-/// this rank's subdomains (three-level BDDC, Tu 2007;
-/// DDC_FetiDpCoarseClusters.cpp). The clusters are the subdomains of an
-/// inner FetiDpSolver (Method = BDDC) on the coarse map: a cluster's matrix
-/// is the sum of its subdomains' S_PiPi^s, its primal DOFs (the third
-/// level) the coarse DOFs shared by >= 3 clusters, or by 2 clusters and
-/// only 2 subdomains (a subdomain-edge node on the boundary).
-class CoarseClusters {
- public:
-  struct Cluster {
-    std::vector<size_t> members;       ///< local subdomain indices
-    std::vector<std::vector<LO>> pos;  ///< per member: primal index -> the cluster's DOF index
-    RCP<CrsMatrix> A;                  ///< sum of the members' S_PiPi^s, on MPI_COMM_SELF
-  };
-  std::vector<Cluster> clusters;
-  std::unique_ptr<FetiDpSolver> inner;
-  GO numClusters = 0, numPrimal = 0;  ///< global counts
-
-  /// Group this rank's subdomains, the patterns, the third-level primal DOFs
-  /// and the inner solver's topology (collective).
-  void build(const Context& ctx, const CoarseProblem& coarse, const DirectSolverFactory& factory);
-  /// The clusters' matrices from the S_PiPi^s (column-major, per local
-  /// subdomain) and the inner factorisations (collective).
-  void numeric(const std::vector<std::vector<double>>& S);
 };
 
 /// The local part of K~^{-1} in one subdomain: the factorisation of K_rr
@@ -614,10 +582,6 @@ struct FetiDpSolver::Impl {
   /// BDDC: u from b, iterations into info; returns Belos' seconds
   /// (DDC_FetiDpBddc.cpp).
   double solveBddc(const Vector& b, Vector& u, FetiDpSolver::Info& info);
-  /// BDDC: the interface right-hand side g of b (interior eliminated).
-  void eliminateInterior(const Vector& b, Vector& g);
-  /// BDDC: u from the interface values uG and the last eliminateInterior().
-  void recoverInterior(const Vector& uG, Vector& u);
   /// x from A x = rhs by Belos with the preconditioner M (may be null);
   /// `system` names it in messages (DDC_FetiDpSolver.cpp).
   void solveByBelos(const RCP<Operator>& A, const RCP<Operator>& M, const RCP<MultiVector>& rhs,

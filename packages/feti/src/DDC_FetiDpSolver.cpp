@@ -79,13 +79,6 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
             "Preconditioner = Dirichlet, Scaling = Automatic or Multiplicity and Primal Constraints = Automatic "
             "(then Vertices) or Vertices (doc/feti-dp.md, 'BDDC').",
             enumValidator({"FETI-DP", "BDDC"}, "Method"));
-    pl->set("Coarse Clusters", 0,
-            "BDDC only. 0: solve the coarse problem S_PiPi exactly (Coarse Solver). n > 0: never assemble or "
-            "factorise S_PiPi; approximate its solve by one BDDC application on clusters of about n subdomains "
-            "of a rank (three-level BDDC, Tu 2007): each cluster's sum of S_PiPi^s is factorised by the Local "
-            "Solver, and the coarse DOFs shared by >= 3 clusters make a third-level problem for the Coarse "
-            "Solver. Costs iterations, saves the coarse factorisation and solves (doc/feti-dp.md, 'BDDC').",
-            atLeast(0));
     pl->set("Preconditioner", std::string("Dirichlet"),
             "Preconditioner of F on the LM space, M^{-1} = sum_s B_D^s S^s B_D^sT: Dirichlet (S^s = K_DD - K_DI "
             "K_II^{-1} K_ID, the Schur complement on the subdomain's dual interface DOFs with its primal DOFs fixed; "
@@ -214,12 +207,6 @@ FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramete
   m.bddc = params.get<std::string>("Method") == "BDDC";
   if (m.bddc) checkBddcParameters(params, path);
   m.prec.allInteriors = m.bddc;
-  m.coarse.clusterSize = params.get<int>("Coarse Clusters");
-  if (m.coarse.clusterSize > 0 && !m.bddc)
-    DDC_THROW(InputError, "parameter '" << joinPath(path, "Coarse Clusters") << "' = " << m.coarse.clusterSize
-                                        << " needs '" << joinPath(path, "Method")
-                                        << "' = BDDC (FETI-DP's coarse solve is inside its operator and must be "
-                                           "exact); set it to 0 or use BDDC");
   m.dual.singularityThreshold = params.get<double>("Local Singularity Threshold");
   m.dual.localSchur = params.get<bool>("Local Schur Complement");
   m.automaticPrimal = params.get<std::string>("Primal Constraints") == "Automatic";
@@ -280,16 +267,6 @@ FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramete
   m.factory.requireDistributable(params.sublist("Coarse Solver"), joinPath(path, "Coarse Solver"), comm->getSize());
   m.localSolverParams = params.sublist("Local Solver");
   m.coarseSolverParams = params.sublist("Coarse Solver");
-  if (m.coarse.clusterSize > 0) {
-    // The inner BDDC on the clusters: vertices (the third-level primal DOFs
-    // marked by CoarseClusters), the same local and coarse solvers.
-    Teuchos::ParameterList& inner = m.coarse.clusterParams;
-    inner.set("Method", std::string("BDDC"));
-    inner.set("Primal Constraints", std::string("Vertices"));
-    inner.set("Scaling", std::string("Multiplicity"));
-    inner.sublist("Local Solver").setParameters(m.localSolverParams);
-    inner.sublist("Coarse Solver").setParameters(m.coarseSolverParams);
-  }
 }
 
 FetiDpSolver::~FetiDpSolver() = default;

@@ -276,15 +276,6 @@ class FetiDpSolver {
   ///         achieved residual, tolerance, the parameter paths to change).
   Info solve(const Vector& b, Vector& u);
 
-  /// u = M^{-1} b: one application of the BDDC preconditioner with the
-  /// interior solves before and after it (Dohrmann's interior correction)
-  /// instead of the Krylov iterations, an approximate inverse of the
-  /// assembled K that is exact on the subdomain interiors. A three-level
-  /// BDDC approximates its coarse solve by this ("Coarse Clusters",
-  /// doc/feti-dp.md "BDDC"); a host code may precondition its own Krylov
-  /// solver with it. \pre "Method" = BDDC and numeric() done.
-  void applyInverseApproximately(const Vector& b, Vector& u);
-
   /// "Belos/Convergence Tolerance", the tightest relative residual a solve()
   /// is asked for.
   double convergenceTolerance() const;

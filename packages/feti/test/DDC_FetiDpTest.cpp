@@ -1446,31 +1446,6 @@ TEST(FetiDpBddc, MatchesDirectSolveInFetiDpsIterations) {
     }
 }
 
-/// The coarse solve approximated by BDDC on clusters of subdomains ("Coarse
-/// Clusters", three-level BDDC): the answer stays the direct solve's (the
-/// approximation sits in the preconditioner); the iterations grow by at most
-/// a quarter over the exact coarse solve's, the bound of the three-level
-/// theory's model problem (Tu 2007) met here with room.
-TEST(FetiDpBddc, CoarseClustersKeepTheAnswerAndBoundTheIterations) {
-  for (const Layout L : {Layout{4, 4, 1, true}, Layout{6, 6, 2, true}, Layout{8, 8, 2, true}, Layout{6, 6, 2, false}})
-    for (int clusterSize : {2, 4, 9}) {
-      Spec s;
-      s.Sx = L.Sx, s.Sy = L.Sy, s.dpn = L.dpn, s.H = 4, s.blockwise = L.blockwise;
-      auto p = fetiParams();
-      p.set("Method", std::string("BDDC"));
-      const FetiRun exact = runFeti(s, p, false);
-      p.set("Coarse Clusters", clusterSize);
-      const FetiRun clustered = runFeti(s, p);
-      char name[128];
-      std::snprintf(name, sizeof name, "BDDC %s %dx%d %s, clusters of %d (exact coarse: %d it)",
-                    L.dpn == 1 ? "Laplace" : "elasticity", L.Sx, L.Sy, L.blockwise ? "blockwise" : "round-robin",
-                    clusterSize, exact.info.iterations);
-      report(name, clustered);
-      EXPECT_LT(clustered.error, ddc::test::kFetiVsDirect) << name;
-      EXPECT_LE(clustered.info.relativeResidual, ddc::test::kTightBelos) << name;
-    }
-}
-
 /// BDDC iterates on the caller's DOFs with vertices and weights 1/m: the
 /// options it cannot honour, extra rows and DOFs marked for them are
 /// refused by name.
