@@ -2,6 +2,7 @@
 #include "DDC_MumpsSolver.hpp"
 
 #include <dmumps_c.h>
+#include <smumps_c.h>
 #include <metis.h>
 #include <mpi.h>
 
@@ -11,6 +12,7 @@
 #include <climits>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "DDC_Error.hpp"
@@ -22,8 +24,23 @@ namespace {
 
 // MUMPS control arrays are 1-based in the user guide; these helpers keep the
 // code readable against it ("ICNTL(18) = 3").
-inline MUMPS_INT& icntl(DMUMPS_STRUC_C& id, int i) { return id.icntl[i - 1]; }
-inline MUMPS_INT infog(const DMUMPS_STRUC_C& id, int i) { return id.infog[i - 1]; }
+template <class Struc>
+MUMPS_INT& icntl(Struc& id, int i) { return id.icntl[i - 1]; }
+template <class Struc>
+MUMPS_INT infog(const Struc& id, int i) { return id.infog[i - 1]; }
+
+/// The two MUMPS arithmetics behind one code path ("Precision"): the
+/// instance's structure, its real type and its entry point.
+struct DoublePrecision {
+  using Struc = DMUMPS_STRUC_C;
+  using Real = double;
+  static void call(Struc* id) { dmumps_c(id); }
+};
+struct SinglePrecision {
+  using Struc = SMUMPS_STRUC_C;
+  using Real = float;
+  static void call(Struc* id) { smumps_c(id); }
+};
 
 /// ICNTL(7) = 1: the ordering is given in PERM_IN (METIS's, computed here).
 constexpr int kUserOrdering = 1;
@@ -61,7 +78,10 @@ std::string explainInfog1(int code) {
 
 }  // namespace
 
-struct MumpsSolver::Impl {
+/// One MUMPS instance in the arithmetic P and what it keeps between calls.
+template <class P>
+struct MumpsCore {
+  using Real = typename P::Real;
   // parameters
   bool symmetric = true;
   int ordering = 7;
@@ -69,7 +89,7 @@ struct MumpsSolver::Impl {
   bool verbose = false;
 
   // MUMPS instance, bound to a duplicate of the matrix's communicator
-  DMUMPS_STRUC_C id{};
+  typename P::Struc id{};
   bool initialized = false;
   MPI_Comm comm = MPI_COMM_NULL;  // our duplicate
   MPI_Comm userComm = MPI_COMM_NULL;  // what it duplicates (to detect a change)
@@ -81,15 +101,16 @@ struct MumpsSolver::Impl {
   MUMPS_INT n = 0;
   LO nLocal = 0;
   std::vector<MUMPS_INT> irn, jcn;
-  std::vector<double> a;
+  std::vector<Real> a;
   std::vector<int> rowCounts, rowFirst;  // per rank: owned rows, first GID (gather layout)
   std::vector<double> rhs;               // centralised RHS / solution on rank 0 (one column)
+  std::vector<Real> rhsReal;             // the same in P's arithmetic (single precision only)
   std::vector<MUMPS_INT> permIn;         // "METIS": PERM_IN on rank 0 (1-based pivot position per variable)
 
   // Schur complement (setSchurIndices): 1-based rows, S (column-major), and
   // the RHS / reduced RHS kept from condense() for expand()
   std::vector<MUMPS_INT> schurRows;
-  std::vector<double> schur, condRhs, redRhs;
+  std::vector<Real> schur, condRhs, redRhs;
   bool condensed = false;
 
   bool analysed = false;
@@ -97,7 +118,8 @@ struct MumpsSolver::Impl {
   int nSymbolic = 0;
   int nNumeric = 0;
 
-  ~Impl() { destroy(); }
+  ~MumpsCore() { destroy(); }
+  void call() { P::call(&id); }
 
   void destroy() noexcept {
     if (!initialized) return;
@@ -105,7 +127,7 @@ struct MumpsSolver::Impl {
     MPI_Finalized(&finalized);
     if (!finalized) {
       id.job = -2;
-      dmumps_c(&id);
+      P::call(&id);
       MPI_Comm_free(&comm);
     }
     initialized = false;
@@ -119,12 +141,12 @@ struct MumpsSolver::Impl {
     MPI_Comm_dup(user, &comm);
     MPI_Comm_rank(comm, &rank);
     MPI_Comm_size(comm, &size);
-    id = DMUMPS_STRUC_C{};
+    id = typename P::Struc{};
     id.job = -1;
     id.par = 1;  // the host takes part in the factorisation
     id.sym = symmetric ? 2 : 0;  // 2: general symmetric (LDL^T, indefinite ok)
     id.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(comm));
-    dmumps_c(&id);
+    P::call(&id);
     initialized = true;
     check("initialisation (JOB=-1)");
     // Output: silent unless "Verbose" (ICNTL(1..4)).
@@ -170,7 +192,7 @@ struct MumpsSolver::Impl {
     for (size_t k = 0; k < total; ++k)
       if (rows[k] != cols[k]) ++ptr[size_t(rows[k])], ++ptr[size_t(cols[k])];
     for (size_t i = 0; i < size_t(n); ++i) ptr[i + 1] += ptr[i];
-    std::vector<idx_t> adj(size_t(ptr[size_t(n)]));
+    std::vector<idx_t> adj(static_cast<size_t>(ptr[size_t(n)]));
     std::vector<idx_t> fill(ptr.begin(), ptr.end() - 1);
     for (size_t k = 0; k < total; ++k)
       if (rows[k] != cols[k]) {
@@ -215,7 +237,7 @@ struct MumpsSolver::Impl {
 
   void run(int job, const char* phase) {
     id.job = job;
-    dmumps_c(&id);
+    P::call(&id);
     check(phase);
   }
 
@@ -257,13 +279,34 @@ struct MumpsSolver::Impl {
   }
 };
 
+/// The instance of the chosen arithmetic; visit() calls f on it.
+struct MumpsSolver::Impl {
+  std::unique_ptr<MumpsCore<DoublePrecision>> d;
+  std::unique_ptr<MumpsCore<SinglePrecision>> s;
+  template <class F>
+  auto visit(F f) {
+    return s ? f(*s) : f(*d);
+  }
+  template <class F>
+  auto visit(F f) const {
+    return s ? f(static_cast<const MumpsCore<SinglePrecision>&>(*s))
+             : f(static_cast<const MumpsCore<DoublePrecision>&>(*d));
+  }
+};
+
 MumpsSolver::MumpsSolver(const Teuchos::ParameterList& params) : impl_(std::make_unique<Impl>()) {
   Teuchos::ParameterList p(params);
   validateLevel(p, *getValidParameters(), "MUMPS");
-  impl_->symmetric = p.get<bool>("Symmetric");
-  impl_->ordering = orderingCode(p.get<std::string>("Ordering"));
-  impl_->relaxation = p.get<int>("Memory Relaxation Percent");
-  impl_->verbose = p.get<bool>("Verbose");
+  if (p.get<std::string>("Precision") == "Single")
+    impl_->s = std::make_unique<MumpsCore<SinglePrecision>>();
+  else
+    impl_->d = std::make_unique<MumpsCore<DoublePrecision>>();
+  impl_->visit([&](auto& m) {
+    m.symmetric = p.get<bool>("Symmetric");
+    m.ordering = orderingCode(p.get<std::string>("Ordering"));
+    m.relaxation = p.get<int>("Memory Relaxation Percent");
+    m.verbose = p.get<bool>("Verbose");
+  });
 }
 
 MumpsSolver::~MumpsSolver() = default;
@@ -284,6 +327,12 @@ Teuchos::RCP<const Teuchos::ParameterList> MumpsSolver::getValidParameters() {
             "MUMPS ICNTL(14): percentage added to the estimated working space. On INFOG(1) = -8/-9 the "
             "factorisation is retried once with twice this value (at least 20), kept for later factorisations.",
             between(0, 100000));
+    pl->set("Precision", std::string("Double"),
+            "Arithmetic of the factors and solves: Double (dmumps), or Single (smumps: half the factor's bytes, "
+            "about half the time to factorise and solve, relative accuracy about 1e-7 times the condition "
+            "number). Single suits a solve inside a preconditioner, e.g. the coarse solve of BDDC "
+            "(doc/feti-dp.md, 'BDDC'); the right-hand side and solution stay double.",
+            enumValidator({"Double", "Single"}, "Precision"));
     pl->set("Verbose", false, "Let MUMPS print its diagnostics (ICNTL(1..4)); silent otherwise.");
     return Teuchos::RCP<const Teuchos::ParameterList>(pl);
   }();
@@ -291,226 +340,247 @@ Teuchos::RCP<const Teuchos::ParameterList> MumpsSolver::getValidParameters() {
 }
 
 void MumpsSolver::symbolic(const Teuchos::RCP<const CrsMatrix>& A) {
-  Impl& m = *impl_;
-  if (A.is_null()) throw std::invalid_argument("MUMPS symbolic(): null matrix");
-  if (!A->isFillComplete()) throw std::invalid_argument("MUMPS symbolic(): matrix is not fill-complete");
-  const MPI_Comm user = rawComm(A->getComm());
-  int same = MPI_UNEQUAL;
-  if (m.initialized) MPI_Comm_compare(user, m.userComm, &same);
-  if (!m.initialized || same != MPI_IDENT) m.init(user);
+  return impl_->visit([&](auto& m) {
+    if (A.is_null()) throw std::invalid_argument("MUMPS symbolic(): null matrix");
+    if (!A->isFillComplete()) throw std::invalid_argument("MUMPS symbolic(): matrix is not fill-complete");
+    const MPI_Comm user = rawComm(A->getComm());
+    int same = MPI_UNEQUAL;
+    if (m.initialized) MPI_Comm_compare(user, m.userComm, &same);
+    if (!m.initialized || same != MPI_IDENT) m.init(user);
 
-  const auto rowMap = A->getRowMap();
-  const GO nGlobal = static_cast<GO>(rowMap->getGlobalNumElements());
-  // The centralised RHS is laid out by global index, and MUMPS wants 1-based
-  // global indices < 2^31: require a one-to-one contiguous 0..N-1 map.
-  int local[3] = {rowMap->isContiguous() ? 1 : 0, static_cast<int>(rowMap->getNodeNumElements()), 0};
-  GO first = rowMap->getNodeNumElements() > 0 ? rowMap->getMinGlobalIndex() : 0;
-  const bool sameMaps = rowMap->isSameAs(*A->getRangeMap()) && rowMap->isSameAs(*A->getDomainMap());
-  std::vector<int> all(3 * m.size);
-  std::vector<GO> firsts(m.size);
-  MPI_Allgather(local, 3, MPI_INT, all.data(), 3, MPI_INT, m.comm);
-  MPI_Allgather(&first, 1, MPI_LONG_LONG, firsts.data(), 1, MPI_LONG_LONG, m.comm);
-  bool ok = sameMaps && nGlobal <= INT_MAX && rowMap->getIndexBase() == 0;
-  std::vector<std::pair<GO, int>> ranges;
-  for (int r = 0; r < m.size; ++r) {
-    ok = ok && all[3 * r] == 1;
-    if (all[3 * r + 1] > 0) ranges.emplace_back(firsts[r], all[3 * r + 1]);
-  }
-  std::sort(ranges.begin(), ranges.end());
-  GO next = 0;
-  for (const auto& rg : ranges) {
-    ok = ok && rg.first == next;
-    next = rg.first + rg.second;
-  }
-  ok = ok && next == nGlobal;
-  if (!ok)
-    throw std::invalid_argument(
-        "MUMPS symbolic(): the matrix's row map must equal its range and domain maps and be one-to-one and "
-        "contiguous with global indices 0..N-1 (N < 2^31); got N = " +
-        std::to_string(nGlobal));
+    const auto rowMap = A->getRowMap();
+    const GO nGlobal = static_cast<GO>(rowMap->getGlobalNumElements());
+    // The centralised RHS is laid out by global index, and MUMPS wants 1-based
+    // global indices < 2^31: require a one-to-one contiguous 0..N-1 map.
+    int local[3] = {rowMap->isContiguous() ? 1 : 0, static_cast<int>(rowMap->getNodeNumElements()), 0};
+    GO first = rowMap->getNodeNumElements() > 0 ? rowMap->getMinGlobalIndex() : 0;
+    const bool sameMaps = rowMap->isSameAs(*A->getRangeMap()) && rowMap->isSameAs(*A->getDomainMap());
+    std::vector<int> all(3 * m.size);
+    std::vector<GO> firsts(m.size);
+    MPI_Allgather(local, 3, MPI_INT, all.data(), 3, MPI_INT, m.comm);
+    MPI_Allgather(&first, 1, MPI_LONG_LONG, firsts.data(), 1, MPI_LONG_LONG, m.comm);
+    bool ok = sameMaps && nGlobal <= INT_MAX && rowMap->getIndexBase() == 0;
+    std::vector<std::pair<GO, int>> ranges;
+    for (int r = 0; r < m.size; ++r) {
+      ok = ok && all[3 * r] == 1;
+      if (all[3 * r + 1] > 0) ranges.emplace_back(firsts[r], all[3 * r + 1]);
+    }
+    std::sort(ranges.begin(), ranges.end());
+    GO next = 0;
+    for (const auto& rg : ranges) {
+      ok = ok && rg.first == next;
+      next = rg.first + rg.second;
+    }
+    ok = ok && next == nGlobal;
+    if (!ok)
+      throw std::invalid_argument(
+          "MUMPS symbolic(): the matrix's row map must equal its range and domain maps and be one-to-one and "
+          "contiguous with global indices 0..N-1 (N < 2^31); got N = " +
+          std::to_string(nGlobal));
 
-  m.A = A;
-  m.n = static_cast<MUMPS_INT>(nGlobal);
-  m.nLocal = static_cast<LO>(rowMap->getNodeNumElements());
-  m.rowCounts.resize(m.size);
-  m.rowFirst.resize(m.size);
-  for (int r = 0; r < m.size; ++r) {
-    m.rowCounts[r] = all[3 * r + 1];
-    m.rowFirst[r] = static_cast<int>(firsts[r]);
-  }
-  m.collect(true);
+    m.A = A;
+    m.n = static_cast<MUMPS_INT>(nGlobal);
+    m.nLocal = static_cast<LO>(rowMap->getNodeNumElements());
+    m.rowCounts.resize(m.size);
+    m.rowFirst.resize(m.size);
+    for (int r = 0; r < m.size; ++r) {
+      m.rowCounts[r] = all[3 * r + 1];
+      m.rowFirst[r] = static_cast<int>(firsts[r]);
+    }
+    m.collect(true);
 
-  DMUMPS_STRUC_C& id = m.id;
-  id.n = m.n;
-  id.nnz_loc = static_cast<MUMPS_INT8>(m.irn.size());
-  id.nz_loc = static_cast<MUMPS_INT>(m.irn.size());
-  // MUMPS may dereference the arrays even when empty: never pass null.
-  if (m.irn.empty()) {
-    m.irn.reserve(1);
-    m.jcn.reserve(1);
-    m.a.reserve(1);
-  }
-  id.irn_loc = m.irn.data();
-  id.jcn_loc = m.jcn.data();
-  id.a_loc = m.a.data();
-  if (!m.schurRows.empty()) {
-    if (m.size != 1)
-      throw std::invalid_argument("MUMPS symbolic(): a Schur complement needs a matrix on one process");
-    for (MUMPS_INT r : m.schurRows)
-      if (r < 1 || r > m.n)
-        throw std::invalid_argument("MUMPS symbolic(): Schur row " + std::to_string(r - 1) + " outside 0.." +
-                                    std::to_string(m.n - 1));
-    const MUMPS_INT ns = static_cast<MUMPS_INT>(m.schurRows.size());
-    icntl(id, 19) = 3;  // "distributed" Schur, whole matrix, on a 1 x 1 grid: plain column-major
-    id.size_schur = ns;
-    id.listvar_schur = m.schurRows.data();
-    id.nprow = id.npcol = 1;
-    id.mblock = id.nblock = 100;
-    id.schur_lld = ns;
-    m.schur.assign(size_t(ns) * size_t(ns), 0.0);
-    id.schur = m.schur.data();
-    m.condRhs.assign(size_t(m.n), 0.0);
-    m.redRhs.assign(size_t(ns), 0.0);
-  } else {
-    icntl(id, 19) = 0;
-    id.size_schur = 0;
-    id.listvar_schur = nullptr;
-    id.schur = nullptr;
-  }
-  icntl(id, 26) = 0;
-  m.condensed = false;
-  m.analysed = m.factored = false;
-  if (m.ordering == kUserOrdering) {
-    m.orderByMetis();
-    id.perm_in = m.rank == 0 ? m.permIn.data() : nullptr;
-  }
-  m.run(1, "analysis (JOB=1)");
-  m.analysed = true;
-  ++m.nSymbolic;
+    auto& id = m.id;
+    id.n = m.n;
+    id.nnz_loc = static_cast<MUMPS_INT8>(m.irn.size());
+    id.nz_loc = static_cast<MUMPS_INT>(m.irn.size());
+    // MUMPS may dereference the arrays even when empty: never pass null.
+    if (m.irn.empty()) {
+      m.irn.reserve(1);
+      m.jcn.reserve(1);
+      m.a.reserve(1);
+    }
+    id.irn_loc = m.irn.data();
+    id.jcn_loc = m.jcn.data();
+    id.a_loc = m.a.data();
+    if (!m.schurRows.empty()) {
+      if (m.size != 1)
+        throw std::invalid_argument("MUMPS symbolic(): a Schur complement needs a matrix on one process");
+      for (MUMPS_INT r : m.schurRows)
+        if (r < 1 || r > m.n)
+          throw std::invalid_argument("MUMPS symbolic(): Schur row " + std::to_string(r - 1) + " outside 0.." +
+                                      std::to_string(m.n - 1));
+      const MUMPS_INT ns = static_cast<MUMPS_INT>(m.schurRows.size());
+      icntl(id, 19) = 3;  // "distributed" Schur, whole matrix, on a 1 x 1 grid: plain column-major
+      id.size_schur = ns;
+      id.listvar_schur = m.schurRows.data();
+      id.nprow = id.npcol = 1;
+      id.mblock = id.nblock = 100;
+      id.schur_lld = ns;
+      m.schur.assign(size_t(ns) * size_t(ns), 0.0);
+      id.schur = m.schur.data();
+      m.condRhs.assign(size_t(m.n), 0.0);
+      m.redRhs.assign(size_t(ns), 0.0);
+    } else {
+      icntl(id, 19) = 0;
+      id.size_schur = 0;
+      id.listvar_schur = nullptr;
+      id.schur = nullptr;
+    }
+    icntl(id, 26) = 0;
+    m.condensed = false;
+    m.analysed = m.factored = false;
+    if (m.ordering == kUserOrdering) {
+      m.orderByMetis();
+      id.perm_in = m.rank == 0 ? m.permIn.data() : nullptr;
+    }
+    m.run(1, "analysis (JOB=1)");
+    m.analysed = true;
+    ++m.nSymbolic;
+  });
 }
 
 void MumpsSolver::numeric() {
-  Impl& m = *impl_;
-  if (!m.analysed) throw std::logic_error("MUMPS numeric() called before symbolic()");
-  m.factored = m.condensed = false;
-  const bool changed = !m.collect(false);
-  if (anyRank(m.comm, changed))
-    throw std::logic_error(
-        "MUMPS numeric(): the sparsity pattern of the matrix changed since symbolic(); call symbolic() again");
-  DMUMPS_STRUC_C& id = m.id;
-  id.a_loc = m.a.data();
-  id.job = 2;
-  dmumps_c(&id);
-  const int c = infog(id, 1);
-  if (c == -8 || c == -9) {
-    // The working space estimated in the analysis was too small (typically
-    // delayed pivots in an indefinite matrix): one retry with twice the relaxation.
-    icntl(id, 14) = std::max(2 * icntl(id, 14), 20);
-    dmumps_c(&id);
-  }
-  m.check("numerical factorisation (JOB=2)");
-  m.factored = true;
-  ++m.nNumeric;
+  return impl_->visit([&](auto& m) {
+    if (!m.analysed) throw std::logic_error("MUMPS numeric() called before symbolic()");
+    m.factored = m.condensed = false;
+    const bool changed = !m.collect(false);
+    if (anyRank(m.comm, changed))
+      throw std::logic_error(
+          "MUMPS numeric(): the sparsity pattern of the matrix changed since symbolic(); call symbolic() again");
+    auto& id = m.id;
+    id.a_loc = m.a.data();
+    id.job = 2;
+    m.call();
+    const int c = infog(id, 1);
+    if (c == -8 || c == -9) {
+      // The working space estimated in the analysis was too small (typically
+      // delayed pivots in an indefinite matrix): one retry with twice the relaxation.
+      icntl(id, 14) = std::max(2 * icntl(id, 14), 20);
+      m.call();
+    }
+    m.check("numerical factorisation (JOB=2)");
+    m.factored = true;
+    ++m.nNumeric;
+  });
 }
 
 void MumpsSolver::solve(const MultiVector& b, MultiVector& x) {
-  Impl& m = *impl_;
-  if (!m.factored) throw std::logic_error("MUMPS solve() called without a successful numeric()");
-  const size_t k = b.getNumVectors();
-  const bool bad = x.getNumVectors() != k || b.getLocalLength() != static_cast<size_t>(m.nLocal) ||
-                   x.getLocalLength() != static_cast<size_t>(m.nLocal);
-  if (anyRank(m.comm, bad))
-    throw std::invalid_argument("MUMPS solve(): b and x must be distributed like the matrix rows and have the "
-                                "same number of columns");
-  if (k == 0) return;
-  const size_t n = static_cast<size_t>(m.n);
-  // One column is kept between calls; a block of columns (FETI-DP's Phi) is
-  // a temporary, so that it does not stay allocated per subdomain.
-  std::vector<double> block;
-  std::vector<double>& buf = k == 1 ? m.rhs : block;
-  if (m.rank == 0) buf.assign(n * k, 0.0);
-  double* root = m.rank == 0 ? buf.data() : nullptr;
-  for (size_t j = 0; j < k; ++j) {
-    auto bj = b.getData(j);
-    MPI_Gatherv(bj.getRawPtr(), m.nLocal, MPI_DOUBLE, root ? root + j * n : nullptr, m.rowCounts.data(),
-                m.rowFirst.data(), MPI_DOUBLE, 0, m.comm);
-  }
-  DMUMPS_STRUC_C& id = m.id;
-  id.rhs = root;
-  id.nrhs = static_cast<MUMPS_INT>(k);
-  id.lrhs = m.n;
-  icntl(id, 26) = 0;  // with a Schur complement: the interior problem only
-  m.condensed = false;
-  m.run(3, "solve (JOB=3)");
-  for (size_t j = 0; j < k; ++j) {
-    auto xj = x.getDataNonConst(j);
-    MPI_Scatterv(root ? root + j * n : nullptr, m.rowCounts.data(), m.rowFirst.data(), MPI_DOUBLE,
-                 xj.getRawPtr(), m.nLocal, MPI_DOUBLE, 0, m.comm);
-  }
+  return impl_->visit([&](auto& m) {
+    if (!m.factored) throw std::logic_error("MUMPS solve() called without a successful numeric()");
+    const size_t k = b.getNumVectors();
+    const bool bad = x.getNumVectors() != k || b.getLocalLength() != static_cast<size_t>(m.nLocal) ||
+                     x.getLocalLength() != static_cast<size_t>(m.nLocal);
+    if (anyRank(m.comm, bad))
+      throw std::invalid_argument("MUMPS solve(): b and x must be distributed like the matrix rows and have the "
+                                  "same number of columns");
+    if (k == 0) return;
+    const size_t n = static_cast<size_t>(m.n);
+    // One column is kept between calls; a block of columns (FETI-DP's Phi) is
+    // a temporary, so that it does not stay allocated per subdomain.
+    std::vector<double> block;
+    std::vector<double>& buf = k == 1 ? m.rhs : block;
+    if (m.rank == 0) buf.assign(n * k, 0.0);
+    double* root = m.rank == 0 ? buf.data() : nullptr;
+    for (size_t j = 0; j < k; ++j) {
+      auto bj = b.getData(j);
+      MPI_Gatherv(bj.getRawPtr(), m.nLocal, MPI_DOUBLE, root ? root + j * n : nullptr, m.rowCounts.data(),
+                  m.rowFirst.data(), MPI_DOUBLE, 0, m.comm);
+    }
+    auto& id = m.id;
+    if constexpr (std::is_same_v<typename std::decay_t<decltype(m)>::Real, double>) {
+      id.rhs = root;
+    } else {
+      if (root) m.rhsReal.assign(buf.begin(), buf.end());
+      id.rhs = root ? m.rhsReal.data() : nullptr;
+    }
+    id.nrhs = static_cast<MUMPS_INT>(k);
+    id.lrhs = m.n;
+    icntl(id, 26) = 0;  // with a Schur complement: the interior problem only
+    m.condensed = false;
+    m.run(3, "solve (JOB=3)");
+    if constexpr (!std::is_same_v<typename std::decay_t<decltype(m)>::Real, double>) {
+      if (root) std::copy(m.rhsReal.begin(), m.rhsReal.end(), buf.begin());
+    }
+    for (size_t j = 0; j < k; ++j) {
+      auto xj = x.getDataNonConst(j);
+      MPI_Scatterv(root ? root + j * n : nullptr, m.rowCounts.data(), m.rowFirst.data(), MPI_DOUBLE,
+                   xj.getRawPtr(), m.nLocal, MPI_DOUBLE, 0, m.comm);
+    }
+  });
 }
 
 bool MumpsSolver::setSchurIndices(const std::vector<LO>& rows) {
-  Impl& m = *impl_;
-  m.schurRows.clear();
-  std::vector<LO> sorted(rows);
-  std::sort(sorted.begin(), sorted.end());
-  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
-    throw std::invalid_argument("MUMPS setSchurIndices(): repeated row");
-  for (LO r : rows) m.schurRows.push_back(static_cast<MUMPS_INT>(r) + 1);
-  m.analysed = m.factored = false;  // the analysis depends on them
-  return true;
+  return impl_->visit([&](auto& m) {
+    m.schurRows.clear();
+    std::vector<LO> sorted(rows);
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+      throw std::invalid_argument("MUMPS setSchurIndices(): repeated row");
+    for (LO r : rows) m.schurRows.push_back(static_cast<MUMPS_INT>(r) + 1);
+    m.analysed = m.factored = false;  // the analysis depends on them
+    return true;
+  });
 }
 
 void MumpsSolver::schurComplement(std::vector<double>& S) const {
-  const Impl& m = *impl_;
-  if (!m.factored || m.schurRows.empty())
-    throw std::logic_error("MUMPS schurComplement(): needs setSchurIndices(), symbolic() and numeric()");
-  S = m.schur;
+  return impl_->visit([&](auto& m) {
+    if (!m.factored || m.schurRows.empty())
+      throw std::logic_error("MUMPS schurComplement(): needs setSchurIndices(), symbolic() and numeric()");
+    S.assign(m.schur.begin(), m.schur.end());
+  });
 }
 
 void MumpsSolver::condense(const double* b, double* g) {
-  Impl& m = *impl_;
-  if (!m.factored || m.schurRows.empty())
-    throw std::logic_error("MUMPS condense(): needs setSchurIndices(), symbolic() and numeric()");
-  DMUMPS_STRUC_C& id = m.id;
-  std::copy(b, b + m.n, m.condRhs.begin());
-  id.rhs = m.condRhs.data();
-  id.nrhs = 1;
-  id.lrhs = m.n;
-  id.redrhs = m.redRhs.data();
-  id.lredrhs = static_cast<MUMPS_INT>(m.schurRows.size());
-  icntl(id, 26) = 1;  // condensation: forward elimination, reduced RHS in REDRHS
-  m.condensed = false;
-  m.run(3, "condensation (JOB=3, ICNTL(26)=1)");
-  icntl(id, 26) = 0;
-  m.condensed = true;
-  std::copy(m.redRhs.begin(), m.redRhs.end(), g);
+  return impl_->visit([&](auto& m) {
+    if (!m.factored || m.schurRows.empty())
+      throw std::logic_error("MUMPS condense(): needs setSchurIndices(), symbolic() and numeric()");
+    auto& id = m.id;
+    std::copy(b, b + m.n, m.condRhs.begin());
+    id.rhs = m.condRhs.data();
+    id.nrhs = 1;
+    id.lrhs = m.n;
+    id.redrhs = m.redRhs.data();
+    id.lredrhs = static_cast<MUMPS_INT>(m.schurRows.size());
+    icntl(id, 26) = 1;  // condensation: forward elimination, reduced RHS in REDRHS
+    m.condensed = false;
+    m.run(3, "condensation (JOB=3, ICNTL(26)=1)");
+    icntl(id, 26) = 0;
+    m.condensed = true;
+    std::copy(m.redRhs.begin(), m.redRhs.end(), g);
+  });
 }
 
 void MumpsSolver::expand(const double* xs, double* x) {
-  Impl& m = *impl_;
-  if (!m.condensed) throw std::logic_error("MUMPS expand(): call condense() first");
-  DMUMPS_STRUC_C& id = m.id;
-  const size_t ns = m.schurRows.size();
-  std::copy(xs, xs + ns, m.redRhs.begin());
-  id.rhs = m.condRhs.data();  // as condense() left it
-  id.nrhs = 1;
-  id.lrhs = m.n;
-  id.redrhs = m.redRhs.data();
-  id.lredrhs = static_cast<MUMPS_INT>(ns);
-  icntl(id, 26) = 2;  // expansion: backward substitution with x_s given
-  m.condensed = false;
-  m.run(3, "expansion (JOB=3, ICNTL(26)=2)");
-  icntl(id, 26) = 0;
-  std::copy(m.condRhs.begin(), m.condRhs.end(), x);
-  for (size_t q = 0; q < ns; ++q) x[m.schurRows[q] - 1] = xs[q];
+  return impl_->visit([&](auto& m) {
+    if (!m.condensed) throw std::logic_error("MUMPS expand(): call condense() first");
+    auto& id = m.id;
+    const size_t ns = m.schurRows.size();
+    std::copy(xs, xs + ns, m.redRhs.begin());
+    id.rhs = m.condRhs.data();  // as condense() left it
+    id.nrhs = 1;
+    id.lrhs = m.n;
+    id.redrhs = m.redRhs.data();
+    id.lredrhs = static_cast<MUMPS_INT>(ns);
+    icntl(id, 26) = 2;  // expansion: backward substitution with x_s given
+    m.condensed = false;
+    m.run(3, "expansion (JOB=3, ICNTL(26)=2)");
+    icntl(id, 26) = 0;
+    std::copy(m.condRhs.begin(), m.condRhs.end(), x);
+    for (size_t q = 0; q < ns; ++q) x[m.schurRows[q] - 1] = xs[q];
+  });
 }
 
-int MumpsSolver::numSymbolic() const { return impl_->nSymbolic; }
-int MumpsSolver::numNumeric() const { return impl_->nNumeric; }
-int MumpsSolver::orderingUsed() const { return impl_->analysed ? infog(impl_->id, 7) : -1; }
+int MumpsSolver::numSymbolic() const {
+  return impl_->visit([](const auto& m) { return m.nSymbolic; });
+}
+int MumpsSolver::numNumeric() const {
+  return impl_->visit([](const auto& m) { return m.nNumeric; });
+}
+int MumpsSolver::orderingUsed() const {
+  return impl_->visit([](const auto& m) { return m.analysed ? infog(m.id, 7) : -1; });
+}
 int MumpsSolver::memoryRelaxationPercent() const {
-  return impl_->initialized ? impl_->id.icntl[13] : impl_->relaxation;
+  return impl_->visit([](const auto& m) { return m.initialized ? m.id.icntl[13] : m.relaxation; });
 }
 
 }  // namespace ddc

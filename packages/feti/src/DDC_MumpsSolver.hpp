@@ -1,6 +1,6 @@
 // "MUMPS" back end of the local-solver factory: MUMPS 5 called through its C
-// API (dmumps_c), because Debian's Amesos2 is built without MUMPS
-// (doc/trilinos-notes.md).
+// API (dmumps_c, or smumps_c with "Precision" = Single), because Debian's
+// Amesos2 is built without MUMPS (doc/trilinos-notes.md).
 //
 // The matrix is handed to MUMPS in distributed assembled form (ICNTL(18)=3:
 // every rank passes the rows it owns), the right-hand side is centralised
@@ -15,10 +15,12 @@
 
 namespace ddc {
 
-/// Sparse direct solver backed by MUMPS (dmumps, C API).
+/// Sparse direct solver backed by MUMPS (dmumps or smumps, C API).
 ///
 /// Parameters (see getValidParameters()): "Symmetric", "Ordering",
-/// "Memory Relaxation Percent", "Verbose".
+/// "Memory Relaxation Percent", "Precision" (Double | Single: the factors in
+/// float, right-hand sides and solutions converted; for solves inside a
+/// preconditioner), "Verbose".
 ///
 /// Lifecycle: symbolic(A) runs the MUMPS analysis (JOB=1) and caches the
 /// index arrays; numeric() refreshes the values from A and factorises

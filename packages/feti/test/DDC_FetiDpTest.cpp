@@ -1446,6 +1446,30 @@ TEST(FetiDpBddc, MatchesDirectSolveInFetiDpsIterations) {
     }
 }
 
+/// BDDC's coarse solve is in its preconditioner: by default single
+/// precision (MUMPS "Precision" = Single), which must leave the answer and,
+/// up to one, the iterations of the double-precision coarse solve.
+TEST(FetiDpBddc, SinglePrecisionCoarseSolveKeepsAnswerAndIterations) {
+  for (const Layout L : {Layout{4, 4, 1, true}, Layout{4, 4, 2, false}}) {
+    Spec s;
+    s.Sx = L.Sx, s.Sy = L.Sy, s.dpn = L.dpn, s.H = 4, s.blockwise = L.blockwise;
+    auto p = fetiParams();
+    p.set("Method", std::string("BDDC"));
+    p.sublist("Coarse Solver").sublist("MUMPS").set("Precision", std::string("Double"));
+    const FetiRun dbl = runFeti(s, p, false);
+    p.sublist("Coarse Solver").sublist("MUMPS").remove("Precision");
+    const FetiRun single = runFeti(s, p);
+    {
+      auto filled = p;  // the constructor fills in the defaults it chose
+      FetiDpSolver feti(worldComm(), filled, "FETI-DP");
+      EXPECT_EQ(filled.sublist("Coarse Solver").sublist("MUMPS").get<std::string>("Precision"), "Single");
+    }
+    report("BDDC single-precision coarse solve", single);
+    EXPECT_LT(single.error, ddc::test::kFetiVsDirect);
+    EXPECT_LE(std::abs(single.info.iterations - dbl.info.iterations), 1);
+  }
+}
+
 /// BDDC iterates on the caller's DOFs with vertices and weights 1/m: the
 /// options it cannot honour, extra rows and DOFs marked for them are
 /// refused by name.
@@ -1458,6 +1482,14 @@ TEST(FetiDpErrors, BddcRefusesWhatItCannotHonour) {
     p.set(name, std::string(value));
     expectThrowWith<ddc::InputError>([&] { FetiDpSolver f(worldComm(), p, "Solver/FETI-DP"); },
                                      {std::string("Solver/FETI-DP/") + name, value, "Solver/FETI-DP/Method", "BDDC"});
+  }
+  {
+    // FETI-DP's coarse solve is inside F: single precision is refused.
+    auto p = fetiParams();
+    p.sublist("Coarse Solver").sublist("MUMPS").set("Precision", std::string("Single"));
+    expectThrowWith<ddc::InputError>([&] { FetiDpSolver f(worldComm(), p, "Solver/FETI-DP"); },
+                                     {"Solver/FETI-DP/Coarse Solver/MUMPS/Precision", "Single",
+                                      "Solver/FETI-DP/Method", "BDDC"});
   }
   Spec s;
   s.Sx = 2, s.Sy = 1, s.H = 2, s.dpn = 1;
