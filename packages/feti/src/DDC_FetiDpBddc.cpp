@@ -169,7 +169,6 @@ void InterfaceProblem::gather(const Context& ctx, const std::vector<double>& yOv
 
 void InterfaceProblem::applySchur(const Context& ctx, const std::vector<Subdomain>& subs, Preconditioner& prec,
                                   const Vector& x, Vector& y) {
-  const double t0 = MPI_Wtime();
   scatter(ctx, x);
   std::vector<double> yOv(ov->getLocalLength(), 0.0);
   {
@@ -191,7 +190,6 @@ void InterfaceProblem::applySchur(const Context& ctx, const std::vector<Subdomai
   }
   gather(ctx, yOv, y);
   ++nApply;
-  tApply += MPI_Wtime() - t0;
 }
 
 /// The weighted restriction of r to each subdomain (D = 1/m, zero on the

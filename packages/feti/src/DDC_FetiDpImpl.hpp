@@ -511,8 +511,7 @@ class InterfaceProblem {
   std::vector<LO> ownedLid;  ///< interface LID -> ownedMap LID
   std::vector<Blocks> blocks;  ///< per local subdomain
   RCP<Vector> owned, ov;       ///< work on Context::ownedMap / dofOvMap
-  double tApply = 0.0;
-  int nApply = 0;
+  int nApply = 0;  ///< applications of S in the last solve()
 
   /// The interface map and index lists (collective). \throws
   /// std::logic_error if a DOF is interior in one subdomain and shared.

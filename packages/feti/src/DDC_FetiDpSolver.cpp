@@ -570,7 +570,7 @@ FetiDpSolver::Info FetiDpSolver::solve(const Vector& b, Vector& u) {
   Impl& m = *impl_;
   if (!m.factored) throw std::logic_error("FetiDpSolver::solve() called without a successful numeric()");
   const double t0 = MPI_Wtime();
-  m.dual.tLocalSolve = m.coarse.tSolve = m.prec.tApply = m.prec.tDirichletSolve = m.iface.tApply = 0.0;
+  m.dual.tLocalSolve = m.coarse.tSolve = m.prec.tApply = m.prec.tDirichletSolve = 0.0;
   m.dual.nApply = m.prec.nApply = m.iface.nApply = 0;
   Info info = m.setup;
   if (!m.jump.weightsCurrent) m.jump.computeWeights(m.ctx, m.subs);
