@@ -170,7 +170,8 @@ void InterfaceProblem::gather(const Context& ctx, const std::vector<double>& yOv
 void InterfaceProblem::applySchur(const Context& ctx, const std::vector<Subdomain>& subs, Preconditioner& prec,
                                   const Vector& x, Vector& y) {
   scatter(ctx, x);
-  std::vector<double> yOv(ov->getLocalLength(), 0.0);
+  std::vector<double>& yOv = yOvWork;  // kept: a fresh vector per iteration cost page faults
+  yOv.assign(ov->getLocalLength(), 0.0);
   {
     auto xo = ov->getData();
     for (size_t ls = 0; ls < subs.size(); ++ls) {
@@ -199,7 +200,7 @@ void InterfaceProblem::applySchur(const Context& ctx, const std::vector<Subdomai
 void Impl::applyBddcPreconditioner(const Vector& r, Vector& z) {
   const double t0 = MPI_Wtime();
   iface.scatter(ctx, r);
-  loadForces(*iface.owned);
+  loadOverlapForces(*iface.ov);  // r imported once, by scatter()
   Vector fPi(coarse.map);
   primalForces(*iface.owned, fPi);
   dual.applyKtildeInv(subs, coarse, &fPi);

@@ -511,6 +511,7 @@ class InterfaceProblem {
   std::vector<LO> ownedLid;  ///< interface LID -> ownedMap LID
   std::vector<Blocks> blocks;  ///< per local subdomain
   RCP<Vector> owned, ov;       ///< work on Context::ownedMap / dofOvMap
+  std::vector<double> yOvWork;  ///< applySchur()'s sums on dofOvMap
   int nApply = 0;  ///< applications of S in the last solve()
 
   /// The interface map and index lists (collective). \throws
@@ -569,6 +570,8 @@ struct FetiDpSolver::Impl {
 
   /// DualOperator::local[].fr, fp from b (DDC_FetiDpSolver.cpp).
   void loadForces(const Vector& b);
+  /// The same from b on Context::dofOvMap.
+  void loadOverlapForces(const Vector& bOv);
   /// The coarse right-hand side at the primal vertex DOFs from b.
   void primalForces(const Vector& b, Vector& fPi) const;
   /// u from the subdomain solutions and the coarse solution (weighted average).

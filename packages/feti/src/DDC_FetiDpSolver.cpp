@@ -392,7 +392,12 @@ void checkSolveVectors(const Impl& m, const Vector& b, const Vector& u) {
 /// the subdomains by the coarse assembly.
 void Impl::loadForces(const Vector& b) {
   dofOvWork->doImport(b, *ctx.dofImport, Tpetra::INSERT);
-  auto bo = dofOvWork->getData();
+  loadOverlapForces(*dofOvWork);
+}
+
+/// loadForces() from b already imported to Context::dofOvMap.
+void Impl::loadOverlapForces(const Vector& bOv) {
+  auto bo = bOv.getData();
   std::vector<double> f;
   for (size_t ls = 0; ls < subs.size(); ++ls) {
     const Subdomain& s = subs[ls];
