@@ -471,9 +471,10 @@ class Preconditioner {
     std::vector<double> vd, wd, vi, wi;
   };
   Kind kind = Kind::Dirichlet;
-  /// Factorise K_II in every subdomain with interior DOFs, also those without
-  /// dual DOFs (BDDC solves with it; the preconditioner needs only those).
-  bool allInteriors = false;
+  /// BDDC: factorise K_II in every subdomain with interior DOFs, also those
+  /// without dual DOFs (BDDC's S solves with it), and keep none of the
+  /// K_ID, K_DI, K_DD blocks (BDDC's preconditioner is K~^{-1}, not this one).
+  bool interiorsOnly = false;
   std::vector<Blocks> blocks;  ///< per local subdomain
   double tApply = 0.0, tDirichletSolve = 0.0;
   int nApply = 0;

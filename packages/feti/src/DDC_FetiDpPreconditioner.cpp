@@ -25,7 +25,7 @@ void Preconditioner::build(const std::vector<Subdomain>& subs, const DirectSolve
   for (size_t ls = 0; ls < subs.size(); ++ls) {
     const Subdomain& s = subs[ls];
     Blocks& b = blocks[ls];
-    if (kind == Kind::Dirichlet && s.ni > 0 && (s.nd > 0 || allInteriors)) {
+    if (kind == Kind::Dirichlet && s.ni > 0 && (s.nd > 0 || interiorsOnly)) {
       Teuchos::ParameterList p(localParams);
       b.solver = factory.create(p, where);
     }
@@ -69,6 +69,7 @@ void Preconditioner::factor(const Context& ctx, const std::vector<Subdomain>& su
         const double v = k.val[e];
         const LO icol = s.iIdx[rc], dc = s.dIdx[rc];
         if (ir != kNone && icol != kNone) ic.push_back(icol), iv.push_back(v);
+        else if (interiorsOnly) continue;
         else if (ir != kNone) b.KID.push_back(Triplet{ir, dc, v});
         else if (icol != kNone) b.KDI.push_back(Triplet{dr, icol, v});
         else b.KDD.push_back(Triplet{dr, dc, v});

@@ -230,7 +230,7 @@ FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramete
   }
   m.bddc = params.get<std::string>("Method") == "BDDC";
   if (m.bddc) checkBddcParameters(params, path);
-  m.prec.allInteriors = m.bddc;
+  m.prec.interiorsOnly = m.bddc;
   m.dual.singularityThreshold = params.get<double>("Local Singularity Threshold");
   m.dual.localSchur = params.get<bool>("Local Schur Complement");
   m.automaticPrimal = params.get<std::string>("Primal Constraints") == "Automatic";
