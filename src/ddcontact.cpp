@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "DDC_Analysis.hpp"
+#include "DDC_BlasKernels.hpp"
 #include "DDC_Error.hpp"
 #include "DDC_InputDeck.hpp"
 #include "DDC_Memory.hpp"
@@ -223,6 +224,8 @@ int run(const std::vector<std::string>& args, const Teuchos::RCP<const Teuchos::
                 << analysis->model().partition().numSubdomains << " subdomains on " << comm->getSize()
                 << " ranks; estimated memory " << ddc::formatBytes(analysis->memoryEstimate().total()) << " per rank"
                 << std::endl;
+      const std::string blas = ddc::blasKernelAdvice(ddc::detectBlasKernels());
+      if (!blas.empty()) std::cout << "ddcontact: BLAS: " << blas << std::endl;
     }
   };
   // A restart checks the deck against the checkpoint before the output
