@@ -105,6 +105,7 @@ ddc_feti_on_parts(feti_default_3d_Eisenstat-Walker ${PROJECT_SOURCE_DIR}/example
   ARGS --set "Mesh/Bodies/Block/Box/Refinement=3" --set "Partition/Number of Subdomains=32" REGEX "step +1/1")
 ddc_feti_on_parts(feti_primal_Automatic_512_subdomains ${PROJECT_SOURCE_DIR}/examples/block_3d.xml
   ARGS --set "Mesh/Bodies/Block/Box/Refinement=2" --set "Partition/Number of Subdomains=512"
+    --set "Solver/FETI-DP/Method=FETI-DP"
   REGEX "no edge averages.*step +1/1")
 ddc_feti_on_parts(feti_island_FETI-DP_np2 ${DDC_INPUTS}/feti_island.xml
   ARGS --set "Solver/FETI-DP/Belos/Convergence Tolerance=1e-12"
@@ -141,13 +142,17 @@ ddc_add_run_test(feti_reports_coarse_size RANKS 1
 # subdomains find no edge with an interior node to average).
 set(averages_off "Primal Constraints = Automatic, on 512 subdomains in 3-D: every subdomain-edge node primal, no \
 edge averages")
-foreach(c "511;Automatic;Automatic;[1-9][0-9]*;2" "512;Automatic;Automatic;0;2" "512;Vertices;Vertices;0;2"
-          "512;Edges;Vertices and Edges;[1-9][0-9]*;3")
+# FETI-DP's rule, so 'Method' = FETI-DP where Automatic would choose BDDC
+# (below); below 512 subdomains, and with edges, which BDDC cannot take,
+# Automatic stays FETI-DP.
+foreach(c "511;Automatic;Automatic;[1-9][0-9]*;2;Automatic" "512;Automatic;Automatic;0;2;FETI-DP"
+          "512;Vertices;Vertices;0;2;FETI-DP" "512;Edges;Vertices and Edges;[1-9][0-9]*;3;Automatic")
   list(GET c 0 count)
   list(GET c 1 tag)
   list(GET c 2 primal)
   list(GET c 3 averages)
   list(GET c 4 refinement)
+  list(GET c 5 method)
   set(regex "FETI-DP: ${count} subdomains, [1-9][0-9]* primal nodes, coarse problem of [1-9][0-9]* DOFs \\([0-9]+ at \
 primal nodes, ${averages} edge/face constraints\\)")
   if(count EQUAL 512 AND tag STREQUAL "Automatic")
@@ -156,13 +161,30 @@ primal nodes, ${averages} edge/face constraints\\)")
   ddc_add_run_test(feti_primal_${tag}_${count}_subdomains RANKS 2 FIXTURE
     ARGS ${PROJECT_SOURCE_DIR}/examples/block_3d.xml --set "Mesh/Bodies/Block/Box/Refinement=${refinement}"
       --set "Solver/Strategy=FETI-DP" --set "Partition/Number of Subdomains=${count}"
-      --set "Solver/FETI-DP/Primal Constraints=${primal}" --set "Output/VTK=false"
-      --output-dir ${DDC_RUNS}/feti_primal_${tag}_${count}_subdomains
+      --set "Solver/FETI-DP/Primal Constraints=${primal}" --set "Solver/FETI-DP/Method=${method}"
+      --set "Output/VTK=false" --output-dir ${DDC_RUNS}/feti_primal_${tag}_${count}_subdomains
     FILES ${DDC_RUNS}/feti_primal_${tag}_${count}_subdomains/history.csv
     REGEX "${regex}" LABELS feti)
 endforeach()
 ddc_compare_histories(feti_primal_automatic_is_vertices_from_512 feti_primal_Automatic_512_subdomains
   feti_primal_Vertices_512_subdomains 1e-14 LABELS feti)
+# 'Method' = Automatic from 512 subdomains in 3-D without contact is BDDC
+# (doc/feti-dp.md "BDDC"), with FETI-DP's answer to the Krylov tolerance
+# (kMethodsAgree, Belos' default 1e-10; measured 1.2e-13 in the strain
+# energy).
+set(kMethodsAgree 1e-10)
+ddc_add_run_test(feti_method_automatic_512_subdomains RANKS 2 FIXTURE
+  ARGS ${PROJECT_SOURCE_DIR}/examples/block_3d.xml --set "Mesh/Bodies/Block/Box/Refinement=2"
+    --set "Solver/Strategy=FETI-DP" --set "Partition/Number of Subdomains=512" --set "Output/VTK=false"
+    --output-dir ${DDC_RUNS}/feti_method_automatic_512_subdomains
+  FILES ${DDC_RUNS}/feti_method_automatic_512_subdomains/history.csv
+  REGEX "Method = Automatic, on 512 subdomains in 3-D without contact: BDDC.*BDDC: 512 subdomains, [1-9][0-9]* \
+primal nodes, coarse problem of [1-9][0-9]* DOFs" LABELS feti)
+ddc_feti_on_parts(feti_method_automatic_512_subdomains ${PROJECT_SOURCE_DIR}/examples/block_3d.xml
+  ARGS --set "Mesh/Bodies/Block/Box/Refinement=2" --set "Partition/Number of Subdomains=512"
+  REGEX "BDDC: 512 subdomains.*step +1/1")
+ddc_compare_histories(feti_method_automatic_bddc_equals_feti_dp feti_method_automatic_512_subdomains
+  feti_primal_Vertices_512_subdomains ${kMethodsAgree} COLUMNS strain_energy external_work load_factor LABELS feti)
 # The automatic subdomain count ('Partition/Number of Subdomains' = 0,
 # doc/performance.md): block_3d at Refinement 2 has 2673 nodes (8019 DOFs
 # before the clamp), so about one subdomain per 1650 DOFs is 5 on 2 ranks;

@@ -566,7 +566,10 @@ struct FetiDpSolver::Impl {
   RCP<Operator> fOp, mOp;
 
   bool couplingScaled = false;  ///< RowCoupling::scale is that of the current coupling and factorisation
-  bool bddc = false;            ///< "Method" = BDDC
+  bool bddc = false;            ///< "Method" = BDDC, or Automatic resolved to it (setAutomaticMethod())
+  bool automaticMethod = false;  ///< "Method" = Automatic
+  std::string bddcConflict;     ///< the option BDDC cannot honour ("" if none)
+  bool coarsePrecisionOpen = false;  ///< a MUMPS coarse solver whose precision the parameters leave open
   InterfaceProblem iface;       ///< BDDC only
 
   /// DualOperator::local[].fr, fp from b (DDC_FetiDpSolver.cpp).

@@ -50,16 +50,25 @@ const std::vector<std::string>& belosSolverNames() {
 /// BDDC works on the caller's DOFs with vertices as the primal space and
 /// multiplicity weights (doc/feti-dp.md "BDDC"): the options it cannot
 /// honour are refused by name.
-void checkBddcParameters(const Teuchos::ParameterList& params, const std::string& path) {
-  auto refuse = [&](const std::string& name, const std::string& expected) {
-    DDC_THROW(InputError, "parameter '" << joinPath(path, name) << "' = " << params.get<std::string>(name)
-                                        << " cannot be used with '" << joinPath(path, "Method")
-                                        << "' = BDDC; expected " << expected);
+/// \returns "" if BDDC can honour the options, else the first it cannot,
+/// with what it expects.
+std::string bddcConflict(const Teuchos::ParameterList& params, const std::string& path) {
+  auto conflict = [&](const std::string& name, const std::string& expected) {
+    return "parameter '" + joinPath(path, name) + "' = " + params.get<std::string>(name) + " cannot be used with '" +
+           joinPath(path, "Method") + "' = BDDC; expected " + expected;
   };
-  if (params.get<std::string>("Preconditioner") != "Dirichlet") refuse("Preconditioner", "Dirichlet");
-  if (params.get<std::string>("Scaling") == "Stiffness") refuse("Scaling", "Automatic or Multiplicity");
+  if (params.get<std::string>("Preconditioner") != "Dirichlet") return conflict("Preconditioner", "Dirichlet");
+  if (params.get<std::string>("Scaling") == "Stiffness") return conflict("Scaling", "Automatic or Multiplicity");
   const std::string primal = params.get<std::string>("Primal Constraints");
-  if (primal != "Automatic" && primal != "Vertices") refuse("Primal Constraints", "Automatic or Vertices");
+  if (primal != "Automatic" && primal != "Vertices") return conflict("Primal Constraints", "Automatic or Vertices");
+  return "";
+}
+
+/// True if `coarse` (the sublist "Coarse Solver", before validation) is MUMPS
+/// with no precision given: the method may choose it.
+bool coarsePrecisionOpen(const Teuchos::ParameterList& coarse) {
+  if (coarse.isParameter("Type") && coarse.get<std::string>("Type") != "MUMPS") return false;
+  return !coarse.isSublist("MUMPS") || !coarse.sublist("MUMPS").isParameter("Precision");
 }
 
 /// The arithmetic of a MUMPS coarse solver. BDDC's coarse solve is inside
@@ -69,18 +78,18 @@ void checkBddcParameters(const Teuchos::ParameterList& params, const std::string
 void chooseCoarsePrecision(Teuchos::ParameterList& coarse, const std::string& path, bool bddc) {
   // `coarse` is the sublist "Coarse Solver" of the solver's list at `path`.
   if (coarse.isParameter("Type") && coarse.get<std::string>("Type") != "MUMPS") return;
-  const Teuchos::ParameterEntry* e =
-      coarse.isSublist("MUMPS") ? coarse.sublist("MUMPS").getEntryPtr("Precision") : nullptr;
-  if (!e) {
+  if (coarsePrecisionOpen(coarse)) {
     if (bddc) coarse.sublist("MUMPS").set("Precision", std::string("Single"));
     return;
   }
+  const Teuchos::ParameterEntry* e = coarse.sublist("MUMPS").getEntryPtr("Precision");
   const bool single = e->isType<std::string>() && Teuchos::getValue<std::string>(*e) == "Single";
   if (single && !bddc)
     DDC_THROW(InputError, "parameter '" << joinPath(path, "Coarse Solver/MUMPS/Precision")
                                         << "' = Single needs '" << joinPath(path, "Method")
                                         << "' = BDDC: FETI-DP's coarse solve is inside its operator F and must "
-                                           "be exact; remove the parameter or use BDDC");
+                                           "be exact (Method = Automatic may choose FETI-DP); remove the parameter "
+                                           "or set Method = BDDC");
 }
 
 }  // namespace
@@ -92,8 +101,11 @@ void chooseCoarsePrecision(Teuchos::ParameterList& coarse, const std::string& pa
 Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
   static const RCP<const Teuchos::ParameterList> valid = [] {
     auto pl = rcp(new Teuchos::ParameterList("FETI-DP"));
-    pl->set("Method", std::string("FETI-DP"),
-            "What the Krylov solver iterates on: FETI-DP (the Lagrange multipliers, F lambda = d) or BDDC (the "
+    pl->set("Method", std::string("Automatic"),
+            "What the Krylov solver iterates on: Automatic (ddcontact: BDDC in 3-D from 512 subdomains when the "
+            "run has no contact pairs and the options below allow it, where it took the same time as FETI-DP within "
+            "the noise, or less, doc/feti-dp.md 'BDDC'; a host code chooses by FetiDpSolver::setAutomaticMethod(); FETI-DP "
+            "otherwise), FETI-DP (the Lagrange multipliers, F lambda = d) or BDDC (the "
             "displacements of the interface DOFs, S u = g, preconditioned by the same subdomain factorisations, "
             "coarse problem and Dirichlet blocks; Dohrmann 2003, the same spectrum as FETI-DP by Mandel, Dohrmann "
             "& Tezaur 2005). Its coarse solve is in the preconditioner only, so BDDC factorises the coarse "
@@ -101,7 +113,7 @@ Teuchos::RCP<const Teuchos::ParameterList> FetiDpSolver::getValidParameters() {
             "the same iterations. BDDC takes no extra rows (contact, ties) and primal vertices only: it needs "
             "Preconditioner = Dirichlet, Scaling = Automatic or Multiplicity and Primal Constraints = Automatic "
             "(then Vertices) or Vertices (doc/feti-dp.md, 'BDDC').",
-            enumValidator({"FETI-DP", "BDDC"}, "Method"));
+            enumValidator({"Automatic", "FETI-DP", "BDDC"}, "Method"));
     pl->set("Preconditioner", std::string("Dirichlet"),
             "Preconditioner of F on the LM space, M^{-1} = sum_s B_D^s S^s B_D^sT: Dirichlet (S^s = K_DD - K_DI "
             "K_II^{-1} K_ID, the Schur complement on the subdomain's dual interface DOFs with its primal DOFs fixed; "
@@ -229,7 +241,9 @@ FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramete
                                             : JumpOperator::Scaling::Automatic;
   }
   m.bddc = params.get<std::string>("Method") == "BDDC";
-  if (m.bddc) checkBddcParameters(params, path);
+  m.automaticMethod = params.get<std::string>("Method") == "Automatic";
+  m.bddcConflict = bddcConflict(params, path);
+  if (m.bddc && !m.bddcConflict.empty()) DDC_THROW(InputError, m.bddcConflict);
   m.prec.interiorsOnly = m.bddc;
   m.dual.singularityThreshold = params.get<double>("Local Singularity Threshold");
   m.dual.localSchur = params.get<bool>("Local Schur Complement");
@@ -287,6 +301,7 @@ FetiDpSolver::FetiDpSolver(RCP<const Teuchos::Comm<int>> comm, Teuchos::Paramete
       local.set("Type", std::string(kDefaultLocalSolver));
   }
   m.factory.create(params.sublist("Local Solver"), joinPath(path, "Local Solver"));
+  m.coarsePrecisionOpen = coarsePrecisionOpen(params.sublist("Coarse Solver"));
   chooseCoarsePrecision(params.sublist("Coarse Solver"), path, m.bddc);
   m.factory.create(params.sublist("Coarse Solver"), joinPath(path, "Coarse Solver"));
   m.factory.requireDistributable(params.sublist("Coarse Solver"), joinPath(path, "Coarse Solver"), comm->getSize());
@@ -735,6 +750,19 @@ GO FetiDpSolver::numEdgeFaceConstraints() const { return impl_->coarse.nEdgeFace
 void FetiDpSolver::setAutomaticPrimalConstraints(PrimalConstraints choice) {
   if (impl_->automaticPrimal && !impl_->bddc) impl_->primalChoice = choice;
 }
+
+bool FetiDpSolver::setAutomaticMethod(bool bddc) {
+  Impl& m = *impl_;
+  if (m.haveTopology) throw std::logic_error("FetiDpSolver::setAutomaticMethod() called after setTopology()");
+  if (!m.automaticMethod || !bddc || !m.bddcConflict.empty()) return m.bddc;
+  m.bddc = true;
+  m.prec.interiorsOnly = true;
+  if (m.automaticPrimal) m.primalChoice = PrimalConstraints::Vertices;
+  if (m.coarsePrecisionOpen) m.coarseSolverParams.sublist("MUMPS").set("Precision", std::string("Single"));
+  return true;
+}
+
+bool FetiDpSolver::usesBddc() const { return impl_->bddc; }
 
 PrimalConstraints FetiDpSolver::primalConstraints() const { return impl_->primalChoice; }
 

@@ -180,9 +180,10 @@ class FetiDpSolver {
   };
 
   /// Every parameter with its default and doc string:
-  ///  - "Method": "FETI-DP" (default: iterate on the multipliers) | "BDDC"
-  ///    (iterate on the interface displacements with the same blocks; no
-  ///    extra rows, vertices only; DDC_FetiDpBddc.cpp);
+  ///  - "Method": "Automatic" (default: FETI-DP unless the caller selects
+  ///    BDDC by setAutomaticMethod()) | "FETI-DP" (iterate on the
+  ///    multipliers) | "BDDC" (iterate on the interface displacements with
+  ///    the same blocks; no extra rows, vertices only; DDC_FetiDpBddc.cpp);
   ///  - "Preconditioner": "Dirichlet" (default) | "Lumped" | "None";
   ///  - "Scaling": "Automatic" (default: multiplicity on compatibility
   ///    rows, stiffness weights on extra rows) | "Multiplicity" |
@@ -254,6 +255,20 @@ class FetiDpSolver {
   void setAutomaticPrimalConstraints(PrimalConstraints choice);
   /// The primal constraints in use ("Automatic" resolved).
   PrimalConstraints primalConstraints() const;
+
+  /// What "Method" = Automatic stands for: FETI-DP unless the caller, which
+  /// knows the partition and whether extra rows will come, selects BDDC
+  /// here (the app does on many subdomains in 3-D without contact,
+  /// doc/feti-dp.md "BDDC"). BDDC is taken only where the other options
+  /// allow it (Preconditioner = Dirichlet, Scaling not Stiffness, Primal
+  /// Constraints Automatic or Vertices); it then sets "Primal Constraints" =
+  /// Automatic to Vertices and the MUMPS coarse solve to single precision
+  /// unless the parameters say otherwise. An explicit "Method" is kept.
+  /// Before setTopology(). \returns whether BDDC is now the method.
+  bool setAutomaticMethod(bool bddc);
+  /// True if the Krylov solver iterates on the interface displacements
+  /// (BDDC), false for the multipliers (FETI-DP); "Automatic" resolved.
+  bool usesBddc() const;
 
   /// Collective. After the caller updated the K values: factorise every
   /// K_rr^s, compute Phi^s = K_rr^{-1} K_rPi (one multi-RHS solve) and

@@ -291,9 +291,13 @@ struct FetiRun {
 };
 
 /// Set up, factorise and solve one problem; compare with the direct solve.
-FetiRun runFeti(const Spec& spec, Teuchos::ParameterList params, bool compare = true) {
+/// `beforeTopology` (if any) sees the solver between its construction and
+/// setTopology().
+FetiRun runFeti(const Spec& spec, Teuchos::ParameterList params, bool compare = true,
+                const std::function<void(FetiDpSolver&)>& beforeTopology = {}) {
   Problem pb(spec);
   FetiDpSolver feti(worldComm(), params, "FETI-DP");
+  if (beforeTopology) beforeTopology(feti);
   feti.setTopology(pb.subdomains(), pb.ownedMap());
   feti.numeric();
   auto b = pb.load();
@@ -1468,6 +1472,49 @@ TEST(FetiDpBddc, SinglePrecisionCoarseSolveKeepsAnswerAndIterations) {
     EXPECT_LT(single.error, ddc::test::kFetiVsDirect);
     EXPECT_LE(std::abs(single.info.iterations - dbl.info.iterations), 1);
   }
+}
+
+/// "Method" = Automatic is FETI-DP unless the caller selects BDDC before
+/// setTopology() (the app does on many subdomains without contact); then it
+/// is the run an explicit BDDC makes. Options BDDC cannot honour keep
+/// FETI-DP, and an explicit Method is kept.
+TEST(FetiDpBddc, AutomaticMethodIsBddcOnlyWhereTheCallerAndOptionsAllow) {
+  Spec s;
+  s.Sx = 3, s.Sy = 3, s.dpn = 2, s.H = 4, s.blockwise = true;
+  auto p = fetiParams();
+  ASSERT_EQ(p.get<std::string>("Method", "Automatic"), "Automatic");
+  bool fetiUsed = true;
+  const FetiRun feti = runFeti(s, p, false, [&](FetiDpSolver& f) { fetiUsed = !f.usesBddc(); });
+  EXPECT_TRUE(fetiUsed) << "Automatic without the caller's choice is FETI-DP";
+  bool chose = false;
+  const FetiRun automatic = runFeti(s, p, true, [&](FetiDpSolver& f) { chose = f.setAutomaticMethod(true); });
+  auto q = p;
+  q.set("Method", std::string("BDDC"));
+  const FetiRun bddc = runFeti(s, q, false);
+  report("Automatic, BDDC selected", automatic);
+  EXPECT_TRUE(chose);
+  EXPECT_LT(automatic.error, ddc::test::kFetiVsDirect);
+  EXPECT_EQ(automatic.info.iterations, bddc.info.iterations) << "FETI-DP took " << feti.info.iterations;
+  EXPECT_EQ(automatic.info.operatorApplications, bddc.info.operatorApplications);
+
+  const std::pair<const char*, const char*> keepFeti[] = {
+      {"Scaling", "Stiffness"}, {"Preconditioner", "Lumped"}, {"Primal Constraints", "Vertices and Edges"},
+      {"Method", "FETI-DP"}};
+  for (const auto& [name, value] : keepFeti) {
+    auto r = p;
+    r.set(name, std::string(value));
+    FetiDpSolver f(worldComm(), r, "FETI-DP");
+    EXPECT_FALSE(f.setAutomaticMethod(true)) << name << " = " << value;
+    EXPECT_FALSE(f.usesBddc()) << name << " = " << value;
+  }
+  {
+    FetiDpSolver f(worldComm(), q, "FETI-DP");
+    EXPECT_TRUE(f.setAutomaticMethod(false)) << "an explicit BDDC is kept";
+  }
+  Problem pb(s);
+  FetiDpSolver f(worldComm(), p, "FETI-DP");
+  f.setTopology(pb.subdomains(), pb.ownedMap());
+  EXPECT_THROW(f.setAutomaticMethod(true), std::logic_error);
 }
 
 /// BDDC iterates on the caller's DOFs with vertices and weights 1/m: the

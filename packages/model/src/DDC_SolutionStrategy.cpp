@@ -112,10 +112,23 @@ class FetiDpStrategy : public SolutionStrategy {
  public:
   FetiDpStrategy(Teuchos::RCP<const Teuchos::Comm<int>> comm, Teuchos::ParameterList& solverParams)
       : feti_(std::make_unique<FetiDpSolver>(comm, solverParams.sublist("FETI-DP"), "Solver/FETI-DP")),
-        primalChoice_(solverParams.sublist("FETI-DP").get<std::string>("Primal Constraints")),
-        bddc_(solverParams.sublist("FETI-DP").get<std::string>("Method") == "BDDC") {}
+        primalChoice_(solverParams.sublist("FETI-DP").get<std::string>("Primal Constraints")) {}
 
-  std::string name() const override { return bddc_ ? "BDDC" : "FETI-DP"; }
+  std::string name() const override { return feti_->usesBddc() ? "BDDC" : "FETI-DP"; }
+
+  /// Where the automatic choices of primal constraints and method change:
+  /// from this many subdomains in 3-D the subdomains are small and the
+  /// coarse problem large.
+  static constexpr int kManySubdomains = 512;
+
+  /// "Method" = Automatic: from kManySubdomains in 3-D, BDDC, whose coarse
+  /// solve sits in the preconditioner (single precision), took the same
+  /// time as FETI-DP within the noise, and 0.80 of it at 4,096 subdomains
+  /// (block_3d at 421k DOFs, doc/feti-dp.md "BDDC"). Runs with contact keep
+  /// FETI-DP: their rows are its multipliers.
+  bool automaticBddc() const {
+    return !model_->hasContact() && model_->dim() == 3 && model_->partition().numSubdomains >= kManySubdomains;
+  }
 
   /// "Primal Constraints" = Automatic on many subdomains in 3-D: every node
   /// of a subdomain edge primal, no averages (doc/feti-dp.md "In 3-D").
@@ -125,7 +138,6 @@ class FetiDpStrategy : public SolutionStrategy {
   /// 11.0 / 10.2 / 12.4 s in less memory, for 1.0 / 1.15 / 1.26 times the
   /// dual iterations (doc/performance.md). Fewer subdomains keep the edges.
   bool automaticVerticesOnly() const {
-    constexpr int kManySubdomains = 512;
     return primalChoice_ == "Automatic" && model_->dim() == 3 &&
            model_->partition().numSubdomains >= kManySubdomains;
   }
@@ -145,7 +157,11 @@ class FetiDpStrategy : public SolutionStrategy {
     // copies of shared DOFs (doc/feti-dp.md "Extra rows").
     // BDDC takes vertices only (doc/feti-dp.md "BDDC"): every subdomain-edge
     // node primal, whatever the number of subdomains.
-    const bool strong = primalChoice_ == "Vertices" || automaticVerticesOnly() || bddc_;
+    if (!feti_->usesBddc() && feti_->setAutomaticMethod(automaticBddc()))
+      progress("FETI-DP: Method = Automatic, on " + std::to_string(model_->partition().numSubdomains) +
+               " subdomains in 3-D without contact: BDDC (iterates on the interface displacements)");
+    const bool bddc = feti_->usesBddc();
+    const bool strong = primalChoice_ == "Vertices" || automaticVerticesOnly() || bddc;
     if (automaticVerticesOnly()) {
       feti_->setAutomaticPrimalConstraints(PrimalConstraints::Vertices);
       progress("FETI-DP: Primal Constraints = Automatic, on " + std::to_string(model_->partition().numSubdomains) +
@@ -191,7 +207,7 @@ class FetiDpStrategy : public SolutionStrategy {
       ownPrimal += primal[n] && model_->ownedMap()->isNodeGlobalElement(model_->dof(n, 0)) ? 1 : 0;
     Teuchos::reduceAll<int, long>(*model_->comm(), Teuchos::REDUCE_SUM, ownPrimal, Teuchos::outArg(nodes));
     const GO coarse = GO(feti_->primalMap()->getGlobalNumElements()), edgeFace = feti_->numEdgeFaceConstraints();
-    progress("FETI-DP: " + std::to_string(model_->partition().numSubdomains) + " subdomains, " +
+    progress(name() + ": " + std::to_string(model_->partition().numSubdomains) + " subdomains, " +
              std::to_string(nodes) + " primal nodes, coarse problem of " + std::to_string(coarse) + " DOFs (" +
              std::to_string(coarse - edgeFace) + " at primal nodes, " + std::to_string(edgeFace) +
              " edge/face constraints)");
@@ -368,7 +384,6 @@ class FetiDpStrategy : public SolutionStrategy {
   std::shared_ptr<Model> model_;
   std::unique_ptr<FetiDpSolver> feti_;
   std::string primalChoice_;  ///< "Solver/FETI-DP/Primal Constraints"
-  bool bddc_ = false;         ///< "Solver/FETI-DP/Method" = BDDC
   std::function<void(const std::string&)> progress_;
   std::vector<SubdomainSystem> subdomains_;  ///< this rank's subdomain problems
   SubdomainSink sink_;
